@@ -1,0 +1,30 @@
+# Every third-party package hexcal uses, found once here (Debian bookworm packages;
+# scripts/install-deps.sh installs them). Layers link only what docs/architecture.md allows.
+find_package(Threads REQUIRED)
+find_package(Eigen3 3.3 REQUIRED NO_MODULE)
+find_package(yaml-cpp REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(Ceres REQUIRED)
+find_package(NLopt REQUIRED PATHS /usr/lib/x86_64-linux-gnu/cmake/nlopt_cxx)
+find_package(GTest REQUIRED)
+if(HEXCAL_BUILD_BENCHMARKS)
+  find_package(benchmark REQUIRED)
+endif()
+
+# Vision and GUI stacks. Found from the start so that a missing or broken package
+# fails at configure time, not when the vision/ui layers land.
+find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs calib3d)
+# Debian's libapriltag-dev ships only a pkg-config file.
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(APRILTAG REQUIRED IMPORTED_TARGET apriltag)
+find_package(Qt5 5.15 REQUIRED COMPONENTS Widgets Charts Svg)
+# Debian's VTK 9.1 config references MPI::MPI_C: find MPI (C enabled) first.
+find_package(MPI COMPONENTS C)
+find_package(VTK 9 REQUIRED COMPONENTS GUISupportQt RenderingOpenGL2 RenderingCore
+             InteractionStyle CommonCore)
+
+# yaml-cpp 0.7 on bookworm exports the target as "yaml-cpp" without a namespace.
+if(TARGET yaml-cpp AND NOT TARGET yaml-cpp::yaml-cpp)
+  add_library(yaml-cpp::yaml-cpp ALIAS yaml-cpp)
+endif()

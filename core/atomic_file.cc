@@ -1,0 +1,130 @@
+#include "core/atomic_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+namespace hexcal {
+namespace {
+
+Status ErrnoError(const std::string& path, const std::string& what, int error_number) {
+  return Status::Error(path + ": " + what + ": " + std::strerror(error_number));
+}
+
+// The umask cannot be read without setting it (umask(2)), which would race with
+// other threads creating files; Linux publishes it in /proc/self/status.
+mode_t ProcessUmask() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("Umask:", 0) == 0) {
+      return static_cast<mode_t>(std::stoul(line.substr(6), nullptr, 8));
+    }
+  }
+  return 022;
+}
+
+// mkstemp creates 0600 files; a replaced file keeps its mode, a new one gets
+// what open(2) would have given it.
+mode_t ModeForTarget(const std::string& path) {
+  struct stat existing;
+  if (::stat(path.c_str(), &existing) == 0) return existing.st_mode & 07777;
+  return 0666 & ~ProcessUmask();
+}
+
+bool WriteAll(int fd, const std::string& contents) {
+  const char* data = contents.data();
+  size_t remaining = contents.size();
+  while (remaining > 0) {
+    const ssize_t written = ::write(fd, data, remaining);
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      return false;
+    }
+    data += written;
+    remaining -= static_cast<size_t>(written);
+  }
+  return true;
+}
+
+// Makes the rename itself durable. Some file systems cannot sync a directory
+// and say so with EINVAL; the data is still written, so that is not a failure.
+Status SyncDirectory(const std::string& path, const std::string& dir) {
+  const int dir_fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dir_fd < 0) return ErrnoError(path, "cannot open folder '" + dir + "' to sync it", errno);
+  const int result = ::fsync(dir_fd);
+  const int sync_errno = errno;
+  ::close(dir_fd);
+  if (result != 0 && sync_errno != EINVAL) {
+    return ErrnoError(path, "cannot sync folder '" + dir + "'", sync_errno);
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status WriteFileAtomically(const std::string& path, const std::string& contents) {
+  const std::filesystem::path target(path);
+  const std::string basename = target.filename().string();
+  if (basename.empty() || basename == "." || basename == "..") {
+    return Status::Error(path + ": not a file name");
+  }
+  const std::string dir = target.has_parent_path() ? target.parent_path().string() : ".";
+  std::string temp_path = dir + "/." + basename + ".tmp.XXXXXX";
+  std::vector<char> temp_name(temp_path.begin(), temp_path.end());
+  temp_name.push_back('\0');
+
+  const int fd = ::mkstemp(temp_name.data());
+  if (fd < 0) return ErrnoError(path, "cannot create a temporary file in '" + dir + "'", errno);
+  temp_path = temp_name.data();
+
+  // Every failure below removes the temp file and reports the first error.
+  auto fail = [&](const std::string& what, int error_number, bool close_fd) {
+    if (close_fd) ::close(fd);
+    ::unlink(temp_path.c_str());
+    return ErrnoError(path, what, error_number);
+  };
+  if (::fchmod(fd, ModeForTarget(path)) != 0) return fail("cannot set permissions", errno, true);
+  if (!WriteAll(fd, contents)) return fail("write failed", errno, true);
+  if (::fsync(fd) != 0) return fail("fsync failed", errno, true);
+  if (::close(fd) != 0) return fail("close failed", errno, false);
+  if (::rename(temp_path.c_str(), path.c_str()) != 0) {
+    return fail("cannot rename the temporary file over it", errno, false);
+  }
+  return SyncDirectory(path, dir);
+}
+
+StatusOr<std::string> ReadFileToString(const std::string& path) {
+  struct stat info;
+  if (::stat(path.c_str(), &info) != 0) {
+    if (errno == ENOENT) return Status::Error(path + ": no such file");
+    return ErrnoError(path, "cannot access", errno);
+  }
+  if (S_ISDIR(info.st_mode)) return Status::Error(path + ": is a directory, not a file");
+
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return ErrnoError(path, "cannot open", errno);
+  std::string contents;
+  char buffer[1 << 16];
+  while (true) {
+    const ssize_t n = ::read(fd, buffer, sizeof(buffer));
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int read_errno = errno;
+      ::close(fd);
+      return ErrnoError(path, "read failed", read_errno);
+    }
+    if (n == 0) break;
+    contents.append(buffer, static_cast<size_t>(n));
+  }
+  ::close(fd);
+  return contents;
+}
+
+}  // namespace hexcal

@@ -1,0 +1,30 @@
+// Whole-file reads and crash-safe writes for every file hexcal produces.
+//
+// A plan, a measurement table or a calibrated robot file is written to a
+// temporary file in the target's folder and renamed over the target, so a
+// reader (or a crash, or a full disk) never sees half a file: the target holds
+// either its old contents or the new ones.
+//
+//   Status written = WriteFileAtomically("robot.calibrated.yaml", yaml_text);
+//   StatusOr<std::string> text = ReadFileToString("plan.csv");
+//   if (!text.ok()) std::cerr << text.status().message() << "\n";
+//
+// Error messages begin with the path, e.g. "plan.csv: no such file".
+#pragma once
+
+#include <string>
+
+#include "core/status.h"
+
+namespace hexcal {
+
+// Writes `contents` to `path` via a temp file `.<basename>.tmp.XXXXXX` in the
+// same folder, fsync, rename and fsync of the folder. An existing target keeps
+// its permissions; a new file gets 0666 minus the process umask. On failure the
+// temp file is removed and the target is left untouched.
+Status WriteFileAtomically(const std::string& path, const std::string& contents);
+
+// The whole file as bytes. Errors: missing file, a directory, unreadable.
+StatusOr<std::string> ReadFileToString(const std::string& path);
+
+}  // namespace hexcal

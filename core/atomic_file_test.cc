@@ -1,0 +1,142 @@
+#include "core/atomic_file.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "tests/test_support.h"
+
+namespace hexcal {
+namespace {
+
+using ::hexcal::testing::ReadTextFile;
+using ::hexcal::testing::TempDir;
+using ::hexcal::testing::WriteTextFile;
+using ::testing::HasSubstr;
+
+std::vector<std::string> FileNamesIn(const std::filesystem::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    names.push_back(entry.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST(AtomicFileTest, RoundTripKeepsEveryByte) {
+  TempDir dir;
+  const std::string path = dir.File("plan.csv");
+  std::string contents = "x,y\r\n1,2\n";
+  contents.push_back('\0');
+  contents += "\xff binary tail";
+  ASSERT_TRUE(WriteFileAtomically(path, contents).ok());
+  StatusOr<std::string> read = ReadFileToString(path);
+  ASSERT_TRUE(read.ok()) << read.status().message();
+  EXPECT_EQ(*read, contents);
+}
+
+TEST(AtomicFileTest, EmptyContentsMakeAnEmptyFile) {
+  TempDir dir;
+  const std::string path = dir.File("empty.txt");
+  ASSERT_TRUE(WriteFileAtomically(path, "").ok());
+  StatusOr<std::string> read = ReadFileToString(path);
+  ASSERT_TRUE(read.ok());
+  EXPECT_EQ(*read, "");
+}
+
+TEST(AtomicFileTest, OverwriteKeepsOnlyTheNewContents) {
+  TempDir dir;
+  const std::string path = dir.File("robot.yaml");
+  WriteTextFile(path, std::string(10000, 'o'));
+  ASSERT_TRUE(WriteFileAtomically(path, "short").ok());
+  EXPECT_EQ(ReadTextFile(path), "short");
+}
+
+TEST(AtomicFileTest, LeavesNoTemporaryFilesBehind) {
+  TempDir dir;
+  ASSERT_TRUE(WriteFileAtomically(dir.File("a.txt"), "one").ok());
+  ASSERT_TRUE(WriteFileAtomically(dir.File("a.txt"), "two").ok());
+  ASSERT_TRUE(WriteFileAtomically(dir.File("b.txt"), "three").ok());
+  EXPECT_EQ(FileNamesIn(dir.path()), (std::vector<std::string>{"a.txt", "b.txt"}));
+}
+
+TEST(AtomicFileTest, OverwriteKeepsThePermissionsOfTheTarget) {
+  TempDir dir;
+  const std::string path = dir.File("script.sh");
+  WriteTextFile(path, "old");
+  ASSERT_EQ(::chmod(path.c_str(), 0750), 0);
+  ASSERT_TRUE(WriteFileAtomically(path, "new").ok());
+  struct stat info;
+  ASSERT_EQ(::stat(path.c_str(), &info), 0);
+  EXPECT_EQ(info.st_mode & 07777, 0750u);
+}
+
+TEST(AtomicFileTest, NewFileGetsTheModeThatTheUmaskAllows) {
+  // mkstemp makes 0600 files; a new file must get 0666 minus the umask like
+  // any other. Tests run on one thread, so changing the umask here is safe.
+  TempDir dir;
+  const std::string path = dir.File("plan.csv");
+  const mode_t previous_umask = ::umask(027);
+  const Status written = WriteFileAtomically(path, "x");
+  ::umask(previous_umask);
+  ASSERT_TRUE(written.ok()) << written.message();
+  struct stat info;
+  ASSERT_EQ(::stat(path.c_str(), &info), 0);
+  EXPECT_EQ(info.st_mode & 07777, 0640u) << std::oct << (info.st_mode & 07777);
+}
+
+TEST(AtomicFileTest, WritingIntoAMissingFolderFailsAndNamesThePath) {
+  TempDir dir;
+  const std::string path = dir.File("no_such_folder/robot.yaml");
+  Status status = WriteFileAtomically(path, "x");
+  ASSERT_FALSE(status.ok());
+  EXPECT_THAT(status.message(), HasSubstr(path));
+  EXPECT_THAT(status.message(), HasSubstr("No such file or directory"));
+  EXPECT_EQ(FileNamesIn(dir.path()), std::vector<std::string>{});
+}
+
+TEST(AtomicFileTest, WritingOverAFolderFailsAndCleansUp) {
+  TempDir dir;
+  std::filesystem::create_directory(dir.path() / "taken");
+  std::filesystem::create_directory(dir.path() / "taken" / "child");
+  Status status = WriteFileAtomically(dir.File("taken"), "x");
+  ASSERT_FALSE(status.ok());
+  EXPECT_THAT(status.message(), HasSubstr(dir.File("taken")));
+  EXPECT_EQ(FileNamesIn(dir.path()), std::vector<std::string>{"taken"});
+}
+
+TEST(AtomicFileTest, ReadingAMissingFileSaysSo) {
+  TempDir dir;
+  const std::string path = dir.File("missing.csv");
+  StatusOr<std::string> read = ReadFileToString(path);
+  ASSERT_FALSE(read.ok());
+  EXPECT_EQ(read.status().message(), path + ": no such file");
+}
+
+TEST(AtomicFileTest, ReadingAFolderSaysItIsAFolder) {
+  TempDir dir;
+  StatusOr<std::string> read = ReadFileToString(dir.path().string());
+  ASSERT_FALSE(read.ok());
+  EXPECT_THAT(read.status().message(), HasSubstr(dir.path().string()));
+  EXPECT_THAT(read.status().message(), HasSubstr("is a directory"));
+}
+
+TEST(AtomicFileTest, ReadingAnUnreadableFileSaysSo) {
+  if (::geteuid() == 0) GTEST_SKIP() << "root reads files whatever their mode";
+  TempDir dir;
+  const std::string path = dir.File("secret.csv");
+  WriteTextFile(path, "x");
+  ASSERT_EQ(::chmod(path.c_str(), 0), 0);
+  StatusOr<std::string> read = ReadFileToString(path);
+  ASSERT_FALSE(read.ok());
+  EXPECT_THAT(read.status().message(), HasSubstr(path + ": cannot open"));
+}
+
+}  // namespace
+}  // namespace hexcal

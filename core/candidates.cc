@@ -1,0 +1,131 @@
+#include "core/candidates.h"
+
+#include <random>
+#include <sstream>
+
+#include "core/constraints.h"
+#include "core/fk_homotopy.h"
+
+namespace hexcal {
+namespace {
+
+// Radical inverse of n in a prime base: the Halton sequence's coordinate.
+double RadicalInverse(uint64_t n, int base) {
+  double inverse = 0, digit_weight = 1.0 / base;
+  while (n > 0) {
+    inverse += (n % base) * digit_weight;
+    n /= base;
+    digit_weight /= base;
+  }
+  return inverse;
+}
+
+Status RequireCompleteBox(const Robot& robot, CandidateKind kind) {
+  if (robot.limits.pose_box && robot.limits.pose_box->IsComplete()) return Status::Ok();
+  return Status::Error(std::string(CandidateKindName(kind)) + " candidates of robot '" + robot.name +
+                       "' need limits.pose_box with all of x, y, z, q1, q2, q3");
+}
+
+// Draws points in the unit cube from `next_unit` and keeps the feasible ones.
+template <typename NextUnit>
+StatusOr<CandidateSet> SampleBox(const Robot& robot, const CandidateOptions& options, NextUnit&& next_unit,
+                                 const std::function<void(int, int)>& progress) {
+  const PoseBox& box = *robot.limits.pose_box;
+  CandidateSet set;
+  const int64_t max_draws = static_cast<int64_t>(options.count) * options.max_draws_per_pose;
+  while (static_cast<int>(set.poses.size()) < options.count) {
+    if (set.draws >= max_draws) {
+      std::ostringstream message;
+      message << "only " << set.poses.size() << " of " << set.draws << " poses drawn in the pose box of robot '"
+              << robot.name << "' satisfy its constraints; the box or the limits are too tight for " << options.count
+              << " candidates";
+      return Status::Error(message.str());
+    }
+    const Vector6d unit = next_unit();
+    ++set.draws;
+    Vector6d v;
+    for (int k = 0; k < 6; ++k) v[k] = box.bounds[k]->min + unit[k] * (box.bounds[k]->max - box.bounds[k]->min);
+    if (!IsFeasible(robot, robot.PoseFromVector(v))) continue;
+    set.poses.push_back(v);
+    if (progress && set.poses.size() % 256 == 0) progress(static_cast<int>(set.poses.size()), options.count);
+  }
+  return set;
+}
+
+StatusOr<CandidateSet> BoundaryCandidates(const Robot& robot, const std::function<void(int, int)>& progress) {
+  CandidateSet set;
+  for (int combination = 0; combination < 64; ++combination) {
+    LegReadings readings;
+    for (int i = 0; i < kNumLegs; ++i) {
+      const Leg& leg = robot.legs[i];
+      readings[i] = (combination >> i) & 1 ? leg.stroke_max : leg.stroke_min;
+    }
+    ++set.draws;
+    StatusOr<FkAllResult> modes = ForwardKinematicsAll(robot, readings);
+    if (!modes.ok()) return modes.status();
+    set.real_modes += static_cast<int>(modes->poses.size());
+    for (const Pose& pose : modes->poses) {
+      if (IsFeasible(robot, pose)) set.poses.push_back(robot.VectorFromPose(pose));
+    }
+    if (progress) progress(combination + 1, 64);
+  }
+  return set;
+}
+
+}  // namespace
+
+std::optional<CandidateKind> ParseCandidateKind(const std::string& text) {
+  if (text == "random") return CandidateKind::kRandom;
+  if (text == "uniform") return CandidateKind::kUniform;
+  if (text == "boundary") return CandidateKind::kBoundary;
+  return std::nullopt;
+}
+
+const char* CandidateKindName(CandidateKind kind) {
+  switch (kind) {
+    case CandidateKind::kRandom: return "random";
+    case CandidateKind::kUniform: return "uniform";
+    case CandidateKind::kBoundary: return "boundary";
+  }
+  return "?";
+}
+
+bool CandidateOptions::IsValid(std::string* error) const {
+  if (kind != CandidateKind::kBoundary && (count < 1 || count > 10000000)) {
+    *error = "candidate count must be between 1 and 10000000, got " + std::to_string(count);
+    return false;
+  }
+  if (max_draws_per_pose < 1) {
+    *error = "max_draws_per_pose must be positive";
+    return false;
+  }
+  return true;
+}
+
+StatusOr<CandidateSet> GenerateCandidates(const Robot& robot, const CandidateOptions& options,
+                                          const std::function<void(int, int)>& progress) {
+  std::string error;
+  if (!options.IsValid(&error)) return Status::Error(error);
+  if (options.kind == CandidateKind::kBoundary) return BoundaryCandidates(robot, progress);
+  if (Status box = RequireCompleteBox(robot, options.kind); !box.ok()) return box;
+
+  if (options.kind == CandidateKind::kRandom) {
+    std::mt19937_64 rng(options.seed);
+    std::uniform_real_distribution<double> unit(0, 1);
+    return SampleBox(robot, options, [&] {
+      Vector6d u;
+      for (int k = 0; k < 6; ++k) u[k] = unit(rng);
+      return u;
+    }, progress);
+  }
+  static constexpr int kPrimes[6] = {2, 3, 5, 7, 11, 13};
+  uint64_t index = 1 + options.seed * 1000003ULL % 1000000007ULL;  // skip the origin; seed shifts the sequence
+  return SampleBox(robot, options, [&] {
+    Vector6d u;
+    for (int k = 0; k < 6; ++k) u[k] = RadicalInverse(index, kPrimes[k]);
+    ++index;
+    return u;
+  }, progress);
+}
+
+}  // namespace hexcal

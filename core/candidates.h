@@ -1,0 +1,47 @@
+// Candidate measurement poses (paper sections 4.1.1 and 6.1).
+//   random    uniform in the pose box, kept only if every constraint holds
+//   uniform   a Halton low-discrepancy sequence over the pose box, same filter
+//   boundary  all 2⁶ combinations of min/max readings, forward kinematics to
+//             every real assembly mode, kept if feasible (section 6.1)
+// random and uniform need limits.pose_box with all six bounds.
+//
+//   CandidateOptions options;
+//   options.kind = CandidateKind::kBoundary;
+//   StatusOr<CandidateSet> set = GenerateCandidates(robot, options);
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/robot.h"
+#include "core/status.h"
+
+namespace hexcal {
+
+enum class CandidateKind { kRandom, kUniform, kBoundary };
+std::optional<CandidateKind> ParseCandidateKind(const std::string& text);
+const char* CandidateKindName(CandidateKind kind);
+
+struct CandidateOptions {
+  CandidateKind kind = CandidateKind::kRandom;
+  int count = 1000;       // poses wanted (random, uniform); ignored for boundary
+  uint64_t seed = 1;      // random: RNG seed; uniform: Halton sequence offset
+  int max_draws_per_pose = 10000;  // give up when acceptance is below 1 / this
+
+  bool IsValid(std::string* error) const;
+};
+
+struct CandidateSet {
+  std::vector<Vector6d> poses;  // [x, y, z, q1, q2, q3], degrees
+  int64_t draws = 0;            // random/uniform: points drawn; boundary: leg combinations
+  int real_modes = 0;           // boundary: real assembly modes found over all combinations
+};
+
+// progress(done, total) is called now and then; it may be empty.
+StatusOr<CandidateSet> GenerateCandidates(const Robot& robot, const CandidateOptions& options,
+                                          const std::function<void(int, int)>& progress = {});
+
+}  // namespace hexcal

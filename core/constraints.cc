@@ -1,0 +1,131 @@
+#include "core/constraints.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/inverse_kinematics.h"
+
+namespace hexcal {
+namespace {
+
+double AngleDeg(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+  return RadToDeg(std::atan2(u.cross(v).norm(), u.dot(v)));
+}
+
+const char* kPoseNames[6] = {"x", "y", "z", "q1", "q2", "q3"};
+
+// Calls visit(kind, leg_or_index, other_index, margin) for every constraint.
+template <typename Visit>
+void VisitConstraints(const Robot& robot, const Pose& pose, Visit&& visit) {
+  std::array<Eigen::Vector3d, kNumLegs> leg_top;
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Leg& leg = robot.legs[i];
+    const Eigen::Vector3d v = LegVector(leg, pose);
+    const double reading = v.norm() - leg.offset;
+    visit(ConstraintKind::kStrokeMin, i, -1, reading - leg.stroke_min);
+    visit(ConstraintKind::kStrokeMax, i, -1, leg.stroke_max - reading);
+    if (robot.limits.base_joint_max_deg) {
+      visit(ConstraintKind::kBaseJoint, i, -1,
+            *robot.limits.base_joint_max_deg - AngleDeg(v, Eigen::Vector3d::UnitZ()));
+    }
+    if (robot.limits.platform_joint_max_deg) {
+      visit(ConstraintKind::kPlatformJoint, i, -1,
+            *robot.limits.platform_joint_max_deg - AngleDeg(v, pose.rotation.col(2)));
+    }
+    leg_top[i] = leg.a_in_base + v;
+  }
+  if (robot.limits.leg_min_distance) {
+    for (int i = 0; i < kNumLegs; ++i) {
+      for (int j = i + 1; j < kNumLegs; ++j) {
+        // Neighbouring legs sharing a joint (distance 0 by design) are skipped.
+        const bool share_base =
+            (robot.legs[i].a_in_base - robot.legs[j].a_in_base).norm() <= *robot.limits.leg_min_distance;
+        const bool share_top =
+            (robot.legs[i].b_in_platform - robot.legs[j].b_in_platform).norm() <= *robot.limits.leg_min_distance;
+        if (share_base || share_top) continue;
+        const double d = SegmentDistance(robot.legs[i].a_in_base, leg_top[i], robot.legs[j].a_in_base, leg_top[j]);
+        visit(ConstraintKind::kLegDistance, i, j, d - *robot.limits.leg_min_distance);
+      }
+    }
+  }
+  if (robot.limits.pose_box) {
+    const Vector6d v = robot.VectorFromPose(pose);
+    for (int k = 0; k < 6; ++k) {
+      const auto& range = robot.limits.pose_box->bounds[k];
+      if (!range) continue;
+      visit(ConstraintKind::kPoseBox, k, 0, v[k] - range->min);
+      visit(ConstraintKind::kPoseBox, k, 1, range->max - v[k]);
+    }
+  }
+}
+
+std::string Label(ConstraintKind kind, int i, int j) {
+  switch (kind) {
+    case ConstraintKind::kStrokeMin: return "stroke min L" + std::to_string(i + 1);
+    case ConstraintKind::kStrokeMax: return "stroke max L" + std::to_string(i + 1);
+    case ConstraintKind::kBaseJoint: return "base joint " + std::to_string(i + 1);
+    case ConstraintKind::kPlatformJoint: return "platform joint " + std::to_string(i + 1);
+    case ConstraintKind::kLegDistance:
+      return "leg distance " + std::to_string(i + 1) + "-" + std::to_string(j + 1);
+    case ConstraintKind::kPoseBox:
+      return std::string("pose box ") + kPoseNames[i] + (j == 0 ? " min" : " max");
+  }
+  return "?";
+}
+
+}  // namespace
+
+ConstraintReport EvaluateConstraints(const Robot& robot, const Pose& pose) {
+  ConstraintReport report;
+  report.worst_margin = std::numeric_limits<double>::infinity();
+  VisitConstraints(robot, pose, [&](ConstraintKind kind, int i, int j, double margin) {
+    report.margins.push_back({kind, Label(kind, i, j), margin});
+    if (!(margin >= report.worst_margin)) {  // also catches NaN
+      report.worst_margin = margin;
+      report.worst_label = report.margins.back().label;
+    }
+  });
+  report.feasible = report.worst_margin >= -kFeasibilityTolerance;
+  return report;
+}
+
+bool IsFeasible(const Robot& robot, const Pose& pose) {
+  bool feasible = true;
+  VisitConstraints(robot, pose, [&](ConstraintKind, int, int, double margin) {
+    if (!(margin >= -kFeasibilityTolerance)) feasible = false;
+  });
+  return feasible;
+}
+
+double SegmentDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                       const Eigen::Vector3d& q0, const Eigen::Vector3d& q1) {
+  // Closest points of two segments (Ericson, Real-Time Collision Detection, 5.1.9).
+  const Eigen::Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  const double eps = 1e-300;
+  double s = 0, t = 0;
+  if (a <= eps && e <= eps) return r.norm();
+  if (a <= eps) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = d1.dot(r);
+    if (e <= eps) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = d1.dot(d2), denom = a * e - b * b;
+      s = denom > eps ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0) {
+        t = 0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (t > 1) {
+        t = 1;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  return ((p0 + d1 * s) - (q0 + d2 * t)).norm();
+}
+
+}  // namespace hexcal

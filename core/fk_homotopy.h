@@ -1,0 +1,54 @@
+// Forward kinematics with every assembly mode: all real poses of a 6-6
+// platform for given leg readings.
+//
+// Method: parameter homotopy on the Study-parameter system of study_system.h.
+// A generic complex instance of the problem (random attachment points and leg
+// lengths) is solved once, by a total-degree homotopy over 2^7 = 128 paths,
+// for its 40 solutions (the generic number: Husty 1996, Wampler 1996). Any
+// real instance is then reached by moving the parameters along a straight
+// line from the generic instance to the real one and tracking the 40 paths:
+// since the start is generic and complex, the line misses the discriminant
+// with probability one, so every isolated solution of the target is the end
+// of a path (Morgan & Sommese 1989). Real solutions are polished by Newton on
+// the leg equations. Unlike a multistart Newton, nothing can be missed except
+// singular (double) solutions at a parallel singularity.
+//
+//   StatusOr<FkAllResult> modes = ForwardKinematicsAll(robot, readings);
+//   for (const Pose& pose : modes->poses) ...
+#pragma once
+
+#include <vector>
+
+#include "core/inverse_kinematics.h"
+#include "core/status.h"
+#include "core/study_system.h"
+
+namespace hexcal {
+
+struct FkAllOptions {
+  // A solution is real when the imaginary parts of R and t/scale are below this.
+  double imaginary_tolerance = 1e-6;
+};
+
+struct FkAllResult {
+  std::vector<Pose> poses;      // every real assembly mode, polished, sorted by z descending
+  int complex_solutions = 0;    // non-real finite solutions (conjugate pairs counted twice)
+  int failed_paths = 0;         // paths that ended singular or diverged
+  int tracked_paths = 0;
+};
+
+StatusOr<FkAllResult> ForwardKinematicsAll(const Robot& robot, const LegReadings& readings,
+                                           const FkAllOptions& options = {});
+
+// The generic complex instance and its 40 solutions, computed on first use.
+struct StartSystem {
+  StudyParameters params;
+  CVector8 chart;
+  std::vector<CVector8> solutions;
+  int total_degree_runs = 0;  // runs of the 128-path homotopy it took
+};
+const StartSystem& GenericStartSystem();
+// Solves a random generic instance from scratch (deterministic in seed).
+StartSystem SolveGenericInstance(uint64_t seed);
+
+}  // namespace hexcal

@@ -1,0 +1,43 @@
+#include "core/observability.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+namespace hexcal {
+
+SingularValues SingularValuesOf(const InformationBlocks& info) {
+  SingularValues sigma;
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Eigen::SelfAdjointEigenSolver<InfoBlock> eigen(info.blocks[i], Eigen::EigenvaluesOnly);
+    // Round-off can make a zero eigenvalue slightly negative.
+    sigma.segment<kParamsPerLeg>(kParamsPerLeg * i) = eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  }
+  std::sort(sigma.data(), sigma.data() + kNumParams, std::greater<double>());
+  return sigma;
+}
+
+ObservabilityIndices ComputeIndices(const InformationBlocks& info) {
+  const SingularValues sigma = SingularValuesOf(info);
+  ObservabilityIndices o;
+  o.num_poses = info.num_poses;
+  o.sigma_max = sigma[0];
+  o.sigma_min = sigma[kNumParams - 1];
+  if (o.sigma_max <= 0 || info.num_poses <= 0) return o;
+  o.o2 = o.sigma_min / o.sigma_max;
+  o.o3 = o.sigma_min;
+  o.o4 = o.sigma_min * o.sigma_min / o.sigma_max;
+  if (o.sigma_min > 0) {
+    // Geometric mean through logs: the plain product of 42 values over- or underflows.
+    const double mean_log = sigma.array().log().sum() / kNumParams;
+    o.o1 = std::exp(mean_log) / std::sqrt(static_cast<double>(info.num_poses));
+  }
+  return o;
+}
+
+ObservabilityIndices ComputeIndices(const Robot& robot, const std::vector<Pose>& poses) {
+  return ComputeIndices(ComputeInformation(robot, poses));
+}
+
+}  // namespace hexcal

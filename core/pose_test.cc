@@ -1,0 +1,128 @@
+#include "core/pose.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "tests/test_support.h"
+
+namespace hexcal {
+namespace {
+
+using ::hexcal::testing::MatrixNear;
+using ::hexcal::testing::Uniform;
+
+// Elementary rotations written out by hand (right-handed, active).
+// clang-format off
+Eigen::Matrix3d HandRx(double q) {
+  Eigen::Matrix3d r;
+  r << 1, 0, 0,
+       0, std::cos(q), -std::sin(q),
+       0, std::sin(q), std::cos(q);
+  return r;
+}
+Eigen::Matrix3d HandRy(double q) {
+  Eigen::Matrix3d r;
+  r << std::cos(q), 0, std::sin(q),
+       0, 1, 0,
+       -std::sin(q), 0, std::cos(q);
+  return r;
+}
+Eigen::Matrix3d HandRz(double q) {
+  Eigen::Matrix3d r;
+  r << std::cos(q), -std::sin(q), 0,
+       std::sin(q), std::cos(q), 0,
+       0, 0, 1;
+  return r;
+}
+// clang-format on
+
+Eigen::Vector3d RandomAnglesRad() {
+  return Eigen::Vector3d(DegToRad(Uniform(-170, 170)), DegToRad(Uniform(-80, 80)),
+                         DegToRad(Uniform(-170, 170)));
+}
+
+// xyz: R = Rz(q3) Ry(q2) Rx(q1), zyx: R = Rx(q3) Ry(q2) Rz(q1), from hand-written matrices.
+TEST(Pose, RotationFromEulerMatchesHandWrittenProducts) {
+  for (int trial = 0; trial < 100; ++trial) {
+    const Eigen::Vector3d q = RandomAnglesRad();
+    EXPECT_TRUE(MatrixNear(RotationFromEuler(q, EulerConvention::kXYZ),
+                           HandRz(q[2]) * HandRy(q[1]) * HandRx(q[0]), 1e-14));
+    EXPECT_TRUE(MatrixNear(RotationFromEuler(q, EulerConvention::kZYX),
+                           HandRx(q[2]) * HandRy(q[1]) * HandRz(q[0]), 1e-14));
+  }
+}
+
+// A fixed case checked entry by entry: xyz with q = (90°, 0, 0) maps y to z.
+TEST(Pose, RotationFromEulerKnownCase) {
+  const Eigen::Matrix3d r = RotationFromEuler(Eigen::Vector3d(kPi / 2, 0, 0), EulerConvention::kXYZ);
+  EXPECT_TRUE(MatrixNear(r * Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(), 1e-15));
+  // zyx with q1 = 90° about z first: x goes to y.
+  const Eigen::Matrix3d s = RotationFromEuler(Eigen::Vector3d(kPi / 2, 0, 0), EulerConvention::kZYX);
+  EXPECT_TRUE(MatrixNear(s * Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), 1e-15));
+}
+
+// angles -> R -> angles gives the angles back (away from gimbal lock), both conventions.
+TEST(Pose, EulerRoundTrip) {
+  for (EulerConvention convention : {EulerConvention::kXYZ, EulerConvention::kZYX}) {
+    for (int trial = 0; trial < 1000; ++trial) {
+      const Eigen::Vector3d q = RandomAnglesRad();
+      const Eigen::Vector3d back = EulerFromRotation(RotationFromEuler(q, convention), convention);
+      EXPECT_TRUE(MatrixNear(back, q, 1e-12)) << EulerConventionName(convention);
+    }
+  }
+}
+
+// PoseFromVector / VectorFromPose are inverse to each other on [x, y, z, q1, q2, q3] (degrees).
+TEST(Pose, VectorRoundTrip) {
+  for (EulerConvention convention : {EulerConvention::kXYZ, EulerConvention::kZYX}) {
+    for (int trial = 0; trial < 200; ++trial) {
+      Vector6d v;
+      v << Uniform(-100, 100), Uniform(-100, 100), Uniform(-100, 100), Uniform(-170, 170),
+          Uniform(-80, 80), Uniform(-170, 170);
+      const Pose pose = PoseFromVector(v, convention);
+      EXPECT_TRUE(MatrixNear(pose.position, v.head<3>(), 0.0));
+      EXPECT_TRUE(MatrixNear(VectorFromPose(pose, convention), v, 1e-10));
+    }
+  }
+}
+
+// A pose maps a platform point to P + R p.
+TEST(Pose, ApplyToPoint) {
+  Vector6d v;
+  v << 1, 2, 3, 0, 0, 90;
+  const Pose pose = PoseFromVector(v, EulerConvention::kXYZ);
+  EXPECT_TRUE(MatrixNear(pose * Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(1, 3, 3), 1e-15));
+}
+
+TEST(Pose, ParseEulerConvention) {
+  EXPECT_EQ(ParseEulerConvention("xyz"), EulerConvention::kXYZ);
+  EXPECT_EQ(ParseEulerConvention("zyx"), EulerConvention::kZYX);
+  EXPECT_FALSE(ParseEulerConvention("abc").has_value());
+  EXPECT_FALSE(ParseEulerConvention("XYZ").has_value());
+  EXPECT_FALSE(ParseEulerConvention("").has_value());
+  EXPECT_STREQ(EulerConventionName(EulerConvention::kZYX), "zyx");
+}
+
+// A rotation of 30° about an arbitrary axis, composed on a random rotation, is 30° away.
+TEST(Pose, RotationDistanceOfKnownRotation) {
+  const Eigen::Vector3d axis = Eigen::Vector3d(1, -2, 0.5).normalized();
+  const Eigen::Matrix3d base = RotationFromEuler(RandomAnglesRad(), EulerConvention::kXYZ);
+  const Eigen::Matrix3d turned = Eigen::AngleAxisd(DegToRad(30), axis).matrix() * base;
+  EXPECT_NEAR(RadToDeg(RotationDistance(base, turned)), 30.0, 1e-12);
+  EXPECT_NEAR(RadToDeg(RotationDistance(turned, base)), 30.0, 1e-12);
+  EXPECT_NEAR(RotationDistance(base, base), 0.0, 1e-12);
+  // Euler q1 = 30° alone (xyz) is a 30° rotation about x.
+  EXPECT_NEAR(RadToDeg(RotationDistance(Eigen::Matrix3d::Identity(),
+                                        RotationFromEuler(Eigen::Vector3d(DegToRad(30), 0, 0),
+                                                          EulerConvention::kXYZ))),
+              30.0, 1e-12);
+}
+
+TEST(Pose, DegreeConversion) {
+  EXPECT_DOUBLE_EQ(DegToRad(180), kPi);
+  EXPECT_DOUBLE_EQ(RadToDeg(kPi / 6), 30.0);
+}
+
+}  // namespace
+}  // namespace hexcal
