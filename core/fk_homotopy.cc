@@ -68,22 +68,31 @@ class TotalDegreeHomotopy : public Homotopy {
   Complex gamma_;
 };
 
-// F(z; p(s)) with p(s) = target + s (start - target).
+// F(z; p(s)) with p(s) = target + s (start - target). Along that line each
+// leg's coefficients are quadratic in s (D and A = a bᵀ are products of linear
+// terms), so they are expanded once: c(s) = c0 + s c1 + s² c2.
 class ParameterHomotopy : public Homotopy {
  public:
   ParameterHomotopy(const StudyParameters& start, const StudyParameters& target, const CVector8& chart)
-      : start_(start), target_(target), chart_(chart) {}
+      : chart_(chart) {
+    for (int i = 0; i < 6; ++i) {
+      const CVector3 &a = target.a[i], &b = target.b[i];
+      const CVector3 da = start.a[i] - a, db = start.b[i] - b;
+      const Complex dd2 = start.d2[i] - target.d2[i];
+      c0_[i] = CoefficientsOf(a, b, target.d2[i]);
+      c1_[i] = CoefficientDerivative(a, b, da, db, dd2);
+      c2_[i] = {Complex(da.transpose() * da) + Complex(db.transpose() * db), CVector3::Zero(), CVector3::Zero(),
+                da * db.transpose()};
+    }
+  }
 
   void Evaluate(const CVector8& z, double s, CVector8* h, CMatrix8* hz, CVector8* hs) const override {
     std::array<LegCoefficients, 6> c;
     for (int i = 0; i < 6; ++i) {
-      const CVector3 a = target_.a[i] + s * (start_.a[i] - target_.a[i]);
-      const CVector3 b = target_.b[i] + s * (start_.b[i] - target_.b[i]);
-      const Complex d2 = target_.d2[i] + s * (start_.d2[i] - target_.d2[i]);
-      c[i] = CoefficientsOf(a, b, d2);
+      c[i] = {c0_[i].d + s * (c1_[i].d + s * c2_[i].d), c0_[i].a + s * c1_[i].a, c0_[i].b + s * c1_[i].b,
+              c0_[i].ab + s * (c1_[i].ab + s * c2_[i].ab)};
       if (hs) {
-        const LegCoefficients dc = CoefficientDerivative(a, b, start_.a[i] - target_.a[i],
-                                                         start_.b[i] - target_.b[i], start_.d2[i] - target_.d2[i]);
+        const LegCoefficients dc = {c1_[i].d + 2 * s * c2_[i].d, c1_[i].a, c1_[i].b, c1_[i].ab + 2 * s * c2_[i].ab};
         (*hs)[i] = LegLinearPart(dc, z);  // the 4 g·g term does not depend on p
       }
     }
@@ -92,7 +101,7 @@ class ParameterHomotopy : public Homotopy {
   }
 
  private:
-  StudyParameters start_, target_;
+  std::array<LegCoefficients, 6> c0_, c1_, c2_;
   CVector8 chart_;
 };
 
@@ -175,12 +184,18 @@ StatusOr<FkAllResult> ForwardKinematicsAll(const Robot& robot, const LegReadings
   }
 
   const ParameterHomotopy homotopy(start.params, target, start.chart);
+  // Paths of special robots (planar-planar, symmetric) that end on the spurious
+  // set Δ = 0 converge slowly to a singular point; drop them once they are close.
+  TrackerOptions tracker;
+  tracker.give_up = [](const CVector8& z, double s) {
+    return s < 0.02 && std::abs(Delta(z)) < 1e-8 * z.head<4>().squaredNorm();
+  };
   // The 40 paths are independent: track them on every core.
   std::vector<PathEnd> ends(start.solutions.size());
   const int workers = std::max(1u, std::min(std::thread::hardware_concurrency(), 4u));
   auto track_some = [&](int first) {
     for (size_t k = first; k < ends.size(); k += workers) {
-      ends[k] = TrackPath(homotopy, start.solutions[k]);
+      ends[k] = TrackPath(homotopy, start.solutions[k], tracker);
       if (ends[k].reached_end) RefineAt(homotopy, 0.0, &ends[k].z, 4, 1e-14);
     }
   };

@@ -53,8 +53,7 @@ Robot MakeRobot(const std::array<Eigen::Vector3d, 6>& a, const std::array<Eigen:
 
 bool ContainsPose(const std::vector<Pose>& poses, const Pose& truth, double tolerance) {
   return std::any_of(poses.begin(), poses.end(), [&](const Pose& p) {
-    return (p.position - truth.position).norm() < tolerance &&
-           RotationDistance(p.rotation, truth.rotation) < tolerance;
+    return (p.position - truth.position).norm() < tolerance && RotationDistance(p.rotation, truth.rotation) < tolerance;
   });
 }
 
@@ -124,7 +123,8 @@ TEST(StudySystem, JacobianMatchesComplexFiniteDifferences) {
     for (int k = 0; k < 8; ++k) {
       for (const Complex direction : {Complex(1, 0), Complex(0, 1)}) {
         const CVector8 dz = CVector8::Unit(k) * (h * direction);
-        const CVector8 numeric = (Evaluate(legs, chart, z + dz) - Evaluate(legs, chart, z - dz)) / (2.0 * h * direction);
+        const CVector8 numeric =
+            (Evaluate(legs, chart, z + dz) - Evaluate(legs, chart, z - dz)) / (2.0 * h * direction);
         EXPECT_LT((jacobian.col(k) - numeric).norm(), 1e-8) << "column " << k << " direction " << direction;
       }
     }
@@ -228,16 +228,19 @@ TEST(ForwardKinematicsAll, InriaStrokeCorners) {
     StatusOr<FkAllResult> fk = ForwardKinematicsAll(robot, readings);
     ASSERT_TRUE(fk.ok()) << fk.status().message();
     const std::vector<Pose>& modes = fk->poses;
-    if (corner == 0 || corner == 63) EXPECT_GE(modes.size(), 1u) << "corner " << corner;
+    if (corner == 0 || corner == 63) {
+      EXPECT_GE(modes.size(), 1u) << "corner " << corner;
+    }
     EXPECT_LT(WorstLegError(robot, modes, readings), 1e-9) << "corner " << corner;
     EXPECT_EQ(static_cast<int>(modes.size()) + fk->complex_solutions + fk->failed_paths, 40);
     for (const Pose& mode : modes) EXPECT_TRUE(ContainsPose(modes, Mirrored(mode), 1e-7)) << "corner " << corner;
     for (int start = 0; start < 100; ++start) {
       Vector6d v;
-      v << Uniform(-15, 15), Uniform(-15, 15), Uniform(40, 60), Uniform(-60, 60), Uniform(-40, 40),
-          Uniform(-180, 180);
+      v << Uniform(-15, 15), Uniform(-15, 15), Uniform(40, 60), Uniform(-60, 60), Uniform(-40, 40), Uniform(-180, 180);
       StatusOr<LocalFkResult> local = ForwardKinematicsLocal(robot, readings, robot.PoseFromVector(v));
-      if (local.ok()) EXPECT_TRUE(ContainsPose(modes, local->pose, 1e-7)) << "corner " << corner << " missed mode";
+      if (local.ok()) {
+        EXPECT_TRUE(ContainsPose(modes, local->pose, 1e-7)) << "corner " << corner << " missed mode";
+      }
     }
     const int feasible = static_cast<int>(
         std::count_if(modes.begin(), modes.end(), [&](const Pose& p) { return IsFeasible(robot, p); }));
@@ -257,12 +260,12 @@ TEST(ForwardKinematicsAll, InriaStrokeCorners) {
 constexpr double kDietmaierLengths[6] = {1, 0.645275, 1.086284, 1.503439, 1.281933, 0.771071};
 
 Robot DietmaierRobot() {
-  return MakeRobot({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1.107915, 0, 0),
-                    Eigen::Vector3d(0.549094, 0.756063, 0), Eigen::Vector3d(0.735077, -0.223935, 0.525991),
-                    Eigen::Vector3d(0.514188, -0.526063, -0.368418), Eigen::Vector3d(0.590473, 0.094733, -0.205018)},
-                   {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.542805, 0, 0),
-                    Eigen::Vector3d(0.956919, -0.528915, 0), Eigen::Vector3d(0.665885, -0.353482, 1.402538),
-                    Eigen::Vector3d(0.478359, 1.158742, 0.107672), Eigen::Vector3d(-0.137087, -0.235121, 0.353913)});
+  return MakeRobot({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1.107915, 0, 0), Eigen::Vector3d(0.549094, 0.756063, 0),
+                    Eigen::Vector3d(0.735077, -0.223935, 0.525991), Eigen::Vector3d(0.514188, -0.526063, -0.368418),
+                    Eigen::Vector3d(0.590473, 0.094733, -0.205018)},
+                   {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.542805, 0, 0), Eigen::Vector3d(0.956919, -0.528915, 0),
+                    Eigen::Vector3d(0.665885, -0.353482, 1.402538), Eigen::Vector3d(0.478359, 1.158742, 0.107672),
+                    Eigen::Vector3d(-0.137087, -0.235121, 0.353913)});
 }
 
 ::testing::AssertionResult HasFortyRealModes(const Robot& robot, const LegReadings& readings) {

@@ -34,9 +34,8 @@ PoseRange RangeOf(const std::string& preset) {
 }
 Pose RandomPose(const Robot& robot, const PoseRange& r) {
   Vector6d v;
-  v << Uniform(-r.xy, r.xy), Uniform(-r.xy, r.xy), Uniform(r.z_min, r.z_max),
-      Uniform(-r.angle_deg, r.angle_deg), Uniform(-r.angle_deg, r.angle_deg),
-      Uniform(-r.angle_deg, r.angle_deg);
+  v << Uniform(-r.xy, r.xy), Uniform(-r.xy, r.xy), Uniform(r.z_min, r.z_max), Uniform(-r.angle_deg, r.angle_deg),
+      Uniform(-r.angle_deg, r.angle_deg), Uniform(-r.angle_deg, r.angle_deg);
   return robot.PoseFromVector(v);
 }
 
@@ -55,10 +54,9 @@ TEST(InverseKinematics, HandComputedUntiltedPose) {
 // Readings = |P + R b - a| - l with the preset's table typed in, at a tilted pose.
 TEST(InverseKinematics, MatchesFormulaWithTypedInParameters) {
   const Robot robot = Preset("inria-left-hand");
-  const double a[6][3] = {{-9.7, 9.1, 0}, {9.7, 9.1, 0}, {12.76, 3.9, 0},
-                          {3, -13, 0},    {-3, -13, 0},  {-12.76, 3.9, 0}};
-  const double b[6][3] = {{-3, 7.3, 0},         {3, 7.3, 0},          {7.822, -1.052, 0},
-                          {4.822, -6.248, 0},   {-4.822, -6.248, 0},  {-7.822, -1.052, 0}};
+  const double a[6][3] = {{-9.7, 9.1, 0}, {9.7, 9.1, 0}, {12.76, 3.9, 0}, {3, -13, 0}, {-3, -13, 0}, {-12.76, 3.9, 0}};
+  const double b[6][3] = {{-3, 7.3, 0},       {3, 7.3, 0},         {7.822, -1.052, 0},
+                          {4.822, -6.248, 0}, {-4.822, -6.248, 0}, {-7.822, -1.052, 0}};
   const double l[6] = {52.2496, 52.2496, 52.2568, 52.2568, 52.2568, 52.2568};
   Pose pose;
   pose.position = Eigen::Vector3d(1.2, -0.7, 53.1);
@@ -84,7 +82,8 @@ TEST(InverseKinematics, JacobianMatchesFiniteDifferences) {
         const double h = k < 3 ? 1e-6 * range.z_max : 1e-6;
         const Vector6d step = Vector6d::Unit(k) * h;
         numeric.col(k) = (InverseKinematics(robot, ApplyIncrement(pose, step)) -
-                          InverseKinematics(robot, ApplyIncrement(pose, -step))) / (2 * h);
+                          InverseKinematics(robot, ApplyIncrement(pose, -step))) /
+                         (2 * h);
       }
       EXPECT_TRUE(MatrixNear(analytic.leftCols<3>(), numeric.leftCols<3>(), 1e-7)) << name;
       EXPECT_TRUE(MatrixNear(analytic.rightCols<3>(), numeric.rightCols<3>(), 1e-8 * range.z_max)) << name;
@@ -101,8 +100,8 @@ TEST(ForwardKinematics, ApplyIncrementIsLeftRotation) {
   increment << 0.5, 0, -1, 0, 0, 0.2;
   const Pose moved = ApplyIncrement(pose, increment);
   EXPECT_TRUE(MatrixNear(moved.position, Eigen::Vector3d(1.5, 2, 2), 1e-15));
-  EXPECT_TRUE(MatrixNear(moved.rotation,
-                         Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitZ()).matrix() * pose.rotation, 1e-15));
+  EXPECT_TRUE(
+      MatrixNear(moved.rotation, Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitZ()).matrix() * pose.rotation, 1e-15));
 }
 
 // IK then local FK from a perturbed start gives the pose back, on 200 poses per preset.
@@ -114,14 +113,13 @@ TEST(ForwardKinematics, LocalRoundTrip) {
     for (int trial = 0; trial < 200; ++trial) {
       const Pose truth = RandomPose(robot, range);
       Vector6d perturbation;
-      perturbation << Uniform(-1, 1), Uniform(-1, 1), Uniform(-1, 1), Uniform(-0.03, 0.03),
-          Uniform(-0.03, 0.03), Uniform(-0.03, 0.03);
+      perturbation << Uniform(-1, 1), Uniform(-1, 1), Uniform(-1, 1), Uniform(-0.03, 0.03), Uniform(-0.03, 0.03),
+          Uniform(-0.03, 0.03);
       perturbation.head<3>() *= 0.01 * range.z_max;
       const Pose start = ApplyIncrement(truth, perturbation);
       StatusOr<LocalFkResult> fk = ForwardKinematicsLocal(robot, InverseKinematics(robot, truth), start);
       ASSERT_TRUE(fk.ok()) << name << " trial " << trial << ": " << fk.status().message();
-      worst_position = std::max(worst_position, (fk->pose.position - truth.position).norm() /
-                                                    truth.position.norm());
+      worst_position = std::max(worst_position, (fk->pose.position - truth.position).norm() / truth.position.norm());
       worst_angle = std::max(worst_angle, RotationDistance(fk->pose.rotation, truth.rotation));
     }
     EXPECT_LT(worst_position, 1e-9) << name;
@@ -167,7 +165,7 @@ TEST(Constraints, IsFeasibleAgreesWithReport) {
                                         [](const auto& p, const auto& q) { return p.margin < q.margin; });
     ASSERT_NE(worst, report.margins.end());
     EXPECT_EQ(report.worst_margin, worst->margin);
-    EXPECT_EQ(report.feasible, worst->margin >= 0);
+    EXPECT_EQ(report.feasible, worst->margin >= -kFeasibilityTolerance);
     feasible_count += report.feasible;
   }
   // Both verdicts occur, or the agreement says little.
@@ -203,6 +201,27 @@ TEST(Constraints, StrokeViolationsAreLabelled) {
   }
 }
 
+// A pose exactly on a stroke limit is feasible despite round-off, and one just outside is not:
+// at P = (0, 0, z) with z² = 52.2496² - (6.7² + 1.8²), legs 1 and 2 read exactly stroke_min = 0.
+TEST(Constraints, StrokeLimitWithinTolerance) {
+  const Robot robot = Preset("inria-left-hand");
+  const double z_at_min = std::sqrt(52.2496 * 52.2496 - (6.7 * 6.7 + 1.8 * 1.8));
+  for (const double dz : {0.0, 1e-12, -1e-12}) {
+    Pose pose;
+    pose.position = Eigen::Vector3d(0, 0, z_at_min + dz);
+    EXPECT_TRUE(IsFeasible(robot, pose)) << dz;
+    EXPECT_TRUE(EvaluateConstraints(robot, pose).feasible) << dz;
+  }
+  Pose below;
+  below.position = Eigen::Vector3d(0, 0, z_at_min - 1e-6);
+  const ConstraintReport report = EvaluateConstraints(robot, below);
+  EXPECT_FALSE(report.feasible);
+  EXPECT_FALSE(IsFeasible(robot, below));
+  EXPECT_THAT(report.worst_label, ::testing::AnyOf("stroke min L1", "stroke min L2"));
+  // dL/dz = z / |v| with |v| = 52.2496.
+  EXPECT_NEAR(report.worst_margin, -1e-6 * z_at_min / 52.2496, 1e-12);
+}
+
 // Shortest distance between segments, cases worked by hand.
 TEST(SegmentDistance, HandCases) {
   using V = Eigen::Vector3d;
@@ -213,8 +232,8 @@ TEST(SegmentDistance, HandCases) {
   EXPECT_NEAR(SegmentDistance(V(0, 0, 0), V(1, 0, 0), V(2, 1, 0), V(3, 1, 0)), std::sqrt(2.0), 1e-15);
   // Parallel along an oblique direction (non-exact arithmetic): gap 0.5 along the normal n.
   const V d = V(0.3, -1.7, 2.9).normalized(), n = d.cross(V(1, 0, 0)).normalized();
-  EXPECT_NEAR(SegmentDistance(V(1, 2, 3), V(1, 2, 3) + 3 * d, V(1, 2, 3) + d + 0.5 * n,
-                              V(1, 2, 3) + 5 * d + 0.5 * n), 0.5, 1e-12);
+  EXPECT_NEAR(SegmentDistance(V(1, 2, 3), V(1, 2, 3) + 3 * d, V(1, 2, 3) + d + 0.5 * n, V(1, 2, 3) + 5 * d + 0.5 * n),
+              0.5, 1e-12);
   // Collinear and overlapping: touching.
   EXPECT_NEAR(SegmentDistance(V(0, 0, 0), V(2, 0, 0), V(1, 0, 0), V(3, 0, 0)), 0.0, 1e-15);
   // Crossing in a plane, and skew crossing 2 apart.

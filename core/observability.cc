@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 
 namespace hexcal {
 
@@ -11,8 +12,12 @@ SingularValues SingularValuesOf(const InformationBlocks& info) {
   SingularValues sigma;
   for (int i = 0; i < kNumLegs; ++i) {
     const Eigen::SelfAdjointEigenSolver<InfoBlock> eigen(info.blocks[i], Eigen::EigenvaluesOnly);
-    // Round-off can make a zero eigenvalue slightly negative.
-    sigma.segment<kParamsPerLeg>(kParamsPerLeg * i) = eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+    // Round-off leaves the zero eigenvalues of a rank-deficient block (fewer than 7 poses, or
+    // repeated ones) at about ±eps·λ_max, either sign; anything below the rank tolerance
+    // 7·eps·λ_max is zero, or a degenerate pose set gets a small non-zero O1 and O3.
+    const auto lambda = eigen.eigenvalues().array();
+    const double rank_tolerance = kParamsPerLeg * std::numeric_limits<double>::epsilon() * lambda.maxCoeff();
+    sigma.segment<kParamsPerLeg>(kParamsPerLeg * i) = (lambda > rank_tolerance).select(lambda.sqrt(), 0.0);
   }
   std::sort(sigma.data(), sigma.data() + kNumParams, std::greater<double>());
   return sigma;

@@ -58,6 +58,7 @@ PathEnd TrackPath(const Homotopy& homotopy, const CVector8& start, const Tracker
         successes = 0;
       }
       if (end.z.norm() > options.divergence_norm) break;
+      if (options.give_up && s > 0 && options.give_up(end.z, s)) break;
     } else {
       step *= 0.5;
       successes = 0;

@@ -8,6 +8,8 @@
 // solution) or when z runs away.
 #pragma once
 
+#include <functional>
+
 #include "core/study_system.h"
 
 namespace hexcal {
@@ -27,6 +29,9 @@ struct TrackerOptions {
   int max_corrector_iterations = 3;
   int max_steps = 20000;
   double divergence_norm = 1e8;
+  // Optional: stop a path early (as failed) when this returns true at an
+  // accepted point, e.g. once it is clearly heading for a spurious end.
+  std::function<bool(const CVector8& z, double s)> give_up;
 };
 
 struct PathEnd {

@@ -38,18 +38,17 @@ Eigen::Matrix3d HandRz(double q) {
 // clang-format on
 
 Eigen::Vector3d RandomAnglesRad() {
-  return Eigen::Vector3d(DegToRad(Uniform(-170, 170)), DegToRad(Uniform(-80, 80)),
-                         DegToRad(Uniform(-170, 170)));
+  return Eigen::Vector3d(DegToRad(Uniform(-170, 170)), DegToRad(Uniform(-80, 80)), DegToRad(Uniform(-170, 170)));
 }
 
 // xyz: R = Rz(q3) Ry(q2) Rx(q1), zyx: R = Rx(q3) Ry(q2) Rz(q1), from hand-written matrices.
 TEST(Pose, RotationFromEulerMatchesHandWrittenProducts) {
   for (int trial = 0; trial < 100; ++trial) {
     const Eigen::Vector3d q = RandomAnglesRad();
-    EXPECT_TRUE(MatrixNear(RotationFromEuler(q, EulerConvention::kXYZ),
-                           HandRz(q[2]) * HandRy(q[1]) * HandRx(q[0]), 1e-14));
-    EXPECT_TRUE(MatrixNear(RotationFromEuler(q, EulerConvention::kZYX),
-                           HandRx(q[2]) * HandRy(q[1]) * HandRz(q[0]), 1e-14));
+    EXPECT_TRUE(
+        MatrixNear(RotationFromEuler(q, EulerConvention::kXYZ), HandRz(q[2]) * HandRy(q[1]) * HandRx(q[0]), 1e-14));
+    EXPECT_TRUE(
+        MatrixNear(RotationFromEuler(q, EulerConvention::kZYX), HandRx(q[2]) * HandRy(q[1]) * HandRz(q[0]), 1e-14));
   }
 }
 
@@ -78,8 +77,8 @@ TEST(Pose, VectorRoundTrip) {
   for (EulerConvention convention : {EulerConvention::kXYZ, EulerConvention::kZYX}) {
     for (int trial = 0; trial < 200; ++trial) {
       Vector6d v;
-      v << Uniform(-100, 100), Uniform(-100, 100), Uniform(-100, 100), Uniform(-170, 170),
-          Uniform(-80, 80), Uniform(-170, 170);
+      v << Uniform(-100, 100), Uniform(-100, 100), Uniform(-100, 100), Uniform(-170, 170), Uniform(-80, 80),
+          Uniform(-170, 170);
       const Pose pose = PoseFromVector(v, convention);
       EXPECT_TRUE(MatrixNear(pose.position, v.head<3>(), 0.0));
       EXPECT_TRUE(MatrixNear(VectorFromPose(pose, convention), v, 1e-10));
@@ -114,8 +113,7 @@ TEST(Pose, RotationDistanceOfKnownRotation) {
   EXPECT_NEAR(RotationDistance(base, base), 0.0, 1e-12);
   // Euler q1 = 30° alone (xyz) is a 30° rotation about x.
   EXPECT_NEAR(RadToDeg(RotationDistance(Eigen::Matrix3d::Identity(),
-                                        RotationFromEuler(Eigen::Vector3d(DegToRad(30), 0, 0),
-                                                          EulerConvention::kXYZ))),
+                                        RotationFromEuler(Eigen::Vector3d(DegToRad(30), 0, 0), EulerConvention::kXYZ))),
               30.0, 1e-12);
 }
 

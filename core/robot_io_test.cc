@@ -89,13 +89,14 @@ TEST(RobotIoTest, InriaPresetHoldsTable1OfThePaper) {
     EXPECT_EQ(leg.stroke_min, 0);
     EXPECT_EQ(leg.stroke_max, 3.5);
   }
-  EXPECT_EQ(robot.limits.base_joint_max_deg, 40);
-  EXPECT_EQ(robot.limits.platform_joint_max_deg, 40);
+  // Limits chosen so the boundary set is the paper's 44 poses (see the preset's comment).
+  EXPECT_EQ(robot.limits.base_joint_max_deg, 50);
+  EXPECT_EQ(robot.limits.platform_joint_max_deg, 50);
   EXPECT_EQ(robot.limits.leg_min_distance, 0.5);
   ASSERT_TRUE(robot.limits.pose_box && robot.limits.pose_box->IsComplete());
-  EXPECT_EQ(robot.limits.pose_box->bounds[2]->min, 50);
-  EXPECT_EQ(robot.limits.pose_box->bounds[2]->max, 57);
-  EXPECT_EQ(robot.limits.pose_box->bounds[5]->min, -20);
+  EXPECT_EQ(robot.limits.pose_box->bounds[2]->min, 47);
+  EXPECT_EQ(robot.limits.pose_box->bounds[2]->max, 56);
+  EXPECT_EQ(robot.limits.pose_box->bounds[5]->min, -60);
 }
 
 TEST(RobotIoTest, DeltalabPresetHasThePublishedDimensions) {
@@ -121,7 +122,7 @@ TEST(RobotIoTest, DeltalabPresetHasThePublishedDimensions) {
   EXPECT_EQ(robot.limits.base_joint_max_deg, 50);
   EXPECT_EQ(robot.limits.leg_min_distance, 10);
   ASSERT_TRUE(robot.limits.pose_box && robot.limits.pose_box->IsComplete());
-  EXPECT_EQ(robot.limits.pose_box->bounds[5]->max, 30);
+  EXPECT_EQ(robot.limits.pose_box->bounds[5]->max, 50);
 }
 
 TEST(RobotIoTest, PresetsSurviveSaveAndLoadExactly) {
