@@ -83,9 +83,12 @@ std::optional<CandidateKind> ParseCandidateKind(const std::string& text) {
 
 const char* CandidateKindName(CandidateKind kind) {
   switch (kind) {
-    case CandidateKind::kRandom: return "random";
-    case CandidateKind::kUniform: return "uniform";
-    case CandidateKind::kBoundary: return "boundary";
+    case CandidateKind::kRandom:
+      return "random";
+    case CandidateKind::kUniform:
+      return "uniform";
+    case CandidateKind::kBoundary:
+      return "boundary";
   }
   return "?";
 }
@@ -112,20 +115,26 @@ StatusOr<CandidateSet> GenerateCandidates(const Robot& robot, const CandidateOpt
   if (options.kind == CandidateKind::kRandom) {
     std::mt19937_64 rng(options.seed);
     std::uniform_real_distribution<double> unit(0, 1);
-    return SampleBox(robot, options, [&] {
-      Vector6d u;
-      for (int k = 0; k < 6; ++k) u[k] = unit(rng);
-      return u;
-    }, progress);
+    return SampleBox(
+        robot, options,
+        [&] {
+          Vector6d u;
+          for (int k = 0; k < 6; ++k) u[k] = unit(rng);
+          return u;
+        },
+        progress);
   }
   static constexpr int kPrimes[6] = {2, 3, 5, 7, 11, 13};
   uint64_t index = 1 + options.seed * 1000003ULL % 1000000007ULL;  // skip the origin; seed shifts the sequence
-  return SampleBox(robot, options, [&] {
-    Vector6d u;
-    for (int k = 0; k < 6; ++k) u[k] = RadicalInverse(index, kPrimes[k]);
-    ++index;
-    return u;
-  }, progress);
+  return SampleBox(
+      robot, options,
+      [&] {
+        Vector6d u;
+        for (int k = 0; k < 6; ++k) u[k] = RadicalInverse(index, kPrimes[k]);
+        ++index;
+        return u;
+      },
+      progress);
 }
 
 }  // namespace hexcal

@@ -27,8 +27,8 @@ const char* CandidateKindName(CandidateKind kind);
 
 struct CandidateOptions {
   CandidateKind kind = CandidateKind::kRandom;
-  int count = 1000;       // poses wanted (random, uniform); ignored for boundary
-  uint64_t seed = 1;      // random: RNG seed; uniform: Halton sequence offset
+  int count = 1000;                // poses wanted (random, uniform); ignored for boundary
+  uint64_t seed = 1;               // random: RNG seed; uniform: Halton sequence offset
   int max_draws_per_pose = 10000;  // give up when acceptance is below 1 / this
 
   bool IsValid(std::string* error) const;

@@ -16,6 +16,7 @@
 #include "core/forward_kinematics.h"
 #include "core/inverse_kinematics.h"
 #include "core/robot_io.h"
+#include "tests/robot_presets.h"
 #include "tests/test_support.h"
 
 namespace hexcal {
@@ -23,11 +24,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-Robot Preset(const std::string& name) {
-  StatusOr<Robot> robot = LoadRobot(name);
-  EXPECT_TRUE(robot.ok()) << robot.status().message();
-  return *robot;
-}
+using ::hexcal::testing::Preset;
 
 CandidateSet Generate(const Robot& robot, CandidateKind kind, int count, uint64_t seed) {
   CandidateOptions options;

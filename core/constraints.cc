@@ -62,10 +62,14 @@ void VisitConstraints(const Robot& robot, const Pose& pose, Visit&& visit) {
 
 std::string Label(ConstraintKind kind, int i, int j) {
   switch (kind) {
-    case ConstraintKind::kStrokeMin: return "stroke min L" + std::to_string(i + 1);
-    case ConstraintKind::kStrokeMax: return "stroke max L" + std::to_string(i + 1);
-    case ConstraintKind::kBaseJoint: return "base joint " + std::to_string(i + 1);
-    case ConstraintKind::kPlatformJoint: return "platform joint " + std::to_string(i + 1);
+    case ConstraintKind::kStrokeMin:
+      return "stroke min L" + std::to_string(i + 1);
+    case ConstraintKind::kStrokeMax:
+      return "stroke max L" + std::to_string(i + 1);
+    case ConstraintKind::kBaseJoint:
+      return "base joint " + std::to_string(i + 1);
+    case ConstraintKind::kPlatformJoint:
+      return "platform joint " + std::to_string(i + 1);
     case ConstraintKind::kLegDistance:
       return "leg distance " + std::to_string(i + 1) + "-" + std::to_string(j + 1);
     case ConstraintKind::kPoseBox:
@@ -98,8 +102,8 @@ bool IsFeasible(const Robot& robot, const Pose& pose) {
   return feasible;
 }
 
-double SegmentDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
-                       const Eigen::Vector3d& q0, const Eigen::Vector3d& q1) {
+double SegmentDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
+                       const Eigen::Vector3d& q1) {
   // Closest points of two segments (Ericson, Real-Time Collision Detection, 5.1.9).
   const Eigen::Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
   const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);

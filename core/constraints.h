@@ -40,7 +40,7 @@ ConstraintReport EvaluateConstraints(const Robot& robot, const Pose& pose);
 bool IsFeasible(const Robot& robot, const Pose& pose);
 
 // Shortest distance between segments [p0, p1] and [q0, q1].
-double SegmentDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
-                       const Eigen::Vector3d& q0, const Eigen::Vector3d& q1);
+double SegmentDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
+                       const Eigen::Vector3d& q1);
 
 }  // namespace hexcal

@@ -26,9 +26,7 @@ std::string Join(const std::vector<std::string>& parts, const std::string& separ
   return joined;
 }
 
-std::string LinePrefix(const std::string& source, int line) {
-  return source + ":" + std::to_string(line) + ": ";
-}
+std::string LinePrefix(const std::string& source, int line) { return source + ":" + std::to_string(line) + ": "; }
 
 // Splits one line into trimmed fields. Quotes are honoured only around a
 // whole field, so a stray quote inside a value is a typo, not data.
@@ -43,8 +41,7 @@ Status SplitFields(const std::string& line, std::vector<std::string>* fields) {
       ++pos;
       while (true) {
         if (pos >= line.size()) {
-          return Status::Error("field " + std::to_string(field_number) +
-                               ": quoted field has no closing quote");
+          return Status::Error("field " + std::to_string(field_number) + ": quoted field has no closing quote");
         }
         if (line[pos] == '"') {
           if (pos + 1 < line.size() && line[pos + 1] == '"') {
@@ -59,8 +56,7 @@ Status SplitFields(const std::string& line, std::vector<std::string>* fields) {
       }
       while (pos < line.size() && IsBlank(line[pos])) ++pos;
       if (pos < line.size() && line[pos] != ',') {
-        return Status::Error("field " + std::to_string(field_number) +
-                             ": text after the closing quote");
+        return Status::Error("field " + std::to_string(field_number) + ": text after the closing quote");
       }
     } else {
       const size_t comma = line.find(',', pos);
@@ -91,19 +87,16 @@ Status CheckHeader(const CsvTable& table, int line) {
   for (size_t i = 0; i < table.header.size(); ++i) {
     const std::string& name = table.header[i];
     if (name.empty()) {
-      return Status::Error(LinePrefix(table.source, line) + "header column " +
-                           std::to_string(i + 1) + " has no name");
+      return Status::Error(LinePrefix(table.source, line) + "header column " + std::to_string(i + 1) + " has no name");
     }
     if (!seen.insert(name).second) {
-      return Status::Error(LinePrefix(table.source, line) + "duplicate column '" + name +
-                           "' in header");
+      return Status::Error(LinePrefix(table.source, line) + "duplicate column '" + name + "' in header");
     }
   }
   return Status::Ok();
 }
 
-StatusOr<std::vector<Vector6d>> LoadSixColumns(const std::string& path,
-                                               const std::array<const char*, 6>& names,
+StatusOr<std::vector<Vector6d>> LoadSixColumns(const std::string& path, const std::array<const char*, 6>& names,
                                                const std::string& what) {
   StatusOr<CsvTable> table = ReadCsv(path);
   if (!table.ok()) return table.status();
@@ -177,8 +170,8 @@ StatusOr<CsvTable> ParseCsv(const std::string& text, const std::string& source) 
       continue;
     }
     if (fields.size() != table.header.size()) {
-      return Status::Error(LinePrefix(source, line_number) + std::to_string(fields.size()) +
-                           " columns, header has " + std::to_string(table.header.size()));
+      return Status::Error(LinePrefix(source, line_number) + std::to_string(fields.size()) + " columns, header has " +
+                           std::to_string(table.header.size()));
     }
     table.rows.push_back(fields);
     table.line_numbers.push_back(line_number);
@@ -213,16 +206,15 @@ StatusOr<int> ColumnIndex(const CsvTable& table, const std::string& name) {
   for (size_t i = 0; i < table.header.size(); ++i) {
     if (table.header[i] == name) return static_cast<int>(i);
   }
-  return Status::Error(table.source + ": missing column '" + name +
-                       "' (header: " + Join(table.header, ",") + ")");
+  return Status::Error(table.source + ": missing column '" + name + "' (header: " + Join(table.header, ",") + ")");
 }
 
 StatusOr<double> NumberAt(const CsvTable& table, size_t row, int col) {
   assert(row < table.rows.size() && col >= 0 && col < static_cast<int>(table.header.size()));
   StatusOr<double> value = ParseNumber(table.rows[row][col]);
   if (value.ok()) return value;
-  return Status::Error(LinePrefix(table.source, table.line_numbers[row]) + "column '" +
-                       table.header[col] + "': " + value.status().message());
+  return Status::Error(LinePrefix(table.source, table.line_numbers[row]) + "column '" + table.header[col] +
+                       "': " + value.status().message());
 }
 
 StatusOr<std::vector<Vector6d>> LoadPoses(const std::string& path) {
@@ -233,8 +225,7 @@ StatusOr<std::vector<Eigen::Matrix<double, 6, 1>>> LoadLegReadings(const std::st
   return LoadSixColumns(path, {"L1", "L2", "L3", "L4", "L5", "L6"}, "leg readings");
 }
 
-std::string FormatCsv(const std::vector<std::string>& header,
-                      const std::vector<std::vector<std::string>>& rows) {
+std::string FormatCsv(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows) {
   std::string text;
   AppendCsvLine(header, &text);
   for (const auto& row : rows) {
@@ -251,8 +242,7 @@ std::string FormatNumber(double v) {
   // the first precision that round-trips is the shortest; 17 always does.
   auto format_g = [v](int precision) {
     char buffer[32];
-    const auto result =
-        std::to_chars(buffer, buffer + sizeof(buffer), v, std::chars_format::general, precision);
+    const auto result = std::to_chars(buffer, buffer + sizeof(buffer), v, std::chars_format::general, precision);
     return std::string(buffer, result.ptr);
   };
   int precision = 1;

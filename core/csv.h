@@ -56,8 +56,7 @@ StatusOr<std::vector<Eigen::Matrix<double, 6, 1>>> LoadLegReadings(const std::st
 // CSV text with "\n" line ends; fields that need it are double-quoted (commas,
 // quotes, surrounding spaces, empty fields, a leading '#'). Every row must have
 // header.size() fields.
-std::string FormatCsv(const std::vector<std::string>& header,
-                      const std::vector<std::vector<std::string>>& rows);
+std::string FormatCsv(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows);
 // The shortest text that ParseNumber reads back as exactly `v` ("0.1", "52.2496",
 // "1e-20"). `v` must be finite.
 std::string FormatNumber(double v);

@@ -62,8 +62,7 @@ TEST(CsvTest, HandlesCrlfAndAByteOrderMark) {
 }
 
 TEST(CsvTest, QuotedFieldsMayHoldCommasQuotesAndSpaces) {
-  StatusOr<CsvTable> table =
-      ParseCsv("name,note\n\"a,b\" , \"say \"\"hi\"\"\"\n\" padded \",\"\"\n", "mem");
+  StatusOr<CsvTable> table = ParseCsv("name,note\n\"a,b\" , \"say \"\"hi\"\"\"\n\" padded \",\"\"\n", "mem");
   ASSERT_TRUE(table.ok()) << table.status().message();
   ASSERT_EQ(table->rows.size(), 2u);
   EXPECT_EQ(table->rows[0], (std::vector<std::string>{"a,b", "say \"hi\""}));
@@ -80,8 +79,7 @@ TEST(CsvTest, EmptyFileOrOnlyCommentsHasNoHeader) {
   TempDir dir;
   for (const std::string text : {"", "\n\n", "# only a comment\n  \n"}) {
     const std::string path = WriteCsvFile(dir, text);
-    EXPECT_EQ(ReadCsvError(path),
-              path + ": no header line (the file is empty or holds only comments)");
+    EXPECT_EQ(ReadCsvError(path), path + ": no header line (the file is empty or holds only comments)");
   }
 }
 
@@ -127,12 +125,11 @@ TEST(CsvTest, BadQuotingNamesLineAndField) {
 }
 
 TEST(CsvTest, ParseNumberAcceptsFiniteDecimalNumbers) {
-  const std::vector<std::pair<std::string, double>> cases = {
-      {"1", 1.0},       {"-1.5e-3", -1.5e-3},
-      {"+2", 2.0},      {".5", 0.5},
-      {"5.", 5.0},      {"1E3", 1000.0},
-      {"-0", -0.0},     {"52.2496", 52.2496},
-      {"1e-20", 1e-20}, {"1.7976931348623157e308", DBL_MAX}};
+  const std::vector<std::pair<std::string, double>> cases = {{"1", 1.0},       {"-1.5e-3", -1.5e-3},
+                                                             {"+2", 2.0},      {".5", 0.5},
+                                                             {"5.", 5.0},      {"1E3", 1000.0},
+                                                             {"-0", -0.0},     {"52.2496", 52.2496},
+                                                             {"1e-20", 1e-20}, {"1.7976931348623157e308", DBL_MAX}};
   for (const auto& [text, expected] : cases) {
     StatusOr<double> value = ParseNumber(text);
     ASSERT_TRUE(value.ok()) << text << ": " << value.status().message();
@@ -143,9 +140,8 @@ TEST(CsvTest, ParseNumberAcceptsFiniteDecimalNumbers) {
 TEST(CsvTest, ParseNumberRejectsAnythingButOneFiniteNumber) {
   EXPECT_EQ(ParseNumber("").status().message(), "expected a number, found nothing");
   for (const std::string text :
-       {" ",    "abc", "1.5x", "1 2",      "1,5",  " 1",   "--1",   "+-1",
-        "++1",  "+",   "-",    ".",        "e5",   "0x10", "nan",   "NaN",
-        "-nan", "inf", "-inf", "Infinity", ".inf", ".nan", "1e400", "-1e400"}) {
+       {" ",  "abc",  "1.5x", "1 2", "1,5",  " 1",  "--1",  "+-1",      "++1",  "+",    "-",     ".",
+        "e5", "0x10", "nan",  "NaN", "-nan", "inf", "-inf", "Infinity", ".inf", ".nan", "1e400", "-1e400"}) {
     StatusOr<double> value = ParseNumber(text);
     ASSERT_FALSE(value.ok()) << "'" << text << "' was accepted as " << *value;
     EXPECT_EQ(value.status().message(), "'" + text + "' is not a finite number");
@@ -167,10 +163,8 @@ TEST(CsvTest, NumberAtNamesFileLineAndColumn) {
   StatusOr<CsvTable> table = ParseCsv("x,y,z\n# c\n1,2,3\n4,5,abc\n7,8,\n", "poses.csv");
   ASSERT_TRUE(table.ok()) << table.status().message();
   EXPECT_EQ(*NumberAt(*table, 0, 2), 3.0);
-  EXPECT_EQ(NumberAt(*table, 1, 2).status().message(),
-            "poses.csv:4: column 'z': 'abc' is not a finite number");
-  EXPECT_EQ(NumberAt(*table, 2, 2).status().message(),
-            "poses.csv:5: column 'z': expected a number, found nothing");
+  EXPECT_EQ(NumberAt(*table, 1, 2).status().message(), "poses.csv:4: column 'z': 'abc' is not a finite number");
+  EXPECT_EQ(NumberAt(*table, 2, 2).status().message(), "poses.csv:5: column 'z': expected a number, found nothing");
 }
 
 TEST(CsvTest, LoadPosesTakesColumnsInAnyOrderAndIgnoresExtras) {
@@ -190,16 +184,13 @@ TEST(CsvTest, LoadPosesTakesColumnsInAnyOrderAndIgnoresExtras) {
 TEST(CsvTest, LoadPosesErrorsNameFileLineAndColumn) {
   TempDir dir;
   std::string path = WriteCsvFile(dir, "x,y,z,q1,q3\n0,0,50,0,0\n");
-  EXPECT_EQ(LoadPoses(path).status().message(),
-            path + ": missing column 'q2' (header: x,y,z,q1,q3)");
+  EXPECT_EQ(LoadPoses(path).status().message(), path + ": missing column 'q2' (header: x,y,z,q1,q3)");
 
   path = WriteCsvFile(dir, "x,y,z,q1,q2,q3\n0,0,50,0,0,0\n0,0,nan,0,0,0\n");
-  EXPECT_EQ(LoadPoses(path).status().message(),
-            path + ":3: column 'z': 'nan' is not a finite number");
+  EXPECT_EQ(LoadPoses(path).status().message(), path + ":3: column 'z': 'nan' is not a finite number");
 
   path = WriteCsvFile(dir, "x,y,z,q1,q2,q3\n# nothing yet\n");
-  EXPECT_EQ(LoadPoses(path).status().message(),
-            path + ": no poses (the file has a header but no data rows)");
+  EXPECT_EQ(LoadPoses(path).status().message(), path + ": no poses (the file has a header but no data rows)");
 
   path = dir.File("absent.csv");
   EXPECT_THAT(LoadPoses(path).status().message(), StartsWith(path + ":"));
@@ -214,8 +205,7 @@ TEST(CsvTest, LoadLegReadingsReadsL1ToL6) {
   EXPECT_EQ((*legs)[0], (Vector6d() << 0.1, 0.2, 0.3, 0.4, 0.5, 0.6).finished());
 
   path = WriteCsvFile(dir, "L1,L2,L3,L5,L6\n1,2,3,5,6\n");
-  EXPECT_EQ(LoadLegReadings(path).status().message(),
-            path + ": missing column 'L4' (header: L1,L2,L3,L5,L6)");
+  EXPECT_EQ(LoadLegReadings(path).status().message(), path + ": missing column 'L4' (header: L1,L2,L3,L5,L6)");
   path = WriteCsvFile(dir, "L1,L2,L3,L4,L5,L6\n");
   EXPECT_EQ(LoadLegReadings(path).status().message(),
             path + ": no leg readings (the file has a header but no data rows)");
@@ -241,16 +231,9 @@ TEST(CsvTest, FormatNumberIsShortAndExact) {
 }
 
 TEST(CsvTest, FormatNumberRoundTripsEveryFiniteDouble) {
-  std::vector<double> values = {1.0 / 3.0,
-                                M_PI,
-                                -2.0 / 3.0 * 1e-300,
-                                DBL_MAX,
-                                -DBL_MAX,
-                                DBL_MIN,
-                                std::numeric_limits<double>::denorm_min(),
-                                123456789.0,
-                                1e22,
-                                9007199254740993.0};
+  std::vector<double> values = {
+      1.0 / 3.0,   M_PI, -2.0 / 3.0 * 1e-300, DBL_MAX, -DBL_MAX, DBL_MIN, std::numeric_limits<double>::denorm_min(),
+      123456789.0, 1e22, 9007199254740993.0};
   // Random bit patterns cover every exponent, not just the values people type.
   std::uniform_int_distribution<uint64_t> bits;
   while (values.size() < 20000) {
@@ -272,10 +255,9 @@ TEST(CsvTest, WriteCsvThenReadCsvGivesTheSameTable) {
   TempDir dir;
   const std::string path = dir.File("out.csv");
   const std::vector<std::string> header = {"name", "x", "note"};
-  const std::vector<std::vector<std::string>> rows = {
-      {"#1", FormatNumber(0.1 + 0.2), "a,b"},
-      {" padded", FormatNumber(-1e-300), "say \"hi\""},
-      {"", FormatNumber(7), ""}};
+  const std::vector<std::vector<std::string>> rows = {{"#1", FormatNumber(0.1 + 0.2), "a,b"},
+                                                      {" padded", FormatNumber(-1e-300), "say \"hi\""},
+                                                      {"", FormatNumber(7), ""}};
   ASSERT_TRUE(WriteCsv(path, header, rows).ok());
   StatusOr<CsvTable> table = ReadCsv(path);
   ASSERT_TRUE(table.ok()) << table.status().message();

@@ -161,8 +161,8 @@ StatusOr<FkAllResult> ForwardKinematicsAll(const Robot& robot, const LegReadings
   const StartSystem& start = GenericStartSystem();
   if (static_cast<int>(start.solutions.size()) != kGenericSolutionCount) {
     std::ostringstream message;
-    message << "forward kinematics: the generic start system has " << start.solutions.size()
-            << " solutions instead of " << kGenericSolutionCount;
+    message << "forward kinematics: the generic start system has " << start.solutions.size() << " solutions instead of "
+            << kGenericSolutionCount;
     return Status::Error(message.str());
   }
   // Work in units of the longest leg so the target looks like the unit-size start.

@@ -31,9 +31,9 @@ struct FkAllOptions {
 };
 
 struct FkAllResult {
-  std::vector<Pose> poses;      // every real assembly mode, polished, sorted by z descending
-  int complex_solutions = 0;    // non-real finite solutions (conjugate pairs counted twice)
-  int failed_paths = 0;         // paths that ended singular or diverged
+  std::vector<Pose> poses;    // every real assembly mode, polished, sorted by z descending
+  int complex_solutions = 0;  // non-real finite solutions (conjugate pairs counted twice)
+  int failed_paths = 0;       // paths that ended singular or diverged
   int tracked_paths = 0;
 };
 

@@ -23,8 +23,8 @@ Pose ApplyIncrement(const Pose& pose, const Vector6d& increment) {
   return out;
 }
 
-StatusOr<LocalFkResult> ForwardKinematicsLocal(const Robot& robot, const LegReadings& readings,
-                                               const Pose& start, const LocalFkOptions& options) {
+StatusOr<LocalFkResult> ForwardKinematicsLocal(const Robot& robot, const LegReadings& readings, const Pose& start,
+                                               const LocalFkOptions& options) {
   if (!readings.allFinite()) return Status::Error("forward kinematics: leg readings are not finite");
   double scale = 0;
   for (int i = 0; i < kNumLegs; ++i) scale = std::max(scale, std::abs(readings[i] + robot.legs[i].offset));
@@ -61,9 +61,8 @@ StatusOr<LocalFkResult> ForwardKinematicsLocal(const Robot& robot, const LegRead
   const double max_residual = r.cwiseAbs().maxCoeff();
   if (max_residual <= tolerance * 1e3) return LocalFkResult{pose, options.max_iterations, max_residual};
   std::ostringstream message;
-  message << "forward kinematics did not converge: a leg length is still off by " << max_residual
-          << " " << LengthUnitName(robot.length_unit)
-          << " (readings out of reach, or a start pose too far from a solution)";
+  message << "forward kinematics did not converge: a leg length is still off by " << max_residual << " "
+          << LengthUnitName(robot.length_unit) << " (readings out of reach, or a start pose too far from a solution)";
   return Status::Error(message.str());
 }
 

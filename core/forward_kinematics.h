@@ -26,8 +26,8 @@ struct LocalFkResult {
 
 // Fails (with the reason) when it does not converge, e.g. for readings that no
 // pose can reach or a start at a singularity.
-StatusOr<LocalFkResult> ForwardKinematicsLocal(const Robot& robot, const LegReadings& readings,
-                                               const Pose& start, const LocalFkOptions& options = {});
+StatusOr<LocalFkResult> ForwardKinematicsLocal(const Robot& robot, const LegReadings& readings, const Pose& start,
+                                               const LocalFkOptions& options = {});
 
 // Applies a small motion [dP, theta] to a pose: P += dP, R <- exp([theta]x) R.
 Pose ApplyIncrement(const Pose& pose, const Vector6d& increment);

@@ -33,7 +33,9 @@ struct InformationBlocks {
   std::array<InfoBlock, kNumLegs> blocks;  // M_i = J_Piᵀ J_Pi
   int num_poses = 0;
 
-  InformationBlocks() { for (InfoBlock& b : blocks) b.setZero(); }
+  InformationBlocks() {
+    for (InfoBlock& b : blocks) b.setZero();
+  }
   void AddPose(const Robot& robot, const Pose& pose, double weight = 1.0);
   // Removing is adding with weight -1; the pose count follows the sign.
   void RemovePose(const Robot& robot, const Pose& pose);

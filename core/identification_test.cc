@@ -14,6 +14,7 @@
 
 #include "core/observability.h"
 #include "core/robot_io.h"
+#include "tests/robot_presets.h"
 #include "tests/test_support.h"
 
 namespace hexcal {
@@ -22,11 +23,7 @@ namespace {
 using ::hexcal::testing::MatrixNear;
 using ::hexcal::testing::Uniform;
 
-Robot Preset(const std::string& name) {
-  StatusOr<Robot> robot = LoadRobot(name);
-  EXPECT_TRUE(robot.ok()) << robot.status().message();
-  return *robot;
-}
+using ::hexcal::testing::Preset;
 
 // Random poses in the working range of each preset.
 Pose RandomInriaPose(const Robot& robot) {

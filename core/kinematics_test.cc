@@ -11,6 +11,7 @@
 #include "core/forward_kinematics.h"
 #include "core/inverse_kinematics.h"
 #include "core/robot_io.h"
+#include "tests/robot_presets.h"
 #include "tests/test_support.h"
 
 namespace hexcal {
@@ -19,11 +20,7 @@ namespace {
 using ::hexcal::testing::MatrixNear;
 using ::hexcal::testing::Uniform;
 
-Robot Preset(const std::string& name) {
-  StatusOr<Robot> robot = LoadRobot(name);
-  EXPECT_TRUE(robot.ok()) << robot.status().message();
-  return *robot;
-}
+using ::hexcal::testing::Preset;
 
 // A random pose around a robot's nominal workspace: [x, y, z, q1, q2, q3] ranges per preset.
 struct PoseRange {

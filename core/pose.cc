@@ -47,8 +47,7 @@ Eigen::Vector3d EulerFromRotation(const Eigen::Matrix3d& r, EulerConvention conv
 Pose PoseFromVector(const Vector6d& v, EulerConvention convention) {
   Pose pose;
   pose.position = v.head<3>();
-  pose.rotation = RotationFromEuler(
-      Eigen::Vector3d(DegToRad(v[3]), DegToRad(v[4]), DegToRad(v[5])), convention);
+  pose.rotation = RotationFromEuler(Eigen::Vector3d(DegToRad(v[3]), DegToRad(v[4]), DegToRad(v[5])), convention);
   return pose;
 }
 

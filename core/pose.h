@@ -28,9 +28,7 @@ struct Pose {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // platform origin in base
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
 
-  Eigen::Vector3d operator*(const Eigen::Vector3d& p_in_platform) const {
-    return position + rotation * p_in_platform;
-  }
+  Eigen::Vector3d operator*(const Eigen::Vector3d& p_in_platform) const { return position + rotation * p_in_platform; }
 };
 
 // Rotation from Euler angles in radians.

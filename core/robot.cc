@@ -11,18 +11,24 @@ std::optional<LengthUnit> ParseLengthUnit(const std::string& text) {
 
 const char* LengthUnitName(LengthUnit unit) {
   switch (unit) {
-    case LengthUnit::kMillimetre: return "mm";
-    case LengthUnit::kCentimetre: return "cm";
-    case LengthUnit::kMetre: return "m";
+    case LengthUnit::kMillimetre:
+      return "mm";
+    case LengthUnit::kCentimetre:
+      return "cm";
+    case LengthUnit::kMetre:
+      return "m";
   }
   return "?";
 }
 
 double MetresPerUnit(LengthUnit unit) {
   switch (unit) {
-    case LengthUnit::kMillimetre: return 1e-3;
-    case LengthUnit::kCentimetre: return 1e-2;
-    case LengthUnit::kMetre: return 1.0;
+    case LengthUnit::kMillimetre:
+      return 1e-3;
+    case LengthUnit::kCentimetre:
+      return 1e-2;
+    case LengthUnit::kMetre:
+      return 1.0;
   }
   return 1.0;
 }

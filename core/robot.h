@@ -17,7 +17,7 @@
 namespace hexcal {
 
 constexpr int kNumLegs = 6;
-constexpr int kParamsPerLeg = 7;                        // a (3), b (3), l
+constexpr int kParamsPerLeg = 7;                      // a (3), b (3), l
 constexpr int kNumParams = kNumLegs * kParamsPerLeg;  // 42
 
 enum class LengthUnit { kMillimetre, kCentimetre, kMetre };
@@ -45,7 +45,8 @@ struct Range {
 struct PoseBox {
   std::array<std::optional<Range>, 6> bounds;
   bool IsComplete() const {
-    for (const auto& b : bounds) if (!b) return false;
+    for (const auto& b : bounds)
+      if (!b) return false;
     return true;
   }
 };

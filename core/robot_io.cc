@@ -16,12 +16,11 @@
 namespace hexcal {
 namespace {
 
-const std::vector<std::string> kTopKeys = {"name", "length_unit", "euler",
-                                           "legs", "limits",      "calibration"};
+const std::vector<std::string> kTopKeys = {"name", "length_unit", "euler", "legs", "limits", "calibration"};
 const std::vector<std::string> kRequiredTopKeys = {"name", "length_unit", "euler", "legs"};
 const std::vector<std::string> kLegKeys = {"a", "b", "l", "stroke"};
-const std::vector<std::string> kLimitKeys = {"base_joint_max_deg", "platform_joint_max_deg",
-                                             "leg_min_distance", "pose_box"};
+const std::vector<std::string> kLimitKeys = {"base_joint_max_deg", "platform_joint_max_deg", "leg_min_distance",
+                                             "pose_box"};
 // In the order of the pose vector [x, y, z, q1, q2, q3].
 const std::vector<std::string> kPoseBoxKeys = {"x", "y", "z", "q1", "q2", "q3"};
 
@@ -35,13 +34,9 @@ std::string Join(const std::vector<std::string>& parts, const std::string& separ
   return joined;
 }
 
-std::string Child(const std::string& path, const std::string& key) {
-  return path.empty() ? key : path + "." + key;
-}
+std::string Child(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
 
-std::string Indexed(const std::string& path, size_t index) {
-  return path + "[" + std::to_string(index) + "]";
-}
+std::string Indexed(const std::string& path, size_t index) { return path + "[" + std::to_string(index) + "]"; }
 
 // How a value the reader did not expect looks, for "expected X, found Y".
 std::string Describe(const YAML::Node& node) {
@@ -51,9 +46,7 @@ std::string Describe(const YAML::Node& node) {
   return "'" + node.Scalar() + "'";
 }
 
-bool IsQuotedOrString(const YAML::Node& node) {
-  return node.Tag() == "!" || node.Tag() == "tag:yaml.org,2002:str";
-}
+bool IsQuotedOrString(const YAML::Node& node) { return node.Tag() == "!" || node.Tag() == "tag:yaml.org,2002:str"; }
 
 // Reads one robot document; every message starts with `label`, which says
 // where the text came from.
@@ -66,8 +59,7 @@ class RobotYamlReader {
     try {
       root = YAML::Load(text);
     } catch (const YAML::ParserException& e) {
-      return Status::Error(label_ + ": YAML syntax error at line " +
-                           std::to_string(e.mark.line + 1) + ", column " +
+      return Status::Error(label_ + ": YAML syntax error at line " + std::to_string(e.mark.line + 1) + ", column " +
                            std::to_string(e.mark.column + 1) + ": " + e.msg);
     }
     try {
@@ -84,8 +76,8 @@ class RobotYamlReader {
 
   StatusOr<Robot> ReadRoot(const YAML::Node& root) const {
     if (!root.IsMap()) {
-      return Error("top level", "expected a mapping with keys " + Join(kRequiredTopKeys, ", ") +
-                                    ", found " + Describe(root));
+      return Error("top level",
+                   "expected a mapping with keys " + Join(kRequiredTopKeys, ", ") + ", found " + Describe(root));
     }
     if (Status s = CheckKeys(root, "", kTopKeys, kRequiredTopKeys); !s.ok()) return s;
     Robot robot;
@@ -121,8 +113,7 @@ class RobotYamlReader {
 
   // Rejects non-scalar, duplicate and unknown keys, then missing required ones;
   // an unknown key first, since it is usually a misspelt required one.
-  Status CheckKeys(const YAML::Node& map, const std::string& path,
-                   const std::vector<std::string>& allowed,
+  Status CheckKeys(const YAML::Node& map, const std::string& path, const std::vector<std::string>& allowed,
                    const std::vector<std::string>& required) const {
     std::set<std::string> seen;
     for (const auto& entry : map) {
@@ -158,8 +149,8 @@ class RobotYamlReader {
   }
 
   // A list of exactly `count` numbers; `form` shows the expected list.
-  StatusOr<std::vector<double>> Numbers(const YAML::Node& node, const std::string& path,
-                                        size_t count, const std::string& form) const {
+  StatusOr<std::vector<double>> Numbers(const YAML::Node& node, const std::string& path, size_t count,
+                                        const std::string& form) const {
     const std::string expected = "expected " + std::to_string(count) + " numbers " + form;
     if (!node.IsSequence()) return Error(path, expected + ", found " + Describe(node));
     if (node.size() != count) {
@@ -185,8 +176,8 @@ class RobotYamlReader {
     if (!bounds.ok()) return bounds.status();
     const Range range{(*bounds)[0], (*bounds)[1]};
     if (range.min >= range.max) {
-      return Error(path, "min (" + FormatNumber(range.min) + ") must be less than max (" +
-                             FormatNumber(range.max) + ")");
+      return Error(path,
+                   "min (" + FormatNumber(range.min) + ") must be less than max (" + FormatNumber(range.max) + ")");
     }
     return range;
   }
@@ -222,9 +213,8 @@ class RobotYamlReader {
     // is), but the physical leg, offset plus shortest reading, cannot.
     const double shortest = *offset + stroke->min;
     if (shortest <= 0) {
-      return Error(path, "l + stroke min (" + FormatNumber(*offset) + " + " +
-                             FormatNumber(stroke->min) + " = " + FormatNumber(shortest) +
-                             ") must be > 0: it is the shortest length of the leg");
+      return Error(path, "l + stroke min (" + FormatNumber(*offset) + " + " + FormatNumber(stroke->min) + " = " +
+                             FormatNumber(shortest) + ") must be > 0: it is the shortest length of the leg");
     }
     *leg = Leg{*a, *b, *offset, stroke->min, stroke->max};
     return Status::Ok();
@@ -233,8 +223,7 @@ class RobotYamlReader {
   Status CheckDistinctAttachments(const Robot& robot) const {
     double scale = 0;
     for (const Leg& leg : robot.legs) {
-      scale = std::max(
-          {scale, leg.a_in_base.norm(), leg.b_in_platform.norm(), leg.offset + leg.stroke_max});
+      scale = std::max({scale, leg.a_in_base.norm(), leg.b_in_platform.norm(), leg.offset + leg.stroke_max});
     }
     const double tolerance = kCoincidenceTolerance * scale;
     for (int j = 1; j < kNumLegs; ++j) {
@@ -339,9 +328,8 @@ StatusOr<Robot> LoadRobot(const std::string& path_or_preset) {
   if (const auto preset = presets.find(path_or_preset); preset != presets.end()) {
     return RobotYamlReader("robot preset '" + preset->first + "'").Read(preset->second);
   }
-  return Status::Error(
-      "robot '" + path_or_preset +
-      "': no such file and no preset of that name (presets: " + Join(PresetNames(), ", ") + ")");
+  return Status::Error("robot '" + path_or_preset +
+                       "': no such file and no preset of that name (presets: " + Join(PresetNames(), ", ") + ")");
 }
 
 std::string RobotToYaml(const Robot& robot) {
@@ -350,18 +338,15 @@ std::string RobotToYaml(const Robot& robot) {
       << "name: " << YamlText(robot.name) << "\n"
       << "length_unit: " << LengthUnitName(robot.length_unit) << "\n"
       << "euler: " << EulerConventionName(robot.euler)
-      << (robot.euler == EulerConvention::kXYZ ? "  # R = Rz(q3)*Ry(q2)*Rx(q1)"
-                                               : "  # R = Rx(q3)*Ry(q2)*Rz(q1)")
+      << (robot.euler == EulerConvention::kXYZ ? "  # R = Rz(q3)*Ry(q2)*Rx(q1)" : "  # R = Rx(q3)*Ry(q2)*Rz(q1)")
       << ", pose angles in degrees\n"
       << "legs:\n";
   for (const Leg& leg : robot.legs) {
     out << "  - {a: " << YamlPoint(leg.a_in_base) << ", b: " << YamlPoint(leg.b_in_platform)
-        << ", l: " << FormatNumber(leg.offset)
-        << ", stroke: " << YamlList({leg.stroke_min, leg.stroke_max}) << "}\n";
+        << ", l: " << FormatNumber(leg.offset) << ", stroke: " << YamlList({leg.stroke_min, leg.stroke_max}) << "}\n";
   }
   const RobotLimits& limits = robot.limits;
-  if (!limits.base_joint_max_deg && !limits.platform_joint_max_deg && !limits.leg_min_distance &&
-      !limits.pose_box) {
+  if (!limits.base_joint_max_deg && !limits.platform_joint_max_deg && !limits.leg_min_distance && !limits.pose_box) {
     return out.str();
   }
   out << "limits:\n";
@@ -386,9 +371,7 @@ std::string RobotToYaml(const Robot& robot) {
   return out.str();
 }
 
-Status SaveRobot(const Robot& robot, const std::string& path) {
-  return WriteFileAtomically(path, RobotToYaml(robot));
-}
+Status SaveRobot(const Robot& robot, const std::string& path) { return WriteFileAtomically(path, RobotToYaml(robot)); }
 
 std::vector<std::string> PresetNames() {
   std::vector<std::string> names;

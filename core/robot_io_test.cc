@@ -31,8 +31,7 @@ bool SameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
     const Leg& p = a.legs[i];
     const Leg& q = b.legs[i];
     for (int k = 0; k < 3; ++k) {
-      if (!SameBits(p.a_in_base[k], q.a_in_base[k]))
-        return fail("legs[" + std::to_string(i) + "].a");
+      if (!SameBits(p.a_in_base[k], q.a_in_base[k])) return fail("legs[" + std::to_string(i) + "].a");
       if (!SameBits(p.b_in_platform[k], q.b_in_platform[k])) {
         return fail("legs[" + std::to_string(i) + "].b");
       }
@@ -55,8 +54,7 @@ bool SameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
     for (int k = 0; k < 6; ++k) {
       const auto& x = a.limits.pose_box->bounds[k];
       const auto& y = b.limits.pose_box->bounds[k];
-      if (x.has_value() != y.has_value() ||
-          (x && (!SameBits(x->min, y->min) || !SameBits(x->max, y->max)))) {
+      if (x.has_value() != y.has_value() || (x && (!SameBits(x->min, y->min) || !SameBits(x->max, y->max)))) {
         return fail("pose_box bound " + std::to_string(k));
       }
     }
@@ -109,11 +107,10 @@ TEST(RobotIoTest, DeltalabPresetHasThePublishedDimensions) {
     const Leg& leg = robot.legs[i];
     const double t_a = DegToRad(base_angles[i]);
     const double t_b = DegToRad(platform_angles[i]);
-    EXPECT_TRUE(testing::MatrixNear(
-        leg.a_in_base, Eigen::Vector3d(270 * std::cos(t_a), 270 * std::sin(t_a), 0), 1e-6))
+    EXPECT_TRUE(testing::MatrixNear(leg.a_in_base, Eigen::Vector3d(270 * std::cos(t_a), 270 * std::sin(t_a), 0), 1e-6))
         << "leg " << i;
-    EXPECT_TRUE(testing::MatrixNear(
-        leg.b_in_platform, Eigen::Vector3d(195 * std::cos(t_b), 195 * std::sin(t_b), 0), 1e-6))
+    EXPECT_TRUE(
+        testing::MatrixNear(leg.b_in_platform, Eigen::Vector3d(195 * std::cos(t_b), 195 * std::sin(t_b), 0), 1e-6))
         << "leg " << i;
     // The paper's leg lengths: 345 to 485 mm.
     EXPECT_EQ(leg.offset + leg.stroke_min, 345);
@@ -167,8 +164,8 @@ TEST(RobotIoTest, RobotWithoutLimitsWritesNoLimitsBlock) {
 
 TEST(RobotIoTest, NamesThatLookLikeOtherYamlAreQuotedAndSurvive) {
   Robot robot = LoadOrDie("inria-left-hand");
-  for (const std::string name : {"null", "~", "true", "123", " padded ", "a: b", "#hash", "- dash",
-                                 "say \"hi\"", "two\nlines", "réel"}) {
+  for (const std::string name :
+       {"null", "~", "true", "123", " padded ", "a: b", "#hash", "- dash", "say \"hi\"", "two\nlines", "réel"}) {
     robot.name = name;
     StatusOr<Robot> reloaded = ParseRobotYaml(RobotToYaml(robot), "generated");
     ASSERT_TRUE(reloaded.ok()) << name << ": " << reloaded.status().message();
@@ -212,8 +209,7 @@ TEST(RobotIoTest, LimitsAreOptional) {
 // Restores the working directory even when an ASSERT returns early.
 class ScopedWorkingDirectory {
  public:
-  explicit ScopedWorkingDirectory(const std::filesystem::path& dir)
-      : previous_(std::filesystem::current_path()) {
+  explicit ScopedWorkingDirectory(const std::filesystem::path& dir) : previous_(std::filesystem::current_path()) {
     std::filesystem::current_path(dir);
   }
   ~ScopedWorkingDirectory() { std::filesystem::current_path(previous_); }
@@ -243,8 +239,7 @@ TEST(RobotIoTest, AFolderIsNotARobotFile) {
   TempDir dir;
   StatusOr<Robot> robot = LoadRobot(dir.path().string());
   ASSERT_FALSE(robot.ok());
-  EXPECT_EQ(robot.status().message(),
-            "robot file '" + dir.path().string() + "': is a directory, not a file");
+  EXPECT_EQ(robot.status().message(), "robot file '" + dir.path().string() + "': is a directory, not a file");
 }
 
 TEST(RobotIoTest, SaveIntoAMissingFolderFails) {

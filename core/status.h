@@ -22,17 +22,14 @@ class Status {
   static Status Ok() { return Status(); }
   static Status Error(std::string message) { return Status(std::move(message), false); }
   // A long job stopped by its caller: not a success, not a failure.
-  static Status Cancelled(std::string message = "cancelled") {
-    return Status(std::move(message), true);
-  }
+  static Status Cancelled(std::string message = "cancelled") { return Status(std::move(message), true); }
 
   bool ok() const { return !failed_; }
   bool cancelled() const { return cancelled_; }
   const std::string& message() const { return message_; }
 
  private:
-  Status(std::string message, bool cancelled)
-      : message_(std::move(message)), failed_(true), cancelled_(cancelled) {}
+  Status(std::string message, bool cancelled) : message_(std::move(message)), failed_(true), cancelled_(cancelled) {}
   std::string message_;
   bool failed_ = false;
   bool cancelled_ = false;
@@ -41,16 +38,25 @@ class Status {
 template <typename T>
 class StatusOr {
  public:
-  StatusOr(T value) : value_(std::move(value)) {}  // NOLINT: implicit by design
+  StatusOr(T value) : value_(std::move(value)) {}         // NOLINT: implicit by design
   StatusOr(Status status) : status_(std::move(status)) {  // NOLINT
     assert(!status_.ok() && "StatusOr needs a value or an error");
   }
 
   bool ok() const { return value_.has_value(); }
   const Status& status() const { return status_; }
-  const T& value() const& { assert(ok()); return *value_; }
-  T& value() & { assert(ok()); return *value_; }
-  T&& value() && { assert(ok()); return std::move(*value_); }
+  const T& value() const& {
+    assert(ok());
+    return *value_;
+  }
+  T& value() & {
+    assert(ok());
+    return *value_;
+  }
+  T&& value() && {
+    assert(ok());
+    return std::move(*value_);
+  }
   const T& operator*() const& { return value(); }
   T& operator*() & { return value(); }
   const T* operator->() const { return &value(); }

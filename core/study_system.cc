@@ -13,9 +13,7 @@ CVector3 Cross(const CVector3& u, const CVector3& v) {
 Complex Dot(const CVector3& u, const CVector3& v) { return u.transpose() * v; }  // bilinear
 
 // w(A) such that tr(Aᵀ [ev]x) = ev·w.
-CVector3 SkewPart(const CMatrix3& a) {
-  return CVector3(a(2, 1) - a(1, 2), a(0, 2) - a(2, 0), a(1, 0) - a(0, 1));
-}
+CVector3 SkewPart(const CMatrix3& a) { return CVector3(a(2, 1) - a(1, 2), a(0, 2) - a(2, 0), a(1, 0) - a(0, 1)); }
 
 }  // namespace
 
@@ -23,8 +21,8 @@ LegCoefficients CoefficientsOf(const CVector3& a, const CVector3& b, const Compl
   return {Dot(a, a) + Dot(b, b) - d2, a, b, a * b.transpose()};
 }
 
-LegCoefficients CoefficientDerivative(const CVector3& a, const CVector3& b, const CVector3& da,
-                                      const CVector3& db, const Complex& dd2) {
+LegCoefficients CoefficientDerivative(const CVector3& a, const CVector3& b, const CVector3& da, const CVector3& db,
+                                      const Complex& dd2) {
   return {2.0 * Dot(a, da) + 2.0 * Dot(b, db) - dd2, da, db, da * b.transpose() + a * db.transpose()};
 }
 
@@ -33,8 +31,8 @@ Complex LegLinearPart(const LegCoefficients& c, const CVector8& z, CVector3*) {
   const CVector3 ev = z.segment<3>(1), gv = z.segment<3>(5);
   const Complex delta = e0 * e0 + Dot(ev, ev);
   // tr(Aᵀ M(e)) = (e0² - ev·ev) tr A + 2 evᵀ A ev + 2 e0 ev·w(A)
-  const Complex trace_am = (e0 * e0 - Dot(ev, ev)) * c.ab.trace() +
-                           2.0 * Complex(ev.transpose() * c.ab * ev) + 2.0 * e0 * Dot(ev, SkewPart(c.ab));
+  const Complex trace_am = (e0 * e0 - Dot(ev, ev)) * c.ab.trace() + 2.0 * Complex(ev.transpose() * c.ab * ev) +
+                           2.0 * e0 * Dot(ev, SkewPart(c.ab));
   return c.d * delta - 4.0 * g0 * Dot(c.b, ev) + 4.0 * e0 * Dot(c.b, gv) - 4.0 * Dot(c.b, Cross(ev, gv)) -
          2.0 * trace_am + 4.0 * g0 * Dot(c.a, ev) - 4.0 * e0 * Dot(c.a, gv) + 4.0 * Dot(c.a, Cross(gv, ev));
 }
@@ -48,16 +46,15 @@ void LegLinearPartGradient(const LegCoefficients& c, const CVector8& z, Eigen::M
   const CVector3 dtrace_dev = -2.0 * tr * ev + 2.0 * (c.ab + c.ab.transpose()) * ev + 2.0 * e0 * w;
 
   (*grad)(0) = 2.0 * c.d * e0 + 4.0 * Dot(c.b, gv) - 2.0 * dtrace_de0 - 4.0 * Dot(c.a, gv);
-  grad->segment<3>(1) = (2.0 * c.d * ev - 4.0 * g0 * c.b - 4.0 * Cross(gv, c.b) - 2.0 * dtrace_dev +
-                         4.0 * g0 * c.a + 4.0 * Cross(c.a, gv))
+  grad->segment<3>(1) = (2.0 * c.d * ev - 4.0 * g0 * c.b - 4.0 * Cross(gv, c.b) - 2.0 * dtrace_dev + 4.0 * g0 * c.a +
+                         4.0 * Cross(c.a, gv))
                             .transpose();
   (*grad)(4) = -4.0 * Dot(c.b, ev) + 4.0 * Dot(c.a, ev);
-  grad->segment<3>(5) =
-      (4.0 * e0 * c.b - 4.0 * Cross(c.b, ev) - 4.0 * e0 * c.a + 4.0 * Cross(ev, c.a)).transpose();
+  grad->segment<3>(5) = (4.0 * e0 * c.b - 4.0 * Cross(c.b, ev) - 4.0 * e0 * c.a + 4.0 * Cross(ev, c.a)).transpose();
 }
 
-void EvaluateStudySystem(const std::array<LegCoefficients, 6>& legs, const CVector8& chart,
-                         const CVector8& z, CVector8* f, CMatrix8* jacobian) {
+void EvaluateStudySystem(const std::array<LegCoefficients, 6>& legs, const CVector8& chart, const CVector8& z,
+                         CVector8* f, CMatrix8* jacobian) {
   const CVector8 g_part = (CVector8() << 0, 0, 0, 0, z.segment<4>(4)).finished();
   const Complex gg = Complex(z.segment<4>(4).transpose() * z.segment<4>(4));
   for (int i = 0; i < 6; ++i) {

@@ -53,8 +53,8 @@ struct LegCoefficients {
 
 LegCoefficients CoefficientsOf(const CVector3& a, const CVector3& b, const Complex& d2);
 // d(coefficients)/ds along p(s) = p + s·dp.
-LegCoefficients CoefficientDerivative(const CVector3& a, const CVector3& b, const CVector3& da,
-                                      const CVector3& db, const Complex& dd2);
+LegCoefficients CoefficientDerivative(const CVector3& a, const CVector3& b, const CVector3& da, const CVector3& db,
+                                      const Complex& dd2);
 
 // Value and gradient (w.r.t. z) of the part of a leg equation that is linear in
 // the coefficients (everything but 4 g·g).
@@ -62,8 +62,8 @@ Complex LegLinearPart(const LegCoefficients& c, const CVector8& z, CVector3* unu
 void LegLinearPartGradient(const LegCoefficients& c, const CVector8& z, Eigen::Matrix<Complex, 1, 8>* grad);
 
 // F(z) and dF/dz for the 8 equations above.
-void EvaluateStudySystem(const std::array<LegCoefficients, 6>& legs, const CVector8& chart,
-                         const CVector8& z, CVector8* f, CMatrix8* jacobian);
+void EvaluateStudySystem(const std::array<LegCoefficients, 6>& legs, const CVector8& chart, const CVector8& z,
+                         CVector8* f, CMatrix8* jacobian);
 
 // Study parameters of a real pose (e normalised, e0 >= 0) and back. PoseFromStudy
 // takes real parts; call it only for solutions whose imaginary part is negligible.

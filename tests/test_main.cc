@@ -10,8 +10,7 @@ namespace {
 
 class ReseedListener : public testing::EmptyTestEventListener {
   void OnTestStart(const testing::TestInfo& info) override {
-    hexcal::testing::ReseedTestRng(std::hash<std::string>{}(
-        std::string(info.test_suite_name()) + "." + info.name()));
+    hexcal::testing::ReseedTestRng(std::hash<std::string>{}(std::string(info.test_suite_name()) + "." + info.name()));
   }
 };
 

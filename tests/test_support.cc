@@ -13,9 +13,7 @@ std::mt19937_64& TestRng() {
 
 void ReseedTestRng(uint64_t seed) { TestRng().seed(seed); }
 
-double Uniform(double lo, double hi) {
-  return std::uniform_real_distribution<double>(lo, hi)(TestRng());
-}
+double Uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(TestRng()); }
 
 std::filesystem::path SourceDir() {
   if (const char* dir = std::getenv("HEXCAL_SOURCE_DIR")) return dir;

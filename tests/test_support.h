@@ -37,8 +37,7 @@ void WriteTextFile(const std::string& path, const std::string& text);
 std::string ReadTextFile(const std::string& path);
 
 template <typename A, typename B>
-::testing::AssertionResult MatrixNear(const Eigen::MatrixBase<A>& a, const Eigen::MatrixBase<B>& b,
-                                      double tolerance) {
+::testing::AssertionResult MatrixNear(const Eigen::MatrixBase<A>& a, const Eigen::MatrixBase<B>& b, double tolerance) {
   if (a.rows() != b.rows() || a.cols() != b.cols()) {
     return ::testing::AssertionFailure() << "size mismatch";
   }

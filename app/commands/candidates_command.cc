@@ -23,7 +23,8 @@ int RunCandidates(const CandidatesCliOptions& cli, std::ostream& out, std::ostre
   if (!robot.ok()) return ReportError(err, "candidates", robot.status());
   const std::optional<CandidateKind> kind = ParseCandidateKind(cli.kind);
   if (!kind) {
-    return ReportError(err, "candidates", Status::Error("--kind: '" + cli.kind + "' is not random, uniform or boundary"));
+    return ReportError(err, "candidates",
+                       Status::Error("--kind: '" + cli.kind + "' is not random, uniform or boundary"));
   }
   CandidateOptions options;
   options.kind = *kind;
@@ -48,17 +49,19 @@ int RunCandidates(const CandidatesCliOptions& cli, std::ostream& out, std::ostre
   }
   if (cli.json) {
     nlohmann::json j = {{"count", set->poses.size()}, {"kind", cli.kind}, {"out", cli.out}, {"draws", set->draws}};
-    if (*kind == CandidateKind::kBoundary) j["real_modes"] = set->real_modes;
-    else j["seed"] = cli.seed;
+    if (*kind == CandidateKind::kBoundary)
+      j["real_modes"] = set->real_modes;
+    else
+      j["seed"] = cli.seed;
     out << j.dump(2) << "\n";
   } else {
     out << set->poses.size() << " " << cli.kind << " candidate poses written to " << cli.out;
     if (*kind == CandidateKind::kBoundary) {
-      out << " (64 min/max leg combinations, " << set->real_modes << " real assembly modes, "
-          << set->poses.size() << " feasible)";
+      out << " (64 min/max leg combinations, " << set->real_modes << " real assembly modes, " << set->poses.size()
+          << " feasible)";
     } else {
-      out << " (" << set->draws << " drawn, acceptance "
-          << 100.0 * set->poses.size() / std::max<int64_t>(1, set->draws) << " %)";
+      out << " (" << set->draws << " drawn, acceptance " << 100.0 * set->poses.size() / std::max<int64_t>(1, set->draws)
+          << " %)";
     }
     out << "\n";
   }

@@ -20,8 +20,13 @@ nlohmann::json PoseJson(const Robot& robot, const Pose& pose) {
 }
 
 nlohmann::json IndicesJson(const ObservabilityIndices& o) {
-  return {{"O1", o.o1}, {"O2", o.o2}, {"O3", o.o3}, {"O4", o.o4},
-          {"sigma_min", o.sigma_min}, {"sigma_max", o.sigma_max}, {"poses", o.num_poses}};
+  return {{"O1", o.o1},
+          {"O2", o.o2},
+          {"O3", o.o3},
+          {"O4", o.o4},
+          {"sigma_min", o.sigma_min},
+          {"sigma_max", o.sigma_max},
+          {"poses", o.num_poses}};
 }
 
 nlohmann::json RobotJson(const Robot& robot) {
@@ -32,8 +37,10 @@ nlohmann::json RobotJson(const Robot& robot) {
                     {"l", leg.offset},
                     {"stroke", {leg.stroke_min, leg.stroke_max}}});
   }
-  return {{"name", robot.name}, {"length_unit", LengthUnitName(robot.length_unit)},
-          {"euler", EulerConventionName(robot.euler)}, {"legs", legs}};
+  return {{"name", robot.name},
+          {"length_unit", LengthUnitName(robot.length_unit)},
+          {"euler", EulerConventionName(robot.euler)},
+          {"legs", legs}};
 }
 
 StatusOr<std::vector<double>> ParseNumberList(const std::string& text, int count, const std::string& what) {
@@ -64,8 +71,8 @@ void ProgressBar::Update(int done, int total) {
   if (percent == last_percent_) return;
   last_percent_ = percent;
   const int width = 30, filled = width * percent / 100;
-  std::cerr << "\r" << label_ << " [" << std::string(filled, '#') << std::string(width - filled, ' ') << "] "
-            << percent << "% (" << done << "/" << total << ")" << std::flush;
+  std::cerr << "\r" << label_ << " [" << std::string(filled, '#') << std::string(width - filled, ' ') << "] " << percent
+            << "% (" << done << "/" << total << ")" << std::flush;
 }
 
 }  // namespace hexcal::cli

@@ -6,7 +6,7 @@ namespace hexcal::cli {
 
 namespace {
 constexpr CommandEntry kCommands[] = {
-    {"robot", AddRobotCommand},         {"ik", AddIkCommand},           {"fk", AddFkCommand},
+    {"robot", AddRobotCommand},           {"ik", AddIkCommand},           {"fk", AddFkCommand},
     {"candidates", AddCandidatesCommand}, {"indices", AddIndicesCommand}, {"demo", AddDemoCommand},
 };
 }  // namespace

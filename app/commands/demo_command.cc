@@ -63,8 +63,11 @@ int RunDemo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
     for (const Vector6d& v : boundary->poses) boundary_poses.push_back(PoseJson(*robot, robot->PoseFromVector(v)));
     out << nlohmann::json{{"robot", RobotJson(*robot)},
                           {"random", {{"seed", options.seed}, {"indices", IndicesJson(random_indices)}}},
-                          {"boundary", {{"real_modes", boundary->real_modes}, {"count", boundary->poses.size()},
-                                        {"indices", IndicesJson(boundary_indices)}, {"poses", boundary_poses}}},
+                          {"boundary",
+                           {{"real_modes", boundary->real_modes},
+                            {"count", boundary->poses.size()},
+                            {"indices", IndicesJson(boundary_indices)},
+                            {"poses", boundary_poses}}},
                           {"seconds", seconds}}
                .dump(2)
         << "\n";
@@ -75,9 +78,10 @@ int RunDemo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
   for (int i = 0; i < kNumLegs; ++i) {
     const Leg& leg = robot->legs[i];
     char line[200];
-    std::snprintf(line, sizeof line, "  leg %d  a = (%8.3f %8.3f %8.3f)  b = (%8.3f %8.3f %8.3f)  l = %.4f  stroke [%g, %g]\n",
-                  i + 1, leg.a_in_base.x(), leg.a_in_base.y(), leg.a_in_base.z(), leg.b_in_platform.x(),
-                  leg.b_in_platform.y(), leg.b_in_platform.z(), leg.offset, leg.stroke_min, leg.stroke_max);
+    std::snprintf(line, sizeof line,
+                  "  leg %d  a = (%8.3f %8.3f %8.3f)  b = (%8.3f %8.3f %8.3f)  l = %.4f  stroke [%g, %g]\n", i + 1,
+                  leg.a_in_base.x(), leg.a_in_base.y(), leg.a_in_base.z(), leg.b_in_platform.x(), leg.b_in_platform.y(),
+                  leg.b_in_platform.z(), leg.offset, leg.stroke_min, leg.stroke_max);
     out << line;
   }
   out << "\n== Boundary poses (section 6.1) ==\n"
@@ -86,7 +90,8 @@ int RunDemo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
   out << "     x          y          z          q1         q2         q3\n";
   for (const Vector6d& v : boundary->poses) {
     char line[200];
-    std::snprintf(line, sizeof line, "  %9.4f  %9.4f  %9.4f  %9.4f  %9.4f  %9.4f\n", v[0], v[1], v[2], v[3], v[4], v[5]);
+    std::snprintf(line, sizeof line, "  %9.4f  %9.4f  %9.4f  %9.4f  %9.4f  %9.4f\n", v[0], v[1], v[2], v[3], v[4],
+                  v[5]);
     out << line;
   }
   out << "\n== Observability (section 2) ==\n";

@@ -32,8 +32,8 @@ void PrintSolutions(const Robot& robot, const std::vector<Pose>& poses, std::ost
   for (const Pose& pose : poses) {
     const Vector6d v = robot.VectorFromPose(pose);
     char line[200];
-    std::snprintf(line, sizeof line, "%-12.6g %-12.6g %-12.6g %-12.6g %-12.6g %-12.6g ", v[0], v[1], v[2], v[3],
-                  v[4], v[5]);
+    std::snprintf(line, sizeof line, "%-12.6g %-12.6g %-12.6g %-12.6g %-12.6g %-12.6g ", v[0], v[1], v[2], v[3], v[4],
+                  v[5]);
     const ConstraintReport report = EvaluateConstraints(robot, pose);
     out << "   " << line << (report.feasible ? "yes" : "no (" + report.worst_label + ")") << "\n";
   }
@@ -62,8 +62,10 @@ int RunFk(const FkOptions& options, std::ostream& out, std::ostream& err) {
     for (const Pose& pose : modes->poses) {
       if (options.all || IsFeasible(*robot, pose)) poses.push_back(pose);
     }
-    summary = {{"method", "homotopy"},          {"real_modes", modes->poses.size()},
-               {"complex_solutions", modes->complex_solutions}, {"failed_paths", modes->failed_paths},
+    summary = {{"method", "homotopy"},
+               {"real_modes", modes->poses.size()},
+               {"complex_solutions", modes->complex_solutions},
+               {"failed_paths", modes->failed_paths},
                {"tracked_paths", modes->tracked_paths}};
   }
 
@@ -74,9 +76,9 @@ int RunFk(const FkOptions& options, std::ostream& out, std::ostream& err) {
     out << summary.dump(2) << "\n";
   } else {
     if (summary["method"] == "homotopy") {
-      out << summary["real_modes"] << " real assembly modes (" << summary["complex_solutions"]
-          << " complex solutions, " << summary["failed_paths"] << " singular paths); showing "
-          << (options.all ? "all" : "the feasible ones") << ":\n";
+      out << summary["real_modes"] << " real assembly modes (" << summary["complex_solutions"] << " complex solutions, "
+          << summary["failed_paths"] << " singular paths); showing " << (options.all ? "all" : "the feasible ones")
+          << ":\n";
     }
     if (poses.empty()) out << "   (none)\n";
     PrintSolutions(*robot, poses, out);
@@ -92,8 +94,7 @@ void AddFkCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--robot", options->robot, "robot file or preset name")->required();
   sub->add_option("--legs", options->legs, "six readings L1,...,L6 in the robot's length unit")->required();
   auto* all = sub->add_flag("--all", options->all, "list every real assembly mode, feasible or not");
-  sub->add_option("--start", options->start, "local Newton from this pose x,y,z,q1,q2,q3 (degrees)")
-      ->excludes(all);
+  sub->add_option("--start", options->start, "local Newton from this pose x,y,z,q1,q2,q3 (degrees)")->excludes(all);
   sub->add_flag("--json", options->json, "print one JSON object on stdout");
   sub->callback([=] { *exit_code = RunFk(*options, std::cout, std::cerr); });
 }

@@ -43,13 +43,17 @@ int RunIk(const IkOptions& options, std::ostream& out, std::ostream& err) {
                          {"worst_margin", report.worst_margin}});
   }
   if (!options.out.empty()) {
-    const std::vector<std::string> header = {"x", "y", "z", "q1", "q2", "q3", "L1", "L2", "L3",
-                                             "L4", "L5", "L6", "feasible", "violated"};
+    const std::vector<std::string> header = {"x",  "y",  "z",  "q1", "q2", "q3",       "L1",
+                                             "L2", "L3", "L4", "L5", "L6", "feasible", "violated"};
     if (Status s = WriteCsv(options.out, header, rows); !s.ok()) return ReportError(err, "ik", s, kExitFailure);
   }
   if (options.json) {
-    out << nlohmann::json{{"count", poses->size()}, {"feasible", feasible_count}, {"out", options.out},
-                          {"poses", json_rows}}.dump(2) << "\n";
+    out << nlohmann::json{{"count", poses->size()},
+                          {"feasible", feasible_count},
+                          {"out", options.out},
+                          {"poses", json_rows}}
+               .dump(2)
+        << "\n";
   } else {
     out << poses->size() << " poses, " << feasible_count << " feasible";
     if (!options.out.empty()) out << "; leg readings written to " << options.out;

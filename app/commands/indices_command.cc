@@ -39,9 +39,8 @@ int RunIndices(const IndicesOptions& options, std::ostream& out, std::ostream& e
   }
   out << "observability of " << poses.size() << " poses (robot " << robot->name << ", lengths in "
       << LengthUnitName(robot->length_unit) << ")\n"
-      << "  O1 = " << indices.o1 << "\n  O2 = " << indices.o2 << "\n  O3 = " << indices.o3
-      << "\n  O4 = " << indices.o4 << "\n  sigma_max = " << indices.sigma_max << ", sigma_min = " << indices.sigma_min
-      << "\n";
+      << "  O1 = " << indices.o1 << "\n  O2 = " << indices.o2 << "\n  O3 = " << indices.o3 << "\n  O4 = " << indices.o4
+      << "\n  sigma_max = " << indices.sigma_max << ", sigma_min = " << indices.sigma_min << "\n";
   if (infeasible > 0) out << "warning: " << infeasible << " poses violate the robot's constraints\n";
   if (poses.size() < static_cast<size_t>(kParamsPerLeg)) {
     out << "warning: fewer than 7 poses cannot identify the 7 parameters of a leg (O3 = 0)\n";

@@ -18,8 +18,7 @@ struct RobotOptions {
 
 void PrintRobot(const Robot& robot, std::ostream& out) {
   const char* unit = LengthUnitName(robot.length_unit);
-  out << "robot " << robot.name << " (lengths in " << unit << ", euler " << EulerConventionName(robot.euler)
-      << ")\n";
+  out << "robot " << robot.name << " (lengths in " << unit << ", euler " << EulerConventionName(robot.euler) << ")\n";
   out << "leg        a (base)                     b (platform)               l          stroke\n";
   for (int i = 0; i < kNumLegs; ++i) {
     const Leg& leg = robot.legs[i];
