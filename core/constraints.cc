@@ -95,11 +95,26 @@ ConstraintReport EvaluateConstraints(const Robot& robot, const Pose& pose) {
 }
 
 bool IsFeasible(const Robot& robot, const Pose& pose) {
+  // Strokes first: in a pose box most rejected poses fail here, at the cost of IK.
+  for (const Leg& leg : robot.legs) {
+    const double reading = LegVector(leg, pose).norm() - leg.offset;
+    if (!(reading >= leg.stroke_min - kFeasibilityTolerance && reading <= leg.stroke_max + kFeasibilityTolerance)) {
+      return false;
+    }
+  }
   bool feasible = true;
   VisitConstraints(robot, pose, [&](ConstraintKind, int, int, double margin) {
     if (!(margin >= -kFeasibilityTolerance)) feasible = false;
   });
   return feasible;
+}
+
+std::vector<double> ConstraintMargins(const Robot& robot, const Pose& pose, bool include_box) {
+  std::vector<double> margins;
+  VisitConstraints(robot, pose, [&](ConstraintKind kind, int, int, double margin) {
+    if (include_box || kind != ConstraintKind::kPoseBox) margins.push_back(margin);
+  });
+  return margins;
 }
 
 double SegmentDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,

@@ -39,6 +39,10 @@ ConstraintReport EvaluateConstraints(const Robot& robot, const Pose& pose);
 // Same verdict as EvaluateConstraints(...).feasible, without building labels.
 bool IsFeasible(const Robot& robot, const Pose& pose);
 
+// Every margin in the order EvaluateConstraints reports them, without labels
+// (for optimisers). Pose-box margins are left out when include_box is false.
+std::vector<double> ConstraintMargins(const Robot& robot, const Pose& pose, bool include_box = true);
+
 // Shortest distance between segments [p0, p1] and [q0, q1].
 double SegmentDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
                        const Eigen::Vector3d& q1);

@@ -8,6 +8,7 @@ namespace {
 constexpr CommandEntry kCommands[] = {
     {"robot", AddRobotCommand},           {"ik", AddIkCommand},           {"fk", AddFkCommand},
     {"candidates", AddCandidatesCommand}, {"indices", AddIndicesCommand}, {"demo", AddDemoCommand},
+    {"plan", AddPlanCommand},
 };
 }  // namespace
 

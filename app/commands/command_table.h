@@ -18,6 +18,7 @@ void AddFkCommand(CLI::App& app, int* exit_code);
 void AddCandidatesCommand(CLI::App& app, int* exit_code);
 void AddIndicesCommand(CLI::App& app, int* exit_code);
 void AddDemoCommand(CLI::App& app, int* exit_code);
+void AddPlanCommand(CLI::App& app, int* exit_code);
 
 // Builds the whole `hexcal` application; `exit_code` receives the command's code.
 void AddAllCommands(CLI::App& app, int* exit_code);

@@ -1,0 +1,159 @@
+#include "app/commands/plan_io.h"
+
+#include <algorithm>
+#include <iomanip>
+#include <ostream>
+#include <random>
+
+#include "app/commands/cli_common.h"
+#include "core/candidates.h"
+#include "core/csv.h"
+#include "core/inverse_kinematics.h"
+
+namespace hexcal::cli {
+namespace {
+
+StatusOr<CandidateSet> Generate(const Robot& robot, CandidateKind kind, int count, uint64_t seed,
+                                const std::function<void(int, int)>& progress) {
+  CandidateOptions options;
+  options.kind = kind;
+  options.count = count;
+  options.seed = seed;
+  return GenerateCandidates(robot, options, progress);
+}
+
+nlohmann::json IndicesOnly(const ObservabilityIndices& o) {
+  return {{"O1", o.o1}, {"O2", o.o2}, {"O3", o.o3}, {"O4", o.o4}};
+}
+
+}  // namespace
+
+StatusOr<CandidatePool> BuildCandidatePool(const PlanningModel& model, const std::string& file,
+                                           const std::vector<std::string>& kinds, int count, bool continuous,
+                                           uint64_t seed, const std::function<void(int, int)>& progress) {
+  CandidatePool pool;
+  pool.sources = nlohmann::json::array();
+  std::vector<Vector6d> raw;
+  if (!file.empty()) {
+    StatusOr<std::vector<Vector6d>> poses = LoadPoses(file);
+    if (!poses.ok()) return poses.status();
+    raw = *poses;
+    pool.sources.push_back({{"kind", "file"}, {"path", file}, {"count", raw.size()}});
+  } else {
+    const std::vector<std::string> names = kinds.empty() ? std::vector<std::string>{"random"} : kinds;
+    const int per_set = count > 0 ? count : (continuous ? 2000 : 10000);
+    for (size_t k = 0; k < names.size(); ++k) {
+      const std::optional<CandidateKind> kind = ParseCandidateKind(names[k]);
+      if (!kind) return Status::Error("--candidate-kind: '" + names[k] + "' is not random, uniform or boundary");
+      StatusOr<CandidateSet> set = Generate(model.robot, *kind, per_set, seed + 7919 * k, progress);
+      if (!set.ok()) return set.status();
+      raw.insert(raw.end(), set->poses.begin(), set->poses.end());
+      pool.sources.push_back({{"kind", names[k]}, {"count", set->poses.size()}});
+    }
+  }
+  std::copy_if(raw.begin(), raw.end(), std::back_inserter(pool.poses),
+               [&](const Vector6d& pose) { return model.IsFeasible(pose); });
+  if (pool.poses.empty()) return Status::Error("no candidate pose satisfies the robot and measurement constraints");
+  return pool;
+}
+
+StatusOr<std::vector<Vector6d>> InitialPoses(const PlanningModel& model, const std::string& init, int count,
+                                             uint64_t seed) {
+  const std::optional<CandidateKind> kind = ParseCandidateKind(init);
+  std::vector<Vector6d> poses;
+  if (!kind) {
+    StatusOr<std::vector<Vector6d>> file = LoadPoses(init);
+    if (!file.ok()) return Status::Error("--init: " + file.status().message());
+    poses = *file;
+    if (static_cast<int>(poses.size()) != count) {
+      return Status::Error("--init: '" + init + "' has " + std::to_string(poses.size()) + " poses, --poses is " +
+                           std::to_string(count));
+    }
+    return poses;
+  }
+  // Generated sets are drawn with another seed than the candidates, so they differ.
+  StatusOr<CandidateSet> set = Generate(model.robot, *kind, count, seed + 104729, {});
+  if (!set.ok()) return set.status();
+  poses = set->poses;
+  if (*kind == CandidateKind::kBoundary) {
+    if (static_cast<int>(poses.size()) < count) {
+      return Status::Error("--init boundary: the robot has " + std::to_string(poses.size()) +
+                           " feasible boundary poses, fewer than --poses " + std::to_string(count));
+    }
+    std::mt19937_64 rng(seed);
+    std::shuffle(poses.begin(), poses.end(), rng);
+    poses.resize(count);
+  }
+  return poses;
+}
+
+Status WritePlanCsv(const std::string& path, const PlanningModel& model, const std::vector<Vector6d>& poses) {
+  std::vector<std::vector<std::string>> rows;
+  for (const Vector6d& v : poses) {
+    const LegReadings legs = InverseKinematics(model.robot, model.robot.PoseFromVector(v));
+    std::vector<std::string> row;
+    for (int k = 0; k < 6; ++k) row.push_back(FormatNumber(v[k]));
+    for (int i = 0; i < kNumLegs; ++i) row.push_back(FormatNumber(legs[i]));
+    rows.push_back(row);
+  }
+  return WriteCsv(path, {"x", "y", "z", "q1", "q2", "q3", "L1", "L2", "L3", "L4", "L5", "L6"}, rows);
+}
+
+Status WriteHistoryCsv(const std::string& path, const PlanResult& plan) {
+  std::vector<std::vector<std::string>> rows;
+  for (const PlanIteration& step : plan.history) {
+    rows.push_back({std::to_string(step.iteration), FormatNumber(step.indices.o1), FormatNumber(step.indices.o2),
+                    FormatNumber(step.indices.o3), FormatNumber(step.indices.o4), FormatNumber(step.primary),
+                    FormatNumber(step.secondary), step.exchanged ? "1" : "0"});
+  }
+  return WriteCsv(path, {"iteration", "O1", "O2", "O3", "O4", "primary", "secondary", "exchanged"}, rows);
+}
+
+nlohmann::json PlanSummaryJson(const PlannerOptions& options, const PlanResult& plan, const CandidatePool& pool,
+                               const nlohmann::json& certificate, const std::string& out) {
+  nlohmann::json j = {{"initial", IndicesOnly(plan.initial)},
+                      {"final", IndicesOnly(plan.final)},
+                      {"iterations", plan.iterations},
+                      {"best_iteration", plan.best_iteration},
+                      {"converged", plan.converged},
+                      {"seconds", plan.seconds},
+                      {"poses", plan.poses.size()},
+                      {"criterion", CriterionName(options.criterion)},
+                      {"criterion_initial", plan.initial_primary},
+                      {"criterion_final", plan.final_primary},
+                      {"candidates", pool.poses.size()},
+                      {"candidate_sources", pool.sources},
+                      {"continuous", options.continuous},
+                      {"out", out}};
+  if (options.secondary) j["secondary"] = CriterionName(*options.secondary);
+  if (!certificate.is_null()) {
+    for (auto it = certificate.begin(); it != certificate.end(); ++it) j[it.key()] = it.value();
+  }
+  return j;
+}
+
+void PrintPlanSummary(const nlohmann::json& s, std::ostream& out) {
+  auto line = [&](const char* label, const nlohmann::json& o) {
+    out << "  " << std::left << std::setw(9) << label << std::right << std::fixed << std::setprecision(4)
+        << "O1 " << std::setw(10) << o["O1"].get<double>() << "  O2 " << std::setw(8) << o["O2"].get<double>()
+        << "  O3 " << std::setw(10) << o["O3"].get<double>() << "  O4 " << std::setw(8) << o["O4"].get<double>()
+        << "\n";
+  };
+  out << "plan of " << s["poses"] << " poses from " << s["candidates"] << " candidates, criterion "
+      << s["criterion"].get<std::string>();
+  if (s.contains("secondary")) out << " / " << s["secondary"].get<std::string>();
+  out << (s["continuous"].get<bool>() ? " (continuous)" : "") << "\n";
+  line("initial", s["initial"]);
+  line("final", s["final"]);
+  out.unsetf(std::ios::floatfield);
+  out << "  " << s["iterations"] << " iterations (best at " << s["best_iteration"] << ")"
+      << (s["converged"].get<bool>() ? ", converged" : "") << ", " << std::setprecision(3)
+      << s["seconds"].get<double>() << " s\n";
+  if (s.contains("d_efficiency")) {
+    out << "  D-efficiency >= " << std::setprecision(4) << s["d_efficiency"].get<double>()
+        << " (design bound gap " << s["gap"].get<double>() << ")\n";
+  }
+  out << "written to " << s["out"].get<std::string>() << "\n";
+}
+
+}  // namespace hexcal::cli

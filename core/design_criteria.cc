@@ -1,0 +1,308 @@
+#include "core/design_criteria.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace hexcal {
+namespace {
+
+using Vector7d = Eigen::Matrix<double, kParamsPerLeg, 1>;
+constexpr double kNegativeInfinity = -std::numeric_limits<double>::infinity();
+
+// Root of f(μ) = 1 + Σ z_k² / (λ_k - μ) in (lo, hi), where f(lo+) < 0 < f(hi-):
+// safeguarded Newton (f is increasing between consecutive poles).
+double SecularRoot(const Vector7d& lambda, const Vector7d& z2, double lo, double hi) {
+  double mu = 0.5 * (lo + hi);
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    double f = 1, df = 0;
+    for (int k = 0; k < kParamsPerLeg; ++k) {
+      const double d = lambda[k] - mu;
+      f += z2[k] / d;
+      df += z2[k] / (d * d);
+    }
+    if (f < 0) lo = mu;
+    else hi = mu;
+    double next = mu - f / df;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (std::abs(next - mu) <= 1e-15 * std::max(std::abs(mu), 1e-300) || hi - lo <= 1e-15 * std::abs(hi)) {
+      return next;
+    }
+    mu = next;
+  }
+  return mu;
+}
+
+double LogDetOrMinusInfinity(const InfoBlock& block) {
+  const Eigen::LLT<InfoBlock> llt(block);
+  if (llt.info() != Eigen::Success) return kNegativeInfinity;
+  // A concrete vector: an `auto` Eigen expression here would dangle.
+  const Vector7d diagonal = InfoBlock(llt.matrixL()).diagonal();
+  if ((diagonal.array() <= 0).any()) return kNegativeInfinity;
+  return 2 * diagonal.array().log().sum();
+}
+
+}  // namespace
+
+std::optional<Criterion> ParseCriterion(const std::string& text) {
+  static const std::pair<const char*, Criterion> kNames[] = {
+      {"O1", Criterion::kO1}, {"O2", Criterion::kO2}, {"O3", Criterion::kO3}, {"O4", Criterion::kO4},
+      {"D", Criterion::kD},   {"A", Criterion::kA},   {"E", Criterion::kE}};
+  for (const auto& [name, criterion] : kNames) {
+    if (text == name) return criterion;
+  }
+  return std::nullopt;
+}
+
+const char* CriterionName(Criterion criterion) {
+  switch (criterion) {
+    case Criterion::kO1: return "O1";
+    case Criterion::kO2: return "O2";
+    case Criterion::kO3: return "O3";
+    case Criterion::kO4: return "O4";
+    case Criterion::kD: return "D";
+    case Criterion::kA: return "A";
+    case Criterion::kE: return "E";
+  }
+  return "?";
+}
+
+PoseRows CandidateRows::Rows(int j) const {
+  PoseRows rows;
+  for (int i = 0; i < kNumLegs; ++i) rows[i] = legs[i].col(j).transpose();
+  return rows;
+}
+
+void CandidateRows::Resize(int count) {
+  for (auto& leg : legs) leg.resize(kParamsPerLeg, count);
+}
+
+void CandidateRows::Set(int j, const PoseRows& rows) {
+  for (int i = 0; i < kNumLegs; ++i) legs[i].col(j) = rows[i].transpose();
+}
+
+void RankOneExtremeEigenvalues(const Vector7d& lambda, const Vector7d& z, double* smallest, double* largest) {
+  const Vector7d z2 = z.cwiseAbs2();
+  const double norm2 = z2.sum();
+  const double scale = std::max(std::abs(lambda[kParamsPerLeg - 1]), norm2);
+  const double negligible = 1e-30 * scale * scale;
+  // Largest: in (λ_7, λ_7 + |z|²].
+  *largest = norm2 <= negligible ? lambda[kParamsPerLeg - 1]
+                                 : SecularRoot(lambda, z2, lambda[kParamsPerLeg - 1], lambda[kParamsPerLeg - 1] + norm2);
+  // Smallest: λ_1 itself if z has no component on its eigenvector (deflation),
+  // else the root in (λ_1, min(λ_2, λ_1 + |z|²)).
+  const double upper = std::min(lambda[1], lambda[0] + norm2);
+  if (z2[0] <= negligible || upper - lambda[0] <= 1e-15 * scale) {
+    *smallest = lambda[0];
+  } else {
+    *smallest = SecularRoot(lambda, z2, lambda[0], upper);
+  }
+}
+
+DesignState::DesignState(const std::array<InfoBlock, kNumLegs>& blocks, int num_poses)
+    : blocks_(blocks), num_poses_(num_poses) {
+  Refactor();
+}
+
+DesignState DesignState::FromRows(const std::vector<PoseRows>& poses) {
+  std::array<InfoBlock, kNumLegs> blocks;
+  for (InfoBlock& b : blocks) b.setZero();
+  for (const PoseRows& rows : poses) {
+    for (int i = 0; i < kNumLegs; ++i) blocks[i].noalias() += rows[i].transpose() * rows[i];
+  }
+  return DesignState(blocks, static_cast<int>(poses.size()));
+}
+
+void DesignState::Refactor() {
+  full_rank_ = true;
+  log_det_ = 0;
+  trace_inverse_ = 0;
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Eigen::SelfAdjointEigenSolver<InfoBlock> eigen(blocks_[i]);
+    eigenvalues_[i] = eigen.eigenvalues();
+    eigenvectors_[i] = eigen.eigenvectors();
+    const Eigen::LLT<InfoBlock> llt(blocks_[i]);
+    const double tolerance = kParamsPerLeg * std::numeric_limits<double>::epsilon() * eigenvalues_[i].maxCoeff();
+    if (llt.info() != Eigen::Success || eigenvalues_[i][0] <= tolerance) {
+      full_rank_ = false;
+      continue;
+    }
+    const InfoBlock lower = llt.matrixL();
+    cholesky_inverse_[i] = lower.triangularView<Eigen::Lower>().solve(InfoBlock::Identity());
+    inverse_[i] = cholesky_inverse_[i].transpose() * cholesky_inverse_[i];
+    log_det_ += 2 * lower.diagonal().array().log().sum();
+    trace_inverse_ += inverse_[i].trace();
+  }
+}
+
+double DesignState::FromSpectrum(Criterion criterion, double log_det, double trace_inverse, double lambda_min,
+                                 double lambda_max, int num_poses) const {
+  lambda_min = std::max(lambda_min, 0.0);
+  switch (criterion) {
+    case Criterion::kO1:  // (Π σ)^(1/42) / √m with Π σ = det(M)^(1/2)
+      return std::isfinite(log_det) ? std::exp(log_det / (2.0 * kNumParams)) / std::sqrt(num_poses) : 0.0;
+    case Criterion::kD: return std::isfinite(log_det) ? std::exp(log_det / kNumParams) : 0.0;
+    case Criterion::kA: return trace_inverse > 0 && std::isfinite(trace_inverse) ? kNumParams / trace_inverse : 0.0;
+    case Criterion::kO2: return lambda_max > 0 ? std::sqrt(lambda_min / lambda_max) : 0.0;
+    case Criterion::kO3: return std::sqrt(lambda_min);
+    case Criterion::kO4: return lambda_max > 0 ? lambda_min / std::sqrt(lambda_max) : 0.0;
+    case Criterion::kE: return lambda_min;
+  }
+  return 0.0;
+}
+
+double DesignState::Value(Criterion criterion) const {
+  double lambda_min = std::numeric_limits<double>::infinity(), lambda_max = 0;
+  for (int i = 0; i < kNumLegs; ++i) {
+    lambda_min = std::min(lambda_min, eigenvalues_[i][0]);
+    lambda_max = std::max(lambda_max, eigenvalues_[i][kParamsPerLeg - 1]);
+  }
+  return FromSpectrum(criterion, full_rank_ ? log_det_ : kNegativeInfinity,
+                      full_rank_ ? trace_inverse_ : std::numeric_limits<double>::infinity(), lambda_min, lambda_max,
+                      num_poses_);
+}
+
+void DesignState::ScoreAdditions(Criterion criterion, const CandidateRows& candidates, int begin, int end,
+                                 double* scores) const {
+  const int n = end - begin;
+  if (n <= 0) return;
+  const bool uses_inverse = criterion == Criterion::kO1 || criterion == Criterion::kD || criterion == Criterion::kA;
+  if (uses_inverse && !full_rank_) {  // no factorisation to update: evaluate each candidate directly
+    for (int j = 0; j < n; ++j) scores[j] = ValueAfterAdding(criterion, candidates.Rows(begin + j));
+    return;
+  }
+  if (criterion == Criterion::kO1 || criterion == Criterion::kD) {
+    // Π_i (1 + |L_i⁻¹ r_i|²), one log per candidate instead of six.
+    Eigen::ArrayXd growth = Eigen::ArrayXd::Ones(n);
+    for (int i = 0; i < kNumLegs; ++i) {
+      const Eigen::MatrixXd y =
+          cholesky_inverse_[i].triangularView<Eigen::Lower>() * candidates.legs[i].middleCols(begin, n);
+      growth *= 1 + y.colwise().squaredNorm().transpose().array();
+    }
+    for (int j = 0; j < n; ++j) scores[j] = FromSpectrum(criterion, log_det_ + std::log(growth[j]), 0, 0, 0, num_poses_ + 1);
+    return;
+  }
+  if (criterion == Criterion::kA) {
+    Eigen::ArrayXd trace = Eigen::ArrayXd::Constant(n, trace_inverse_);
+    for (int i = 0; i < kNumLegs; ++i) {
+      const auto rows = candidates.legs[i].middleCols(begin, n);
+      const Eigen::MatrixXd x = inverse_[i] * rows;
+      const Eigen::ArrayXd quadratic = rows.cwiseProduct(x).colwise().sum().transpose().array();
+      trace -= x.colwise().squaredNorm().transpose().array() / (1 + quadratic);
+    }
+    for (int j = 0; j < n; ++j) scores[j] = FromSpectrum(criterion, 0, trace[j], 0, 0, num_poses_ + 1);
+    return;
+  }
+  Eigen::ArrayXd lambda_min = Eigen::ArrayXd::Constant(n, std::numeric_limits<double>::infinity());
+  Eigen::ArrayXd lambda_max = Eigen::ArrayXd::Zero(n);
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Eigen::MatrixXd z = eigenvectors_[i].transpose() * candidates.legs[i].middleCols(begin, n);
+    for (int j = 0; j < n; ++j) {
+      double smallest, largest;
+      RankOneExtremeEigenvalues(eigenvalues_[i], z.col(j), &smallest, &largest);
+      lambda_min[j] = std::min(lambda_min[j], smallest);
+      lambda_max[j] = std::max(lambda_max[j], largest);
+    }
+  }
+  for (int j = 0; j < n; ++j) scores[j] = FromSpectrum(criterion, 0, 0, lambda_min[j], lambda_max[j], num_poses_ + 1);
+}
+
+double DesignState::ValueAfterAdding(Criterion criterion, const PoseRows& rows) const {
+  std::array<InfoBlock, kNumLegs> blocks = blocks_;
+  for (int i = 0; i < kNumLegs; ++i) blocks[i].noalias() += rows[i].transpose() * rows[i];
+  return DesignState(blocks, num_poses_ + 1).Value(criterion);
+}
+
+double DesignState::ValueAndRowGradient(Criterion criterion, const PoseRows& rows, PoseRows* gradient) const {
+  const int m = num_poses_ + 1;
+  if ((criterion == Criterion::kO1 || criterion == Criterion::kD) && full_rank_) {
+    double log_det = log_det_;
+    for (int i = 0; i < kNumLegs; ++i) {
+      const Vector7d x = inverse_[i] * rows[i].transpose();
+      const double q = rows[i].dot(x.transpose());
+      log_det += std::log1p(q);
+      (*gradient)[i] = 2 * x.transpose() / (1 + q);  // d log det / d r_i (determinant lemma)
+    }
+    const double value = FromSpectrum(criterion, log_det, 0, 0, 0, m);
+    const double exponent = criterion == Criterion::kO1 ? 2.0 * kNumParams : kNumParams;
+    for (JacobianRow& g : *gradient) g *= value / exponent;
+    return value;
+  }
+  if (criterion == Criterion::kA && full_rank_) {
+    double trace = trace_inverse_;
+    for (int i = 0; i < kNumLegs; ++i) {
+      const Vector7d x = inverse_[i] * rows[i].transpose();
+      const double q = rows[i].dot(x.transpose()), s = x.squaredNorm();
+      trace -= s / (1 + q);
+      // d/dr [s / (1 + q)] = 2 M⁻¹x / (1 + q) - 2 s x / (1 + q)²
+      (*gradient)[i] = -(2 * inverse_[i] * x / (1 + q) - 2 * s * x / ((1 + q) * (1 + q))).transpose();
+    }
+    const double value = FromSpectrum(criterion, 0, trace, 0, 0, m);
+    for (JacobianRow& g : *gradient) g *= -kNumParams / (trace * trace);
+    return value;
+  }
+  // Eigenvalue criteria: dλ/dr = 2 (uᵀr) u for the leg holding the extreme eigenvalue.
+  double lambda_min = std::numeric_limits<double>::infinity(), lambda_max = -1;
+  int leg_min = 0, leg_max = 0;
+  Vector7d u_min = Vector7d::Zero(), u_max = Vector7d::Zero();
+  for (int i = 0; i < kNumLegs; ++i) {
+    const InfoBlock block = blocks_[i] + rows[i].transpose() * rows[i];
+    const Eigen::SelfAdjointEigenSolver<InfoBlock> eigen(block);
+    if (eigen.eigenvalues()[0] < lambda_min) {
+      lambda_min = eigen.eigenvalues()[0];
+      leg_min = i;
+      u_min = eigen.eigenvectors().col(0);
+    }
+    if (eigen.eigenvalues()[kParamsPerLeg - 1] > lambda_max) {
+      lambda_max = eigen.eigenvalues()[kParamsPerLeg - 1];
+      leg_max = i;
+      u_max = eigen.eigenvectors().col(kParamsPerLeg - 1);
+    }
+  }
+  lambda_min = std::max(lambda_min, 1e-300);
+  const double value = FromSpectrum(criterion, 0, 0, lambda_min, lambda_max, m);
+  double d_min = 0, d_max = 0;  // ∂value/∂λ_min, ∂value/∂λ_max
+  switch (criterion) {
+    case Criterion::kO2:
+      d_min = value / (2 * lambda_min);
+      d_max = -value / (2 * lambda_max);
+      break;
+    case Criterion::kO3: d_min = 0.5 / std::sqrt(lambda_min); break;
+    case Criterion::kO4:
+      d_min = 1 / std::sqrt(lambda_max);
+      d_max = -0.5 * lambda_min / std::pow(lambda_max, 1.5);
+      break;
+    default: d_min = 1; break;  // E, and D/O1/A on a singular set
+  }
+  for (JacobianRow& g : *gradient) g.setZero();
+  (*gradient)[leg_min] += d_min * 2 * u_min.dot(rows[leg_min].transpose()) * u_min.transpose();
+  (*gradient)[leg_max] += d_max * 2 * u_max.dot(rows[leg_max].transpose()) * u_max.transpose();
+  return value;
+}
+
+double DesignState::ValueAfterRemoving(Criterion criterion, const PoseRows& rows) const {
+  std::array<InfoBlock, kNumLegs> blocks = blocks_;
+  for (int i = 0; i < kNumLegs; ++i) blocks[i].noalias() -= rows[i].transpose() * rows[i];
+  if (criterion == Criterion::kO1 || criterion == Criterion::kD) {
+    double log_det = 0;
+    for (const InfoBlock& block : blocks) log_det += LogDetOrMinusInfinity(block);
+    return FromSpectrum(criterion, log_det, 0, 0, 0, num_poses_ - 1);
+  }
+  return DesignState(blocks, num_poses_ - 1).Value(criterion);
+}
+
+void DesignState::Add(const PoseRows& rows) {
+  for (int i = 0; i < kNumLegs; ++i) blocks_[i].noalias() += rows[i].transpose() * rows[i];
+  ++num_poses_;
+  Refactor();
+}
+
+void DesignState::Remove(const PoseRows& rows) {
+  for (int i = 0; i < kNumLegs; ++i) blocks_[i].noalias() -= rows[i].transpose() * rows[i];
+  --num_poses_;
+  Refactor();
+}
+
+}  // namespace hexcal

@@ -1,0 +1,173 @@
+// Design criteria: every rank-one update against direct recomputation, the
+// secular-equation eigenvalues against Eigen, the continuous-search gradient
+// against finite differences, and the optimality certificate against the
+// Kiefer–Wolfowitz equivalence theorem.
+#include "core/design_criteria.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+
+#include "core/candidates.h"
+#include "core/continuous_addfind.h"
+#include "core/observability.h"
+#include "core/optimal_design.h"
+#include "core/planning_model.h"
+#include "tests/robot_presets.h"
+#include "tests/test_support.h"
+
+namespace hexcal {
+namespace {
+
+using ::hexcal::testing::Preset;
+using ::hexcal::testing::Uniform;
+
+constexpr Criterion kAll[] = {Criterion::kO1, Criterion::kO2, Criterion::kO3, Criterion::kO4,
+                              Criterion::kD,  Criterion::kA,  Criterion::kE};
+
+std::vector<Vector6d> RandomPoses(const Robot& robot, int count, uint64_t seed) {
+  CandidateOptions options;
+  options.count = count;
+  options.seed = seed;
+  return GenerateCandidates(robot, options)->poses;
+}
+
+// O1..O4 from DesignState agree with observability.h (the paper's definitions).
+TEST(DesignCriteria, ValuesAgreeWithObservabilityIndices) {
+  const PlanningModel model{Preset("inria-left-hand"), std::nullopt, std::nullopt};
+  const std::vector<Vector6d> poses = RandomPoses(model.robot, 18, 3);
+  std::vector<PoseRows> rows;
+  std::vector<Pose> as_poses;
+  for (const Vector6d& v : poses) {
+    rows.push_back(model.Rows(v));
+    as_poses.push_back(model.robot.PoseFromVector(v));
+  }
+  const DesignState state = DesignState::FromRows(rows);
+  const ObservabilityIndices o = ComputeIndices(model.robot, as_poses);
+  EXPECT_NEAR(state.Value(Criterion::kO1), o.o1, 1e-10 * o.o1);
+  EXPECT_NEAR(state.Value(Criterion::kO2), o.o2, 1e-7 * o.o2);
+  EXPECT_NEAR(state.Value(Criterion::kO3), o.o3, 1e-7 * o.o3);
+  EXPECT_NEAR(state.Value(Criterion::kO4), o.o4, 1e-7 * o.o4);
+  EXPECT_NEAR(state.Value(Criterion::kE), o.sigma_min * o.sigma_min, 1e-7 * o.sigma_min * o.sigma_min);
+}
+
+// The batch scores (determinant lemma, Sherman–Morrison, secular equation) equal a
+// from-scratch evaluation of the set plus each candidate.
+TEST(DesignCriteria, IncrementalScoresMatchRecomputation) {
+  for (bool weighted : {false, true}) {
+    PlanningModel model{Preset("inria-left-hand"), std::nullopt, std::nullopt};
+    if (weighted) model.noise = NoiseModel{};
+    const std::vector<Vector6d> plan = RandomPoses(model.robot, 18, 5);
+    const std::vector<Vector6d> candidates = RandomPoses(model.robot, 200, 6);
+    std::vector<PoseRows> rows;
+    for (const Vector6d& v : plan) rows.push_back(model.Rows(v));
+    const DesignState state = DesignState::FromRows(rows);
+    CandidateRows batch;
+    batch.Resize(static_cast<int>(candidates.size()));
+    for (size_t j = 0; j < candidates.size(); ++j) batch.Set(static_cast<int>(j), model.Rows(candidates[j]));
+    for (Criterion criterion : kAll) {
+      std::vector<double> scores(candidates.size());
+      state.ScoreAdditions(criterion, batch, 0, batch.size(), scores.data());
+      for (size_t j = 0; j < candidates.size(); j += 17) {
+        std::vector<PoseRows> plus = rows;
+        plus.push_back(batch.Rows(static_cast<int>(j)));
+        const double direct = DesignState::FromRows(plus).Value(criterion);
+        EXPECT_NEAR(scores[j], direct, 1e-8 * std::abs(direct)) << CriterionName(criterion) << " candidate " << j;
+      }
+    }
+  }
+}
+
+// Secular-equation extremes of diag(λ) + z zᵀ against a dense eigen-solve, including
+// deflated (z_k = 0) and repeated eigenvalues.
+TEST(DesignCriteria, SecularExtremesMatchDenseEigenvalues) {
+  for (int trial = 0; trial < 500; ++trial) {
+    Eigen::Matrix<double, 7, 1> lambda, z;
+    for (int k = 0; k < 7; ++k) {
+      lambda[k] = std::pow(10.0, Uniform(-2, 6));
+      z[k] = Uniform(-30, 30);
+    }
+    if (trial % 5 == 1) z[0] = 0;
+    if (trial % 7 == 2) lambda[1] = lambda[0];
+    std::sort(lambda.data(), lambda.data() + 7);
+    double smallest, largest;
+    RankOneExtremeEigenvalues(lambda, z, &smallest, &largest);
+    const Eigen::Matrix<double, 7, 7> dense = Eigen::Matrix<double, 7, 7>(lambda.asDiagonal()) + z * z.transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 7, 7>> solver(dense);
+    const Eigen::Matrix<double, 7, 1> exact = solver.eigenvalues();
+    EXPECT_NEAR(smallest, exact[0], 1e-9 * exact[6]) << "trial " << trial;
+    EXPECT_NEAR(largest, exact[6], 1e-9 * exact[6]) << "trial " << trial;
+  }
+}
+
+// The analytic criterion gradient used by SLSQP against central differences.
+TEST(DesignCriteria, ContinuousGradientMatchesFiniteDifferences) {
+  for (bool weighted : {false, true}) {
+    PlanningModel model{Preset("inria-left-hand"), std::nullopt, std::nullopt};
+    if (weighted) model.noise = NoiseModel{};
+    std::vector<PoseRows> rows;
+    for (const Vector6d& v : RandomPoses(model.robot, 12, 9)) rows.push_back(model.Rows(v));
+    const DesignState state = DesignState::FromRows(rows);
+    const Vector6d pose = RandomPoses(model.robot, 1, 10).front();
+    for (Criterion criterion : kAll) {
+      Vector6d gradient, unused;
+      CriterionAndGradient(model, state, criterion, pose, &gradient);
+      // Reference: Richardson-extrapolated central differences. The eigenvalue criteria
+      // need a larger step: λ_min (~1) is computed next to λ_max (~1e6), so a step of
+      // h carries a round-off of about ε λ_max / h in the difference quotient.
+      auto central = [&](int k, double h) {
+        Vector6d plus = pose, minus = pose;
+        plus[k] += h;
+        minus[k] -= h;
+        return (CriterionAndGradient(model, state, criterion, plus, &unused) -
+                CriterionAndGradient(model, state, criterion, minus, &unused)) / (2 * h);
+      };
+      for (int k = 0; k < 6; ++k) {
+        const double h = criterion == Criterion::kO1 || criterion == Criterion::kD || criterion == Criterion::kA ? 1e-5 : 1e-3;
+        const double numeric = (4 * central(k, h) - central(k, 2 * h)) / 3;
+        EXPECT_NEAR(gradient[k], numeric, 1e-5 * (std::abs(numeric) + 1e-3 * gradient.cwiseAbs().maxCoeff()))
+            << CriterionName(criterion) << " weighted " << weighted << " k " << k;
+      }
+    }
+  }
+}
+
+// Kiefer–Wolfowitz: at the D-optimal design the variance function's maximum is p = 42,
+// attained on the support; and the certified efficiency of any plan is at most 1.
+TEST(OptimalDesign, SatisfiesTheEquivalenceTheorem) {
+  const PlanningModel model{Preset("inria-left-hand"), std::nullopt, std::nullopt};
+  CandidateOptions options;
+  options.kind = CandidateKind::kBoundary;
+  std::vector<Vector6d> candidates = GenerateCandidates(model.robot, options)->poses;
+  const std::vector<Vector6d> random = RandomPoses(model.robot, 150, 12);
+  candidates.insert(candidates.end(), random.begin(), random.end());
+  CandidateRows rows;
+  rows.Resize(static_cast<int>(candidates.size()));
+  for (size_t j = 0; j < candidates.size(); ++j) rows.Set(static_cast<int>(j), model.Rows(candidates[j]));
+  StatusOr<OptimalDesign> design = ComputeOptimalDesign(rows);
+  ASSERT_TRUE(design.ok()) << design.status().message();
+  EXPECT_TRUE(design->converged) << "gap " << design->gap << " after " << design->iterations;
+  EXPECT_NEAR(design->max_variance, kNumParams, kNumParams * 1e-4);
+  // Independent check of d(x, w) from the weights alone.
+  std::array<InfoBlock, kNumLegs> inverses;
+  for (int i = 0; i < kNumLegs; ++i) {
+    InfoBlock m = InfoBlock::Zero();
+    for (int j = 0; j < rows.size(); ++j) m += design->weights[j] * rows.legs[i].col(j) * rows.legs[i].col(j).transpose();
+    inverses[i] = m.inverse();
+  }
+  Eigen::ArrayXd d;
+  VarianceFunction(inverses, rows, &d);
+  EXPECT_NEAR(d.maxCoeff(), kNumParams, kNumParams * 1e-4);
+  for (int j = 0; j < rows.size(); ++j) {
+    if (design->weights[j] > 1e-3) {
+      EXPECT_NEAR(d[j], kNumParams, 0.01 * kNumParams) << "support point " << j;
+    }
+  }
+  StatusOr<PlanCertificate> random_plan = CertifyPlan(model, candidates, RandomPoses(model.robot, 18, 13));
+  ASSERT_TRUE(random_plan.ok());
+  EXPECT_GT(random_plan->d_efficiency, 0);
+  EXPECT_LE(random_plan->d_efficiency, 1);
+}
+
+}  // namespace
+}  // namespace hexcal

@@ -1,0 +1,124 @@
+// IOOPS on the paper's robot: the done-when targets of the planner (O2 >= 0.0139,
+// Table 2), DETMAX monotonicity, Tabu bookkeeping, determinism and errors.
+#include "core/ioops.h"
+
+#include <gtest/gtest.h>
+
+#include "core/candidates.h"
+#include "tests/robot_presets.h"
+#include "tests/test_support.h"
+
+namespace hexcal {
+namespace {
+
+using ::hexcal::testing::Preset;
+
+std::vector<Vector6d> Generate(const Robot& robot, CandidateKind kind, int count, uint64_t seed) {
+  CandidateOptions options;
+  options.kind = kind;
+  options.count = count;
+  options.seed = seed;
+  return GenerateCandidates(robot, options)->poses;
+}
+
+class IoopsTest : public ::testing::Test {
+ protected:
+  // The boundary set costs 64 all-mode FK solves: computed once for the suite.
+  static const std::vector<Vector6d>& Boundary() {
+    static const std::vector<Vector6d> boundary =
+        Generate(Preset("inria-left-hand"), CandidateKind::kBoundary, 0, 1);
+    return boundary;
+  }
+  PlanningModel model_{Preset("inria-left-hand"), std::nullopt, std::nullopt};
+  const std::vector<Vector6d>& boundary_ = Boundary();
+  std::vector<Vector6d> random18_ = Generate(model_.robot, CandidateKind::kRandom, 18, 77);
+};
+
+// Table 2: selected poses reach O2 = 0.0139; a plan from the 44 boundary poses must too,
+// with every index far above the random start's.
+TEST_F(IoopsTest, BoundaryPlanReachesThePapersO2) {
+  ASSERT_EQ(boundary_.size(), 44u);
+  PlannerOptions options;
+  options.secondary = Criterion::kO4;
+  options.tabu = 4;
+  options.iterations = 150;
+  StatusOr<PlanResult> plan = PlanPoses(model_, boundary_, random18_, options);
+  ASSERT_TRUE(plan.ok()) << plan.status().message();
+  EXPECT_GE(plan->final.o2, 0.0139);
+  EXPECT_GT(plan->final.o1, 1.5 * plan->initial.o1);
+  EXPECT_GT(plan->final.o2, 5 * plan->initial.o2);
+  EXPECT_GT(plan->final.o3, 5 * plan->initial.o3);
+  EXPECT_GT(plan->final.o4, 10 * plan->initial.o4);
+  for (const Vector6d& pose : plan->poses) EXPECT_TRUE(model_.IsFeasible(pose));
+}
+
+// DETMAX property: without Tabu, removing the pose just added is always possible, so the
+// criterion never decreases; the run stops when that is the best removal.
+TEST_F(IoopsTest, PlainIoopsNeverDecreasesAndConverges) {
+  const std::vector<Vector6d> candidates = Generate(model_.robot, CandidateKind::kRandom, 1500, 3);
+  PlannerOptions options;
+  StatusOr<PlanResult> plan = PlanPoses(model_, candidates, random18_, options);
+  ASSERT_TRUE(plan.ok()) << plan.status().message();
+  EXPECT_TRUE(plan->converged);
+  for (size_t k = 1; k < plan->history.size(); ++k) {
+    EXPECT_GE(plan->history[k].primary, plan->history[k - 1].primary * (1 - 1e-12)) << "iteration " << k;
+  }
+  EXPECT_FALSE(plan->history.back().exchanged);
+  EXPECT_EQ(plan->poses.size(), 18u);
+}
+
+// With Tabu the search may degrade the current plan, but the one returned is the best seen.
+TEST_F(IoopsTest, TabuReturnsTheBestPlanSeen) {
+  PlannerOptions options;
+  options.tabu = 4;
+  options.iterations = 60;
+  StatusOr<PlanResult> plan = PlanPoses(model_, boundary_, random18_, options);
+  ASSERT_TRUE(plan.ok());
+  double best = 0;
+  for (const PlanIteration& step : plan->history) best = std::max(best, step.primary);
+  EXPECT_NEAR(plan->final_primary, best, 1e-12 * best);
+  EXPECT_EQ(plan->iterations, 60);
+}
+
+TEST_F(IoopsTest, SameSeedSamePlan) {
+  PlannerOptions options;
+  options.tabu = 3;
+  options.iterations = 30;
+  options.addfind_starts = 20;  // random subsets: the seed matters
+  options.removal_choices = 2;
+  const auto a = PlanPoses(model_, boundary_, random18_, options);
+  const auto b = PlanPoses(model_, boundary_, random18_, options);
+  ASSERT_TRUE(a.ok() && b.ok());
+  for (size_t k = 0; k < a->poses.size(); ++k) EXPECT_EQ(a->poses[k], b->poses[k]);
+}
+
+// Continuous AddFind: SLSQP from random starts improves the plan and stays feasible.
+TEST_F(IoopsTest, ContinuousSearchImprovesAndStaysFeasible) {
+  const std::vector<Vector6d> starts = Generate(model_.robot, CandidateKind::kRandom, 200, 4);
+  PlannerOptions options;
+  options.continuous = true;
+  options.addfind_starts = 6;
+  options.iterations = 8;
+  StatusOr<PlanResult> plan = PlanPoses(model_, starts, random18_, options);
+  ASSERT_TRUE(plan.ok()) << plan.status().message();
+  EXPECT_GT(plan->final.o1, 1.2 * plan->initial.o1);
+  for (const Vector6d& pose : plan->poses) EXPECT_TRUE(model_.IsFeasible(pose));
+}
+
+TEST_F(IoopsTest, ErrorsAndCancellation) {
+  PlannerOptions options;
+  options.num_poses = 6;
+  EXPECT_FALSE(PlanPoses(model_, boundary_, std::vector<Vector6d>(random18_.begin(), random18_.begin() + 6), options).ok());
+  options.num_poses = 18;
+  const std::vector<Vector6d> same(18, random18_.front());
+  StatusOr<PlanResult> singular = PlanPoses(model_, boundary_, same, options);
+  ASSERT_FALSE(singular.ok());
+  EXPECT_NE(singular.status().message().find("singular"), std::string::npos);
+  std::atomic<bool> cancel{true};
+  StatusOr<PlanResult> cancelled = PlanPoses(model_, boundary_, random18_, options, {}, &cancel);
+  ASSERT_FALSE(cancelled.ok());
+  EXPECT_TRUE(cancelled.status().cancelled());
+}
+
+}  // namespace
+}  // namespace hexcal

@@ -1,0 +1,190 @@
+#include "core/optimal_design.h"
+
+#include <Eigen/Cholesky>
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+namespace hexcal {
+namespace {
+
+constexpr double kP = kNumParams;
+
+// M_i(w) for the active candidates.
+std::array<InfoBlock, kNumLegs> Information(const CandidateRows& candidates, const Eigen::ArrayXd& w) {
+  std::array<InfoBlock, kNumLegs> blocks;
+  for (int i = 0; i < kNumLegs; ++i) {
+    const auto& r = candidates.legs[i];
+    blocks[i] = r * w.matrix().asDiagonal() * r.transpose();
+  }
+  return blocks;
+}
+
+bool Invert(const std::array<InfoBlock, kNumLegs>& blocks, std::array<InfoBlock, kNumLegs>* inverses,
+            std::array<InfoBlock, kNumLegs>* cholesky_inverses, double* log_det) {
+  *log_det = 0;
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Eigen::LLT<InfoBlock> llt(blocks[i]);
+    if (llt.info() != Eigen::Success) return false;
+    const InfoBlock lower = llt.matrixL();
+    if ((lower.diagonal().array() <= 0).any()) return false;
+    (*cholesky_inverses)[i] = lower.triangularView<Eigen::Lower>().solve(InfoBlock::Identity());
+    (*inverses)[i] = (*cholesky_inverses)[i].transpose() * (*cholesky_inverses)[i];
+    *log_det += 2 * lower.diagonal().array().log().sum();
+  }
+  return true;
+}
+
+void VarianceFromCholesky(const std::array<InfoBlock, kNumLegs>& cholesky_inverses, const CandidateRows& candidates,
+                          int begin, int end, double* out) {
+  const int n = end - begin;
+  Eigen::Map<Eigen::ArrayXd> variance(out, n);
+  variance.setZero();
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Eigen::MatrixXd y =
+        cholesky_inverses[i].triangularView<Eigen::Lower>() * candidates.legs[i].middleCols(begin, n);
+    variance += y.colwise().squaredNorm().transpose().array();
+  }
+}
+
+void ParallelVariance(const std::array<InfoBlock, kNumLegs>& cholesky_inverses, const CandidateRows& candidates,
+                      Eigen::ArrayXd* variance, int threads) {
+  const int count = candidates.size();
+  variance->resize(count);
+  threads = std::max(1, std::min(threads, count / 1024));
+  const int chunk = (count + threads - 1) / threads;
+  std::vector<std::thread> workers;
+  for (int t = 1; t < threads; ++t) {
+    const int begin = t * chunk, end = std::min(count, begin + chunk);
+    workers.emplace_back([&, begin, end] { VarianceFromCholesky(cholesky_inverses, candidates, begin, end, variance->data() + begin); });
+  }
+  VarianceFromCholesky(cholesky_inverses, candidates, 0, std::min(count, chunk), variance->data());
+  for (std::thread& worker : workers) worker.join();
+}
+
+// Optimal weight δ in [0, w_l] moved from candidate l to k: maximises
+// Σ_i log[(1 + δ a_i)(1 - δ b_i) + δ² c_i²] (determinant lemma for a rank-two update).
+double ExchangeStep(const std::array<InfoBlock, kNumLegs>& inverses, const CandidateRows& candidates, int k, int l,
+                    double max_step) {
+  std::array<double, kNumLegs> a, b, c;
+  for (int i = 0; i < kNumLegs; ++i) {
+    const auto rk = candidates.legs[i].col(k), rl = candidates.legs[i].col(l);
+    a[i] = rk.dot(inverses[i] * rk);
+    b[i] = rl.dot(inverses[i] * rl);
+    c[i] = rk.dot(inverses[i] * rl);
+  }
+  auto slope = [&](double delta) {
+    double s = 0;
+    for (int i = 0; i < kNumLegs; ++i) {
+      const double g = (1 + delta * a[i]) * (1 - delta * b[i]) + delta * delta * c[i] * c[i];
+      const double dg = a[i] * (1 - delta * b[i]) - b[i] * (1 + delta * a[i]) + 2 * delta * c[i] * c[i];
+      s += dg / g;
+    }
+    return s;
+  };
+  if (slope(0) <= 0) return 0;
+  if (slope(max_step) >= 0) return max_step;
+  double lo = 0, hi = max_step;
+  for (int it = 0; it < 60; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (slope(mid) > 0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+}  // namespace
+
+double OptimalDesign::LogDetBound() const { return log_det + kP * std::log(max_variance / kP); }
+
+void VarianceFunction(const std::array<InfoBlock, kNumLegs>& inverses, const CandidateRows& candidates,
+                      Eigen::ArrayXd* variance) {
+  const int count = candidates.size();
+  variance->setZero(count);
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Eigen::MatrixXd x = inverses[i] * candidates.legs[i];
+    *variance += candidates.legs[i].cwiseProduct(x).colwise().sum().transpose().array();
+  }
+}
+
+StatusOr<OptimalDesign> ComputeOptimalDesign(const CandidateRows& candidates, const OptimalDesignOptions& options,
+                                             const std::atomic<bool>* cancel) {
+  const auto start = std::chrono::steady_clock::now();
+  const int count = candidates.size();
+  if (count < kParamsPerLeg) return Status::Error("the optimal design needs at least 7 candidates");
+  const int threads = options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+
+  Eigen::ArrayXd w = Eigen::ArrayXd::Constant(count, 1.0 / count);
+  std::array<InfoBlock, kNumLegs> blocks = Information(candidates, w), inverses, cholesky_inverses;
+  OptimalDesign design;
+  Eigen::ArrayXd d;
+  for (design.iterations = 0; design.iterations < options.max_iterations; ++design.iterations) {
+    if (cancel && cancel->load()) return Status::Cancelled("optimal design cancelled");
+    if (!Invert(blocks, &inverses, &cholesky_inverses, &design.log_det)) {
+      return Status::Error("the candidate set does not identify all 42 parameters (singular information)");
+    }
+    ParallelVariance(cholesky_inverses, candidates, &d, threads);
+    Eigen::Index best;
+    design.max_variance = d.maxCoeff(&best);
+    design.gap = design.max_variance / kP - 1;
+    if (design.gap < options.gap_tolerance) {
+      design.converged = true;
+      break;
+    }
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (elapsed > options.max_seconds) break;
+    // Multiplicative step: Σ w d = p, so the weights stay normalised.
+    w *= d / kP;
+    // Vertex exchanges: from the worst support point to the best candidate, while it pays.
+    blocks = Information(candidates, w);
+    for (int exchange = 0; exchange < 8; ++exchange) {
+      if (!Invert(blocks, &inverses, &cholesky_inverses, &design.log_det)) break;
+      Eigen::Index worst = -1;
+      double worst_d = std::numeric_limits<double>::infinity();
+      for (int j = 0; j < count; ++j) {
+        if (w[j] > 0 && d[j] < worst_d) {
+          worst_d = d[j];
+          worst = j;
+        }
+      }
+      if (worst < 0 || worst == best) break;
+      const double delta = ExchangeStep(inverses, candidates, static_cast<int>(best), static_cast<int>(worst), w[worst]);
+      if (delta <= 0) break;
+      w[best] += delta;
+      w[worst] -= delta;
+      for (int i = 0; i < kNumLegs; ++i) {
+        const auto rk = candidates.legs[i].col(best), rl = candidates.legs[i].col(worst);
+        blocks[i] += delta * (rk * rk.transpose() - rl * rl.transpose());
+      }
+      d[worst] = std::numeric_limits<double>::infinity();  // look for the next-worst support point
+    }
+  }
+  design.weights.assign(w.data(), w.data() + count);
+  design.support = static_cast<int>((w > 1e-8).count());
+  return design;
+}
+
+double DEfficiencyLowerBound(const std::array<InfoBlock, kNumLegs>& plan_blocks, int num_poses,
+                             const OptimalDesign& design) {
+  double log_det = 0;
+  for (const InfoBlock& block : plan_blocks) {
+    const Eigen::LLT<InfoBlock> llt(block / num_poses);
+    if (llt.info() != Eigen::Success) return 0;
+    log_det += 2 * InfoBlock(llt.matrixL()).diagonal().array().log().sum();
+  }
+  return std::exp((log_det - design.LogDetBound()) / kP);
+}
+
+StatusOr<PlanCertificate> CertifyPlan(const PlanningModel& model, const std::vector<Vector6d>& candidates,
+                                      const std::vector<Vector6d>& plan, const OptimalDesignOptions& options) {
+  CandidateRows rows;
+  rows.Resize(static_cast<int>(candidates.size()));
+  for (size_t j = 0; j < candidates.size(); ++j) rows.Set(static_cast<int>(j), model.Rows(candidates[j]));
+  StatusOr<OptimalDesign> design = ComputeOptimalDesign(rows, options);
+  if (!design.ok()) return design.status();
+  std::vector<PoseRows> plan_rows;
+  for (const Vector6d& pose : plan) plan_rows.push_back(model.Rows(pose));
+  const DesignState state = DesignState::FromRows(plan_rows);
+  return PlanCertificate{*design, DEfficiencyLowerBound(state.blocks(), state.num_poses(), *design)};
+}
+
+}  // namespace hexcal

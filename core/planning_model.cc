@@ -1,0 +1,199 @@
+#include "core/planning_model.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <set>
+
+#include "core/constraints.h"
+#include "core/inverse_kinematics.h"
+
+namespace hexcal {
+
+PoseRows PlanningModel::Rows(const Vector6d& v) const {
+  const Pose pose = robot.PoseFromVector(v);
+  PoseRows rows;
+  for (int i = 0; i < kNumLegs; ++i) {
+    rows[i] = NominalJacobianRow(robot.legs[i], pose);
+    if (noise) {
+      const double reading = LegVector(robot.legs[i], pose).norm() - robot.legs[i].offset;
+      rows[i] /= ResidualStdDev(robot, i, v, reading, *noise);
+    }
+  }
+  return rows;
+}
+
+std::array<Eigen::Matrix<double, kParamsPerLeg, 6>, kNumLegs> PlanningModel::RowJacobians(const Vector6d& v) const {
+  std::array<Eigen::Matrix<double, kParamsPerLeg, 6>, kNumLegs> jacobians;
+  if (noise) {  // the weight 1/σ(pose) has no closed form worth keeping: central differences
+    for (int k = 0; k < 6; ++k) {
+      const double h = 1e-6 * (1 + std::abs(v[k]));
+      Vector6d plus = v, minus = v;
+      plus[k] += h;
+      minus[k] -= h;
+      const PoseRows rp = Rows(plus), rm = Rows(minus);
+      for (int i = 0; i < kNumLegs; ++i) jacobians[i].col(k) = (rp[i] - rm[i]).transpose() / (2 * h);
+    }
+    return jacobians;
+  }
+  // Row = [-2v, 2 Rᵀv, -2|v|] with v = P + R b - a (eq. 5).
+  const Pose pose = robot.PoseFromVector(v);
+  const Eigen::Vector3d q(DegToRad(v[3]), DegToRad(v[4]), DegToRad(v[5]));
+  const auto partials = RotationEulerPartials(q, robot.euler);
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Leg& leg = robot.legs[i];
+    const Eigen::Vector3d leg_vector = LegVector(leg, pose);
+    const double length = leg_vector.norm();
+    for (int k = 0; k < 6; ++k) {
+      Eigen::Vector3d dv, dw;
+      if (k < 3) {
+        dv = Eigen::Vector3d::Unit(k);
+        dw = pose.rotation.row(k).transpose();
+      } else {
+        const Eigen::Matrix3d dr = partials[k - 3] * DegToRad(1.0);
+        dv = dr * leg.b_in_platform;
+        dw = dr.transpose() * leg_vector + pose.rotation.transpose() * dv;
+      }
+      jacobians[i].col(k) << -2 * dv, 2 * dw, -2 * leg_vector.dot(dv) / length;
+    }
+  }
+  return jacobians;
+}
+
+std::vector<double> MeasurementMargins(const MeasurementConstraints& c, const Pose& base_from_platform) {
+  const Eigen::Vector3d target_in_base = base_from_platform * c.platform_from_target.position;
+  const Eigen::Matrix3d camera_from_base = c.base_from_camera.rotation.transpose();
+  const Eigen::Vector3d target_in_camera = camera_from_base * (target_in_base - c.base_from_camera.position);
+  const double angle_x = RadToDeg(std::atan2(std::abs(target_in_camera.x()), target_in_camera.z()));
+  const double angle_y = RadToDeg(std::atan2(std::abs(target_in_camera.y()), target_in_camera.z()));
+  const Eigen::Vector3d normal = base_from_platform.rotation * c.platform_from_target.rotation.col(2);
+  const Eigen::Vector3d to_camera = c.base_from_camera.position - target_in_base;
+  const double view = RadToDeg(std::atan2(normal.cross(to_camera).norm(), normal.dot(to_camera)));
+  return {c.half_fov_x_deg - angle_x, c.half_fov_y_deg - angle_y, target_in_camera.z(), c.max_view_angle_deg - view};
+}
+
+std::vector<double> PlanningModel::Margins(const Vector6d& v, bool include_box) const {
+  const Pose pose = robot.PoseFromVector(v);
+  std::vector<double> margins = ConstraintMargins(robot, pose, include_box);
+  if (measurement) {
+    for (double m : MeasurementMargins(*measurement, pose)) margins.push_back(m);
+  }
+  return margins;
+}
+
+bool PlanningModel::IsFeasible(const Vector6d& v) const {
+  const Pose pose = robot.PoseFromVector(v);
+  if (!hexcal::IsFeasible(robot, pose)) return false;
+  if (!measurement) return true;
+  for (double m : MeasurementMargins(*measurement, pose)) {
+    if (!(m >= -kFeasibilityTolerance)) return false;
+  }
+  return true;
+}
+
+namespace {
+
+Status SettingsError(const std::string& path, const std::string& key, const std::string& problem) {
+  return Status::Error("plan settings '" + path + "': " + key + ": " + problem);
+}
+
+StatusOr<double> FiniteNumber(const YAML::Node& node, const std::string& path, const std::string& key) {
+  try {
+    const double value = node.as<double>();
+    if (std::isfinite(value)) return value;
+  } catch (const YAML::Exception&) {
+  }
+  return SettingsError(path, key, "expected a finite number");
+}
+
+StatusOr<Eigen::Vector3d> Vector3(const YAML::Node& node, const std::string& path, const std::string& key) {
+  if (!node.IsSequence() || node.size() != 3) return SettingsError(path, key, "expected a list of 3 numbers");
+  Eigen::Vector3d v;
+  for (int k = 0; k < 3; ++k) {
+    StatusOr<double> x = FiniteNumber(node[k], path, key);
+    if (!x.ok()) return x.status();
+    v[k] = *x;
+  }
+  return v;
+}
+
+StatusOr<Pose> PoseNode(const YAML::Node& node, const std::string& path, const std::string& key, const Robot& robot) {
+  if (!node.IsMap()) return SettingsError(path, key, "expected {position: [x, y, z], rotation_deg: [q1, q2, q3]}");
+  for (const auto& item : node) {
+    const std::string name = item.first.as<std::string>();
+    if (name != "position" && name != "rotation_deg") return SettingsError(path, key + "." + name, "unknown key");
+  }
+  StatusOr<Eigen::Vector3d> position = Vector3(node["position"], path, key + ".position");
+  if (!position.ok()) return position.status();
+  StatusOr<Eigen::Vector3d> rotation = Vector3(node["rotation_deg"], path, key + ".rotation_deg");
+  if (!rotation.ok()) return rotation.status();
+  Vector6d v;
+  v << *position, *rotation;
+  return robot.PoseFromVector(v);
+}
+
+}  // namespace
+
+StatusOr<PlanSettings> LoadPlanSettings(const std::string& path, const Robot& robot) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    return Status::Error("plan settings '" + path + "': cannot read the file");
+  } catch (const YAML::Exception& e) {
+    return Status::Error("plan settings '" + path + "': " + e.what());
+  }
+  if (!root.IsMap()) return Status::Error("plan settings '" + path + "': expected a mapping at the top level");
+  static const std::set<std::string> kKeys = {"noise", "camera", "target", "field_of_view_deg", "max_view_angle_deg"};
+  for (const auto& item : root) {
+    const std::string key = item.first.as<std::string>();
+    if (!kKeys.count(key)) return SettingsError(path, key, "unknown key");
+  }
+  PlanSettings settings;
+  if (root["noise"]) {
+    NoiseModel noise;
+    for (const auto& item : root["noise"]) {
+      const std::string key = item.first.as<std::string>();
+      StatusOr<double> value = FiniteNumber(item.second, path, "noise." + key);
+      if (!value.ok()) return value.status();
+      if (key == "position") noise.position = *value;
+      else if (key == "angle_deg") noise.angle_deg = *value;
+      else if (key == "leg") noise.leg = *value;
+      else return SettingsError(path, "noise." + key, "unknown key (position, angle_deg, leg)");
+    }
+    std::string error;
+    if (!noise.IsValid(&error)) return SettingsError(path, "noise", error);
+    settings.noise = noise;
+  }
+  const bool any_measurement = root["camera"] || root["target"] || root["field_of_view_deg"];
+  if (any_measurement) {
+    if (!root["camera"] || !root["target"] || !root["field_of_view_deg"]) {
+      return SettingsError(path, "camera/target/field_of_view_deg", "measurement constraints need all three");
+    }
+    MeasurementConstraints c;
+    StatusOr<Pose> camera = PoseNode(root["camera"], path, "camera", robot);
+    if (!camera.ok()) return camera.status();
+    StatusOr<Pose> target = PoseNode(root["target"], path, "target", robot);
+    if (!target.ok()) return target.status();
+    c.base_from_camera = *camera;
+    c.platform_from_target = *target;
+    const YAML::Node fov = root["field_of_view_deg"];
+    if (!fov.IsSequence() || fov.size() != 2) return SettingsError(path, "field_of_view_deg", "expected [h, v]");
+    StatusOr<double> h = FiniteNumber(fov[0], path, "field_of_view_deg"), v = FiniteNumber(fov[1], path, "field_of_view_deg");
+    if (!h.ok()) return h.status();
+    if (!v.ok()) return v.status();
+    if (*h <= 0 || *h >= 180 || *v <= 0 || *v >= 180) return SettingsError(path, "field_of_view_deg", "angles must be in (0, 180)");
+    c.half_fov_x_deg = *h / 2;
+    c.half_fov_y_deg = *v / 2;
+    if (root["max_view_angle_deg"]) {
+      StatusOr<double> m = FiniteNumber(root["max_view_angle_deg"], path, "max_view_angle_deg");
+      if (!m.ok()) return m.status();
+      if (*m <= 0 || *m > 90) return SettingsError(path, "max_view_angle_deg", "must be in (0, 90]");
+      c.max_view_angle_deg = *m;
+    }
+    settings.measurement = c;
+  }
+  return settings;
+}
+
+}  // namespace hexcal
