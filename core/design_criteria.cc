@@ -12,10 +12,11 @@ namespace {
 using Vector7d = Eigen::Matrix<double, kParamsPerLeg, 1>;
 constexpr double kNegativeInfinity = -std::numeric_limits<double>::infinity();
 
-// Root of f(μ) = 1 + Σ z_k² / (λ_k - μ) in (lo, hi), where f(lo+) < 0 < f(hi-):
-// safeguarded Newton (f is increasing between consecutive poles).
-double SecularRoot(const Vector7d& lambda, const Vector7d& z2, double lo, double hi) {
-  double mu = 0.5 * (lo + hi);
+// Root of f(μ) = 1 + Σ z_k² / (λ_k - μ) in (lo, hi), where f(lo+) < 0 < f(hi-)
+// (f increases between consecutive poles), by Newton from `start`, kept inside
+// the shrinking bracket by bisection.
+double SecularRoot(const Vector7d& lambda, const Vector7d& z2, double lo, double hi, double start) {
+  double mu = start > lo && start < hi ? start : 0.5 * (lo + hi);
   for (int iteration = 0; iteration < 100; ++iteration) {
     double f = 1, df = 0;
     for (int k = 0; k < kParamsPerLeg; ++k) {
@@ -33,6 +34,29 @@ double SecularRoot(const Vector7d& lambda, const Vector7d& z2, double lo, double
     mu = next;
   }
   return mu;
+}
+
+// Smallest root of the secular equation written in t = μ - λ_1 (z_1 ≠ 0):
+//   h(t) = t (1 + Σ_{k>1} z_k² / (d_k - t)) - z_1² = 0,  d_k = λ_k - λ_1, t in (0, t_max).
+// h is increasing and convex there, so Newton from t = 0 lands right of the root
+// and then descends monotonically: a handful of steps, no bisection.
+double SmallestSecularRoot(const Vector7d& lambda, const Vector7d& z2, double t_max) {
+  double t = 0;
+  for (int iteration = 0; iteration < 50; ++iteration) {
+    double s = 0, ds = 0;
+    for (int k = 1; k < kParamsPerLeg; ++k) {
+      const double d = lambda[k] - lambda[0] - t;
+      s += z2[k] / d;
+      ds += z2[k] / (d * d);
+    }
+    const double h = t * (1 + s) - z2[0], dh = 1 + s + t * ds;
+    double next = t - h / dh;
+    if (!(next < t_max)) next = 0.5 * (t + t_max);  // never step onto the pole
+    if (next <= 0) next = 0.5 * t;
+    if (std::abs(next - t) <= 1e-15 * next) return lambda[0] + next;
+    t = next;
+  }
+  return lambda[0] + t;
 }
 
 double LogDetOrMinusInfinity(const InfoBlock& block) {
@@ -89,15 +113,24 @@ void RankOneExtremeEigenvalues(const Vector7d& lambda, const Vector7d& z, double
   const double scale = std::max(std::abs(lambda[kParamsPerLeg - 1]), norm2);
   const double negligible = 1e-30 * scale * scale;
   // Largest: in (λ_7, λ_7 + |z|²].
-  *largest = norm2 <= negligible ? lambda[kParamsPerLeg - 1]
-                                 : SecularRoot(lambda, z2, lambda[kParamsPerLeg - 1], lambda[kParamsPerLeg - 1] + norm2);
+  // Starts from second-order perturbation theory, μ ≈ λ_k + z_k² + Σ_{m≠k} z_k² z_m² / (λ_k - λ_m),
+  // which is already close in the usual case of a well-separated extreme eigenvalue.
+  auto perturbed = [&](int k) {
+    double mu = lambda[k] + z2[k];
+    for (int m = 0; m < kParamsPerLeg; ++m) {
+      if (m != k && lambda[k] != lambda[m]) mu += z2[k] * z2[m] / (lambda[k] - lambda[m]);
+    }
+    return mu;
+  };
+  const int top = kParamsPerLeg - 1;
+  *largest = norm2 <= negligible ? lambda[top] : SecularRoot(lambda, z2, lambda[top], lambda[top] + norm2, perturbed(top));
   // Smallest: λ_1 itself if z has no component on its eigenvector (deflation),
   // else the root in (λ_1, min(λ_2, λ_1 + |z|²)).
   const double upper = std::min(lambda[1], lambda[0] + norm2);
   if (z2[0] <= negligible || upper - lambda[0] <= 1e-15 * scale) {
     *smallest = lambda[0];
   } else {
-    *smallest = SecularRoot(lambda, z2, lambda[0], upper);
+    *smallest = SmallestSecularRoot(lambda, z2, upper - lambda[0]);
   }
 }
 
@@ -174,14 +207,23 @@ void DesignState::ScoreAdditions(Criterion criterion, const CandidateRows& candi
     return;
   }
   if (criterion == Criterion::kO1 || criterion == Criterion::kD) {
-    // Π_i (1 + |L_i⁻¹ r_i|²), one log per candidate instead of six.
-    Eigen::ArrayXd growth = Eigen::ArrayXd::Ones(n);
-    for (int i = 0; i < kNumLegs; ++i) {
-      const Eigen::MatrixXd y =
-          cholesky_inverse_[i].triangularView<Eigen::Lower>() * candidates.legs[i].middleCols(begin, n);
-      growth *= 1 + y.colwise().squaredNorm().transpose().array();
+    // Π_i (1 + |L_i⁻¹ r_i|²), one log per candidate instead of six; in chunks
+    // that stay in cache rather than 7 x W temporaries.
+    constexpr int kChunk = 256;
+    Eigen::Matrix<double, kParamsPerLeg, kChunk> y;
+    Eigen::Array<double, kChunk, 1> growth;
+    for (int first = 0; first < n; first += kChunk) {
+      const int size = std::min(kChunk, n - first);
+      growth.head(size).setOnes();
+      for (int i = 0; i < kNumLegs; ++i) {
+        y.leftCols(size).noalias() =
+            cholesky_inverse_[i].triangularView<Eigen::Lower>() * candidates.legs[i].middleCols(begin + first, size);
+        growth.head(size) *= 1 + y.leftCols(size).colwise().squaredNorm().transpose().array();
+      }
+      for (int j = 0; j < size; ++j) {
+        scores[first + j] = FromSpectrum(criterion, log_det_ + std::log(growth[j]), 0, 0, 0, num_poses_ + 1);
+      }
     }
-    for (int j = 0; j < n; ++j) scores[j] = FromSpectrum(criterion, log_det_ + std::log(growth[j]), 0, 0, 0, num_poses_ + 1);
     return;
   }
   if (criterion == Criterion::kA) {
@@ -303,6 +345,60 @@ void DesignState::Remove(const PoseRows& rows) {
   for (int i = 0; i < kNumLegs; ++i) blocks_[i].noalias() -= rows[i].transpose() * rows[i];
   --num_poses_;
   Refactor();
+}
+
+void QuadraticFormCache::Reset(const DesignState& state, const CandidateRows& candidates) {
+  for (int i = 0; i < kNumLegs; ++i) {
+    const auto& r = candidates.legs[i];
+    q_[i] = r.cwiseProduct(state.inverse(i) * r).colwise().sum().transpose().array();
+  }
+  updates_ = 0;
+}
+
+void QuadraticFormCache::Update(const DesignState& state, const CandidateRows& candidates, const PoseRows& rows,
+                                double sign) {
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Vector7d u = state.inverse(i) * rows[i].transpose();
+    const double denominator = 1 + sign * rows[i].dot(u.transpose());
+    const Eigen::ArrayXd projection = (u.transpose() * candidates.legs[i]).transpose().array();
+    q_[i] -= sign * projection.square() / denominator;
+  }
+  ++updates_;
+}
+
+void QuadraticFormCache::Exchanged(const DesignState& before, const PoseRows& added, const DesignState& with_added,
+                                   const PoseRows& removed, const CandidateRows& candidates) {
+  constexpr int kChunk = 512;
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Vector7d u_add = before.inverse(i) * added[i].transpose();
+    const Vector7d u_remove = with_added.inverse(i) * removed[i].transpose();
+    const double d_add = 1 + added[i].dot(u_add.transpose()), d_remove = 1 - removed[i].dot(u_remove.transpose());
+    Eigen::Matrix<double, 2, kParamsPerLeg> u;
+    u << u_add.transpose(), u_remove.transpose();
+    Eigen::Matrix<double, 2, kChunk> projection;
+    const int count = candidates.size();
+    for (int first = 0; first < count; first += kChunk) {
+      const int size = std::min(kChunk, count - first);
+      projection.leftCols(size).noalias() = u * candidates.legs[i].middleCols(first, size);
+      q_[i].segment(first, size) += projection.row(1).head(size).array().square().transpose() / d_remove -
+                                    projection.row(0).head(size).array().square().transpose() / d_add;
+    }
+  }
+  updates_ += 2;
+}
+
+void QuadraticFormCache::Added(const DesignState& state, const CandidateRows& candidates, const PoseRows& rows) {
+  Update(state, candidates, rows, +1);
+}
+
+void QuadraticFormCache::Removed(const DesignState& state, const CandidateRows& candidates, const PoseRows& rows) {
+  Update(state, candidates, rows, -1);
+}
+
+void QuadraticFormCache::Growth(std::vector<double>* growth) const {
+  Eigen::ArrayXd product = 1 + q_[0];
+  for (int i = 1; i < kNumLegs; ++i) product *= 1 + q_[i];
+  growth->assign(product.data(), product.data() + product.size());
 }
 
 }  // namespace hexcal

@@ -62,6 +62,9 @@ class DesignState {
   void Add(const PoseRows& rows);
   void Remove(const PoseRows& rows);
 
+  // M_i⁻¹ (valid when full_rank()).
+  const InfoBlock& inverse(int leg) const { return inverse_[leg]; }
+
  private:
   void Refactor();
   double FromSpectrum(Criterion criterion, double log_det, double trace_inverse, double lambda_min,
@@ -74,6 +77,32 @@ class DesignState {
   std::array<InfoBlock, kNumLegs> cholesky_inverse_, inverse_, eigenvectors_;
   std::array<Eigen::Matrix<double, kParamsPerLeg, 1>, kNumLegs> eigenvalues_;
   double log_det_ = 0, trace_inverse_ = 0;
+};
+
+// The quadratic forms q_ij = r_ijᵀ M_i⁻¹ r_ij of every candidate j, kept up to
+// date through the plan's exchanges by Sherman–Morrison: adding a pose with
+// rows a changes q by -(rᵀM⁻¹a)² / (1 + aᵀM⁻¹a), removing b by
+// +(rᵀM⁻¹b)² / (1 - bᵀM⁻¹b): 14 multiply-adds per leg and candidate instead of
+// a 35-operation triangular solve. Π_i (1 + q_ij) ranks candidates exactly as
+// D and O1 do (determinant lemma). Refreshed from scratch now and then against drift.
+class QuadraticFormCache {
+ public:
+  void Reset(const DesignState& state, const CandidateRows& candidates);
+  // Call with the state *before* the change.
+  void Added(const DesignState& state, const CandidateRows& candidates, const PoseRows& rows);
+  void Removed(const DesignState& state, const CandidateRows& candidates, const PoseRows& rows);
+  // One exchange in one pass over the candidates (they are read once, not twice):
+  // `before` is the state before adding `added`, `with_added` the state after it.
+  void Exchanged(const DesignState& before, const PoseRows& added, const DesignState& with_added,
+                 const PoseRows& removed, const CandidateRows& candidates);
+  // Π_i (1 + q_ij) for every candidate.
+  void Growth(std::vector<double>* growth) const;
+  int updates_since_reset() const { return updates_; }
+
+ private:
+  void Update(const DesignState& state, const CandidateRows& candidates, const PoseRows& rows, double sign);
+  std::array<Eigen::ArrayXd, kNumLegs> q_;
+  int updates_ = 0;
 };
 
 // Smallest and largest eigenvalue of diag(lambda) + s z zᵀ, s = +1 or -1, lambda

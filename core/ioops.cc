@@ -42,10 +42,11 @@ int SelectBest(const std::vector<double>& primary, const std::vector<double>* se
     if (primary[j] > kMinusInfinity) order.push_back(j);
   }
   if (order.empty()) return -1;
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return primary[a] > primary[b]; });
-  if (!secondary) return order.front();
-  const size_t kept = std::max<size_t>(1, static_cast<size_t>(std::ceil(keep * order.size())));
-  return *std::max_element(order.begin(), order.begin() + std::min(kept, order.size()),
+  auto by_primary = [&](int a, int b) { return primary[a] > primary[b]; };
+  if (!secondary) return *std::min_element(order.begin(), order.end(), by_primary);
+  const size_t kept = std::min(order.size(), std::max<size_t>(1, static_cast<size_t>(std::ceil(keep * order.size()))));
+  std::nth_element(order.begin(), order.begin() + (kept - 1), order.end(), by_primary);
+  return *std::max_element(order.begin(), order.begin() + kept,
                            [&](int a, int b) { return (*secondary)[a] < (*secondary)[b]; });
 }
 
@@ -148,6 +149,12 @@ StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vec
   const int budget = options.IterationBudget();
   const int starts = options.addfind_starts > 0 ? options.addfind_starts : (options.continuous ? 40 : count);
   std::vector<double> primary_scores, secondary_scores;
+  // D and O1 over every candidate: keep the quadratic forms through the exchanges
+  // instead of recomputing them (QuadraticFormCache).
+  const bool cached = !options.continuous && starts >= count &&
+                      (options.criterion == Criterion::kO1 || options.criterion == Criterion::kD);
+  QuadraticFormCache cache;
+  if (cached) cache.Reset(state, rows);
   for (int iteration = 1; iteration <= budget; ++iteration) {
     if (cancel && cancel->load()) return Status::Cancelled("planning cancelled at iteration " + std::to_string(iteration));
     Criterion add_criterion = options.criterion;
@@ -172,7 +179,12 @@ StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vec
         for (int k = 0; k < starts; ++k) subset_rows.Set(k, rows.Rows(subset[k]));
         scored = &subset_rows;
       }
-      ScoreInParallel(state, add_criterion, *scored, &primary_scores, options.threads);
+      if (cached && !switched) {
+        if (cache.updates_since_reset() >= 50) cache.Reset(state, rows);
+        cache.Growth(&primary_scores);  // ranks candidates as the criterion does
+      } else {
+        ScoreInParallel(state, add_criterion, *scored, &primary_scores, options.threads);
+      }
       if (use_secondary) ScoreInParallel(state, secondary, *scored, &secondary_scores, options.threads);
       for (int k = 0; k < scored->size(); ++k) {
         if (in_plan[subset.empty() ? k : subset[k]]) primary_scores[k] = kMinusInfinity;
@@ -197,6 +209,8 @@ StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vec
       added = {found[pick].pose, model.Rows(found[pick].pose), next_new_id--};
     }
     plan.push_back(added);
+    std::optional<DesignState> before_add;
+    if (cached) before_add = state;
     state.Add(added.rows);
     if (options.tabu > 0) {
       tabu.push_back(added.id);
@@ -214,6 +228,7 @@ StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vec
     const int removed_index = removals[choices > 1 ? rng() % choices : 0].second;
     const PlanEntry removed = plan[removed_index];
     plan.erase(plan.begin() + removed_index);
+    if (cached && removed.id != added.id) cache.Exchanged(*before_add, added.rows, state, removed.rows, rows);
     state.Remove(removed.rows);
     if (removed.id >= 0) in_plan[removed.id] = 0;
 

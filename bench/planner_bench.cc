@@ -1,0 +1,97 @@
+// Planner benchmarks (issue: incremental vs naive AddFind, whole plan).
+//   build/bench/hexcal_bench_planner
+// AddFind scores W candidates against an 18-pose plan. "Incremental" uses
+// DesignState::ScoreAdditions (determinant lemma with the Cholesky factor for
+// O1; secular equation for O4); "Naive" rebuilds and decomposes the six 7x7
+// blocks for every candidate. Both single-threaded, same candidates, same run.
+#include <benchmark/benchmark.h>
+
+#include "core/candidates.h"
+#include "core/ioops.h"
+#include "core/robot_io.h"
+
+namespace hexcal {
+namespace {
+
+const PlanningModel& Model() {
+  static const PlanningModel model{*LoadRobot("inria-left-hand"), std::nullopt, std::nullopt};
+  return model;
+}
+
+// 10^5 feasible random INRIA poses, generated once (about 15 s).
+const std::vector<Vector6d>& Candidates() {
+  static const std::vector<Vector6d> poses = [] {
+    CandidateOptions options;
+    options.count = 100000;
+    options.seed = 11;
+    return GenerateCandidates(Model().robot, options)->poses;
+  }();
+  return poses;
+}
+
+std::vector<Vector6d> Plan18() {
+  return std::vector<Vector6d>(Candidates().begin(), Candidates().begin() + 18);
+}
+
+DesignState PlanState() {
+  std::vector<PoseRows> rows;
+  for (const Vector6d& v : Plan18()) rows.push_back(Model().Rows(v));
+  return DesignState::FromRows(rows);
+}
+
+CandidateRows RowsOf(int count) {
+  CandidateRows rows;
+  rows.Resize(count);
+  for (int j = 0; j < count; ++j) rows.Set(j, Model().Rows(Candidates()[j]));
+  return rows;
+}
+
+void AddFindIncremental(benchmark::State& state, Criterion criterion) {
+  const int count = static_cast<int>(state.range(0));
+  const CandidateRows rows = RowsOf(count);
+  const DesignState design = PlanState();
+  std::vector<double> scores(count);
+  for (auto _ : state) {
+    design.ScoreAdditions(criterion, rows, 0, count, scores.data());
+    benchmark::DoNotOptimize(scores.data());
+  }
+  state.SetItemsProcessed(state.iterations() * count);
+}
+
+void AddFindNaive(benchmark::State& state, Criterion criterion) {
+  const int count = static_cast<int>(state.range(0));
+  const CandidateRows rows = RowsOf(count);
+  const DesignState design = PlanState();
+  for (auto _ : state) {
+    double best = 0;
+    for (int j = 0; j < count; ++j) best = std::max(best, design.ValueAfterAdding(criterion, rows.Rows(j)));
+    benchmark::DoNotOptimize(best);
+  }
+  state.SetItemsProcessed(state.iterations() * count);
+}
+
+void BM_AddFindIncrementalO1(benchmark::State& s) { AddFindIncremental(s, Criterion::kO1); }
+void BM_AddFindNaiveO1(benchmark::State& s) { AddFindNaive(s, Criterion::kO1); }
+void BM_AddFindIncrementalO4(benchmark::State& s) { AddFindIncremental(s, Criterion::kO4); }
+void BM_AddFindNaiveO4(benchmark::State& s) { AddFindNaive(s, Criterion::kO4); }
+BENCHMARK(BM_AddFindIncrementalO1)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AddFindNaiveO1)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AddFindIncrementalO4)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AddFindNaiveO4)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+
+// A whole plan: N = 18, W = 10^5, Tabu 4, 200 iterations, O1, one thread.
+void BM_WholePlanOneCore(benchmark::State& state) {
+  PlannerOptions options;
+  options.tabu = 4;
+  options.iterations = 200;
+  options.threads = 1;
+  const std::vector<Vector6d>& candidates = Candidates();  // generated outside the timing
+  const std::vector<Vector6d> initial = Plan18();
+  for (auto _ : state) benchmark::DoNotOptimize(PlanPoses(Model(), candidates, initial, options));
+}
+BENCHMARK(BM_WholePlanOneCore)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+}  // namespace
+}  // namespace hexcal
+
+BENCHMARK_MAIN();
