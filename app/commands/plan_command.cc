@@ -61,13 +61,17 @@ int RunPlan(PlanCliOptions cli, std::ostream& out, std::ostream& err) {
   std::string error;
   if (!cli.planner.IsValid(&error)) return ReportError(err, "plan", Status::Error(error));
 
+  // A file the user named that is wrong is bad input (2); a generated set that
+  // cannot be had is a failed computation (1).
+  StatusOr<std::vector<Vector6d>> initial = InitialPoses(*model, cli.init, cli.poses, cli.planner.seed);
+  if (!initial.ok()) {
+    return ReportError(err, "plan", initial.status(), ParseCandidateKind(cli.init) ? kExitFailure : kExitBadInput);
+  }
   ProgressBar candidates_progress("candidates");
   StatusOr<CandidatePool> pool = BuildCandidatePool(*model, cli.candidates_file, cli.candidate_kinds,
                                                     cli.candidate_count, cli.planner.continuous, cli.planner.seed,
                                                     [&](int done, int total) { candidates_progress.Update(done, total); });
-  if (!pool.ok()) return ReportError(err, "plan", pool.status(), kExitFailure);
-  StatusOr<std::vector<Vector6d>> initial = InitialPoses(*model, cli.init, cli.poses, cli.planner.seed);
-  if (!initial.ok()) return ReportError(err, "plan", initial.status(), kExitFailure);
+  if (!pool.ok()) return ReportError(err, "plan", pool.status(), cli.candidates_file.empty() ? kExitFailure : kExitBadInput);
 
   ProgressBar progress("planning");
   StatusOr<PlanResult> plan = PlanPoses(*model, pool->poses, *initial, cli.planner,

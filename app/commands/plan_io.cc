@@ -71,19 +71,29 @@ StatusOr<std::vector<Vector6d>> InitialPoses(const PlanningModel& model, const s
     }
     return poses;
   }
-  // Generated sets are drawn with another seed than the candidates, so they differ.
-  StatusOr<CandidateSet> set = Generate(model.robot, *kind, count, seed + 104729, {});
-  if (!set.ok()) return set.status();
-  poses = set->poses;
-  if (*kind == CandidateKind::kBoundary) {
-    if (static_cast<int>(poses.size()) < count) {
-      return Status::Error("--init boundary: the robot has " + std::to_string(poses.size()) +
-                           " feasible boundary poses, fewer than --poses " + std::to_string(count));
+  // Generated sets are drawn with another seed than the candidates, so they differ;
+  // poses that break a measurement constraint are skipped.
+  for (int attempt = 0; attempt < 8 && static_cast<int>(poses.size()) < count; ++attempt) {
+    const int want = *kind == CandidateKind::kBoundary ? 0 : (count - static_cast<int>(poses.size())) << attempt;
+    StatusOr<CandidateSet> set = Generate(model.robot, *kind, std::max(want, 1), seed + 104729 * (attempt + 1), {});
+    if (!set.ok()) return set.status();
+    std::vector<Vector6d> feasible;
+    std::copy_if(set->poses.begin(), set->poses.end(), std::back_inserter(feasible),
+                 [&](const Vector6d& pose) { return model.IsFeasible(pose); });
+    if (*kind == CandidateKind::kBoundary) {
+      std::mt19937_64 rng(seed);
+      std::shuffle(feasible.begin(), feasible.end(), rng);
+      poses = feasible;
+      break;
     }
-    std::mt19937_64 rng(seed);
-    std::shuffle(poses.begin(), poses.end(), rng);
-    poses.resize(count);
+    poses.insert(poses.end(), feasible.begin(), feasible.end());
   }
+  if (static_cast<int>(poses.size()) < count) {
+    return Status::Error("--init " + init + ": only " + std::to_string(poses.size()) +
+                         " poses satisfy the robot and measurement constraints, fewer than --poses " +
+                         std::to_string(count));
+  }
+  poses.resize(count);
   return poses;
 }
 
