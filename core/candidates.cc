@@ -21,16 +21,17 @@ double RadicalInverse(uint64_t n, int base) {
 }
 
 Status RequireCompleteBox(const Robot& robot, CandidateKind kind) {
-  if (robot.limits.pose_box && robot.limits.pose_box->IsComplete()) return Status::Ok();
+  const std::optional<PoseBox> box = robot.limits.SamplingBox();
+  if (box && box->IsComplete()) return Status::Ok();
   return Status::Error(std::string(CandidateKindName(kind)) + " candidates of robot '" + robot.name +
-                       "' need limits.pose_box with all of x, y, z, q1, q2, q3");
+                       "' need limits.pose_box (or sampling_box) with all of x, y, z, q1, q2, q3");
 }
 
 // Draws points in the unit cube from `next_unit` and keeps the feasible ones.
 template <typename NextUnit>
 StatusOr<CandidateSet> SampleBox(const Robot& robot, const CandidateOptions& options, NextUnit&& next_unit,
                                  const std::function<void(int, int)>& progress) {
-  const PoseBox& box = *robot.limits.pose_box;
+  const PoseBox box = *robot.limits.SamplingBox();
   CandidateSet set;
   const int64_t max_draws = static_cast<int64_t>(options.count) * options.max_draws_per_pose;
   while (static_cast<int>(set.poses.size()) < options.count) {

@@ -25,7 +25,10 @@ using ::hexcal::testing::Uniform;
 constexpr Criterion kAll[] = {Criterion::kO1, Criterion::kO2, Criterion::kO3, Criterion::kO4,
                               Criterion::kD,  Criterion::kA,  Criterion::kE};
 
-std::vector<Vector6d> RandomPoses(const Robot& robot, int count, uint64_t seed) {
+// Random poses over the whole pose box (not the preset's central sampling box):
+// well-spread sets keep the finite-difference references accurate.
+std::vector<Vector6d> RandomPoses(Robot robot, int count, uint64_t seed) {
+  robot.limits.sampling_box.reset();
   CandidateOptions options;
   options.count = count;
   options.seed = seed;

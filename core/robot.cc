@@ -1,5 +1,7 @@
 #include "core/robot.h"
 
+#include <algorithm>
+
 namespace hexcal {
 
 std::optional<LengthUnit> ParseLengthUnit(const std::string& text) {
@@ -31,6 +33,19 @@ double MetresPerUnit(LengthUnit unit) {
       return 1.0;
   }
   return 1.0;
+}
+
+std::optional<PoseBox> RobotLimits::SamplingBox() const {
+  if (!sampling_box) return pose_box;
+  PoseBox box = *sampling_box;
+  if (!pose_box) return box;
+  for (int k = 0; k < 6; ++k) {
+    const auto& own = pose_box->bounds[k];
+    auto& bound = box.bounds[k];
+    if (own && bound) bound = Range{std::max(own->min, bound->min), std::min(own->max, bound->max)};
+    else if (own) bound = own;
+  }
+  return box;
 }
 
 LegParameters LegParametersOf(const Leg& leg) {

@@ -60,6 +60,13 @@ struct RobotLimits {
   // Smallest allowed distance between two leg segments, robot unit.
   std::optional<double> leg_min_distance;
   std::optional<PoseBox> pose_box;
+  // Where random and uniform poses are drawn (an operator's calibration
+  // workspace, like the paper's random poses), intersected with pose_box.
+  // Defaults to pose_box. Not a constraint: planned poses may leave it.
+  std::optional<PoseBox> sampling_box;
+
+  // The box random/uniform sampling uses: sampling_box ∩ pose_box, or pose_box.
+  std::optional<PoseBox> SamplingBox() const;
 };
 
 struct Robot {

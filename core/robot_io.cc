@@ -20,7 +20,7 @@ const std::vector<std::string> kTopKeys = {"name", "length_unit", "euler", "legs
 const std::vector<std::string> kRequiredTopKeys = {"name", "length_unit", "euler", "legs"};
 const std::vector<std::string> kLegKeys = {"a", "b", "l", "stroke"};
 const std::vector<std::string> kLimitKeys = {"base_joint_max_deg", "platform_joint_max_deg", "leg_min_distance",
-                                             "pose_box"};
+                                             "pose_box", "sampling_box"};
 // In the order of the pose vector [x, y, z, q1, q2, q3].
 const std::vector<std::string> kPoseBoxKeys = {"x", "y", "z", "q1", "q2", "q3"};
 
@@ -269,12 +269,13 @@ class RobotYamlReader {
       }
       limits->leg_min_distance = *distance;
     }
-    return ReadPoseBox(node["pose_box"], limits);
+    if (Status s = ReadPoseBox(node["pose_box"], "pose_box", &limits->pose_box); !s.ok()) return s;
+    return ReadPoseBox(node["sampling_box"], "sampling_box", &limits->sampling_box);
   }
 
-  Status ReadPoseBox(const YAML::Node& node, RobotLimits* limits) const {
+  Status ReadPoseBox(const YAML::Node& node, const std::string& key, std::optional<PoseBox>* out) const {
     if (!node.IsDefined() || node.IsNull()) return Status::Ok();
-    const std::string path = "limits.pose_box";
+    const std::string path = "limits." + key;
     if (!node.IsMap()) return Error(path, "expected a mapping, found " + Describe(node));
     if (Status s = CheckKeys(node, path, kPoseBoxKeys, {}); !s.ok()) return s;
     PoseBox box;
@@ -284,7 +285,7 @@ class RobotYamlReader {
       if (!range.ok()) return range.status();
       box.bounds[k] = *range;
     }
-    limits->pose_box = box;
+    *out = box;
     return Status::Ok();
   }
 
@@ -346,7 +347,8 @@ std::string RobotToYaml(const Robot& robot) {
         << ", l: " << FormatNumber(leg.offset) << ", stroke: " << YamlList({leg.stroke_min, leg.stroke_max}) << "}\n";
   }
   const RobotLimits& limits = robot.limits;
-  if (!limits.base_joint_max_deg && !limits.platform_joint_max_deg && !limits.leg_min_distance && !limits.pose_box) {
+  if (!limits.base_joint_max_deg && !limits.platform_joint_max_deg && !limits.leg_min_distance && !limits.pose_box &&
+      !limits.sampling_box) {
     return out.str();
   }
   out << "limits:\n";
@@ -359,14 +361,13 @@ std::string RobotToYaml(const Robot& robot) {
   if (limits.leg_min_distance) {
     out << "  leg_min_distance: " << FormatNumber(*limits.leg_min_distance) << "\n";
   }
-  if (limits.pose_box) {
+  for (const auto& [key, box] : {std::pair{"pose_box", &limits.pose_box}, std::pair{"sampling_box", &limits.sampling_box}}) {
+    if (!*box) continue;
     std::vector<std::string> entries;
     for (size_t k = 0; k < kPoseBoxKeys.size(); ++k) {
-      if (const auto& range = limits.pose_box->bounds[k]) {
-        entries.push_back(kPoseBoxKeys[k] + ": " + YamlList({range->min, range->max}));
-      }
+      if (const auto& range = (*box)->bounds[k]) entries.push_back(kPoseBoxKeys[k] + ": " + YamlList({range->min, range->max}));
     }
-    out << "  pose_box: {" << Join(entries, ", ") << "}\n";
+    out << "  " << key << ": {" << Join(entries, ", ") << "}\n";
   }
   return out.str();
 }

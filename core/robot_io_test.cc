@@ -95,6 +95,13 @@ TEST(RobotIoTest, InriaPresetHoldsTable1OfThePaper) {
   EXPECT_EQ(robot.limits.pose_box->bounds[2]->min, 47);
   EXPECT_EQ(robot.limits.pose_box->bounds[2]->max, 56);
   EXPECT_EQ(robot.limits.pose_box->bounds[5]->min, -60);
+  // Random poses are drawn in the paper-like central box, inside the pose box.
+  ASSERT_TRUE(robot.limits.sampling_box && robot.limits.sampling_box->IsComplete());
+  const PoseBox sampling = *robot.limits.SamplingBox();
+  EXPECT_EQ(sampling.bounds[0]->min, -5);
+  EXPECT_EQ(sampling.bounds[2]->min, 50);  // the pose box's 47 does not widen it
+  EXPECT_EQ(sampling.bounds[2]->max, 56);  // the pose box's 56 narrows the sampling box's 57
+  EXPECT_EQ(sampling.bounds[5]->max, 20);
 }
 
 TEST(RobotIoTest, DeltalabPresetHasThePublishedDimensions) {

@@ -9,6 +9,14 @@ constexpr CommandEntry kCommands[] = {
     {"robot", AddRobotCommand},           {"ik", AddIkCommand},           {"fk", AddFkCommand},
     {"candidates", AddCandidatesCommand}, {"indices", AddIndicesCommand}, {"demo", AddDemoCommand},
     {"plan", AddPlanCommand},
+    {"calibrate", AddCalibrateCommand},
+    {"validate", AddValidateCommand},
+    {"simulate", AddSimulateCommand},
+    {"target", AddTargetCommand},
+    {"detect", AddDetectCommand},
+    {"render", AddRenderCommand},
+    {"intrinsics", AddIntrinsicsCommand},
+    {"measure", AddMeasureCommand},
 };
 }  // namespace
 

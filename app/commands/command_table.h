@@ -19,6 +19,14 @@ void AddCandidatesCommand(CLI::App& app, int* exit_code);
 void AddIndicesCommand(CLI::App& app, int* exit_code);
 void AddDemoCommand(CLI::App& app, int* exit_code);
 void AddPlanCommand(CLI::App& app, int* exit_code);
+void AddCalibrateCommand(CLI::App& app, int* exit_code);
+void AddValidateCommand(CLI::App& app, int* exit_code);
+void AddSimulateCommand(CLI::App& app, int* exit_code);
+void AddTargetCommand(CLI::App& app, int* exit_code);
+void AddDetectCommand(CLI::App& app, int* exit_code);
+void AddRenderCommand(CLI::App& app, int* exit_code);
+void AddIntrinsicsCommand(CLI::App& app, int* exit_code);
+void AddMeasureCommand(CLI::App& app, int* exit_code);
 
 // Builds the whole `hexcal` application; `exit_code` receives the command's code.
 void AddAllCommands(CLI::App& app, int* exit_code);

@@ -33,11 +33,12 @@ void PrintRobot(const Robot& robot, std::ostream& out) {
   if (limits.base_joint_max_deg) out << "base joint max: " << *limits.base_joint_max_deg << " deg\n";
   if (limits.platform_joint_max_deg) out << "platform joint max: " << *limits.platform_joint_max_deg << " deg\n";
   if (limits.leg_min_distance) out << "leg min distance: " << *limits.leg_min_distance << " " << unit << "\n";
-  if (limits.pose_box) {
-    static const char* names[6] = {"x", "y", "z", "q1", "q2", "q3"};
-    out << "pose box:";
+  static const char* names[6] = {"x", "y", "z", "q1", "q2", "q3"};
+  for (const auto& [label, box] : {std::pair{"pose box", &limits.pose_box}, std::pair{"sampling box", &limits.sampling_box}}) {
+    if (!*box) continue;
+    out << label << ":";
     for (int k = 0; k < 6; ++k) {
-      if (const auto& r = limits.pose_box->bounds[k]) out << " " << names[k] << " [" << r->min << ", " << r->max << "]";
+      if (const auto& r = (*box)->bounds[k]) out << " " << names[k] << " [" << r->min << ", " << r->max << "]";
     }
     out << "\n";
   }

@@ -1,0 +1,185 @@
+// hexcal calibrate --robot R --measurements M.csv --out calibrated.yaml [--force]
+//   [--loss none|huber|cauchy] [--loss-scale s]
+//   [--weighted [--noise-position p] [--noise-angle a] [--noise-leg l]] [--json]
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "app/commands/cli_common.h"
+#include "app/commands/command_table.h"
+#include "core/calibration.h"
+#include "core/calibration_file.h"
+#include "core/robot_io.h"
+
+namespace hexcal::cli {
+namespace {
+
+struct CalibrateCliOptions {
+  std::string robot, measurements, out, loss = "none";
+  double loss_scale = 1.0;
+  bool weighted = false, force = false, json = false;
+  NoiseModel noise;
+};
+
+std::string DirectionText(const LegParameters& direction) {
+  std::string text;
+  for (int k = 0; k < kParamsPerLeg; ++k) {
+    if (std::abs(direction[k]) < 0.05) continue;
+    char term[48];
+    std::snprintf(term, sizeof term, "%s%.2f %s", text.empty() ? "" : " ", direction[k], ParameterName(k));
+    text += term;
+  }
+  return text;
+}
+
+nlohmann::json NamedParameters(const LegParameters& values) {
+  nlohmann::json j;
+  for (int k = 0; k < kParamsPerLeg; ++k) j[ParameterName(k)] = values[k];
+  return j;
+}
+
+nlohmann::json LegJson(const LegCalibration& leg) {
+  nlohmann::json weak = nlohmann::json::array(), correlated = nlohmann::json::array();
+  for (const WeakDirection& w : leg.unidentifiable) {
+    weak.push_back({{"ratio", w.ratio}, {"direction", NamedParameters(w.direction)}});
+  }
+  for (const CorrelatedPair& c : leg.correlated) {
+    correlated.push_back(
+        {{"first", ParameterName(c.first)}, {"second", ParameterName(c.second)}, {"correlation", c.correlation}});
+  }
+  return {{"nominal", NamedParameters(leg.initial)},
+          {"estimate", NamedParameters(leg.estimate)},
+          {"sigma", leg.has_uncertainty ? NamedParameters(leg.std_dev) : nlohmann::json(nullptr)},
+          {"variance_factor", leg.has_uncertainty ? nlohmann::json(leg.variance_factor) : nlohmann::json(nullptr)},
+          {"residual_rms", leg.residual_rms},
+          {"iterations", leg.iterations},
+          {"termination", leg.termination},
+          {"singular_values", std::vector<double>(leg.singular_values.data(), leg.singular_values.data() + 7)},
+          {"unidentifiable", weak},
+          {"correlated", correlated}};
+}
+
+void PrintReport(const CalibrateCliOptions& cli, const CalibrationResult& result, std::ostream& out) {
+  const char* unit = LengthUnitName(result.robot.length_unit);
+  out << "calibrated robot " << result.robot.name << " from " << result.num_measurements << " measurements ("
+      << cli.measurements << ") -> " << cli.out << "\n"
+      << "lengths in " << unit << "; sigma = one standard deviation\n\n"
+      << "leg param      nominal   calibrated       change        sigma\n";
+  char line[160];
+  for (int i = 0; i < kNumLegs; ++i) {
+    const LegCalibration& leg = result.legs[i];
+    for (int k = 0; k < kParamsPerLeg; ++k) {
+      std::snprintf(line, sizeof line, "%3d %-5s %12.5f %12.5f %12.5f ", i + 1, ParameterName(k), leg.initial[k],
+                    leg.estimate[k], leg.estimate[k] - leg.initial[k]);
+      out << line;
+      if (leg.has_uncertainty) {
+        std::snprintf(line, sizeof line, "%12.3g\n", leg.std_dev[k]);
+        out << line;
+      } else {
+        out << "           -\n";
+      }
+    }
+  }
+  out << "\nleg  residual RMS  iterations  termination   sigma_min/sigma_max\n";
+  for (int i = 0; i < kNumLegs; ++i) {
+    const LegCalibration& leg = result.legs[i];
+    std::snprintf(line, sizeof line, "%3d  %12.3g  %10d  %-12s  %10.3g\n", i + 1, leg.residual_rms, leg.iterations,
+                  leg.termination.c_str(), leg.singular_values[6] / leg.singular_values[0]);
+    out << line;
+  }
+  if (result.num_measurements == kParamsPerLeg) {
+    out << "note: 7 measurements fit each leg exactly; no uncertainty can be estimated (measure more poses)\n";
+  }
+  bool any = false;
+  for (int i = 0; i < kNumLegs; ++i) {
+    const LegCalibration& leg = result.legs[i];
+    for (const WeakDirection& w : leg.unidentifiable) {
+      out << (any ? "" : "\nidentifiability warnings:\n") << "  leg " << i + 1
+          << ": barely identifiable direction (sigma ratio " << w.ratio << "): " << DirectionText(w.direction) << "\n";
+      any = true;
+    }
+    for (const CorrelatedPair& c : leg.correlated) {
+      out << (any ? "" : "\nidentifiability warnings:\n") << "  leg " << i + 1 << ": " << ParameterName(c.first)
+          << " and " << ParameterName(c.second) << " are strongly correlated (" << c.correlation << ")\n";
+      any = true;
+    }
+  }
+}
+
+int RunCalibrate(const CalibrateCliOptions& cli, std::ostream& out, std::ostream& err) {
+  StatusOr<Robot> robot = LoadRobot(cli.robot);
+  if (!robot.ok()) return ReportError(err, "calibrate", robot.status());
+  StatusOr<std::vector<Measurement>> measurements = LoadMeasurements(cli.measurements);
+  if (!measurements.ok()) return ReportError(err, "calibrate", measurements.status());
+  const std::optional<RobustLoss> loss = ParseRobustLoss(cli.loss);
+  if (!loss) {
+    return ReportError(err, "calibrate", Status::Error("--loss: '" + cli.loss + "' is not none, huber or cauchy"));
+  }
+  CalibrationOptions options;
+  options.loss = *loss;
+  options.loss_scale = cli.loss_scale;
+  options.weighted = cli.weighted;
+  options.noise = cli.noise;
+  if (Status s = CheckCalibrationInput(*robot, *measurements, options); !s.ok()) {
+    return ReportError(err, "calibrate", s);
+  }
+  std::error_code exists_error;
+  if (!cli.force && std::filesystem::exists(cli.out, exists_error)) {
+    return ReportError(err, "calibrate", Status::Error(cli.out + ": exists; use --force to overwrite it"));
+  }
+
+  ProgressBar progress("calibrate (legs)");
+  StatusOr<CalibrationResult> result =
+      Calibrate(*robot, *measurements, options, [&](int done, int total) { progress.Update(done, total); });
+  if (!result.ok()) return ReportError(err, "calibrate", result.status(), kExitFailure);
+  const CalibrationInputs inputs{cli.robot, cli.measurements, options, CurrentUtcTimestamp()};
+  if (Status s = SaveCalibratedRobot(cli.out, *result, inputs); !s.ok()) {
+    return ReportError(err, "calibrate", s, kExitFailure);
+  }
+
+  if (cli.json) {
+    nlohmann::json legs = nlohmann::json::array();
+    for (const LegCalibration& leg : result->legs) legs.push_back(LegJson(leg));
+    out << nlohmann::json{{"out", cli.out},
+                          {"measurements", result->num_measurements},
+                          {"length_unit", LengthUnitName(result->robot.length_unit)},
+                          {"robot", RobotJson(result->robot)},
+                          {"legs", legs}}
+               .dump(2)
+        << "\n";
+  } else {
+    PrintReport(cli, *result, out);
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddCalibrateCommand(CLI::App& app, int* exit_code) {
+  auto options = std::make_shared<CalibrateCliOptions>();
+  CLI::App* sub = app.add_subcommand("calibrate", "identify the 42 kinematic parameters from measurements");
+  sub->add_option("--robot", options->robot, "nominal robot file or preset name (the starting point)")->required();
+  sub->add_option("--measurements", options->measurements, "measurements CSV: x,y,z,q1,q2,q3,L1..L6")->required();
+  sub->add_option("--out", options->out, "calibrated robot file to write")->required();
+  sub->add_flag("--force", options->force, "overwrite --out if it exists");
+  sub->add_option("--loss", options->loss, "robust loss: none | huber | cauchy")->capture_default_str();
+  sub->add_option("--loss-scale", options->loss_scale,
+                  "where the loss starts: leg-length error (robot unit), or standard deviations with --weighted")
+      ->capture_default_str();
+  CLI::Option* weighted = sub->add_flag("--weighted", options->weighted,
+                                        "weight each residual by its standard deviation under the noise model");
+  sub->add_option("--noise-position", options->noise.position, "position noise half-width (robot unit)")
+      ->capture_default_str()
+      ->needs(weighted);
+  sub->add_option("--noise-angle", options->noise.angle_deg, "angle noise half-width (degrees)")
+      ->capture_default_str()
+      ->needs(weighted);
+  sub->add_option("--noise-leg", options->noise.leg, "leg-reading noise half-width (robot unit)")
+      ->capture_default_str()
+      ->needs(weighted);
+  sub->add_flag("--json", options->json, "print one JSON object on stdout");
+  sub->callback([=] { *exit_code = RunCalibrate(*options, std::cout, std::cerr); });
+}
+
+}  // namespace hexcal::cli

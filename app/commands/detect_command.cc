@@ -1,0 +1,106 @@
+// hexcal detect --images DIR|FILE [--family tag36h11] [--camera C] [--no-refine] [--json]
+#include <iostream>
+#include <memory>
+
+#include "app/commands/cli_common.h"
+#include "app/commands/command_table.h"
+#include "vision/detection.h"
+#include "vision/measure.h"
+
+namespace hexcal::cli {
+namespace {
+
+struct DetectCliOptions {
+  std::string images, camera;
+  DetectorOptions detector;
+  bool no_refine = false;
+  bool json = false;
+};
+
+nlohmann::json DetectionJson(const std::string& family, const TagDetection& tag) {
+  nlohmann::json corners = nlohmann::json::array();
+  for (const Eigen::Vector2d& c : tag.corners) corners.push_back({c.x(), c.y()});
+  return {{"family", family},       {"id", tag.id},
+          {"corners", corners},     {"decision_margin", tag.decision_margin},
+          {"hamming", tag.hamming}, {"refined", tag.refined}};
+}
+
+int RunDetect(const DetectCliOptions& cli, std::ostream& out, std::ostream& err) {
+  DetectorOptions options = cli.detector;
+  options.refine_edges = !cli.no_refine;
+  std::shared_ptr<const IdealPixelMap> ideal;
+  if (!cli.camera.empty()) {
+    StatusOr<Camera> camera = LoadCamera(cli.camera);
+    if (!camera.ok()) return ReportError(err, "detect", camera.status());
+    ideal = std::make_shared<const IdealPixelMap>(*camera);
+  }
+  StatusOr<std::unique_ptr<TagDetector>> detector = TagDetector::Create(options, ideal);
+  if (!detector.ok()) return ReportError(err, "detect", detector.status());
+  StatusOr<std::vector<std::string>> files = ListImages(cli.images);
+  if (!files.ok()) return ReportError(err, "detect", files.status());
+
+  ProgressBar progress("detect");
+  nlohmann::json images = nlohmann::json::array();
+  int total_tags = 0, unreadable = 0;
+  for (size_t i = 0; i < files->size(); ++i) {
+    const std::string& file = (*files)[i];
+    nlohmann::json image = {{"file", file}, {"detections", nlohmann::json::array()}};
+    StatusOr<cv::Mat> gray = LoadGrayImage(file);
+    if (!gray.ok()) {
+      ++unreadable;
+      image["error"] = gray.status().message();
+      if (!cli.json) out << file << ": " << gray.status().message() << "\n";
+    } else {
+      if (ideal && (gray->cols != ideal->width() || gray->rows != ideal->height())) {
+        err << "hexcal detect: warning: " << file << " is not the camera's size; edges fitted without distortion\n";
+      }
+      const Detections found = (*detector)->Detect(*gray);
+      for (const TagDetection& tag : found.tags) image["detections"].push_back(DetectionJson(options.family, tag));
+      nlohmann::json rejected = nlohmann::json::array();
+      for (const RejectedTag& tag : found.rejected) {
+        rejected.push_back({{"id", tag.id}, {"decision_margin", tag.decision_margin}, {"reason", tag.reason}});
+      }
+      image["rejected"] = rejected;
+      total_tags += static_cast<int>(found.tags.size());
+      if (!cli.json) {
+        out << file << ": " << found.tags.size() << " tags";
+        if (!found.rejected.empty()) out << ", " << found.rejected.size() << " rejected";
+        out << (found.tags.empty() ? "" : ", ids");
+        for (const TagDetection& tag : found.tags) out << " " << tag.id;
+        out << "\n";
+      }
+    }
+    images.push_back(image);
+    progress.Update(static_cast<int>(i + 1), static_cast<int>(files->size()));
+  }
+  if (cli.json) {
+    out << nlohmann::json{{"images", images}}.dump(2) << "\n";
+  } else {
+    out << files->size() << " images, " << total_tags << " tags";
+    if (unreadable) out << ", " << unreadable << " unreadable";
+    out << " (corners: OpenCV pixel convention, " << (options.refine_edges ? "edge-fitted" : "AprilTag's own") << ")\n";
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddDetectCommand(CLI::App& app, int* exit_code) {
+  auto options = std::make_shared<DetectCliOptions>();
+  CLI::App* sub = app.add_subcommand("detect", "list the AprilTags found in images");
+  sub->add_option("--images", options->images, "an image, or a folder of PNG/JPEG/TIFF images")->required();
+  sub->add_option("--family", options->detector.family, "tag family: tag36h11, tag25h9, tag16h5")
+      ->capture_default_str();
+  sub->add_option("--camera", options->camera, "camera file: fit tag edges in the undistorted image");
+  sub->add_option("--min-margin", options->detector.min_decision_margin,
+                  "reject decodes with a smaller decision margin (grey levels)")
+      ->capture_default_str();
+  sub->add_option("--max-hamming", options->detector.max_hamming, "accept at most this many corrected bits (0-2)")
+      ->capture_default_str();
+  sub->add_option("--threads", options->detector.threads, "AprilTag threads")->capture_default_str();
+  sub->add_flag("--no-refine", options->no_refine, "report AprilTag's own corners (shifted by -0.5 px)");
+  sub->add_flag("--json", options->json, "print one JSON object on stdout");
+  sub->callback([=] { *exit_code = RunDetect(*options, std::cout, std::cerr); });
+}
+
+}  // namespace hexcal::cli

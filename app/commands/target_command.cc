@@ -1,0 +1,84 @@
+// hexcal target print --target T --out target.pdf|target.png [--dpi D] [--json]
+// hexcal target check --target T [--json]
+#include <iostream>
+#include <memory>
+
+#include "app/commands/cli_common.h"
+#include "app/commands/command_table.h"
+#include "core/csv.h"
+#include "vision/target.h"
+#include "vision/target_print.h"
+
+namespace hexcal::cli {
+namespace {
+
+struct TargetOptions {
+  std::string target = kDefaultTargetName, out;
+  double dpi = 300;
+  bool json = false;
+};
+
+nlohmann::json TargetJson(const Target& target) {
+  return {{"family", target.family},
+          {"rows", target.rows},
+          {"cols", target.cols},
+          {"tag_size", target.tag_size},
+          {"tag_spacing", target.tag_spacing},
+          {"gap", target.Gap()},
+          {"first_id", target.first_id},
+          {"length_unit", LengthUnitName(target.length_unit)},
+          {"margin", target.margin},
+          {"width", target.Width()},
+          {"height", target.Height()}};
+}
+
+int RunTargetCheck(const TargetOptions& options, std::ostream& out, std::ostream& err) {
+  StatusOr<Target> target = LoadTarget(options.target);
+  if (!target.ok()) return ReportError(err, "target check", target.status());
+  if (options.json) {
+    out << nlohmann::json{{"ok", true}, {"target", TargetJson(*target)}}.dump(2) << "\n";
+  } else {
+    out << "ok: " << DescribeTarget(*target) << "\n";
+  }
+  return kExitOk;
+}
+
+int RunTargetPrint(const TargetOptions& options, std::ostream& out, std::ostream& err) {
+  StatusOr<Target> target = LoadTarget(options.target);
+  if (!target.ok()) return ReportError(err, "target print", target.status());
+  if (Status s = WriteTargetPrint(*target, options.out, options.dpi); !s.ok()) {
+    return ReportError(err, "target print", s);
+  }
+  const std::vector<std::string> caption = TargetPrintCaption(*target);
+  if (options.json) {
+    out << nlohmann::json{{"out", options.out}, {"dpi", options.dpi}, {"target", TargetJson(*target)}}.dump(2) << "\n";
+  } else {
+    out << "target written to " << options.out << ": " << DescribeTarget(*target) << "\n" << caption[1] << "\n";
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddTargetCommand(CLI::App& app, int* exit_code) {
+  CLI::App* target = app.add_subcommand("target", "check or print an AprilTag grid target");
+  target->require_subcommand(1);
+
+  auto check = std::make_shared<TargetOptions>();
+  CLI::App* check_sub = target->add_subcommand("check", "validate a target file and describe it");
+  check_sub->add_option("--target", check->target, "target YAML file or the built-in name aprilgrid-6x6")
+      ->capture_default_str();
+  check_sub->add_flag("--json", check->json, "print one JSON object on stdout");
+  check_sub->callback([=] { *exit_code = RunTargetCheck(*check, std::cout, std::cerr); });
+
+  auto print = std::make_shared<TargetOptions>();
+  CLI::App* print_sub = target->add_subcommand("print", "write a printable target at exact scale (PDF or PNG)");
+  print_sub->add_option("--target", print->target, "target YAML file or the built-in name aprilgrid-6x6")
+      ->capture_default_str();
+  print_sub->add_option("--out", print->out, "output file, .pdf or .png")->required();
+  print_sub->add_option("--dpi", print->dpi, "PNG resolution, dots per inch")->capture_default_str();
+  print_sub->add_flag("--json", print->json, "print one JSON object on stdout");
+  print_sub->callback([=] { *exit_code = RunTargetPrint(*print, std::cout, std::cerr); });
+}
+
+}  // namespace hexcal::cli

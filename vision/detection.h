@@ -1,0 +1,110 @@
+// AprilTag detection with calibration-grade corners, and matching of the
+// detected ids to the target.
+//
+// The AprilTag library finds and decodes the tags (quad_decimate 1: its
+// corners are only consistent at full resolution, see docs/vision.md).
+// Its corners are pixel-corner based, (0, 0) being the top-left corner of the
+// top-left pixel; hexcal shifts them by −½ px to OpenCV's pixel-centre
+// convention, then (by default) replaces them by the sub-pixel edge fit of
+// edge_refine.h. Decodes with a decision margin below the threshold, with
+// corrected bits beyond max_hamming, or with a corner outside the image (the
+// library extrapolates the corners of a tag cut by the border) are rejected
+// and reported.
+//
+//   StatusOr<std::unique_ptr<TagDetector>> detector = TagDetector::Create(DetectorOptions{});
+//   StatusOr<cv::Mat> gray = LoadGrayImage("view.png");
+//   Detections found = (*detector)->Detect(*gray);
+//   BoardObservation seen = MatchToTarget(target, found);
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "core/status.h"
+#include "vision/camera.h"
+#include "vision/target.h"
+
+namespace hexcal {
+
+struct DetectorOptions {
+  std::string family = "tag36h11";
+  int threads = 2;                  // AprilTag worker threads for one image
+  double min_decision_margin = 20;  // grey levels; weaker decodes are rejected
+  int max_hamming = 0;              // corrected bits accepted, 0..2
+  bool refine_edges = true;         // sub-pixel edge fit of each black square
+  double quad_sigma = 0;            // AprilTag's blur before segmentation, px (0 = none)
+
+  bool IsValid(std::string* error) const;
+};
+
+struct TagDetection {
+  int id = 0;
+  std::array<Eigen::Vector2d, 4> corners{
+      {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()}};
+  // ^ OpenCV pixel convention, AprilTag order
+  double decision_margin = 0;
+  int hamming = 0;
+  bool refined = false;  // corners from the edge fit; else the library's, shifted
+  // Covariance of the corners (u0, v0, ..., u3, v3) from the edge fit, px²;
+  // zero when not refined.
+  Eigen::Matrix<double, 8, 8> covariance = Eigen::Matrix<double, 8, 8>::Zero();
+};
+
+struct RejectedTag {
+  int id = 0;
+  double decision_margin = 0;
+  int hamming = 0;
+  std::string reason;  // "decision margin 12.3 < 20", "2 corrected bits > 0", "a corner is outside the image"
+};
+
+struct Detections {
+  std::vector<TagDetection> tags;  // accepted, by id
+  std::vector<RejectedTag> rejected;
+};
+
+// One AprilTag detector; not thread-safe (use one per thread).
+class TagDetector {
+ public:
+  // `ideal`: the camera's IdealPixelMap, shared between detectors; with it the
+  // edge fit works in the undistorted image. May be null.
+  static StatusOr<std::unique_ptr<TagDetector>> Create(const DetectorOptions& options,
+                                                       std::shared_ptr<const IdealPixelMap> ideal = nullptr);
+  ~TagDetector();
+  TagDetector(const TagDetector&) = delete;
+  TagDetector& operator=(const TagDetector&) = delete;
+
+  // `gray`: CV_8UC1.
+  Detections Detect(const cv::Mat& gray);
+  // The AprilTag library's detection alone, as configured here (benchmarks).
+  int DetectWithLibraryOnly(const cv::Mat& gray);
+
+  const DetectorOptions& options() const { return options_; }
+
+ private:
+  struct Impl;
+  TagDetector(const DetectorOptions& options, std::unique_ptr<Impl> impl);
+  DetectorOptions options_;
+  std::unique_ptr<Impl> impl_;
+};
+
+// The accepted tags whose ids are on the target, as corresponding points.
+struct BoardObservation {
+  std::vector<int> tag_ids;                                     // one per matched tag
+  std::vector<Eigen::Vector3d> target_points;                   // 4 per tag, target frame, AprilTag order
+  std::vector<Eigen::Vector2d> image_points;                    // 4 per tag, pixels
+  std::vector<Eigen::Matrix<double, 8, 8>> corner_covariances;  // 1 per tag; zero when not refined
+  int foreign_tags = 0;                                         // accepted tags whose id is not on the target
+  int duplicate_tags = 0;  // tags seen more than once in one image (all copies dropped)
+  int NumTags() const { return static_cast<int>(tag_ids.size()); }
+};
+BoardObservation MatchToTarget(const Target& target, const Detections& detections);
+
+// An image file as 8-bit grey. Errors name the file: missing, empty, or not a
+// readable PNG / JPEG / TIFF ("cannot decode: corrupt or not an image").
+StatusOr<cv::Mat> LoadGrayImage(const std::string& path);
+
+}  // namespace hexcal

@@ -1,0 +1,351 @@
+#include "vision/edge_refine.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "core/pose.h"
+
+namespace hexcal {
+namespace {
+
+constexpr double kMaxCornerShiftPx = 2.0;
+constexpr double kCornerClearancePx = 2.5;  // band starts this far from each corner, along the edge
+constexpr double kMinCellPx = 3.5;
+constexpr double kMaxHalfWidthPx = 4.0;  // of the band across an edge
+constexpr double kMinHalfWidthPx = 1.2;
+constexpr double kMinContrast = 5;  // grey levels
+
+struct BandPixel {
+  Eigen::Vector2d q;  // ideal pixel, relative to the edge's midpoint
+  double t;           // along the edge, -1 .. 1 from one end to the other
+  double value;
+};
+
+// Parameters of the edge model, see EdgeModel.
+using EdgeParams = Eigen::Matrix<double, 8, 1>;
+using EdgeMatrix = Eigen::Matrix<double, 8, 8>;
+enum { kAngle, kOffset, kBlack, kContrast, kBlur, kBlackSlope, kContrastSlope, kShading };
+
+double NormalCdf(double z) { return 0.5 * std::erfc(-z * 0.7071067811865476); }
+double NormalPdf(double z) { return 0.3989422804014327 * std::exp(-0.5 * z * z); }
+
+// Ideal coordinates of pixel (u, v), or NaN.
+Eigen::Vector2d IdealAt(const IdealPixelMap* ideal, int u, int v) {
+  return ideal ? ideal->At(u, v) : Eigen::Vector2d(u, v);
+}
+
+// Pixels within `half_width` of the line n · (q − midpoint) = offset and at
+// least kCornerClearancePx from both ends of the edge a–b (ideal pixels);
+// raw_a, raw_b bound the search in the image.
+std::vector<BandPixel> CollectBand(const cv::Mat& gray, const IdealPixelMap* ideal, const Eigen::Vector2d& raw_a,
+                                   const Eigen::Vector2d& raw_b, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                   const Eigen::Vector2d& midpoint, const Eigen::Vector2d& n, double offset,
+                                   double half_width) {
+  const Eigen::Vector2d direction(-n.y(), n.x());
+  const double half_length = 0.5 * (b - a).norm();
+  const double start = (a - midpoint).dot(direction), end = (b - midpoint).dot(direction);
+  const double t_min = std::min(start, end) + kCornerClearancePx, t_max = std::max(start, end) - kCornerClearancePx;
+  // Distortion stretches the ideal image by up to ~1.5 against the raw one here.
+  const double pad = 1.5 * half_width + 3;
+  const int u0 = std::max(0, static_cast<int>(std::floor(std::min(raw_a.x(), raw_b.x()) - pad)));
+  const int u1 = std::min(gray.cols - 1, static_cast<int>(std::ceil(std::max(raw_a.x(), raw_b.x()) + pad)));
+  const int v0 = std::max(0, static_cast<int>(std::floor(std::min(raw_a.y(), raw_b.y()) - pad)));
+  const int v1 = std::min(gray.rows - 1, static_cast<int>(std::ceil(std::max(raw_a.y(), raw_b.y()) + pad)));
+  std::vector<BandPixel> band;
+  for (int v = v0; v <= v1; ++v) {
+    const uint8_t* row = gray.ptr<uint8_t>(v);
+    for (int u = u0; u <= u1; ++u) {
+      const Eigen::Vector2d q = IdealAt(ideal, u, v);
+      if (!q.allFinite()) continue;
+      const Eigen::Vector2d rel = q - midpoint;
+      const double t = rel.dot(direction);
+      if (std::abs(rel.dot(n) - offset) > half_width || t < t_min || t > t_max) continue;
+      band.push_back({rel, t / half_length, static_cast<double>(row[u])});
+    }
+  }
+  return band;
+}
+
+// The image of a straight edge between black and white, blurred by a
+// Gaussian of σ = s, under lighting that varies linearly across it (c) and
+// along it (a1, b1):
+//
+//   I = G_s ⊗ [(1 + c x) (A + B H(x))] (d)
+//     = A + B Φ(z) + c (d (A + B Φ(z)) + s B φ(z)),   z = d / s,
+//
+// with d = n(θ)·q − ρ the distance to the edge, A = a + a1 t, B = b + b1 t,
+// H the unit step, and the identity G ⊗ (x f) = d (G ⊗ f) + s² (G ⊗ f)'. The
+// last term matters: a brightness gradient across a blurred edge moves its
+// half-way point by c s², the same way on every edge of an image; fitted
+// without it, every tag shifts a little towards the light and the pose with it.
+// Parameters x = (θ, ρ, a, b, s, a1, b1, c).
+class EdgeModel {
+ public:
+  explicit EdgeModel(const EdgeParams& x)
+      : x_(x), n_(std::cos(x[kAngle]), std::sin(x[kAngle])), n_dot_(-n_.y(), n_.x()) {}
+
+  double Value(const BandPixel& px) const {
+    const double d = n_.dot(px.q) - x_[kOffset], s = x_[kBlur], z = d / s;
+    const double a = x_[kBlack] + x_[kBlackSlope] * px.t, b = x_[kContrast] + x_[kContrastSlope] * px.t;
+    const double u = a + b * NormalCdf(z);
+    return u + x_[kShading] * (d * u + s * b * NormalPdf(z));
+  }
+
+  double ValueAndRow(const BandPixel& px, EdgeParams* row) const {
+    const double d = n_.dot(px.q) - x_[kOffset], s = x_[kBlur], z = d / s, c = x_[kShading];
+    const double a = x_[kBlack] + x_[kBlackSlope] * px.t, b = x_[kContrast] + x_[kContrastSlope] * px.t;
+    const double cdf = NormalCdf(z), pdf = NormalPdf(z);
+    const double u = a + b * cdf;
+    const double d_a = 1 + c * d;                       // dI/dA
+    const double d_b = cdf + c * (d * cdf + s * pdf);   // dI/dB
+    const double d_d = b * pdf / s + c * u;             // dI/dd
+    const double d_s = -b * z * pdf / s + c * b * pdf;  // dI/ds
+    *row << d_d * n_dot_.dot(px.q), -d_d, d_a, d_b, d_s, d_a * px.t, d_b * px.t, d * u + s * b * pdf;
+    return u + c * (d * u + s * b * pdf);
+  }
+
+ private:
+  EdgeParams x_;
+  Eigen::Vector2d n_, n_dot_;
+};
+
+double Cost(const std::vector<BandPixel>& band, const EdgeParams& x) {
+  const EdgeModel model(x);
+  double cost = 0;
+  for (const BandPixel& px : band) {
+    const double r = model.Value(px) - px.value;
+    cost += r * r;
+  }
+  return cost;
+}
+
+// JᵀJ and Jᵀr of the band at x.
+void NormalEquations(const std::vector<BandPixel>& band, const EdgeParams& x, EdgeMatrix* jtj, EdgeParams* jtr) {
+  const EdgeModel model(x);
+  jtj->setZero();
+  jtr->setZero();
+  EdgeParams row;
+  for (const BandPixel& px : band) {
+    const double r = model.ValueAndRow(px, &row) - px.value;
+    jtj->noalias() += row * row.transpose();
+    *jtr += row * r;
+  }
+}
+
+// JᵀJ and Jᵀr with the shading c held fixed (its row and column made trivial).
+void NormalEquationsFixedShading(const std::vector<BandPixel>& band, const EdgeParams& x, EdgeMatrix* jtj,
+                                 EdgeParams* jtr) {
+  NormalEquations(band, x, jtj, jtr);
+  jtj->row(kShading).setZero();
+  jtj->col(kShading).setZero();
+  (*jtj)(kShading, kShading) = 1;
+  (*jtr)[kShading] = 0;
+}
+
+// Levenberg–Marquardt from x over every parameter but the shading c, which
+// the tag as a whole determines (RefineTagCorners); false when the fit is not
+// a clean edge.
+bool FitEdge(const std::vector<BandPixel>& band, double half_width, EdgeParams& x, EdgeFit* fit) {
+  if (band.size() < 16) return false;
+  const double initial_angle = x[kAngle];
+  double cost = Cost(band, x), lambda = 1e-3;
+  EdgeMatrix jtj;
+  EdgeParams jtr;
+  for (int iteration = 0; iteration < 40; ++iteration) {
+    NormalEquationsFixedShading(band, x, &jtj, &jtr);
+    bool improved = false;
+    EdgeParams step = EdgeParams::Zero();
+    while (lambda < 1e8) {
+      EdgeMatrix damped = jtj;
+      damped.diagonal() *= 1 + lambda;
+      step = -damped.ldlt().solve(jtr);
+      EdgeParams next = x + step;
+      next[kBlur] = std::max(next[kBlur], 0.05);
+      const double next_cost = Cost(band, next);
+      if (next_cost < cost) {
+        x = next;
+        cost = next_cost;
+        lambda = std::max(1e-7, lambda * 0.2);
+        improved = true;
+        break;
+      }
+      lambda *= 10;
+    }
+    // 1e-4 px and 1e-6 rad: far below the noise of any edge (~1e-3 px).
+    if (!improved || (std::abs(step[kOffset]) < 1e-4 && std::abs(step[kAngle]) < 1e-6)) break;
+  }
+  // Covariance at the minimum: σ² (JᵀJ)⁻¹, the marginal block of (θ, ρ).
+  NormalEquationsFixedShading(band, x, &jtj, &jtr);
+  const double variance = cost / static_cast<double>(band.size() - (x.size() - 1));
+  const EdgeMatrix covariance = variance * jtj.inverse();
+
+  fit->angle = x[kAngle];
+  fit->offset = x[kOffset];
+  fit->covariance = covariance.topLeftCorner<2, 2>();
+  fit->black = x[kBlack];
+  fit->contrast = x[kContrast];
+  fit->blur = x[kBlur];
+  fit->rms = std::sqrt(cost / band.size());
+  fit->pixels = static_cast<int>(band.size());
+  return x[kContrast] > kMinContrast && x[kBlur] > 0.1 && x[kBlur] < half_width &&
+         std::cos(x[kAngle] - initial_angle) > std::cos(DegToRad(10)) && fit->covariance.allFinite();
+}
+
+// One edge's fit and the pixels it used.
+struct EdgeState {
+  EdgeParams x = EdgeParams::Zero();
+  std::vector<BandPixel> band;
+  double half_width = 0;
+  EdgeFit fit;
+};
+
+// Fits one edge: a first fit in a band around the approximate line, then a
+// second in a band centred on the first fit's line, so that the band is
+// symmetric about the edge whatever the approximate corners' error, and
+// narrowed to keep the blurred edges of the neighbouring cells (one `cell`
+// away) out: the transition of a blurred step spans about ±3 s.
+bool FitEdgeTwice(const cv::Mat& gray, const IdealPixelMap* ideal, const Eigen::Vector2d& raw_a,
+                  const Eigen::Vector2d& raw_b, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                  const Eigen::Vector2d& n0, double cell, EdgeState* edge) {
+  EdgeParams& x = edge->x;
+  edge->fit.midpoint = 0.5 * (a + b);
+  x[kAngle] = std::atan2(n0.y(), n0.x());
+  x[kBlur] = 0.8;
+  edge->half_width = std::min(kMaxHalfWidthPx, cell - 2.0);
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) edge->half_width = std::min(edge->half_width, cell - 3 * x[kBlur]);
+    if (edge->half_width < kMinHalfWidthPx) return false;
+    const Eigen::Vector2d n(std::cos(x[kAngle]), std::sin(x[kAngle]));
+    edge->band = CollectBand(gray, ideal, raw_a, raw_b, a, b, edge->fit.midpoint, n, x[kOffset], edge->half_width);
+    if (pass == 0) {  // start from the mean grey on either side
+      double dark = 0, bright = 0;
+      int dark_count = 0, bright_count = 0;
+      for (const BandPixel& p : edge->band) {
+        const double d = p.q.dot(n);
+        if (d < -0.5 * edge->half_width) dark += p.value, ++dark_count;
+        if (d > 0.5 * edge->half_width) bright += p.value, ++bright_count;
+      }
+      if (dark_count == 0 || bright_count == 0) return false;
+      x[kBlack] = dark / dark_count;
+      x[kContrast] = bright / bright_count - x[kBlack];
+    }
+    if (!FitEdge(edge->band, edge->half_width, x, &edge->fit)) return false;
+    if (std::abs(x[kOffset]) > edge->half_width) return false;
+  }
+  return true;
+}
+
+// The relative brightness gradient over the tag (per ideal pixel), from the
+// contrast of its four edges: ln b_k = β + g · (m_k − centre) by least squares.
+Eigen::Vector2d LightingGradient(const std::array<EdgeState, 4>& edges, const Eigen::Vector2d& centre) {
+  Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d aty = Eigen::Vector3d::Zero();
+  for (const EdgeState& edge : edges) {
+    const Eigen::Vector3d row(1, edge.fit.midpoint.x() - centre.x(), edge.fit.midpoint.y() - centre.y());
+    ata += row * row.transpose();
+    aty += row * std::log(edge.x[kContrast]);
+  }
+  const Eigen::Vector3d solution = ata.ldlt().solve(aty);
+  return solution.allFinite() ? Eigen::Vector2d(solution[1], solution[2]) : Eigen::Vector2d::Zero();
+}
+
+// Corner k where edge k-1 (into it) meets edge k (out of it), in the distorted
+// image; `lines` holds (angle, offset) of the four edges.
+std::optional<std::array<Eigen::Vector2d, 4>> Intersections(const std::array<EdgeFit, 4>& edges,
+                                                            const Eigen::Matrix<double, 8, 1>& lines,
+                                                            const IdealPixelMap* ideal) {
+  std::array<Eigen::Vector2d, 4> corners;
+  for (int k = 0; k < 4; ++k) {
+    const int in = (k + 3) % 4, out = k;
+    Eigen::Matrix2d normals;
+    Eigen::Vector2d offsets;
+    for (int row = 0; row < 2; ++row) {
+      const int e = row == 0 ? in : out;
+      const Eigen::Vector2d n(std::cos(lines[2 * e]), std::sin(lines[2 * e]));
+      normals.row(row) = n.transpose();
+      offsets[row] = lines[2 * e + 1] + n.dot(edges[static_cast<size_t>(e)].midpoint);
+    }
+    if (std::abs(normals.determinant()) < std::sin(DegToRad(10))) return std::nullopt;
+    const Eigen::Vector2d q = normals.inverse() * offsets;
+    corners[static_cast<size_t>(k)] = ideal ? ideal->camera().DistortedPixel(q) : q;
+  }
+  return corners;
+}
+
+}  // namespace
+
+std::optional<RefinedTag> RefineTagCorners(const cv::Mat& gray, const IdealPixelMap* ideal, int width_at_border,
+                                           const std::array<Eigen::Vector2d, 4>& corners) {
+  CV_Assert(gray.type() == CV_8UC1);
+  std::array<Eigen::Vector2d, 4> ideal_corners;
+  for (size_t k = 0; k < 4; ++k) {
+    if (!ideal) {
+      ideal_corners[k] = corners[k];
+      continue;
+    }
+    const std::optional<Eigen::Vector2d> q = ideal->camera().IdealPixel(corners[k]);
+    if (!q) return std::nullopt;
+    ideal_corners[k] = *q;
+  }
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  double perimeter = 0;
+  for (size_t k = 0; k < 4; ++k) {
+    centre += 0.25 * ideal_corners[k];
+    perimeter += (ideal_corners[(k + 1) % 4] - ideal_corners[k]).norm();
+  }
+  // Inside, the black border is one cell wide and a white data bit may follow it.
+  const double cell = perimeter / 4 / width_at_border;
+  if (cell < kMinCellPx) return std::nullopt;
+
+  std::array<EdgeState, 4> edges;
+  for (size_t k = 0; k < 4; ++k) {
+    const size_t next = (k + 1) % 4;
+    const Eigen::Vector2d along = ideal_corners[next] - ideal_corners[k];
+    Eigen::Vector2d n(-along.y(), along.x());
+    n.normalize();
+    if (n.dot(0.5 * (ideal_corners[k] + ideal_corners[next]) - centre) < 0) n = -n;  // outward
+    if (!FitEdgeTwice(gray, ideal, corners[k], corners[next], ideal_corners[k], ideal_corners[next], n, cell,
+                      &edges[k])) {
+      return std::nullopt;
+    }
+  }
+  // The lighting across each edge, from the tag's four contrasts, and a last
+  // fit of each edge with it (EdgeModel: it moves an edge by c s²).
+  const Eigen::Vector2d gradient = LightingGradient(edges, centre);
+  RefinedTag tag;
+  Eigen::Matrix<double, 8, 1> lines;
+  for (size_t k = 0; k < 4; ++k) {
+    EdgeState& edge = edges[k];
+    edge.x[kShading] = gradient.dot(Eigen::Vector2d(std::cos(edge.x[kAngle]), std::sin(edge.x[kAngle])));
+    if (!FitEdge(edge.band, edge.half_width, edge.x, &edge.fit)) return std::nullopt;
+    tag.edges[k] = edge.fit;
+    lines.segment<2>(static_cast<Eigen::Index>(2 * k)) << edge.fit.angle, edge.fit.offset;
+  }
+  const std::optional<std::array<Eigen::Vector2d, 4>> refined = Intersections(tag.edges, lines, ideal);
+  if (!refined) return std::nullopt;
+  for (size_t k = 0; k < 4; ++k) {
+    if (((*refined)[k] - corners[k]).norm() > kMaxCornerShiftPx) return std::nullopt;
+  }
+  tag.corners = *refined;
+  // Covariance: J diag(Σ_edge) Jᵀ, J = d corners / d lines by central differences.
+  Eigen::Matrix<double, 8, 8> jacobian, line_covariance = Eigen::Matrix<double, 8, 8>::Zero();
+  for (int p = 0; p < 8; ++p) {
+    const double h = p % 2 == 0 ? 1e-6 : 1e-4;  // radians, pixels
+    Eigen::Matrix<double, 8, 1> plus = lines, minus = lines;
+    plus[p] += h;
+    minus[p] -= h;
+    const std::optional<std::array<Eigen::Vector2d, 4>> a = Intersections(tag.edges, plus, ideal);
+    const std::optional<std::array<Eigen::Vector2d, 4>> b = Intersections(tag.edges, minus, ideal);
+    if (!a || !b) return std::nullopt;
+    for (int k = 0; k < 4; ++k)
+      jacobian.block<2, 1>(2 * k, p) = ((*a)[static_cast<size_t>(k)] - (*b)[static_cast<size_t>(k)]) / (2 * h);
+  }
+  for (int k = 0; k < 4; ++k) line_covariance.block<2, 2>(2 * k, 2 * k) = tag.edges[static_cast<size_t>(k)].covariance;
+  tag.covariance = jacobian * line_covariance * jacobian.transpose();
+  return tag;
+}
+
+}  // namespace hexcal

@@ -1,0 +1,318 @@
+#include "vision/intrinsics.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <locale>
+#include <memory>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+
+#include "vision/parallel.h"
+
+namespace hexcal {
+namespace {
+
+using ImageLoader = std::function<StatusOr<cv::Mat>(int index)>;
+
+std::string Format(double value, int precision = 3) {
+  std::ostringstream out;
+  out.imbue(std::locale::classic());
+  out.precision(precision);
+  out << value;
+  return out.str();
+}
+
+struct Detected {
+  bool loaded = false;
+  std::string error;
+  cv::Size size;
+  BoardObservation observation;
+};
+
+// Detects every image (threads workers, one detector each); false if cancelled.
+StatusOr<std::vector<Detected>> DetectAll(int count, const ImageLoader& load, const Target& target,
+                                          const IntrinsicsOptions& options, std::shared_ptr<const IdealPixelMap> ideal,
+                                          const std::vector<bool>& wanted, const ProgressCallback& progress,
+                                          const std::atomic<bool>* cancel) {
+  const int workers = std::max(1, std::min(options.threads, count));
+  DetectorOptions detector_options = options.detector;
+  detector_options.threads = 1;  // the workers already use the cores
+  std::vector<std::unique_ptr<TagDetector>> detectors;
+  for (int w = 0; w < workers; ++w) {
+    StatusOr<std::unique_ptr<TagDetector>> detector = TagDetector::Create(detector_options, ideal);
+    if (!detector.ok()) return detector.status();
+    detectors.push_back(std::move(*detector));
+  }
+  std::vector<Detected> detected(static_cast<size_t>(count));
+  const bool finished = ParallelFor(
+      count, workers,
+      [&](int index, int worker) {
+        Detected& d = detected[static_cast<size_t>(index)];
+        if (!wanted.empty() && !wanted[static_cast<size_t>(index)]) return;
+        StatusOr<cv::Mat> image = load(index);
+        if (!image.ok()) {
+          d.error = image.status().message();
+          return;
+        }
+        d.loaded = true;
+        d.size = image->size();
+        d.observation = MatchToTarget(target, detectors[static_cast<size_t>(worker)]->Detect(*image));
+      },
+      progress, cancel);
+  if (!finished) return Status::Cancelled("intrinsics: cancelled during detection");
+  return detected;
+}
+
+struct Calibration {
+  Camera camera;
+  std::array<double, 9> std_dev = {};
+  double rms = 0;
+  std::vector<double> view_rms;  // per used view, in order
+};
+
+StatusOr<Calibration> Calibrate(const std::vector<const BoardObservation*>& views, cv::Size size) {
+  std::vector<std::vector<cv::Point3f>> object(views.size());
+  std::vector<std::vector<cv::Point2f>> image(views.size());
+  for (size_t v = 0; v < views.size(); ++v) {
+    for (size_t i = 0; i < views[v]->image_points.size(); ++i) {
+      const Eigen::Vector3d& p = views[v]->target_points[i];
+      object[v].emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()));
+      image[v].emplace_back(static_cast<float>(views[v]->image_points[i].x()),
+                            static_cast<float>(views[v]->image_points[i].y()));
+    }
+  }
+  cv::Mat k, d, std_intrinsics, std_extrinsics, per_view;
+  std::vector<cv::Mat> rvecs, tvecs;
+  Calibration result;
+  try {
+    result.rms = cv::calibrateCamera(object, image, size, k, d, rvecs, tvecs, std_intrinsics, std_extrinsics, per_view,
+                                     0, cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 200, 1e-12));
+  } catch (const cv::Exception& e) {
+    return Status::Error(std::string("calibration failed: ") + e.msg);
+  }
+  result.camera.width = size.width;
+  result.camera.height = size.height;
+  result.camera.fx = k.at<double>(0, 0);
+  result.camera.fy = k.at<double>(1, 1);
+  result.camera.cx = k.at<double>(0, 2);
+  result.camera.cy = k.at<double>(1, 2);
+  for (int i = 0; i < 5; ++i) result.camera.distortion[static_cast<size_t>(i)] = d.at<double>(i);
+  for (int i = 0; i < 9; ++i) result.std_dev[static_cast<size_t>(i)] = std_intrinsics.at<double>(i);
+  for (int v = 0; v < per_view.rows; ++v) result.view_rms.push_back(per_view.at<double>(v));
+  if (Status s = result.camera.Validate(); !s.ok())
+    return Status::Error("calibration gave an invalid camera: " + s.message());
+  return result;
+}
+
+// Calibrates the views marked used, dropping outliers one at a time.
+StatusOr<Calibration> CalibrateWithOutliers(std::vector<CalibrationView>& views, const std::vector<Detected>& detected,
+                                            cv::Size size, const IntrinsicsOptions& options) {
+  while (true) {
+    std::vector<const BoardObservation*> used;
+    std::vector<size_t> index;
+    for (size_t i = 0; i < views.size(); ++i) {
+      if (!views[i].used) continue;
+      used.push_back(&detected[i].observation);
+      index.push_back(i);
+    }
+    StatusOr<Calibration> calibration = Calibrate(used, size);
+    if (!calibration.ok()) return calibration;
+    std::vector<double> sorted = calibration->view_rms;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    const double limit = std::max(options.outlier_factor * median, options.outlier_min_rms_px);
+    const auto worst = std::max_element(calibration->view_rms.begin(), calibration->view_rms.end());
+    for (size_t u = 0; u < index.size(); ++u) views[index[u]].rms_px = calibration->view_rms[u];
+    if (*worst <= limit || static_cast<int>(used.size()) <= options.min_views) return calibration;
+    CalibrationView& outlier = views[index[static_cast<size_t>(worst - calibration->view_rms.begin())]];
+    outlier.used = false;
+    outlier.reason = "outlier: RMS " + Format(*worst) + " px > " + Format(limit) + " px";
+  }
+}
+
+StatusOr<IntrinsicsResult> Run(int count, const std::vector<std::string>& names, const ImageLoader& load,
+                               const Target& target, const IntrinsicsOptions& options, const ProgressCallback& progress,
+                               const std::atomic<bool>* cancel) {
+  std::string error;
+  if (!options.IsValid(&error)) return Status::Error("intrinsics options: " + error);
+  if (count == 0) return Status::Error("no images");
+  const int passes = 1 + options.refinement_passes;
+  auto stage_progress = [&](int pass) -> ProgressCallback {
+    if (!progress) return nullptr;
+    return [&progress, pass, count, passes](int done, int) { progress(pass * count + done, passes * count); };
+  };
+  StatusOr<std::vector<Detected>> detected =
+      DetectAll(count, load, target, options, nullptr, {}, stage_progress(0), cancel);
+  if (!detected.ok()) return detected.status();
+
+  IntrinsicsResult result;
+  cv::Size size;
+  std::string size_source;
+  for (int i = 0; i < count; ++i) {
+    const Detected& d = (*detected)[static_cast<size_t>(i)];
+    CalibrationView view;
+    view.file = names[static_cast<size_t>(i)];
+    if (!d.loaded) {
+      view.reason = d.error;
+    } else if (size.empty()) {
+      size = d.size;
+      size_source = view.file;
+    } else if (d.size != size) {
+      return Status::Error("images have different sizes: " + size_source + " is " + std::to_string(size.width) + " x " +
+                           std::to_string(size.height) + ", " + view.file + " is " + std::to_string(d.size.width) +
+                           " x " + std::to_string(d.size.height));
+    }
+    view.tags = d.observation.NumTags();
+    view.used = d.loaded && view.tags >= options.min_tags_per_view;
+    if (d.loaded && !view.used) {
+      view.reason =
+          std::to_string(view.tags) + " target tags, " + std::to_string(options.min_tags_per_view) + " needed";
+    }
+    result.views.push_back(view);
+  }
+  const int usable = static_cast<int>(
+      std::count_if(result.views.begin(), result.views.end(), [](const CalibrationView& v) { return v.used; }));
+  if (usable < options.min_views) {
+    return Status::Error("too few usable views: " + std::to_string(usable) + " of " + std::to_string(count) +
+                         " images show at least " + std::to_string(options.min_tags_per_view) +
+                         " target tags; at least " + std::to_string(options.min_views) + " are needed");
+  }
+  StatusOr<Calibration> calibration = CalibrateWithOutliers(result.views, *detected, size, options);
+  if (!calibration.ok()) return calibration.status();
+  for (int pass = 1; pass <= options.refinement_passes; ++pass) {
+    // Straight edges are straight in the undistorted image only: detect again
+    // with the distortion just estimated, and calibrate again.
+    std::vector<bool> wanted;
+    for (const CalibrationView& view : result.views)
+      wanted.push_back(view.used || view.tags >= options.min_tags_per_view);
+    auto ideal = std::make_shared<const IdealPixelMap>(calibration->camera);
+    detected = DetectAll(count, load, target, options, ideal, wanted, stage_progress(pass), cancel);
+    if (!detected.ok()) return detected.status();
+    for (size_t i = 0; i < result.views.size(); ++i) {
+      CalibrationView& view = result.views[i];
+      if (!wanted[i]) continue;
+      view.tags = (*detected)[i].observation.NumTags();
+      view.used = view.tags >= options.min_tags_per_view;
+      view.reason = view.used ? "" : std::to_string(view.tags) + " target tags after re-detection";
+    }
+    calibration = CalibrateWithOutliers(result.views, *detected, size, options);
+    if (!calibration.ok()) return calibration.status();
+  }
+  result.camera = calibration->camera;
+  result.std_dev = calibration->std_dev;
+  result.rms_px = calibration->rms;
+  for (size_t i = 0; i < result.views.size(); ++i) {
+    CalibrationView& view = result.views[i];
+    if (!view.used) view.rms_px = 0;
+    result.used_views += view.used;
+    view.corners = (*detected)[i].observation.image_points;
+  }
+  return result;
+}
+
+}  // namespace
+
+bool IntrinsicsOptions::IsValid(std::string* error) const {
+  auto fail = [&](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (!detector.IsValid(error)) return false;
+  if (threads < 1 || threads > 64) return fail("threads: must be in 1..64");
+  if (min_tags_per_view < 1) return fail("min_tags_per_view: must be at least 1");
+  if (min_views < 3) return fail("min_views: must be at least 3");
+  if (!(outlier_factor > 1)) return fail("outlier_factor: must be greater than 1");
+  if (!(outlier_min_rms_px >= 0)) return fail("outlier_min_rms_px: must be >= 0");
+  if (refinement_passes < 0 || refinement_passes > 5) return fail("refinement_passes: must be in 0..5");
+  return true;
+}
+
+StatusOr<IntrinsicsResult> CalibrateIntrinsics(const std::vector<std::string>& files, const Target& target,
+                                               const IntrinsicsOptions& options, const ProgressCallback& progress,
+                                               const std::atomic<bool>* cancel) {
+  return Run(
+      static_cast<int>(files.size()), files,
+      [&files](int index) { return LoadGrayImage(files[static_cast<size_t>(index)]); }, target, options, progress,
+      cancel);
+}
+
+StatusOr<IntrinsicsResult> CalibrateIntrinsicsFromImages(const std::vector<cv::Mat>& images,
+                                                         const std::vector<std::string>& names, const Target& target,
+                                                         const IntrinsicsOptions& options,
+                                                         const ProgressCallback& progress,
+                                                         const std::atomic<bool>* cancel) {
+  return Run(
+      static_cast<int>(images.size()), names,
+      [&images](int index) -> StatusOr<cv::Mat> { return images[static_cast<size_t>(index)]; }, target, options,
+      progress, cancel);
+}
+
+CameraFileExtras ExtrasOf(const IntrinsicsResult& result) {
+  CameraFileExtras extras;
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  char stamp[32];
+  std::strftime(stamp, sizeof(stamp), "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&now));
+  extras.calibration_time = stamp;
+  extras.views = result.used_views;
+  extras.rms_px = result.rms_px;
+  extras.std_dev.assign(result.std_dev.begin(), result.std_dev.end());
+  for (const CalibrationView& view : result.views) {
+    if (view.used) extras.per_view_rms_px.push_back(view.rms_px);
+  }
+  extras.comment = "hexcal intrinsics: " + std::to_string(result.used_views) + " of " +
+                   std::to_string(result.views.size()) + " images used, RMS " + Format(result.rms_px) + " px";
+  return extras;
+}
+
+double CoverageFraction(const IntrinsicsResult& result) {
+  constexpr int kCols = 8, kRows = 6;
+  bool seen[kRows][kCols] = {};
+  for (const CalibrationView& view : result.views) {
+    if (!view.used) continue;
+    for (const Eigen::Vector2d& p : view.corners) {
+      const int c = std::clamp(static_cast<int>(p.x() * kCols / result.camera.width), 0, kCols - 1);
+      const int r = std::clamp(static_cast<int>(p.y() * kRows / result.camera.height), 0, kRows - 1);
+      seen[r][c] = true;
+    }
+  }
+  int count = 0;
+  for (const auto& row : seen) count += static_cast<int>(std::count(std::begin(row), std::end(row), true));
+  return static_cast<double>(count) / (kCols * kRows);
+}
+
+cv::Mat CoverageImage(const IntrinsicsResult& result) {
+  const int width = result.camera.width, height = result.camera.height;
+  cv::Mat image(height, width, CV_8UC3, cv::Scalar(32, 32, 32));
+  for (int c = 1; c < 8; ++c) {
+    cv::line(image, {c * width / 8, 0}, {c * width / 8, height - 1}, cv::Scalar(70, 70, 70), 1);
+  }
+  for (int r = 1; r < 6; ++r) {
+    cv::line(image, {0, r * height / 6}, {width - 1, r * height / 6}, cv::Scalar(70, 70, 70), 1);
+  }
+  const int radius = std::max(2, width / 400);
+  int used_index = 0;
+  for (const CalibrationView& view : result.views) {
+    cv::Scalar colour(110, 110, 110);
+    if (view.used) {
+      cv::Mat hsv(1, 1, CV_8UC3, cv::Scalar((used_index++ * 37) % 180, 220, 255)), bgr;
+      cv::cvtColor(hsv, bgr, cv::COLOR_HSV2BGR);
+      const cv::Vec3b c = bgr.at<cv::Vec3b>(0, 0);
+      colour = cv::Scalar(c[0], c[1], c[2]);
+    }
+    for (const Eigen::Vector2d& p : view.corners) {
+      cv::circle(image, cv::Point(cvRound(p.x() * 16), cvRound(p.y() * 16)), radius * 16, colour, cv::FILLED,
+                 cv::LINE_AA, 4);
+    }
+  }
+  const std::string text = "corner coverage " + Format(100 * CoverageFraction(result), 3) + " % of 8 x 6 cells, " +
+                           std::to_string(result.used_views) + " views, RMS " + Format(result.rms_px) + " px";
+  const double scale = std::max(0.4, width / 1600.0);
+  cv::putText(image, text, {10, height - 12}, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(255, 255, 255), 1,
+              cv::LINE_AA);
+  return image;
+}
+
+}  // namespace hexcal

@@ -1,0 +1,86 @@
+// Camera intrinsics from images of the target (cv::calibrateCamera).
+//
+// 1. Detection on every image (both cores); a view is usable with at least
+//    min_tags_per_view target tags. All images must have one size.
+// 2. Calibration of fx, fy, cx, cy, k1, k2, p1, p2, k3, with the standard
+//    deviation of each from calibrateCamera (σ² (JᵀJ)⁻¹ at the optimum).
+// 3. Outlier views: while the worst view's RMS exceeds
+//    max(outlier_factor × median view RMS, outlier_min_rms_px), it is dropped
+//    and the calibration repeated (never below min_views).
+// 4. With the distortion now known, every usable image is detected again with
+//    the edge fit in the undistorted image (straight edges are straight only
+//    there) and the calibration repeated: `refinement_passes` times.
+//
+//   StatusOr<IntrinsicsResult> result = CalibrateIntrinsics(files, target, IntrinsicsOptions{});
+//   if (result.ok()) SaveCamera(result->camera, "camera.yaml", ExtrasOf(*result));
+#pragma once
+
+#include <Eigen/Core>
+#include <atomic>
+#include <functional>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "core/status.h"
+#include "vision/camera.h"
+#include "vision/detection.h"
+#include "vision/target.h"
+
+namespace hexcal {
+
+struct IntrinsicsOptions {
+  DetectorOptions detector;
+  int threads = 2;                  // images detected in parallel
+  int min_tags_per_view = 4;        // fewer: the view is not used
+  int min_views = 8;                // fewer usable views: error
+  double outlier_factor = 3.0;      // a view's RMS over this × the median RMS ...
+  double outlier_min_rms_px = 0.5;  // ... and over this is an outlier
+  int refinement_passes = 1;        // re-detections with the estimated distortion
+
+  bool IsValid(std::string* error) const;
+};
+
+struct CalibrationView {
+  std::string file;
+  int tags = 0;
+  bool used = false;
+  std::string reason;                    // why not used: "2 target tags", "outlier: RMS 1.9 px > 0.6 px"
+  double rms_px = 0;                     // reprojection RMS in the final calibration (used views)
+  std::vector<Eigen::Vector2d> corners;  // detected target corners (coverage)
+};
+
+struct IntrinsicsResult {
+  Camera camera;
+  // Standard deviations of fx, fy, cx, cy, k1, k2, p1, p2, k3.
+  std::array<double, 9> std_dev = {};
+  double rms_px = 0;  // over every corner of the used views
+  int used_views = 0;
+  std::vector<CalibrationView> views;  // in the order of the files
+};
+
+using ProgressCallback = std::function<void(int done, int total)>;
+
+StatusOr<IntrinsicsResult> CalibrateIntrinsics(const std::vector<std::string>& files, const Target& target,
+                                               const IntrinsicsOptions& options,
+                                               const ProgressCallback& progress = nullptr,
+                                               const std::atomic<bool>* cancel = nullptr);
+
+// The same from images already in memory (tests); `names` label them.
+StatusOr<IntrinsicsResult> CalibrateIntrinsicsFromImages(const std::vector<cv::Mat>& images,
+                                                         const std::vector<std::string>& names, const Target& target,
+                                                         const IntrinsicsOptions& options,
+                                                         const ProgressCallback& progress = nullptr,
+                                                         const std::atomic<bool>* cancel = nullptr);
+
+// What to write beside the camera in its file.
+CameraFileExtras ExtrasOf(const IntrinsicsResult& result);
+
+// A picture of where the corners of the used views fell (one colour per view),
+// the outliers in grey, on the image's frame with a 4 × 4 grid and the
+// fraction of grid cells that saw a corner. CV_8UC3, image size.
+cv::Mat CoverageImage(const IntrinsicsResult& result);
+// Fraction of the 8 × 6 image cells holding at least one used corner.
+double CoverageFraction(const IntrinsicsResult& result);
+
+}  // namespace hexcal

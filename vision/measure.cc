@@ -1,0 +1,135 @@
+#include "vision/measure.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include "core/csv.h"
+#include "vision/parallel.h"
+
+namespace hexcal {
+namespace {
+
+bool HasImageExtension(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension == ".png" || extension == ".jpg" || extension == ".jpeg" || extension == ".tif" ||
+         extension == ".tiff";
+}
+
+}  // namespace
+
+bool MeasureOptions::IsValid(std::string* error) const {
+  if (!detector.IsValid(error) || !pose.IsValid(error)) return false;
+  if (threads < 1 || threads > 64) {
+    if (error) *error = "threads: must be in 1..64";
+    return false;
+  }
+  return true;
+}
+
+StatusOr<std::vector<std::string>> ListImages(const std::string& folder_or_file) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::file_status status = fs::status(folder_or_file, error);
+  if (error || !fs::exists(status)) return Status::Error(folder_or_file + ": no such file or folder");
+  if (!fs::is_directory(status)) return std::vector<std::string>{folder_or_file};
+  std::vector<std::string> files;
+  for (fs::directory_iterator it(folder_or_file, error), end; !error && it != end; it.increment(error)) {
+    if (!it->is_directory(error) && HasImageExtension(it->path())) files.push_back(it->path().string());
+  }
+  if (error) return Status::Error(folder_or_file + ": cannot list the folder: " + error.message());
+  if (files.empty()) return Status::Error(folder_or_file + ": no PNG, JPEG or TIFF images in the folder");
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+ImageMeasurement MeasureImage(TagDetector& detector, const cv::Mat& gray, const Camera& camera, const Target& target,
+                              const BoardPoseOptions& options) {
+  ImageMeasurement measurement;
+  if (gray.cols != camera.width || gray.rows != camera.height) {
+    measurement.pose.status = PoseStatus::kWrongSize;
+    measurement.pose.message = "image is " + std::to_string(gray.cols) + " x " + std::to_string(gray.rows) +
+                               ", the camera " + std::to_string(camera.width) + " x " + std::to_string(camera.height);
+    return measurement;
+  }
+  const Detections detections = detector.Detect(gray);
+  const BoardObservation observation = MatchToTarget(target, detections);
+  measurement.pose = EstimateBoardPose(camera, observation, options);
+  measurement.rejected_tags = static_cast<int>(detections.rejected.size());
+  measurement.foreign_tags = observation.foreign_tags;
+  if (measurement.pose.status == PoseStatus::kNoTarget && !detections.tags.empty()) {
+    measurement.pose.message += " (" + std::to_string(observation.foreign_tags) + " tags of other targets)";
+  }
+  return measurement;
+}
+
+StatusOr<std::vector<ImageMeasurement>> MeasureImages(const std::vector<std::string>& files, const Camera& camera,
+                                                      const Target& target, const MeasureOptions& options,
+                                                      const std::function<void(int done, int total)>& progress,
+                                                      const std::atomic<bool>* cancel) {
+  std::string error;
+  if (!options.IsValid(&error)) return Status::Error("measure options: " + error);
+  const int count = static_cast<int>(files.size());
+  const int workers = std::max(1, std::min(options.threads, count));
+  auto ideal = std::make_shared<const IdealPixelMap>(camera);
+  DetectorOptions detector_options = options.detector;
+  detector_options.threads = 1;  // the workers already use the cores
+  std::vector<std::unique_ptr<TagDetector>> detectors;
+  for (int w = 0; w < workers; ++w) {
+    StatusOr<std::unique_ptr<TagDetector>> detector = TagDetector::Create(detector_options, ideal);
+    if (!detector.ok()) return detector.status();
+    detectors.push_back(std::move(*detector));
+  }
+  std::vector<ImageMeasurement> measurements(files.size());
+  const bool finished = ParallelFor(
+      count, workers,
+      [&](int index, int worker) {
+        const std::string& file = files[static_cast<size_t>(index)];
+        ImageMeasurement& measurement = measurements[static_cast<size_t>(index)];
+        StatusOr<cv::Mat> image = LoadGrayImage(file);
+        if (!image.ok()) {
+          measurement.pose.status = PoseStatus::kUnreadable;
+          measurement.pose.message = image.status().message();
+        } else {
+          measurement = MeasureImage(*detectors[static_cast<size_t>(worker)], *image, camera, target, options.pose);
+        }
+        measurement.file = file;
+      },
+      progress, cancel);
+  if (!finished) return Status::Cancelled("measure: cancelled");
+  return measurements;
+}
+
+std::vector<std::string> ImageMeasurementColumns() {
+  return {"file",    "x",        "y",        "z",        "q1",     "q2",   "q3",     "sigma_x", "sigma_y",
+          "sigma_z", "sigma_q1", "sigma_q2", "sigma_q3", "rms_px", "tags", "status", "message"};
+}
+
+std::vector<std::string> ImageMeasurementRow(const ImageMeasurement& measurement) {
+  std::vector<std::string> row = {measurement.file};
+  const BoardPose& pose = measurement.pose;
+  if (pose.has_pose) {
+    const Vector6d v = VectorFromPose(pose.camera_from_target, EulerConvention::kXYZ);
+    for (int k = 0; k < 6; ++k) row.push_back(FormatNumber(v[k]));
+    for (int k = 0; k < 6; ++k) row.push_back(FormatNumber(std::sqrt(std::max(0.0, pose.covariance_vector(k, k)))));
+    row.push_back(FormatNumber(pose.rms_px));
+  } else {
+    row.insert(row.end(), 13, "");
+  }
+  row.push_back(std::to_string(pose.num_tags));
+  row.push_back(PoseStatusName(pose.status));
+  row.push_back(pose.message);
+  return row;
+}
+
+Status WriteImageMeasurementsCsv(const std::string& path, const std::vector<ImageMeasurement>& measurements) {
+  std::vector<std::vector<std::string>> rows;
+  for (const ImageMeasurement& measurement : measurements) rows.push_back(ImageMeasurementRow(measurement));
+  return WriteCsv(path, ImageMeasurementColumns(), rows);
+}
+
+}  // namespace hexcal

@@ -1,0 +1,92 @@
+#include "vision/tag_family.h"
+
+#include <apriltag/apriltag.h>
+#include <apriltag/tag16h5.h>
+#include <apriltag/tag25h9.h>
+#include <apriltag/tag36h11.h>
+
+#include <cassert>
+#include <cstdlib>
+
+namespace hexcal {
+namespace {
+
+struct FamilyEntry {
+  const char* name;
+  apriltag_family_t* (*create)();
+  void (*destroy)(apriltag_family_t*);
+};
+
+constexpr FamilyEntry kFamilies[] = {
+    {"tag36h11", tag36h11_create, tag36h11_destroy},
+    {"tag25h9", tag25h9_create, tag25h9_destroy},
+    {"tag16h5", tag16h5_create, tag16h5_destroy},
+};
+
+const FamilyEntry* FindEntry(const std::string& name) {
+  for (const FamilyEntry& entry : kFamilies) {
+    if (name == entry.name) return &entry;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<std::string> SupportedTagFamilies() {
+  std::vector<std::string> names;
+  for (const FamilyEntry& entry : kFamilies) names.emplace_back(entry.name);
+  return names;
+}
+
+std::optional<TagFamilyInfo> FindTagFamily(const std::string& name) {
+  AprilTagFamilyPtr family = CreateAprilTagFamily(name);
+  if (!family) return std::nullopt;
+  TagFamilyInfo info;
+  info.name = name;
+  info.width_at_border = family->width_at_border;
+  info.total_width = family->total_width;
+  info.num_codes = static_cast<int>(family->ncodes);
+  info.min_hamming = static_cast<int>(family->h);
+  return info;
+}
+
+std::vector<TagCells> TagCellsOf(const std::string& family_name, int first_id, int count) {
+  AprilTagFamilyPtr family = CreateAprilTagFamily(family_name);
+  assert(family && first_id >= 0 && first_id + count <= static_cast<int>(family->ncodes));
+  std::vector<TagCells> tags;
+  tags.reserve(static_cast<size_t>(count));
+  for (int id = first_id; id < first_id + count; ++id) {
+    // apriltag_to_image draws the tag as the library decodes it: white = 255.
+    image_u8_t* image = apriltag_to_image(family.get(), id);
+    TagCells cells;
+    cells.id = id;
+    cells.total_width = image->width;
+    cells.black.resize(static_cast<size_t>(image->width * image->height));
+    for (int row = 0; row < image->height; ++row) {
+      for (int col = 0; col < image->width; ++col) {
+        cells.black[static_cast<size_t>(row * image->width + col)] = image->buf[row * image->stride + col] == 0;
+      }
+    }
+    // Debian's libapriltag 3.3 does not export image_u8_destroy (nor matd_*);
+    // the image and its buffer come from calloc, as that function assumes.
+    free(image->buf);
+    free(image);
+    tags.push_back(std::move(cells));
+  }
+  return tags;
+}
+
+void AprilTagFamilyDeleter::operator()(apriltag_family* family) const {
+  if (family == nullptr) return;
+  const FamilyEntry* entry = FindEntry(family->name);
+  assert(entry != nullptr);
+  entry->destroy(family);
+}
+
+AprilTagFamilyPtr CreateAprilTagFamily(const std::string& name) {
+  const FamilyEntry* entry = FindEntry(name);
+  if (entry == nullptr) return nullptr;
+  return AprilTagFamilyPtr(entry->create());
+}
+
+}  // namespace hexcal

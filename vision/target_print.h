@@ -1,0 +1,32 @@
+// Printable targets at exact scale, with a 100 mm scale bar and the target's
+// parameters printed under it, so a print can be checked with a ruler.
+//
+// PDF: one page of the smallest ISO A size (A4 .. A0, either orientation) that
+// holds the sheet plus 10 mm of printer margin; tags as filled rectangles
+// (one path per tag, so no hairline seams), text in Helvetica, and
+// /PrintScaling /None so that viewers print at 100 %.
+// PNG: 8-bit grey at `dpi`, edges anti-aliased by exact area coverage, with
+// the resolution recorded in a pHYs chunk so that image tools print it to scale.
+//
+//   Status written = WriteTargetPrint(target, "target.pdf", /*dpi=*/300);
+#pragma once
+
+#include <string>
+
+#include "core/status.h"
+#include "vision/target.h"
+
+namespace hexcal {
+
+// PDF file bytes.
+std::string TargetPdf(const Target& target);
+// PNG file bytes; error if dpi is outside [50, 1200] or the image would
+// exceed 30000 px on a side.
+StatusOr<std::string> TargetPng(const Target& target, double dpi);
+// By the extension of `path` (.pdf or .png, any case), written atomically.
+Status WriteTargetPrint(const Target& target, const std::string& path, double dpi);
+
+// Lines printed under the target (also in the PDF).
+std::vector<std::string> TargetPrintCaption(const Target& target);
+
+}  // namespace hexcal
