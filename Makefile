@@ -1,12 +1,13 @@
 # The two commands of the README, plus the pieces they are made of.
 #   make demo   install missing Debian packages, build, run the main job
 #   make test   same set-up, then the whole test suite through CTest
+#   make sanitize  the unit tests again under ASan + UBSan, in build-asan (docs/hardening.md)
 BUILD_DIR ?= build
 BUILD_TYPE ?= Release
 JOBS ?= 2
 HEXCAL = $(BUILD_DIR)/app/hexcal
 
-.PHONY: all deps configure build demo test bench clean
+.PHONY: all deps configure build demo test sanitize bench clean
 
 all: build
 
@@ -24,6 +25,18 @@ demo: build
 
 test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j$(JOBS)
+
+# Unit tests only (core/, vision/, app/ in CTest; the cli/ cases are left out to
+# keep CI short). Any sanitizer report fails the test.
+ASAN_BUILD_DIR ?= build-asan
+SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1 \
+	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
+	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+sanitize: deps
+	cmake -S . -B $(ASAN_BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHEXCAL_SANITIZE=ON \
+	  -DHEXCAL_BUILD_BENCHMARKS=OFF
+	cmake --build $(ASAN_BUILD_DIR) -j$(JOBS)
+	$(SANITIZER_ENV) ctest --test-dir $(ASAN_BUILD_DIR) -R '^(core|vision|app)/' --output-on-failure -j$(JOBS)
 
 bench: build
 	$(BUILD_DIR)/bench/hexcal_bench_kinematics

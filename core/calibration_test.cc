@@ -27,20 +27,8 @@ using ::hexcal::testing::TestRng;
 using ::hexcal::testing::Uniform;
 using ::testing::HasSubstr;
 
-Robot Perturbed(const Robot& nominal, double half_width) {
-  ParameterVector p = ParametersOf(nominal);
-  for (int k = 0; k < kNumParams; ++k) p[k] += Uniform(-half_width, half_width);
-  return WithParameters(nominal, p);
-}
-
-std::vector<Vector6d> RandomPoses(const Robot& robot, int count, uint64_t seed) {
-  CandidateOptions options;
-  options.count = count;
-  options.seed = seed;
-  StatusOr<CandidateSet> set = GenerateCandidates(robot, options);
-  EXPECT_TRUE(set.ok()) << set.status().message();
-  return set.ok() ? set->poses : std::vector<Vector6d>{};
-}
+using ::hexcal::testing::PerturbedRobot;
+using ::hexcal::testing::RandomFeasiblePoses;
 
 // Uniform noise of half-widths (position, angle in degrees, leg); zero gives exact data.
 std::vector<Measurement> Measure(const Robot& truth, const std::vector<Vector6d>& poses, double position = 0,
@@ -105,8 +93,8 @@ TEST(ImplicitLegCost, JacobianMatchesCentralDifferences) {
 
 TEST(Calibration, ExactDataFromAPerturbedRobotGiveTheTruthBack) {
   const Robot nominal = Preset("inria-left-hand");
-  const Robot truth = Perturbed(nominal, 0.5);
-  const std::vector<Measurement> measurements = Measure(truth, RandomPoses(nominal, 25, 11));
+  const Robot truth = PerturbedRobot(nominal, 0.5);
+  const std::vector<Measurement> measurements = Measure(truth, RandomFeasiblePoses(nominal, 25, 11));
   for (RobustLoss loss : {RobustLoss::kNone, RobustLoss::kHuber, RobustLoss::kCauchy}) {
     for (bool weighted : {false, true}) {
       CalibrationOptions options;
@@ -129,15 +117,15 @@ TEST(Calibration, ExactDataFromAPerturbedRobotGiveTheTruthBack) {
 TEST(Calibration, WorksForAMillimetreRobotWithZyxAngles) {
   Robot nominal = Preset("deltalab-table");
   nominal.euler = EulerConvention::kZYX;
-  const Robot truth = Perturbed(nominal, 2.0);
-  const CalibrationResult result = CalibrateOk(nominal, Measure(truth, RandomPoses(nominal, 20, 5)));
+  const Robot truth = PerturbedRobot(nominal, 2.0);
+  const CalibrationResult result = CalibrateOk(nominal, Measure(truth, RandomFeasiblePoses(nominal, 20, 5)));
   EXPECT_TRUE(MatrixNear(result.Estimates(), ParametersOf(truth), 1e-8));
 }
 
 TEST(Calibration, NoisyEstimatesFallWithinThreeReportedSigmas) {
   const Robot nominal = Preset("inria-left-hand");
-  const Robot truth = Perturbed(nominal, 0.5);
-  const std::vector<Vector6d> poses = RandomPoses(nominal, 30, 3);
+  const Robot truth = PerturbedRobot(nominal, 0.5);
+  const std::vector<Vector6d> poses = RandomFeasiblePoses(nominal, 30, 3);
   int inside = 0, total = 0;
   for (int run = 0; run < 20; ++run) {
     const CalibrationResult result = CalibrateOk(nominal, Measure(truth, poses, 0.001, 0.01, 0.001));
@@ -155,8 +143,8 @@ TEST(Calibration, NoisyEstimatesFallWithinThreeReportedSigmas) {
 // σ from ceres::Covariance against s² (JᵀJ)⁻¹ assembled here from eq. 5.
 TEST(Calibration, CovarianceIsTheScaledInverseInformation) {
   const Robot nominal = Preset("inria-left-hand");
-  const Robot truth = Perturbed(nominal, 0.5);
-  const std::vector<Measurement> measurements = Measure(truth, RandomPoses(nominal, 15, 8), 0.002, 0.02, 0.002);
+  const Robot truth = PerturbedRobot(nominal, 0.5);
+  const std::vector<Measurement> measurements = Measure(truth, RandomFeasiblePoses(nominal, 15, 8), 0.002, 0.02, 0.002);
   const CalibrationResult result = CalibrateOk(nominal, measurements);
   for (int i = 0; i < kNumLegs; ++i) {
     const LegCalibration& leg = result.legs[i];
@@ -180,12 +168,12 @@ TEST(Calibration, CovarianceIsTheScaledInverseInformation) {
 
 TEST(Calibration, WeightingByTheTrueNoiseModelGivesAVarianceFactorNearOne) {
   const Robot nominal = Preset("inria-left-hand");
-  const Robot truth = Perturbed(nominal, 0.5);
+  const Robot truth = PerturbedRobot(nominal, 0.5);
   CalibrationOptions options;
   options.weighted = true;
   options.noise = {0.002, 0.02, 0.002};
   const std::vector<Measurement> measurements =
-      Measure(truth, RandomPoses(nominal, 60, 4), options.noise.position, options.noise.angle_deg, options.noise.leg);
+      Measure(truth, RandomFeasiblePoses(nominal, 60, 4), options.noise.position, options.noise.angle_deg, options.noise.leg);
   const CalibrationResult result = CalibrateOk(nominal, measurements, options);
   double mean_factor = 0;
   for (const LegCalibration& leg : result.legs) mean_factor += leg.variance_factor / kNumLegs;
@@ -195,8 +183,8 @@ TEST(Calibration, WeightingByTheTrueNoiseModelGivesAVarianceFactorNearOne) {
 
 TEST(Calibration, RobustLossResistsAnOutlier) {
   const Robot nominal = Preset("inria-left-hand");
-  const Robot truth = Perturbed(nominal, 0.5);
-  std::vector<Measurement> measurements = Measure(truth, RandomPoses(nominal, 30, 9), 0.0005, 0.005, 0.0005);
+  const Robot truth = PerturbedRobot(nominal, 0.5);
+  std::vector<Measurement> measurements = Measure(truth, RandomFeasiblePoses(nominal, 30, 9), 0.0005, 0.005, 0.0005);
   measurements[4].legs[2] += 0.5;  // a misread sensor on leg 3
   const double plain_error =
       (CalibrateOk(nominal, measurements).legs[2].estimate - LegParametersOf(truth.legs[2])).cwiseAbs().maxCoeff();
@@ -213,7 +201,7 @@ TEST(Calibration, RobustLossResistsAnOutlier) {
 // Rotations about z only, up to a tiny tilt: moving a_z and b_z together barely changes any leg length.
 TEST(Calibration, ReportsTheDirectionThePosesCannotSee) {
   const Robot nominal = Preset("inria-left-hand");
-  const Robot truth = Perturbed(nominal, 0.5);
+  const Robot truth = PerturbedRobot(nominal, 0.5);
   std::vector<Vector6d> poses;
   for (int j = 0; j < 20; ++j) {
     Vector6d v;
@@ -240,22 +228,22 @@ TEST(Calibration, ReportsTheDirectionThePosesCannotSee) {
 
 TEST(Calibration, SevenMeasurementsFitExactlyWithoutUncertainty) {
   const Robot nominal = Preset("inria-left-hand");
-  const Robot truth = Perturbed(nominal, 0.5);
-  const CalibrationResult result = CalibrateOk(nominal, Measure(truth, RandomPoses(nominal, 7, 2)));
+  const Robot truth = PerturbedRobot(nominal, 0.5);
+  const CalibrationResult result = CalibrateOk(nominal, Measure(truth, RandomFeasiblePoses(nominal, 7, 2)));
   EXPECT_TRUE(MatrixNear(result.Estimates(), ParametersOf(truth), 1e-8));
   for (const LegCalibration& leg : result.legs) EXPECT_FALSE(leg.has_uncertainty);
 }
 
 TEST(Calibration, FewerThanSevenMeasurementsIsAnError) {
   const Robot nominal = Preset("inria-left-hand");
-  EXPECT_THAT(CalibrateError(nominal, Measure(nominal, RandomPoses(nominal, 6, 1))),
+  EXPECT_THAT(CalibrateError(nominal, Measure(nominal, RandomFeasiblePoses(nominal, 6, 1))),
               HasSubstr("at least 7 measurements (7 parameters per leg), got 6"));
 }
 
 TEST(Calibration, RepeatedOrTranslatedPosesAreDegenerate) {
   const Robot nominal = Preset("inria-left-hand");
-  const Robot truth = Perturbed(nominal, 0.5);
-  const std::vector<Vector6d> one_pose(7, RandomPoses(nominal, 1, 3)[0]);
+  const Robot truth = PerturbedRobot(nominal, 0.5);
+  const std::vector<Vector6d> one_pose(7, RandomFeasiblePoses(nominal, 1, 3)[0]);
   EXPECT_THAT(CalibrateError(nominal, Measure(truth, one_pose)), HasSubstr("degenerate pose set: leg 1"));
   EXPECT_THAT(CalibrateError(nominal, Measure(truth, one_pose)), HasSubstr("rank 1 of 7"));
   // One orientation: a and R b move together, 3 directions unseen.
@@ -270,7 +258,7 @@ TEST(Calibration, RepeatedOrTranslatedPosesAreDegenerate) {
 
 TEST(Calibration, NonFiniteInputAndBadOptionsAreErrors) {
   const Robot nominal = Preset("inria-left-hand");
-  std::vector<Measurement> measurements = Measure(nominal, RandomPoses(nominal, 8, 1));
+  std::vector<Measurement> measurements = Measure(nominal, RandomFeasiblePoses(nominal, 8, 1));
   measurements[3].legs[1] = std::nan("");
   EXPECT_THAT(CalibrateError(nominal, measurements), HasSubstr("measurement 4: pose or leg readings are not finite"));
   measurements[3].legs[1] = 1;
@@ -286,16 +274,16 @@ TEST(Calibration, NonFiniteInputAndBadOptionsAreErrors) {
 
 TEST(Calibration, AnUnfinishedSolveIsAnError) {
   const Robot nominal = Preset("inria-left-hand");
-  const Robot truth = Perturbed(nominal, 0.5);
+  const Robot truth = PerturbedRobot(nominal, 0.5);
   CalibrationOptions options;
   options.max_iterations = 1;
-  EXPECT_THAT(CalibrateError(nominal, Measure(truth, RandomPoses(nominal, 12, 4)), options),
+  EXPECT_THAT(CalibrateError(nominal, Measure(truth, RandomFeasiblePoses(nominal, 12, 4)), options),
               HasSubstr("did not converge (NO_CONVERGENCE after 1 iterations"));
 }
 
 TEST(Calibration, CancelledBeforeOrDuringTheSolveReturnsCancelled) {
   const Robot nominal = Preset("inria-left-hand");
-  const std::vector<Measurement> measurements = Measure(Perturbed(nominal, 0.5), RandomPoses(nominal, 12, 4));
+  const std::vector<Measurement> measurements = Measure(PerturbedRobot(nominal, 0.5), RandomFeasiblePoses(nominal, 12, 4));
   std::atomic<bool> cancel{true};
   StatusOr<CalibrationResult> result = Calibrate(nominal, measurements, {}, {}, &cancel);
   ASSERT_FALSE(result.ok());
@@ -322,7 +310,7 @@ TEST(Calibration, ProgressCountsTheLegs) {
   std::vector<int> seen;
   std::mutex mutex;
   StatusOr<CalibrationResult> result =
-      Calibrate(nominal, Measure(nominal, RandomPoses(nominal, 10, 4)), {}, [&](int done, int total) {
+      Calibrate(nominal, Measure(nominal, RandomFeasiblePoses(nominal, 10, 4)), {}, [&](int done, int total) {
         std::lock_guard<std::mutex> lock(mutex);
         seen.push_back(done);
         EXPECT_EQ(total, kNumLegs);

@@ -1,6 +1,7 @@
 // hexcal calibrate --robot R --measurements M.csv --out calibrated.yaml [--force]
 //   [--loss none|huber|cauchy] [--loss-scale s]
 //   [--weighted [--noise-position p] [--noise-angle a] [--noise-leg l]] [--json]
+// hexcal calibrate --session DIR [--json]   (app/commands/session_calibrate.h)
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -8,6 +9,7 @@
 
 #include "app/commands/cli_common.h"
 #include "app/commands/command_table.h"
+#include "app/commands/session_calibrate.h"
 #include "core/calibration.h"
 #include "core/calibration_file.h"
 #include "core/robot_io.h"
@@ -16,7 +18,7 @@ namespace hexcal::cli {
 namespace {
 
 struct CalibrateCliOptions {
-  std::string robot, measurements, out, loss = "none";
+  std::string robot, measurements, out, session, loss = "none";
   double loss_scale = 1.0;
   bool weighted = false, force = false, json = false;
   NoiseModel noise;
@@ -159,16 +161,26 @@ int RunCalibrate(const CalibrateCliOptions& cli, std::ostream& out, std::ostream
 void AddCalibrateCommand(CLI::App& app, int* exit_code) {
   auto options = std::make_shared<CalibrateCliOptions>();
   CLI::App* sub = app.add_subcommand("calibrate", "identify the 42 kinematic parameters from measurements");
-  sub->add_option("--robot", options->robot, "nominal robot file or preset name (the starting point)")->required();
-  sub->add_option("--measurements", options->measurements, "measurements CSV: x,y,z,q1,q2,q3,L1..L6")->required();
-  sub->add_option("--out", options->out, "calibrated robot file to write")->required();
+  CLI::Option* session =
+      sub->add_option("--session", options->session, "session folder: measure, register, calibrate, validate");
+  sub->add_option("--robot", options->robot, "nominal robot file or preset name (the starting point)")
+      ->excludes(session);
+  sub->add_option("--measurements", options->measurements, "measurements CSV: x,y,z,q1,q2,q3,L1..L6")
+      ->excludes(session);
+  sub->add_option("--out", options->out, "calibrated robot file to write")->excludes(session);
   sub->add_flag("--force", options->force, "overwrite --out if it exists");
-  sub->add_option("--loss", options->loss, "robust loss: none | huber | cauchy")->capture_default_str();
+  // A session calibrates weighted by the session's noise model (docs/session.md):
+  // these options belong to the --measurements mode only.
+  sub->add_option("--loss", options->loss, "robust loss: none | huber | cauchy")
+      ->capture_default_str()
+      ->excludes(session);
   sub->add_option("--loss-scale", options->loss_scale,
                   "where the loss starts: leg-length error (robot unit), or standard deviations with --weighted")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->excludes(session);
   CLI::Option* weighted = sub->add_flag("--weighted", options->weighted,
-                                        "weight each residual by its standard deviation under the noise model");
+                                        "weight each residual by its standard deviation under the noise model")
+                              ->excludes(session);
   sub->add_option("--noise-position", options->noise.position, "position noise half-width (robot unit)")
       ->capture_default_str()
       ->needs(weighted);
@@ -179,7 +191,16 @@ void AddCalibrateCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str()
       ->needs(weighted);
   sub->add_flag("--json", options->json, "print one JSON object on stdout");
-  sub->callback([=] { *exit_code = RunCalibrate(*options, std::cout, std::cerr); });
+  sub->callback([=] {
+    if (!options->session.empty()) {
+      *exit_code = RunSessionCalibrate(options->session, options->json, std::cout, std::cerr);
+    } else if (options->robot.empty() || options->measurements.empty() || options->out.empty()) {
+      *exit_code =
+          ReportError(std::cerr, "calibrate", Status::Error("give --robot, --measurements and --out, or --session"));
+    } else {
+      *exit_code = RunCalibrate(*options, std::cout, std::cerr);
+    }
+  });
 }
 
 }  // namespace hexcal::cli

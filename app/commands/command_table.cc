@@ -17,6 +17,8 @@ constexpr CommandEntry kCommands[] = {
     {"render", AddRenderCommand},
     {"intrinsics", AddIntrinsicsCommand},
     {"measure", AddMeasureCommand},
+    {"session", AddSessionCommand},
+    {"report", AddReportCommand},
 };
 }  // namespace
 

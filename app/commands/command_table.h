@@ -27,6 +27,8 @@ void AddDetectCommand(CLI::App& app, int* exit_code);
 void AddRenderCommand(CLI::App& app, int* exit_code);
 void AddIntrinsicsCommand(CLI::App& app, int* exit_code);
 void AddMeasureCommand(CLI::App& app, int* exit_code);
+void AddSessionCommand(CLI::App& app, int* exit_code);
+void AddReportCommand(CLI::App& app, int* exit_code);
 
 // Builds the whole `hexcal` application; `exit_code` receives the command's code.
 void AddAllCommands(CLI::App& app, int* exit_code);

@@ -1,0 +1,202 @@
+// Registration (A_j Y = X B_j) and calibration from camera poses against an
+// independent truth made here: a perturbed robot, a camera above the platform
+// and a target on it at known frames, camera poses computed from the true
+// robot's poses. Exact data must give the frames and the gauge-moved true
+// parameters back; noisy data must stay within the reported 3σ.
+#include "core/registration.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/candidates.h"
+#include "core/inverse_kinematics.h"
+#include "tests/robot_presets.h"
+#include "tests/test_support.h"
+
+namespace hexcal {
+namespace {
+
+using ::hexcal::testing::MatrixNear;
+using ::hexcal::testing::Preset;
+using ::hexcal::testing::Uniform;
+using ::testing::HasSubstr;
+
+using ::hexcal::testing::PerturbedRobot;
+using ::hexcal::testing::RandomFeasiblePoses;
+
+// A camera 120 units above the base looking down (x right, y down, z forward),
+// a little off-axis; a target 2 units above the platform origin, turned.
+Pose TrueBaseFromCamera() {
+  return PoseFromVector((Vector6d() << 4, -3, 120, 178, 3, 40).finished(), EulerConvention::kXYZ);
+}
+Pose TruePlatformFromTarget() {
+  return PoseFromVector((Vector6d() << 0.5, -1, 2, 2, -1, 25).finished(), EulerConvention::kXYZ);
+}
+
+// Uniform noise of half-width `position` (unit) and `angle_deg` on camera_from_target.
+Pose Noisy(const Pose& pose, double position, double angle_deg) {
+  Pose noisy = pose;
+  for (int k = 0; k < 3; ++k) noisy.position[k] += Uniform(-position, position);
+  const Eigen::Vector3d axis_angle(Uniform(-1, 1), Uniform(-1, 1), Uniform(-1, 1));
+  const Eigen::Vector3d rotation = axis_angle * DegToRad(angle_deg);
+  if (rotation.norm() > 0)
+    noisy.rotation = Eigen::AngleAxisd(rotation.norm(), rotation.normalized()).toRotationMatrix() * pose.rotation;
+  return noisy;
+}
+
+struct Scene {
+  std::vector<Pose> true_base_from_platform;
+  CameraCalibrationInput input;
+};
+
+Scene MakeScene(const Robot& truth, const Robot& nominal, const std::vector<Vector6d>& poses, double position = 0,
+                double angle_deg = 0, double leg = 0) {
+  Scene scene;
+  const Pose camera_from_base = Inverse(TrueBaseFromCamera());
+  for (const Vector6d& v : poses) {
+    const Pose base_from_platform = truth.PoseFromVector(v);
+    scene.true_base_from_platform.push_back(base_from_platform);
+    const Pose camera_from_target = Compose(Compose(camera_from_base, base_from_platform), TruePlatformFromTarget());
+    scene.input.camera_from_target.push_back(Noisy(camera_from_target, position, angle_deg));
+    LegReadings readings = InverseKinematics(truth, base_from_platform);
+    for (int i = 0; i < kNumLegs; ++i) readings[i] += Uniform(-leg, leg);
+    scene.input.legs.push_back(readings);
+    scene.input.fk_start.push_back(nominal.PoseFromVector(v));
+  }
+  return scene;
+}
+
+::testing::AssertionResult PoseNear(const Pose& a, const Pose& b, double position, double angle_deg) {
+  const double dp = (a.position - b.position).norm();
+  const double da = RadToDeg(RotationDistance(a.rotation, b.rotation));
+  if (dp <= position && da <= angle_deg) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "position differs by " << dp << ", rotation by " << da << " deg";
+}
+
+TEST(Rigid, ComposeAndInverse) {
+  const Pose x = TrueBaseFromCamera();
+  EXPECT_TRUE(PoseNear(Compose(x, Inverse(x)), Pose{}, 1e-12, 1e-10));
+  const Eigen::Vector3d p(1, 2, 3);
+  EXPECT_TRUE(MatrixNear(Compose(x, TruePlatformFromTarget()) * p, x * (TruePlatformFromTarget() * p), 1e-12));
+}
+
+TEST(Registration, ExactPosesGiveTheFramesBackLinearlyAndRefined) {
+  const Robot robot = Preset("inria-left-hand");
+  const Scene scene = MakeScene(robot, robot, RandomFeasiblePoses(robot, 12, 3));
+  for (bool refine : {false, true}) {
+    RegistrationOptions options;
+    options.refine = refine;
+    StatusOr<Registration> reg =
+        EstimateRegistration(scene.true_base_from_platform, scene.input.camera_from_target, options);
+    ASSERT_TRUE(reg.ok()) << reg.status().message();
+    EXPECT_TRUE(PoseNear(reg->base_from_camera, TrueBaseFromCamera(), 1e-8, 1e-8));
+    EXPECT_TRUE(PoseNear(reg->platform_from_target, TruePlatformFromTarget(), 1e-8, 1e-8));
+    EXPECT_LT(reg->position_max, 1e-8);
+    EXPECT_LT(reg->angle_max_deg, 1e-8);
+  }
+}
+
+TEST(Registration, RefinementImprovesOnTheLinearEstimateWithNoise) {
+  const Robot robot = Preset("inria-left-hand");
+  const Scene scene = MakeScene(robot, robot, RandomFeasiblePoses(robot, 40, 5), 0.01, 0.05);
+  RegistrationOptions linear_only;
+  linear_only.refine = false;
+  StatusOr<Registration> linear =
+      EstimateRegistration(scene.true_base_from_platform, scene.input.camera_from_target, linear_only);
+  RegistrationOptions refined_options;
+  refined_options.position_sigma = 0.01;
+  refined_options.angle_sigma_deg = 0.05;
+  StatusOr<Registration> refined =
+      EstimateRegistration(scene.true_base_from_platform, scene.input.camera_from_target, refined_options);
+  ASSERT_TRUE(linear.ok() && refined.ok());
+  EXPECT_GT(refined->iterations, 0);
+  EXPECT_LE(refined->position_rms, linear->position_rms + 1e-12);
+  EXPECT_TRUE(PoseNear(refined->base_from_camera, TrueBaseFromCamera(), 0.05, 0.05));
+  EXPECT_TRUE(PoseNear(refined->platform_from_target, TruePlatformFromTarget(), 0.05, 0.05));
+  EXPECT_LT(refined->position_rms, 0.03);
+}
+
+TEST(Registration, RejectsTooFewAndDegeneratePoses) {
+  const Robot robot = Preset("inria-left-hand");
+  const Scene scene = MakeScene(robot, robot, RandomFeasiblePoses(robot, 6, 7));
+  std::vector<Pose> two(scene.true_base_from_platform.begin(), scene.true_base_from_platform.begin() + 2);
+  std::vector<Pose> two_camera(scene.input.camera_from_target.begin(), scene.input.camera_from_target.begin() + 2);
+  StatusOr<Registration> few = EstimateRegistration(two, two_camera);
+  ASSERT_FALSE(few.ok());
+  EXPECT_THAT(few.status().message(), HasSubstr("at least 3"));
+
+  // Pure translations: the rotation about the motion is undetermined.
+  std::vector<Pose> translated, camera;
+  for (int j = 0; j < 6; ++j) {
+    Pose a = robot.PoseFromVector((Vector6d() << j, 0.3 * j * j, 53, 0, 0, 0).finished());
+    translated.push_back(a);
+    camera.push_back(Compose(Compose(Inverse(TrueBaseFromCamera()), a), TruePlatformFromTarget()));
+  }
+  StatusOr<Registration> degenerate = EstimateRegistration(translated, camera);
+  ASSERT_FALSE(degenerate.ok());
+  EXPECT_THAT(degenerate.status().message(), HasSubstr("do not determine"));
+}
+
+// The gauge: the calibrated robot is the true robot expressed in the frames
+// the nominal robot's registration defines, G = X X*⁻¹ and H = Y Y*⁻¹.
+TEST(CalibrateFromCameraPoses, ExactDataGiveTheTrueParametersInTheRegisteredFrames) {
+  const Robot nominal = Preset("inria-left-hand");
+  const Robot truth = PerturbedRobot(nominal, 0.5);
+  const Scene scene = MakeScene(truth, nominal, RandomFeasiblePoses(nominal, 30, 11));
+  StatusOr<CameraCalibrationResult> result = CalibrateFromCameraPoses(nominal, scene.input);
+  ASSERT_TRUE(result.ok()) << result.status().message();
+  const Registration& reg = result->registration;
+  const Pose gauge_base = Compose(reg.base_from_camera, Inverse(TrueBaseFromCamera()));
+  const Pose gauge_platform = Compose(reg.platform_from_target, Inverse(TruePlatformFromTarget()));
+  const Robot truth_in_gauge = ExpressInFrames(truth, gauge_base, gauge_platform);
+  EXPECT_TRUE(MatrixNear(result->calibration.Estimates(), ParametersOf(truth_in_gauge), 1e-7));
+  EXPECT_LT(result->calibrated_position_rms, 1e-8);
+  EXPECT_LT(result->calibrated_angle_rms_deg, 1e-7);
+  // The offsets l_i do not depend on the frames.
+  for (int i = 0; i < kNumLegs; ++i) EXPECT_NEAR(result->calibration.robot.legs[i].offset, truth.legs[i].offset, 1e-7);
+}
+
+// The registered frames differ from the true ones by the gauge, which comes
+// from the nominal robot's error: none for a perfect nominal robot, small for
+// a nearly perfect one. (Legs of 52 cm between plates of 8–13 cm radius turn
+// a 0.5 cm parameter error into degrees of pose error, and the camera 120 cm
+// away turns that into centimetres.)
+TEST(CalibrateFromCameraPoses, RegisteredFramesAreTheTrueOnesForAPerfectNominalRobot) {
+  const Robot nominal = Preset("inria-left-hand");
+  for (double half_width : {0.0, 0.002}) {
+    const Robot truth = PerturbedRobot(nominal, half_width);
+    const Scene scene = MakeScene(truth, nominal, RandomFeasiblePoses(nominal, 30, 11));
+    StatusOr<CameraCalibrationResult> result = CalibrateFromCameraPoses(nominal, scene.input);
+    ASSERT_TRUE(result.ok()) << result.status().message();
+    const Registration& reg = result->registration;
+    const double position = half_width == 0 ? 1e-8 : 0.2, angle = half_width == 0 ? 1e-7 : 0.3;
+    EXPECT_TRUE(PoseNear(reg.base_from_camera, TrueBaseFromCamera(), position, angle)) << half_width;
+    EXPECT_TRUE(PoseNear(reg.platform_from_target, TruePlatformFromTarget(), position, angle)) << half_width;
+  }
+}
+
+TEST(CalibrateFromCameraPoses, NoisyDataStayWithinThreeSigmaOfTheTruthInTheRegisteredFrames) {
+  const Robot nominal = Preset("inria-left-hand");
+  int inside = 0, total = 0;
+  for (int run = 0; run < 4; ++run) {
+    const Robot truth = PerturbedRobot(nominal, 0.5);
+    const Scene scene = MakeScene(truth, nominal, RandomFeasiblePoses(nominal, 40, 20 + run), 0.002, 0.02, 0.002);
+    RegistrationOptions registration;
+    registration.position_sigma = 0.002;
+    registration.angle_sigma_deg = 0.02;
+    StatusOr<CameraCalibrationResult> result = CalibrateFromCameraPoses(nominal, scene.input, registration);
+    ASSERT_TRUE(result.ok()) << result.status().message();
+    const Registration& reg = result->registration;
+    const Robot truth_in_gauge = ExpressInFrames(truth, Compose(reg.base_from_camera, Inverse(TrueBaseFromCamera())),
+                                                 Compose(reg.platform_from_target, Inverse(TruePlatformFromTarget())));
+    const ParameterVector error = result->calibration.Estimates() - ParametersOf(truth_in_gauge);
+    const ParameterVector sigma = result->calibration.StdDevs();
+    for (int k = 0; k < kNumParams; ++k, ++total) inside += std::abs(error[k]) <= 3 * sigma[k];
+  }
+  EXPECT_GE(inside, 0.95 * total) << inside << " of " << total << " within 3 sigma";
+}
+
+}  // namespace
+}  // namespace hexcal

@@ -1,0 +1,209 @@
+#include "core/session.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "core/csv.h"
+
+namespace hexcal {
+
+namespace fs = std::filesystem;
+
+bool SessionConfig::IsValid(std::string* error) const {
+  if (robot.empty()) {
+    *error = "session: no robot";
+    return false;
+  }
+  if (camera.empty()) {
+    *error = "session: no camera";
+    return false;
+  }
+  if (target.empty()) {
+    *error = "session: no target";
+    return false;
+  }
+  return noise.IsValid(error);
+}
+
+SessionPaths::SessionPaths(std::string folder)
+    : dir(std::move(folder)),
+      config((fs::path(dir) / "session.yaml").string()),
+      plan((fs::path(dir) / "plan.csv").string()),
+      images((fs::path(dir) / "images").string()),
+      legs((fs::path(dir) / "legs.csv").string()),
+      measurements((fs::path(dir) / "measurements.csv").string()),
+      results((fs::path(dir) / "results").string()) {}
+
+namespace {
+
+// A frame as [x, y, z, q1, q2, q3] with the xyz Euler convention, degrees.
+YAML::Node FrameNode(const Pose& pose) {
+  YAML::Node node(YAML::NodeType::Sequence);
+  node.SetStyle(YAML::EmitterStyle::Flow);
+  const Vector6d v = VectorFromPose(pose, EulerConvention::kXYZ);
+  for (int k = 0; k < 6; ++k) node.push_back(FormatNumber(v[k]));
+  return node;
+}
+
+StatusOr<Pose> ParseFrame(const YAML::Node& node, const std::string& source, const std::string& key) {
+  if (!node.IsSequence() || node.size() != 6)
+    return Status::Error(source + ": frames." + key + " must be [x, y, z, q1, q2, q3]");
+  Vector6d v;
+  for (int k = 0; k < 6; ++k) {
+    try {
+      v[k] = node[k].as<double>();
+    } catch (const YAML::Exception&) {
+      return Status::Error(source + ": frames." + key + " entry " + std::to_string(k + 1) + " is not a number");
+    }
+    if (!std::isfinite(v[k])) return Status::Error(source + ": frames." + key + " is not finite");
+  }
+  return PoseFromVector(v, EulerConvention::kXYZ);
+}
+
+std::string ConfigText(const SessionConfig& config) {
+  YAML::Emitter out;
+  out << YAML::Comment("hexcal session (docs/session.md)");
+  YAML::Node root;
+  root["robot"] = config.robot;
+  root["camera"] = config.camera;
+  root["target"] = config.target;
+  YAML::Node noise;
+  noise["position"] = FormatNumber(config.noise.position);  // shortest exact form, unquoted
+  noise["angle_deg"] = FormatNumber(config.noise.angle_deg);
+  noise["leg"] = FormatNumber(config.noise.leg);
+  root["noise"] = noise;
+  if (config.base_from_camera && config.platform_from_target) {
+    YAML::Node frames;
+    frames["base_from_camera"] = FrameNode(*config.base_from_camera);
+    frames["platform_from_target"] = FrameNode(*config.platform_from_target);
+    root["frames"] = frames;
+  }
+  out << root;
+  return std::string(out.c_str()) + "\n";
+}
+
+std::set<std::string> ImageFiles(const std::string& folder) {
+  std::set<std::string> names;
+  std::error_code error;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder, error)) {
+    if (!entry.is_regular_file()) continue;
+    std::string ext = entry.path().extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".tif" || ext == ".tiff")
+      names.insert(entry.path().filename().string());
+  }
+  return names;
+}
+
+}  // namespace
+
+Status SaveSessionConfig(const std::string& dir, const SessionConfig& config) {
+  std::string error;
+  if (!config.IsValid(&error)) return Status::Error(error);
+  return WriteFileAtomically(SessionPaths(dir).config, ConfigText(config));
+}
+
+Status InitSession(const std::string& dir, const SessionConfig& config) {
+  const SessionPaths paths(dir);
+  std::string error;
+  if (!config.IsValid(&error)) return Status::Error(error);
+  std::error_code fs_error;
+  if (fs::exists(paths.config, fs_error))
+    return Status::Error(paths.config + ": exists; a session is never initialised twice");
+  for (const std::string& folder : {paths.dir, paths.images, paths.results}) {
+    fs::create_directories(folder, fs_error);
+    if (fs_error) return Status::Error(folder + ": cannot create the folder (" + fs_error.message() + ")");
+  }
+  return SaveSessionConfig(dir, config);
+}
+
+StatusOr<SessionConfig> LoadSessionConfig(const std::string& dir) {
+  const SessionPaths paths(dir);
+  StatusOr<std::string> text = ReadFileToString(paths.config);
+  if (!text.ok()) return text.status();
+  YAML::Node root;
+  try {
+    root = YAML::Load(*text);
+  } catch (const YAML::ParserException& e) {
+    return Status::Error(paths.config + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  }
+  if (!root.IsMap()) return Status::Error(paths.config + ": not a YAML mapping");
+  SessionConfig config;
+  try {
+    for (const char* key : {"robot", "camera", "target"}) {
+      if (!root[key] || !root[key].IsScalar()) return Status::Error(paths.config + ": missing '" + key + "'");
+    }
+    config.robot = root["robot"].as<std::string>();
+    config.camera = root["camera"].as<std::string>();
+    config.target = root["target"].as<std::string>();
+    if (const YAML::Node noise = root["noise"]) {
+      if (noise["position"]) config.noise.position = noise["position"].as<double>();
+      if (noise["angle_deg"]) config.noise.angle_deg = noise["angle_deg"].as<double>();
+      if (noise["leg"]) config.noise.leg = noise["leg"].as<double>();
+    }
+  } catch (const YAML::Exception& e) {
+    return Status::Error(paths.config + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  }
+  if (const YAML::Node frames = root["frames"]) {
+    StatusOr<Pose> x = ParseFrame(frames["base_from_camera"], paths.config, "base_from_camera");
+    if (!x.ok()) return x.status();
+    StatusOr<Pose> y = ParseFrame(frames["platform_from_target"], paths.config, "platform_from_target");
+    if (!y.ok()) return y.status();
+    config.base_from_camera = *x;
+    config.platform_from_target = *y;
+  }
+  std::string error;
+  if (!config.IsValid(&error)) return Status::Error(paths.config + ": " + error);
+  return config;
+}
+
+StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir) {
+  const SessionPaths paths(dir);
+  StatusOr<CsvTable> table = ReadCsv(paths.legs);
+  if (!table.ok()) return table.status();
+  StatusOr<int> image_column = ColumnIndex(*table, "image");
+  if (!image_column.ok()) return image_column.status();
+  int leg_columns[kNumLegs];
+  for (int i = 0; i < kNumLegs; ++i) {
+    StatusOr<int> column = ColumnIndex(*table, "L" + std::to_string(i + 1));
+    if (!column.ok()) return column.status();
+    leg_columns[i] = *column;
+  }
+  const auto holdout_it = std::find(table->header.begin(), table->header.end(), "holdout");
+  const int holdout_column = holdout_it == table->header.end() ? -1 : int(holdout_it - table->header.begin());
+
+  const std::set<std::string> images = ImageFiles(paths.images);
+  std::set<std::string> seen;
+  std::vector<LegsRow> rows;
+  for (size_t r = 0; r < table->rows.size(); ++r) {
+    LegsRow row;
+    row.line = table->line_numbers[r];
+    const std::string where = paths.legs + ":" + std::to_string(row.line) + ": ";
+    row.image = table->rows[r][*image_column];
+    if (images.count(row.image) == 0) return Status::Error(where + "image '" + row.image + "' is not in images/");
+    if (!seen.insert(row.image).second) return Status::Error(where + "image '" + row.image + "' has a second row");
+    for (int i = 0; i < kNumLegs; ++i) {
+      StatusOr<double> value = NumberAt(*table, r, leg_columns[i]);
+      if (!value.ok()) return value.status();
+      row.legs[i] = *value;
+    }
+    if (holdout_column >= 0) {
+      const std::string& cell = table->rows[r][holdout_column];
+      if (cell != "0" && cell != "1") return Status::Error(where + "column 'holdout': '" + cell + "' is not 0 or 1");
+      row.holdout = cell == "1";
+    }
+    rows.push_back(row);
+  }
+  for (const std::string& image : images) {
+    if (seen.count(image) == 0)
+      return Status::Error((fs::path(paths.images) / image).string() + ": no row in " + paths.legs);
+  }
+  return rows;
+}
+
+}  // namespace hexcal

@@ -1,0 +1,70 @@
+// The session folder: one calibration job on disk, shared by the CLI and the GUI.
+//
+//   DIR/session.yaml       robot, camera, target, registered frames, noise model
+//   DIR/plan.csv           the planned poses (hexcal plan --out), optional
+//   DIR/images/            the images, as recorded (never written by hexcal)
+//   DIR/legs.csv           image,L1..L6[,holdout]: the readings at each image
+//                          (recorded; never written by hexcal)
+//   DIR/measurements.csv   camera_from_target per image (hexcal measure columns)
+//   DIR/results/           calibrated robot, report
+//
+// Every write is atomic (core/atomic_file.h). A step replaces only its own
+// outputs. Errors name the file and, for legs.csv, the line:
+//   legs.csv:4: image 'img_003.png' is not in images/
+// docs/session.md describes the folder and the steps.
+//
+//   SessionConfig config{"inria-left-hand", "camera.yaml", "aprilgrid-6x6"};
+//   Status made = InitSession("run1", config);
+//   StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs("run1");
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/inverse_kinematics.h"
+#include "core/noise_model.h"
+#include "core/pose.h"
+#include "core/status.h"
+
+namespace hexcal {
+
+struct SessionConfig {
+  std::string robot;   // robot file (relative to the session folder) or preset name
+  std::string camera;  // camera file or name, as LoadCamera takes it
+  std::string target;  // target file or name, as LoadTarget takes it
+  // Set by the registration step (core/registration.h), robot unit; the robot's
+  // Euler convention in the file.
+  std::optional<Pose> base_from_camera;
+  std::optional<Pose> platform_from_target;
+  NoiseModel noise;  // pose and reading noise, robot unit and degrees
+
+  bool IsValid(std::string* error) const;
+};
+
+struct SessionPaths {
+  explicit SessionPaths(std::string dir);
+  std::string dir, config, plan, images, legs, measurements, results;
+};
+
+// Creates DIR (may exist, but must not hold a session.yaml), images/, results/
+// and session.yaml.
+Status InitSession(const std::string& dir, const SessionConfig& config);
+
+StatusOr<SessionConfig> LoadSessionConfig(const std::string& dir);
+// Rewrites session.yaml atomically.
+Status SaveSessionConfig(const std::string& dir, const SessionConfig& config);
+
+struct LegsRow {
+  std::string image;  // file name inside images/
+  LegReadings legs = LegReadings::Zero();
+  bool holdout = false;  // kept out of the calibration, used to validate it
+  int line = 0;          // line of legs.csv
+};
+
+// Reads legs.csv: columns image, L1..L6 and optionally holdout (0 or 1), in any
+// order. Every row's image must be in images/, no image twice, and every image
+// in images/ must have a row.
+StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir);
+
+}  // namespace hexcal

@@ -1,0 +1,123 @@
+#!/usr/bin/env bash
+# bad_inputs.sh HEXCAL DATA: every file of tests/data/bad_inputs through the
+# hexcal command that reads it (docs/hardening.md). Each case must exit with
+# its code (never a signal), print a message naming the file and matching its
+# pattern, and leave no output file behind. The table is one case a line:
+#   FILE | EXIT CODE | PATTERN (extended grep, after the file name) | ARGUMENTS
+# with @IN@ for the bad file and @OUT@ for an output path in a fresh folder.
+# Images are the exception: `measure` records an unreadable image as a row of
+# its (complete) measurements table, so for them the output must exist and say
+# "unreadable" (the OUT=table marker).
+set -u
+hexcal=$1 data=$2
+corpus=$data/bad_inputs
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+ROBOT="--robot inria-left-hand"
+table=$(cat <<'EOF'
+poses_empty.csv | 2 | no header line | ik ROBOT --poses @IN@ --out @OUT@
+poses_comment_only.csv | 2 | no header line | ik ROBOT --poses @IN@ --out @OUT@
+poses_header_only.csv | 2 | no poses | ik ROBOT --poses @IN@ --out @OUT@
+poses_missing_header.csv | 2 | :1: duplicate column '0' in header | ik ROBOT --poses @IN@ --out @OUT@
+poses_duplicate_header.csv | 2 | :1: duplicate column 'z' | ik ROBOT --poses @IN@ --out @OUT@
+poses_missing_column.csv | 2 | missing column 'q3' | ik ROBOT --poses @IN@ --out @OUT@
+poses_short_row.csv | 2 | :3: 5 columns, header has 6 | ik ROBOT --poses @IN@ --out @OUT@
+poses_long_row.csv | 2 | :3: 7 columns, header has 6 | ik ROBOT --poses @IN@ --out @OUT@
+poses_truncated.csv | 2 | :3: 5 columns, header has 6 | ik ROBOT --poses @IN@ --out @OUT@
+poses_nan.csv | 2 | :3: column 'y': 'nan' is not a finite number | ik ROBOT --poses @IN@ --out @OUT@
+poses_inf.csv | 2 | :3: column 'z': 'inf' is not a finite number | ik ROBOT --poses @IN@ --out @OUT@
+poses_huge.csv | 2 | :3: column 'z': '1e400' is not a finite number | ik ROBOT --poses @IN@ --out @OUT@
+poses_text.csv | 2 | :3: column 'z': 'abc' is not a finite number | ik ROBOT --poses @IN@ --out @OUT@
+poses_unterminated_quote.csv | 2 | :2: field 6: quoted field has no closing quote | ik ROBOT --poses @IN@ --out @OUT@
+poses_binary.csv | 2 | missing column 'x' | ik ROBOT --poses @IN@ --out @OUT@
+poses_nan.csv | 2 | :3: column 'y': 'nan' is not a finite number | plan ROBOT --poses 7 --candidates @IN@ --out @OUT@
+poses_empty.csv | 2 | no header line | plan ROBOT --poses 7 --init @IN@ --out @OUT@
+poses_inf.csv | 2 | :3: column 'z': 'inf' is not a finite number | render --poses @IN@ --out @OUT@
+measurements_empty.csv | 2 | no header line | calibrate ROBOT --measurements @IN@ --out @OUT@
+measurements_missing_leg.csv | 2 | missing column 'L6' | calibrate ROBOT --measurements @IN@ --out @OUT@
+measurements_duplicate_header.csv | 2 | :1: duplicate column 'L6' | calibrate ROBOT --measurements @IN@ --out @OUT@
+measurements_short_row.csv | 2 | :2: 11 columns, header has 12 | calibrate ROBOT --measurements @IN@ --out @OUT@
+measurements_inf.csv | 2 | :2: column 'L4': '-inf' is not a finite number | calibrate ROBOT --measurements @IN@ --out @OUT@
+measurements_huge.csv | 2 | :2: column 'L5': '1e999' is not a finite number | calibrate ROBOT --measurements @IN@ --out @OUT@
+settings_empty.yaml | 2 | expected a mapping at the top level | plan ROBOT --settings @IN@ --out @OUT@
+settings_top_level_list.yaml | 2 | expected a mapping at the top level | plan ROBOT --settings @IN@ --out @OUT@
+settings_syntax_error.yaml | 2 | error at line 2, column 1 | plan ROBOT --settings @IN@ --out @OUT@
+settings_nan.yaml | 2 | noise.position: expected a finite number | plan ROBOT --settings @IN@ --out @OUT@
+settings_negative_noise.yaml | 2 | noise levels must be finite and non-negative | plan ROBOT --settings @IN@ --out @OUT@
+settings_camera_short_vector.yaml | 2 | measurement constraints need all three | plan ROBOT --settings @IN@ --out @OUT@
+target_empty.yaml | 2 | top level: expected a mapping | target print --target @IN@ --out @OUT@.pdf
+target_syntax_error.yaml | 2 | YAML syntax error at line 3 | target print --target @IN@ --out @OUT@.pdf
+target_truncated.yaml | 2 | tag_si: unknown key | target print --target @IN@ --out @OUT@.pdf
+target_nan_size.yaml | 2 | tag_size: '.nan' is not a finite number | target print --target @IN@ --out @OUT@.pdf
+target_huge_grid.yaml | 2 | exceed the 587 tags of tag36h11 | target print --target @IN@ --out @OUT@.pdf
+target_unknown_family.yaml | 2 | family: 'tag99h99' is not supported | target print --target @IN@ --out @OUT@.pdf
+target_wrong_unit.yaml | 2 | length_unit: expected mm, cm or m | target print --target @IN@ --out @OUT@.pdf
+target_nan_size.yaml | 2 | tag_size: '.nan' is not a finite number | measure --camera sim-4.2mm-1024x768 --target @IN@ --images IMAGE --out @OUT@
+camera_empty.yaml | 2 | empty file | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_garbage.yaml | 2 | expected a ROS camera_info mapping or an OpenCV FileStorage file | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_truncated.yaml | 2 | cannot read as OpenCV FileStorage | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_nan_focal.yaml | 2 | focal lengths .*must be positive and finite | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_wrong_matrix_size.yaml | 2 | camera_matrix: expected 9 numbers \(3 x 3\), found 4 | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_ros_missing_k.yaml | 2 | camera_matrix.data: expected a list of numbers | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_zero_size.yaml | 2 | image size 0 x 768: must be positive | render --camera @IN@ --poses POSES --out @OUT@
+image_empty.png | 1 | empty file | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table
+image_header_only.png | 1 | truncated PNG \(no IEND chunk\) | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table
+image_truncated.png | 1 | truncated PNG \(no IEND chunk\) | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table
+image_bad_crc.png | 1 | cannot decode: corrupt, truncated or not an image | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table
+image_garbage.png | 1 | cannot decode: corrupt, truncated or not an image | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table
+EOF
+)
+
+cases=0 failures=0
+declare -A covered=()
+while IFS='|' read -r file code pattern args; do
+  file=$(echo $file) code=$(echo $code) pattern=$(echo "$pattern" | sed 's/^ *//; s/ *$//')
+  [ -n "$file" ] || continue
+  cases=$((cases + 1))
+  covered[$file]=1
+  dir=$work/case$cases
+  mkdir "$dir"
+  out=$dir/out
+  expect_table=0
+  argv=()
+  for word in $args; do
+    case $word in
+      ROBOT) argv+=($ROBOT) ;;
+      IMAGE) argv+=("$corpus/image_garbage.png") ;;
+      POSES) argv+=("$data/poses/vision_views.csv") ;;
+      OUT=table) expect_table=1 ;;
+      *) word=${word//@IN@/$corpus/$file}; argv+=("${word//@OUT@/$out}") ;;
+    esac
+  done
+  output=$("$hexcal" "${argv[@]}" 2>&1)
+  got=$?
+  problem=""
+  if [ "$got" -ge 128 ]; then
+    problem="killed by signal $((got - 128))"
+  elif [ "$got" != "$code" ]; then
+    problem="exit code $got, expected $code"
+  elif ! grep -Eq -- "$file.*$pattern" <<<"$output"; then
+    problem="output does not name the file and match /$pattern/"
+  elif [ "$expect_table" = 1 ]; then
+    grep -q "$file,.*,unreadable," "$out" 2>/dev/null || problem="no 'unreadable' row for it in $out"
+  elif compgen -G "$out*" >/dev/null || compgen -G "$dir/.out*" >/dev/null; then
+    problem="left output behind: $(ls -A "$dir")"
+  fi
+  if [ -n "$problem" ]; then
+    failures=$((failures + 1))
+    echo "FAIL: $file: $problem: hexcal ${argv[*]}"
+    echo "$output" | head -5
+  fi
+done <<<"$table"
+
+# Every corpus file must be in the table.
+for path in "$corpus"/*; do
+  name=$(basename "$path")
+  if [ -z "${covered[$name]:-}" ]; then
+    failures=$((failures + 1))
+    echo "FAIL: $name is in $corpus but not in the table"
+  fi
+done
+echo "$cases cases, ${#covered[@]} files, $failures failures"
+[ "$failures" = 0 ]

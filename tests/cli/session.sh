@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# session.sh HEXCAL DATA: a session folder end to end on a virtual robot and
+# camera. A true robot (the preset with every parameter moved by up to 0.05 cm),
+# a camera 50 cm above the platform, images rendered at 16 poses, readings from
+# the true robot's IK; `calibrate --session` must cut the held-out pose error at
+# least 3 times, leave images/ and legs.csv untouched and reuse
+# measurements.csv; `report` writes one HTML page with its charts. Bad folders get errors naming the file and line.
+set -eu
+hexcal=$1 data=$2
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+"$hexcal" candidates --robot inria-left-hand --kind random --count 16 --seed 5 --out "$dir/poses.csv" >/dev/null
+python3 - "$dir" "$data/../../resources/robots/inria-left-hand.yaml" <<'PY'
+import csv, math, random, re, sys
+d, preset = sys.argv[1], sys.argv[2]
+random.seed(7)
+def mm(a, b): return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+def mv(a, v): return [sum(a[i][k] * v[k] for k in range(3)) for i in range(3)]
+def tr(a): return [list(r) for r in zip(*a)]
+def rot(q):  # Rz(q3) Ry(q2) Rx(q1), degrees
+    a, b, c = [math.radians(x) for x in q]
+    rx = [[1, 0, 0], [0, math.cos(a), -math.sin(a)], [0, math.sin(a), math.cos(a)]]
+    ry = [[math.cos(b), 0, math.sin(b)], [0, 1, 0], [-math.sin(b), 0, math.cos(b)]]
+    rz = [[math.cos(c), -math.sin(c), 0], [math.sin(c), math.cos(c), 0], [0, 0, 1]]
+    return mm(rz, mm(ry, rx))
+def pose(v): return (v[:3], rot(v[3:]))
+def comp(a, b): return ([x + y for x, y in zip(mv(a[1], b[0]), a[0])], mm(a[1], b[1]))
+def inv(a): return ([-x for x in mv(tr(a[1]), a[0])], tr(a[1]))
+def vec(p):
+    t, r = p
+    return t + [math.degrees(math.atan2(r[2][1], r[2][2])), math.degrees(math.asin(-r[2][0])),
+                math.degrees(math.atan2(r[1][0], r[0][0]))]
+base_from_camera = pose([1.5, -2.0, 103.0, 180.0, 2.0, -4.0])  # cm, degrees
+platform_from_target = pose([-11.25, -11.25, 0.5, 0.0, 0.0, 5.0])
+def moved(m):
+    return '[' + ', '.join('%.5f' % (float(x) + random.uniform(-0.05, 0.05)) for x in m.group(2).split(',')) + ']'
+truth = re.sub(r'(a|b): \[([^\]]*)\]', lambda m: m.group(1) + ': ' + moved(m), open(preset).read())
+open(d + '/truth.yaml', 'w').write(truth)
+with open(d + '/camera_poses.csv', 'w') as out:
+    out.write('x,y,z,q1,q2,q3\n')
+    for row in csv.DictReader(l for l in open(d + '/poses.csv') if not l.startswith('#')):
+        base_from_platform = pose([float(row[k]) for k in ('x', 'y', 'z', 'q1', 'q2', 'q3')])
+        v = vec(comp(comp(inv(base_from_camera), base_from_platform), platform_from_target))
+        out.write(','.join('%.9f' % x for x in [10 * x for x in v[:3]] + v[3:]) + '\n')  # mm
+PY
+"$hexcal" ik --robot "$dir/truth.yaml" --poses "$dir/poses.csv" --out "$dir/ik.csv" >/dev/null
+"$hexcal" render --camera sim-4.2mm-1024x768 --poses "$dir/camera_poses.csv" --out "$dir/render" --seed 2 >/dev/null
+
+s=$dir/s
+"$hexcal" session init --robot inria-left-hand --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 \
+  --noise-position 0.005 --noise-angle 0.02 --noise-leg 0.001 "$s" >/dev/null
+if "$hexcal" session init --robot inria-left-hand --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 "$s" \
+  2>"$dir/err"; then exit 1; fi
+grep -q "session.yaml: exists" "$dir/err"
+cp "$dir"/render/view_*.png "$s/images/"
+# image,L1..L6,holdout from the IK table; every fourth image held out.
+awk -F, 'NR > 1 { printf "view_%04d.png,%s,%s,%s,%s,%s,%s,%d\n", NR - 2, $7, $8, $9, $10, $11, $12, (NR - 2) % 4 == 3 }' \
+  "$dir/ik.csv" | sed '1i image,L1,L2,L3,L4,L5,L6,holdout' >"$s/legs.csv"
+before=$(cat "$s/legs.csv" "$s"/images/* | cksum)
+
+"$hexcal" calibrate --session "$s" --json >"$dir/report.json"
+python3 - "$dir/report.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["calibration_images"] == 12 and r["held_out_images"] == 4, r
+before, after = r["validation"]["before"], r["validation"]["after"]
+assert after["position_rms"] * 3 < before["position_rms"], (before, after)
+assert after["orientation_rms"] * 3 < before["orientation_rms"], (before, after)
+assert r["registration"]["position_rms"] < 0.5 and r["closure_after_calibration"]["position_rms"] < 0.02, r
+PY
+[ "$(cat "$s/legs.csv" "$s"/images/* | cksum)" = "$before" ]
+[ -s "$s/results/calibrated.yaml" ] && [ -s "$s/results/report.json" ] && grep -q "base_from_camera:" "$s/session.yaml"
+"$hexcal" robot check "$s/results/calibrated.yaml" >/dev/null
+"$hexcal" report --session "$s" --out "$dir/report.html" | grep -q "written to"
+[ "$(grep -c '<svg' "$dir/report.html")" -eq 3 ] && grep -q "Held-out validation" "$dir/report.html"
+if "$hexcal" report --session "$s" --out "$dir/report.html" 2>"$dir/err"; then exit 1; fi
+grep -q "report.html: exists; use --force" "$dir/err"
+# Measured images are not measured again.
+cp "$s/measurements.csv" "$dir/m1.csv"
+"$hexcal" calibrate --session "$s" >/dev/null
+cmp "$s/measurements.csv" "$dir/m1.csv"
+
+# Bad folders: a row for an absent image, an image without a row, a short row.
+cp "$s/legs.csv" "$dir/legs.good"
+echo "view_0099.png,1,1,1,1,1,1,0" >>"$s/legs.csv"
+if "$hexcal" calibrate --session "$s" 2>"$dir/err"; then exit 1; else [ $? -eq 2 ]; fi
+grep -q "legs.csv:18: image 'view_0099.png' is not in images/" "$dir/err"
+grep -v view_0005 "$dir/legs.good" >"$s/legs.csv"
+if "$hexcal" calibrate --session "$s" 2>"$dir/err"; then exit 1; fi
+grep -q "images/view_0005.png: no row in" "$dir/err"
+sed 's/^view_0002.png,\([^,]*\),/view_0002.png,/' "$dir/legs.good" >"$s/legs.csv"
+if "$hexcal" calibrate --session "$s" 2>"$dir/err"; then exit 1; fi
+grep -q "legs.csv:4: 7 columns, header has 8" "$dir/err"
