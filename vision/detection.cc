@@ -197,4 +197,18 @@ StatusOr<cv::Mat> LoadGrayImage(const std::string& path) {
   return image;
 }
 
+StatusOr<std::vector<std::unique_ptr<TagDetector>>> CreateWorkerDetectors(const DetectorOptions& options,
+                                                                          std::shared_ptr<const IdealPixelMap> ideal,
+                                                                          int workers) {
+  DetectorOptions single = options;
+  single.threads = 1;
+  std::vector<std::unique_ptr<TagDetector>> detectors;
+  for (int w = 0; w < workers; ++w) {
+    StatusOr<std::unique_ptr<TagDetector>> detector = TagDetector::Create(single, ideal);
+    if (!detector.ok()) return detector.status();
+    detectors.push_back(std::move(*detector));
+  }
+  return detectors;
+}
+
 }  // namespace hexcal

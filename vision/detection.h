@@ -91,6 +91,12 @@ class TagDetector {
   std::unique_ptr<Impl> impl_;
 };
 
+// One detector per worker of a batch job, each single-threaded (the workers
+// already use the cores), sharing `ideal`.
+StatusOr<std::vector<std::unique_ptr<TagDetector>>> CreateWorkerDetectors(const DetectorOptions& options,
+                                                                          std::shared_ptr<const IdealPixelMap> ideal,
+                                                                          int workers);
+
 // The accepted tags whose ids are on the target, as corresponding points.
 struct BoardObservation {
   std::vector<int> tag_ids;                                     // one per matched tag

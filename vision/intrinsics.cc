@@ -38,14 +38,9 @@ StatusOr<std::vector<Detected>> DetectAll(int count, const ImageLoader& load, co
                                           const std::vector<bool>& wanted, const ProgressCallback& progress,
                                           const std::atomic<bool>* cancel) {
   const int workers = std::max(1, std::min(options.threads, count));
-  DetectorOptions detector_options = options.detector;
-  detector_options.threads = 1;  // the workers already use the cores
-  std::vector<std::unique_ptr<TagDetector>> detectors;
-  for (int w = 0; w < workers; ++w) {
-    StatusOr<std::unique_ptr<TagDetector>> detector = TagDetector::Create(detector_options, ideal);
-    if (!detector.ok()) return detector.status();
-    detectors.push_back(std::move(*detector));
-  }
+  StatusOr<std::vector<std::unique_ptr<TagDetector>>> created = CreateWorkerDetectors(options.detector, ideal, workers);
+  if (!created.ok()) return created.status();
+  std::vector<std::unique_ptr<TagDetector>> detectors = std::move(*created);
   std::vector<Detected> detected(static_cast<size_t>(count));
   const bool finished = ParallelFor(
       count, workers,

@@ -76,14 +76,9 @@ StatusOr<std::vector<ImageMeasurement>> MeasureImages(const std::vector<std::str
   const int count = static_cast<int>(files.size());
   const int workers = std::max(1, std::min(options.threads, count));
   auto ideal = std::make_shared<const IdealPixelMap>(camera);
-  DetectorOptions detector_options = options.detector;
-  detector_options.threads = 1;  // the workers already use the cores
-  std::vector<std::unique_ptr<TagDetector>> detectors;
-  for (int w = 0; w < workers; ++w) {
-    StatusOr<std::unique_ptr<TagDetector>> detector = TagDetector::Create(detector_options, ideal);
-    if (!detector.ok()) return detector.status();
-    detectors.push_back(std::move(*detector));
-  }
+  StatusOr<std::vector<std::unique_ptr<TagDetector>>> created = CreateWorkerDetectors(options.detector, ideal, workers);
+  if (!created.ok()) return created.status();
+  std::vector<std::unique_ptr<TagDetector>> detectors = std::move(*created);
   std::vector<ImageMeasurement> measurements(files.size());
   const bool finished = ParallelFor(
       count, workers,
