@@ -2,6 +2,7 @@
 #   make demo   install missing Debian packages, build, run the main job
 #   make test   same set-up, then the whole test suite through CTest
 #   make sanitize  the unit tests again under ASan + UBSan, in build-asan (docs/hardening.md)
+#   make fuzz   the libFuzzer targets, a short run of each, in build-fuzz (docs/hardening.md)
 BUILD_DIR ?= build
 BUILD_TYPE ?= Release
 JOBS ?= 2
@@ -20,8 +21,9 @@ configure: deps
 build: configure
 	cmake --build $(BUILD_DIR) -j$(JOBS)
 
+# The whole flow on a virtual robot and camera; the session is left in build/demo.
 demo: build
-	$(HEXCAL) demo
+	$(HEXCAL) demo --out $(BUILD_DIR)/demo --force
 
 test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j$(JOBS)
@@ -34,9 +36,20 @@ SANITIZER_ENV = ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_
 	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 sanitize: deps
 	cmake -S . -B $(ASAN_BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHEXCAL_SANITIZE=ON \
-	  -DHEXCAL_BUILD_BENCHMARKS=OFF
+	  -DHEXCAL_BUILD_BENCHMARKS=OFF -DHEXCAL_BUILD_GUI=OFF
 	cmake --build $(ASAN_BUILD_DIR) -j$(JOBS)
 	$(SANITIZER_ENV) ctest --test-dir $(ASAN_BUILD_DIR) -R '^(core|vision|app)/' --output-on-failure -j$(JOBS)
+
+# The libFuzzer targets of fuzz/ (clang, ASan + UBSan) and a bounded run of each
+# from its seed corpus through CTest; any crash, leak or UB report fails.
+# Long runs: docs/hardening.md.
+FUZZ_BUILD_DIR ?= build-fuzz
+.PHONY: fuzz
+fuzz: deps
+	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHEXCAL_FUZZ=ON \
+	  -DHEXCAL_BUILD_BENCHMARKS=OFF
+	cmake --build $(FUZZ_BUILD_DIR) -j$(JOBS) --target hexcal_fuzzers
+	ctest --test-dir $(FUZZ_BUILD_DIR) -R '^fuzz/' --output-on-failure -j$(JOBS)
 
 bench: build
 	$(BUILD_DIR)/bench/hexcal_bench_kinematics

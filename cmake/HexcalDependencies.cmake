@@ -15,7 +15,8 @@ endif()
 
 # Vision and GUI stacks. Found from the start so that a missing or broken package
 # fails at configure time, not when the vision/ui layers land.
-find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs calib3d)
+# videoio: the GUI's camera capture (ui/measure_recording.cc).
+find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs calib3d videoio)
 # Debian's libapriltag-dev ships only a pkg-config file.
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(APRILTAG REQUIRED IMPORTED_TARGET apriltag)
@@ -23,7 +24,7 @@ find_package(Qt5 5.15 REQUIRED COMPONENTS Widgets Charts Svg)
 # Debian's VTK 9.1 config references MPI::MPI_C: find MPI (C enabled) first.
 find_package(MPI COMPONENTS C)
 find_package(VTK 9 REQUIRED COMPONENTS GUISupportQt RenderingOpenGL2 RenderingCore
-             InteractionStyle CommonCore)
+             InteractionStyle CommonCore FiltersSources FiltersCore)
 
 # yaml-cpp 0.7 on bookworm exports the target as "yaml-cpp" without a namespace.
 if(TARGET yaml-cpp AND NOT TARGET yaml-cpp::yaml-cpp)

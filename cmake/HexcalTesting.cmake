@@ -2,6 +2,9 @@
 # One executable per test file, registered in CTest as <folder>/<name>, with the
 # shared gtest main (tests/test_main.cc) that reseeds the RNG for every test.
 function(hexcal_add_test)
+  if(HEXCAL_FUZZ)
+    return()  # a fuzz build has no tests/ (root CMakeLists.txt), so no test main
+  endif()
   cmake_parse_arguments(T "" "NAME" "SOURCES;LIBS;LABELS" ${ARGN})
   get_filename_component(folder "${CMAKE_CURRENT_SOURCE_DIR}" NAME)
   set(target "${folder}_${T_NAME}")

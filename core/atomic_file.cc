@@ -67,6 +67,25 @@ Status SyncDirectory(const std::string& path, const std::string& dir) {
   return Status::Ok();
 }
 
+// A writer killed inside WriteFileAtomically leaves its temp file behind. The
+// next successful write of the same target removes those older than
+// kStaleTempAge: a live writer's temp file is seconds old at most (hexcal's
+// files are small), so one this old belongs to a dead process.
+void RemoveStaleTempFiles(const std::string& dir, const std::string& basename) {
+  namespace fs = std::filesystem;
+  const std::string prefix = "." + basename + ".tmp.";
+  const size_t mkstemp_suffix = 6;  // the XXXXXX
+  std::error_code error;
+  const fs::file_time_type cutoff = fs::file_time_type::clock::now() - kStaleTempAge;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir, error)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() != prefix.size() + mkstemp_suffix || name.compare(0, prefix.size(), prefix) != 0) continue;
+    std::error_code entry_error;
+    if (!entry.is_regular_file(entry_error) || entry.last_write_time(entry_error) > cutoff || entry_error) continue;
+    fs::remove(entry.path(), entry_error);  // best effort: the write itself has succeeded
+  }
+}
+
 }  // namespace
 
 Status WriteFileAtomically(const std::string& path, const std::string& contents) {
@@ -97,6 +116,7 @@ Status WriteFileAtomically(const std::string& path, const std::string& contents)
   if (::rename(temp_path.c_str(), path.c_str()) != 0) {
     return fail("cannot rename the temporary file over it", errno, false);
   }
+  RemoveStaleTempFiles(dir, basename);
   return SyncDirectory(path, dir);
 }
 

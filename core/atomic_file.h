@@ -12,6 +12,7 @@
 // Error messages begin with the path, e.g. "plan.csv: no such file".
 #pragma once
 
+#include <chrono>
 #include <string>
 
 #include "core/status.h"
@@ -22,7 +23,10 @@ namespace hexcal {
 // same folder, fsync, rename and fsync of the folder. An existing target keeps
 // its permissions; a new file gets 0666 minus the process umask. On failure the
 // temp file is removed and the target is left untouched.
+// A successful write also removes the target's temp files older than
+// kStaleTempAge, left by writers that were killed (kill -9, power loss).
 Status WriteFileAtomically(const std::string& path, const std::string& contents);
+constexpr std::chrono::minutes kStaleTempAge{10};
 
 // The whole file as bytes. Errors: missing file, a directory, unreadable.
 StatusOr<std::string> ReadFileToString(const std::string& path);

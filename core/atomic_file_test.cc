@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -64,6 +65,28 @@ TEST(AtomicFileTest, LeavesNoTemporaryFilesBehind) {
   ASSERT_TRUE(WriteFileAtomically(dir.File("a.txt"), "two").ok());
   ASSERT_TRUE(WriteFileAtomically(dir.File("b.txt"), "three").ok());
   EXPECT_EQ(FileNamesIn(dir.path()), (std::vector<std::string>{"a.txt", "b.txt"}));
+}
+
+// Leftovers of killed writers: the next write of the same target removes the
+// stale ones and nothing else (a fresh one may be a live writer's, another
+// target's belong to that target, look-alike names are not temp files).
+TEST(AtomicFileTest, WriteRemovesStaleTempFilesOfItsTarget) {
+  TempDir dir;
+  const auto make = [&](const std::string& name, std::chrono::minutes age) {
+    WriteTextFile(dir.File(name), "partial");
+    const auto when = std::filesystem::file_time_type::clock::now() - age;
+    std::filesystem::last_write_time(dir.File(name), when);
+  };
+  const std::chrono::minutes stale = kStaleTempAge + std::chrono::minutes(1);
+  make(".a.txt.tmp.Ab12Cd", stale);
+  make(".a.txt.tmp.Zz99Yy", stale);
+  make(".a.txt.tmp.fresh1", std::chrono::minutes(0));
+  make(".b.txt.tmp.Ab12Cd", stale);
+  make(".a.txt.tmp.toolong", stale);
+  ASSERT_TRUE(WriteFileAtomically(dir.File("a.txt"), "new").ok());
+  EXPECT_EQ(FileNamesIn(dir.path()), (std::vector<std::string>{".a.txt.tmp.fresh1", ".a.txt.tmp.toolong",
+                                                                ".b.txt.tmp.Ab12Cd", "a.txt"}));
+  EXPECT_EQ(ReadTextFile(dir.File("a.txt")), "new");
 }
 
 TEST(AtomicFileTest, OverwriteKeepsThePermissionsOfTheTarget) {

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/calibration_cost.h"
+#include "core/csv.h"
 #include "core/parallel.h"
 
 namespace hexcal {
@@ -30,7 +31,9 @@ StatusOr<LegData> MakeLegData(const Robot& nominal, int leg, const std::vector<M
     data.readings.push_back(m.legs[leg]);
     double weight = 1;
     if (options.weighted) {
-      weight = ResidualStdDev(nominal, leg, m.pose, m.legs[leg], options.noise);
+      weight = m.pose_covariance
+                   ? ResidualStdDev(nominal, leg, m.pose, m.legs[leg], options.noise, *m.pose_covariance)
+                   : ResidualStdDev(nominal, leg, m.pose, m.legs[leg], options.noise);
       if (!(weight > 0) || !std::isfinite(weight)) {
         return Status::Error("measurement " + std::to_string(j + 1) + ", " + LegLabel(leg) +
                              ": the noise model gives this residual no spread (standard deviation " +
@@ -157,7 +160,11 @@ Status FillUncertainty(int leg, const LegData& data, const CalibrationOptions& o
   }
   Eigen::Matrix<double, kParamsPerLeg, kParamsPerLeg, Eigen::RowMajor> block;
   covariance.GetCovarianceBlock(parameters, parameters, block.data());
-  result->covariance = result->variance_factor * block;
+  // A posteriori: scaled by s². At least a priori (weighted, with a trusted
+  // noise model): by max(1, s²), so that a scatter below the model's does not
+  // shrink σ on the strength of a few degrees of freedom.
+  const bool a_priori = options.weighted && options.uncertainty_scale == UncertaintyScale::kAtLeastAPriori;
+  result->covariance = (a_priori ? std::max(1.0, result->variance_factor) : result->variance_factor) * block;
   result->std_dev = result->covariance.diagonal().cwiseSqrt();
   result->has_uncertainty = true;
   for (int a = 0; a < kParamsPerLeg; ++a) {
@@ -280,6 +287,31 @@ ParameterVector CalibrationResult::StdDevs() const {
   return p;
 }
 
+namespace {
+
+// Readings far outside the stroke are not sensor noise but, most often, a file
+// in another length unit than the robot's (mm readings for a cm robot are ten
+// times too long): calibrating them would give parameters of another robot.
+// "Far" is more than one stroke length beyond either end.
+Status CheckReadingsInStroke(const Robot& nominal, const std::vector<Measurement>& measurements) {
+  for (size_t j = 0; j < measurements.size(); ++j) {
+    for (int i = 0; i < kNumLegs; ++i) {
+      const Leg& leg = nominal.legs[i];
+      const double span = leg.stroke_max - leg.stroke_min;
+      const double reading = measurements[j].legs[i];
+      if (reading >= leg.stroke_min - span && reading <= leg.stroke_max + span) continue;
+      const char* unit = LengthUnitName(nominal.length_unit);
+      return Status::Error("measurement " + std::to_string(j + 1) + ": L" + std::to_string(i + 1) + " = " +
+                           FormatNumber(reading) + " is far outside the stroke [" + FormatNumber(leg.stroke_min) +
+                           ", " + FormatNumber(leg.stroke_max) + "] " + unit + " of robot '" + nominal.name +
+                           "'; are the readings in " + unit + "?");
+    }
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
 Status CheckCalibrationInput(const Robot& nominal, const std::vector<Measurement>& measurements,
                              const CalibrationOptions& options) {
   std::string error;
@@ -296,7 +328,7 @@ Status CheckCalibrationInput(const Robot& nominal, const std::vector<Measurement
       return Status::Error("measurement " + std::to_string(j + 1) + ": pose or leg readings are not finite");
     }
   }
-  return Status::Ok();
+  return CheckReadingsInStroke(nominal, measurements);
 }
 
 StatusOr<CalibrationResult> Calibrate(const Robot& nominal, const std::vector<Measurement>& measurements,

@@ -21,7 +21,8 @@
 // correlation |ρ| exceeds correlation_threshold.
 //
 // A request that cannot give meaningful numbers fails with the reason: fewer
-// than 7 measurements, non-finite input, a leg whose Jacobian is rank-deficient
+// than 7 measurements, non-finite input, leg readings more than a stroke length
+// outside the stroke (a file in another length unit), a leg whose Jacobian is rank-deficient
 // (repeated or too alike poses), a solve that does not converge. A cancelled
 // calibration returns Status::Cancelled and no parameters.
 //
@@ -46,6 +47,10 @@
 namespace hexcal {
 
 enum class RobustLoss { kNone, kHuber, kCauchy };
+// How σ follows the fit: kAPosteriori scales (JᵀJ)⁻¹ by the variance factor
+// s²; kAtLeastAPriori (weighted only) by max(1, s²), for noise models that are
+// known, e.g. per-pose camera covariances (registration.h).
+enum class UncertaintyScale { kAPosteriori, kAtLeastAPriori };
 std::optional<RobustLoss> ParseRobustLoss(const std::string& text);  // "none" | "huber" | "cauchy"
 const char* RobustLossName(RobustLoss loss);
 
@@ -71,6 +76,7 @@ struct CalibrationOptions {
   double weak_direction_ratio = 1e-4;
   double correlation_threshold = 0.95;  // report pairs with |correlation| above this
   bool compute_uncertainty = true;      // covariance and identifiability report
+  UncertaintyScale uncertainty_scale = UncertaintyScale::kAPosteriori;
   int num_threads = 0;                  // legs solved at once; 0 = every core
 
   bool IsValid(std::string* error) const;
@@ -126,7 +132,7 @@ const char* ParameterName(int k);
 using CalibrationProgress = std::function<void(int done, int total)>;
 
 // The checks of the request that Calibrate makes first: valid options, finite
-// parameters and measurements, at least 7 measurements. A failure here is bad
+// parameters and measurements, at least 7 measurements, readings near the stroke. A failure here is bad
 // input; a failure of Calibrate past it is a pose set or solve that does not work.
 Status CheckCalibrationInput(const Robot& nominal, const std::vector<Measurement>& measurements,
                              const CalibrationOptions& options);

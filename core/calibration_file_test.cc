@@ -31,7 +31,7 @@ CalibrationResult CalibrateSample(int count, const std::string& robot = "inria-l
   EXPECT_TRUE(poses.ok()) << poses.status().message();
   std::vector<Measurement> measurements;
   for (const Vector6d& v : poses->poses) {
-    Measurement m{v, InverseKinematics(true_robot, true_robot.PoseFromVector(v))};
+    Measurement m{v, InverseKinematics(true_robot, true_robot.PoseFromVector(v)), std::nullopt};
     m.legs += LegReadings::Constant(Uniform(-0.001, 0.001));
     measurements.push_back(m);
   }

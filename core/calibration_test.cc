@@ -240,6 +240,18 @@ TEST(Calibration, FewerThanSevenMeasurementsIsAnError) {
               HasSubstr("at least 7 measurements (7 parameters per leg), got 6"));
 }
 
+// mm readings for a cm robot: ten times too long, far outside the stroke.
+TEST(Calibration, ReadingsInAnotherUnitAreAnError) {
+  const Robot nominal = Preset("inria-left-hand");
+  std::vector<Measurement> measurements = Measure(nominal, RandomFeasiblePoses(nominal, 12, 4));
+  ASSERT_TRUE(CheckCalibrationInput(nominal, measurements, {}).ok());
+  for (Measurement& m : measurements) {
+    m.pose.head<3>() *= 10;
+    m.legs *= 10;
+  }
+  EXPECT_THAT(CalibrateError(nominal, measurements), HasSubstr("is far outside the stroke [0, 3.5] cm"));
+}
+
 TEST(Calibration, RepeatedOrTranslatedPosesAreDegenerate) {
   const Robot nominal = Preset("inria-left-hand");
   const Robot truth = PerturbedRobot(nominal, 0.5);

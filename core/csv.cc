@@ -89,6 +89,12 @@ Status CheckHeader(const CsvTable& table, int line) {
     if (name.empty()) {
       return Status::Error(LinePrefix(table.source, line) + "header column " + std::to_string(i + 1) + " has no name");
     }
+    // A file without its header line starts with data, which would otherwise
+    // be reported as a duplicate or a missing column.
+    if (ParseNumber(name).ok()) {
+      return Status::Error(LinePrefix(table.source, line) + "no header: column " + std::to_string(i + 1) +
+                           " is the number '" + name + "', and the first line must name the columns");
+    }
     if (!seen.insert(name).second) {
       return Status::Error(LinePrefix(table.source, line) + "duplicate column '" + name + "' in header");
     }

@@ -89,6 +89,13 @@ TEST(CsvTest, DuplicateHeaderNamesAreAnError) {
   EXPECT_EQ(ReadCsvError(path), path + ":2: duplicate column 'x' in header");
 }
 
+TEST(CsvTest, FirstLineOfNumbersIsAMissingHeader) {
+  TempDir dir;
+  const std::string path = WriteCsvFile(dir, "# poses\n0,0,53.5,0,0,0\n1,-1,53,2,-1,3\n");
+  EXPECT_EQ(ReadCsvError(path),
+            path + ":2: no header: column 1 is the number '0', and the first line must name the columns");
+}
+
 TEST(CsvTest, UnnamedHeaderColumnIsAnError) {
   TempDir dir;
   const std::string path = WriteCsvFile(dir, "x,,z\n");

@@ -16,16 +16,22 @@ struct LocalFkOptions {
   int max_iterations = 100;
   // Converged when every |L_i(pose) - L_i| is below tolerance * (1 + |L_i + l_i|).
   double tolerance = 1e-13;
+  // A solution where the Jacobian's σ_min/σ_max (rotation columns divided by
+  // the platform radius, so unit-free) is below this is a parallel
+  // singularity: the readings do not determine the pose, an error.
+  double min_condition_ratio = 1e-9;
 };
 
 struct LocalFkResult {
   Pose pose;
   int iterations = 0;
   double max_residual = 0;  // max |L_i(pose) - L_i|, robot unit
+  double condition_ratio = 0;  // σ_min/σ_max of the scaled Jacobian at the pose (see LocalFkOptions)
 };
 
 // Fails (with the reason) when it does not converge, e.g. for readings that no
-// pose can reach or a start at a singularity.
+// pose can reach or a start at a singularity, and when it converges to a
+// singular pose (min_condition_ratio), never with a NaN pose.
 StatusOr<LocalFkResult> ForwardKinematicsLocal(const Robot& robot, const LegReadings& readings, const Pose& start,
                                                const LocalFkOptions& options = {});
 

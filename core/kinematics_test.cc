@@ -138,6 +138,25 @@ TEST(ForwardKinematics, LocalFailsOnUnreachableReadings) {
   EXPECT_FALSE(ForwardKinematicsLocal(robot, readings, start).ok());
 }
 
+// A robot whose legs are all vertical (b_i straight above a_i) is singular
+// everywhere: the readings fix z, q1, q2 but not x, y, q3. Local FK meets the
+// readings from any start, and must say the pose is not determined rather than
+// return the start's x, y, q3 as if they had been measured.
+TEST(ForwardKinematics, LocalFailsAtASingularity) {
+  Robot robot = Preset("inria-left-hand");
+  for (Leg& leg : robot.legs) leg.b_in_platform = leg.a_in_base;
+  const Pose truth = robot.PoseFromVector((Vector6d() << 0, 0, 53.5, 0, 0, 0).finished());
+  const Pose start = robot.PoseFromVector((Vector6d() << 0.5, -0.3, 53, 1, -1, 2).finished());
+  StatusOr<LocalFkResult> fk = ForwardKinematicsLocal(robot, InverseKinematics(robot, truth), start);
+  ASSERT_FALSE(fk.ok());
+  EXPECT_THAT(fk.status().message(), ::testing::HasSubstr("the pose is at a singularity"));
+  // The INRIA robot itself is well conditioned at the same pose.
+  const Robot inria = Preset("inria-left-hand");
+  StatusOr<LocalFkResult> regular = ForwardKinematicsLocal(inria, InverseKinematics(inria, truth), start);
+  ASSERT_TRUE(regular.ok()) << regular.status().message();
+  EXPECT_GT(regular->condition_ratio, 1e-3);
+}
+
 // The middle of the INRIA workspace is feasible; the report's verdict is its smallest margin.
 TEST(Constraints, MiddleOfWorkspaceIsFeasible) {
   const Robot robot = Preset("inria-left-hand");

@@ -14,6 +14,7 @@
 //   Status saved = SaveMeasurements("copy.csv", *rows);
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,10 @@ namespace hexcal {
 struct Measurement {
   Vector6d pose = Vector6d::Zero();        // [x, y, z, q1, q2, q3]: robot unit, degrees
   LegReadings legs = LegReadings::Zero();  // L1..L6, robot unit
+  // Covariance of `pose` when the sensor gives one per pose (a camera:
+  // registration.h), robot unit² and degrees²; it replaces the noise model's
+  // pose terms in the weights (noise_model.h). Not stored in the CSV.
+  std::optional<Matrix6d> pose_covariance;
 };
 
 // The column names, in the order SaveMeasurements writes them.

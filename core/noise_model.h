@@ -39,5 +39,9 @@ Eigen::Matrix<double, 7, 1> ResidualMeasurementGradient(const Robot& robot, int 
 // √(gᵀ Σ g): the standard deviation of F_ij under the noise model.
 double ResidualStdDev(const Robot& robot, int leg, const Vector6d& pose_vector, double reading,
                       const NoiseModel& noise);
+// The same with the pose's own covariance (robot unit², degrees², any
+// correlations) in place of the model's pose terms; the reading's from `noise`.
+double ResidualStdDev(const Robot& robot, int leg, const Vector6d& pose_vector, double reading,
+                      const NoiseModel& noise, const Matrix6d& pose_covariance);
 
 }  // namespace hexcal

@@ -98,5 +98,22 @@ TEST(NoiseModel, RejectsNegativeAndNonFiniteLevels) {
   EXPECT_FALSE(noise.IsValid(&error));
 }
 
+TEST(NoiseModel, PoseCovarianceOfTheModelGivesTheModelsStdDev) {
+  const Robot robot = Preset("inria-left-hand");
+  const Vector6d pose = (Vector6d() << 1, -2, 52, 5, -3, 10).finished();
+  NoiseModel noise;
+  noise.position = 0.003;
+  noise.angle_deg = 0.02;
+  noise.leg = 0.002;
+  Vector6d variances;
+  const double sp = noise.PositionStdDev(), sq = RadToDeg(noise.AngleStdDevRad());
+  variances << sp * sp, sp * sp, sp * sp, sq * sq, sq * sq, sq * sq;
+  for (int leg = 0; leg < kNumLegs; ++leg) {
+    const double reading = InverseKinematics(robot, robot.PoseFromVector(pose))[leg];
+    EXPECT_NEAR(ResidualStdDev(robot, leg, pose, reading, noise, variances.asDiagonal()),
+                ResidualStdDev(robot, leg, pose, reading, noise), 1e-12);
+  }
+}
+
 }  // namespace
 }  // namespace hexcal

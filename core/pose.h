@@ -18,6 +18,7 @@
 namespace hexcal {
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
 enum class EulerConvention { kXYZ, kZYX };
 

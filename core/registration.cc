@@ -228,12 +228,36 @@ Robot ExpressInFrames(const Robot& robot, const Pose& new_base_from_old_base,
   return moved;
 }
 
+Matrix6d MapCameraPoseCovariance(const Robot& nominal, const Registration& registration,
+                                 const Pose& camera_from_target, const Matrix6d& covariance) {
+  const Vector6d b = VectorFromPose(camera_from_target, EulerConvention::kXYZ);
+  const auto mapped = [&](const Vector6d& v) {
+    return nominal.VectorFromPose(BaseFromPlatform(registration, PoseFromVector(v, EulerConvention::kXYZ)));
+  };
+  // Steps well above rounding and well inside the linear range: 1e-6 of the
+  // pose's size for positions, 1e-6 degree for angles.
+  const double position_step = 1e-6 * std::max(1.0, b.head<3>().norm());
+  Matrix6d jacobian;
+  for (int k = 0; k < 6; ++k) {
+    const double h = k < 3 ? position_step : 1e-6;
+    Vector6d plus = b, minus = b;
+    plus[k] += h;
+    minus[k] -= h;
+    jacobian.col(k) = (mapped(plus) - mapped(minus)) / (2 * h);
+  }
+  return jacobian * covariance * jacobian.transpose();
+}
+
 StatusOr<CameraCalibrationResult> CalibrateFromCameraPoses(const Robot& nominal, const CameraCalibrationInput& input,
                                                            const RegistrationOptions& registration_options,
-                                                           const CalibrationOptions& calibration_options) {
+                                                           const CalibrationOptions& calibration_options,
+                                                           const CalibrationProgress& progress,
+                                                           const std::atomic<bool>* cancel) {
   const size_t n = input.camera_from_target.size();
-  if (input.legs.size() != n || input.fk_start.size() != n)
-    return Status::Error("calibration from camera poses: camera poses, readings and FK starts differ in number");
+  if (input.legs.size() != n || input.fk_start.size() != n ||
+      (!input.camera_pose_covariance.empty() && input.camera_pose_covariance.size() != n))
+    return Status::Error(
+        "calibration from camera poses: camera poses, readings, FK starts and covariances differ in number");
   std::vector<Pose> nominal_poses;
   for (size_t j = 0; j < n; ++j) {
     StatusOr<LocalFkResult> fk = ForwardKinematicsLocal(nominal, input.legs[j], input.fk_start[j]);
@@ -248,9 +272,15 @@ StatusOr<CameraCalibrationResult> CalibrateFromCameraPoses(const Robot& nominal,
     Measurement m;
     m.pose = nominal.VectorFromPose(BaseFromPlatform(*reg, input.camera_from_target[j]));
     m.legs = input.legs[j];
+    if (!input.camera_pose_covariance.empty()) {
+      const Matrix6d& covariance = input.camera_pose_covariance[j];
+      if (!covariance.allFinite())
+        return Status::Error("pose " + std::to_string(j + 1) + ": the camera pose covariance is not finite");
+      m.pose_covariance = MapCameraPoseCovariance(nominal, *reg, input.camera_from_target[j], covariance);
+    }
     result.measurements.push_back(m);
   }
-  StatusOr<CalibrationResult> calibration = Calibrate(nominal, result.measurements, calibration_options);
+  StatusOr<CalibrationResult> calibration = Calibrate(nominal, result.measurements, calibration_options, progress, cancel);
   if (!calibration.ok()) return calibration.status();
   result.calibration = *calibration;
 

@@ -90,6 +90,12 @@ struct CameraCalibrationInput {
   std::vector<Pose> camera_from_target;  // robot unit
   std::vector<LegReadings> legs;         // the readings at each image
   std::vector<Pose> fk_start;            // start pose of the local FK for each image
+  // Optional (empty, or one per image): the covariance of each camera pose as
+  // the vector VectorFromPose(camera_from_target, kXYZ), robot unit² and
+  // degrees² (vision/board_pose.h gives it). Mapped to the base frame through
+  // the registered X and Y (first order), it weights that image in the
+  // calibration (Measurement::pose_covariance).
+  std::vector<Matrix6d> camera_pose_covariance;
 };
 
 struct CameraCalibrationResult {
@@ -100,9 +106,17 @@ struct CameraCalibrationResult {
   double calibrated_position_rms = 0, calibrated_angle_rms_deg = 0;
 };
 
+// The covariance of nominal.VectorFromPose(X · B · Y⁻¹) from that of
+// VectorFromPose(B, kXYZ) (robot unit², degrees²): J Σ Jᵀ, J by central differences.
+Matrix6d MapCameraPoseCovariance(const Robot& nominal, const Registration& registration,
+                                 const Pose& camera_from_target, const Matrix6d& covariance);
+
 // Registration with the nominal robot, then Calibrate on the mapped poses.
+// `progress` and `cancel` go to Calibrate (calibration.h).
 StatusOr<CameraCalibrationResult> CalibrateFromCameraPoses(const Robot& nominal, const CameraCalibrationInput& input,
                                                            const RegistrationOptions& registration_options = {},
-                                                           const CalibrationOptions& calibration_options = {});
+                                                           const CalibrationOptions& calibration_options = {},
+                                                           const CalibrationProgress& progress = {},
+                                                           const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace hexcal

@@ -12,6 +12,7 @@
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/presets.h"
+#include "core/yaml_document.h"
 
 namespace hexcal {
 namespace {
@@ -55,18 +56,9 @@ class RobotYamlReader {
   explicit RobotYamlReader(std::string label) : label_(std::move(label)) {}
 
   StatusOr<Robot> Read(const std::string& text) const {
-    YAML::Node root;
-    try {
-      root = YAML::Load(text);
-    } catch (const YAML::ParserException& e) {
-      return Status::Error(label_ + ": YAML syntax error at line " + std::to_string(e.mark.line + 1) + ", column " +
-                           std::to_string(e.mark.column + 1) + ": " + e.msg);
-    }
-    try {
-      return ReadRoot(root);
-    } catch (const YAML::Exception& e) {  // every access is checked; this is a backstop
-      return Status::Error(label_ + ": " + e.what());
-    }
+    const StatusOr<YAML::Node> root = LoadYamlDocument(text, label_);
+    if (!root.ok()) return root.status();
+    return WithYamlBackstop<Robot>(label_, [&] { return ReadRoot(*root); });
   }
 
  private:

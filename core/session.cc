@@ -9,6 +9,7 @@
 
 #include "core/atomic_file.h"
 #include "core/csv.h"
+#include "core/yaml_document.h"
 
 namespace hexcal {
 
@@ -50,7 +51,11 @@ YAML::Node FrameNode(const Pose& pose) {
   return node;
 }
 
-StatusOr<Pose> ParseFrame(const YAML::Node& node, const std::string& source, const std::string& key) {
+StatusOr<Pose> ParseFrame(const YAML::Node& frames, const std::string& source, const std::string& key) {
+  // frames[key] of a mapping without the key is an invalid node that throws on
+  // every query but IsDefined (found by fuzz/session_fuzz).
+  const YAML::Node node = frames[key];
+  if (!node.IsDefined()) return Status::Error(source + ": frames." + key + ": missing");
   if (!node.IsSequence() || node.size() != 6)
     return Status::Error(source + ": frames." + key + " must be [x, y, z, q1, q2, q3]");
   Vector6d v;
@@ -126,12 +131,9 @@ StatusOr<SessionConfig> LoadSessionConfig(const std::string& dir) {
   const SessionPaths paths(dir);
   StatusOr<std::string> text = ReadFileToString(paths.config);
   if (!text.ok()) return text.status();
-  YAML::Node root;
-  try {
-    root = YAML::Load(*text);
-  } catch (const YAML::ParserException& e) {
-    return Status::Error(paths.config + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
-  }
+  const StatusOr<YAML::Node> document = LoadYamlDocument(*text, paths.config);
+  if (!document.ok()) return document.status();
+  const YAML::Node& root = *document;
   if (!root.IsMap()) return Status::Error(paths.config + ": not a YAML mapping");
   SessionConfig config;
   try {
@@ -142,6 +144,7 @@ StatusOr<SessionConfig> LoadSessionConfig(const std::string& dir) {
     config.camera = root["camera"].as<std::string>();
     config.target = root["target"].as<std::string>();
     if (const YAML::Node noise = root["noise"]) {
+      if (!noise.IsMap()) return Status::Error(paths.config + ": noise: expected a mapping {position, angle_deg, leg}");
       if (noise["position"]) config.noise.position = noise["position"].as<double>();
       if (noise["angle_deg"]) config.noise.angle_deg = noise["angle_deg"].as<double>();
       if (noise["leg"]) config.noise.leg = noise["leg"].as<double>();
@@ -150,9 +153,10 @@ StatusOr<SessionConfig> LoadSessionConfig(const std::string& dir) {
     return Status::Error(paths.config + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
   }
   if (const YAML::Node frames = root["frames"]) {
-    StatusOr<Pose> x = ParseFrame(frames["base_from_camera"], paths.config, "base_from_camera");
+    if (!frames.IsMap()) return Status::Error(paths.config + ": frames: expected base_from_camera and platform_from_target");
+    StatusOr<Pose> x = ParseFrame(frames, paths.config, "base_from_camera");
     if (!x.ok()) return x.status();
-    StatusOr<Pose> y = ParseFrame(frames["platform_from_target"], paths.config, "platform_from_target");
+    StatusOr<Pose> y = ParseFrame(frames, paths.config, "platform_from_target");
     if (!y.ok()) return y.status();
     config.base_from_camera = *x;
     config.platform_from_target = *y;

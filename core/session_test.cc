@@ -103,5 +103,25 @@ TEST(Session, LegsErrorsNameTheFileAndLine) {
               HasSubstr("legs.csv:2: column 'holdout': '2' is not 0 or 1"));
 }
 
+std::string ConfigError(const std::string& dir, const std::string& yaml) {
+  WriteTextFile(dir + "/session.yaml", yaml);
+  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
+  EXPECT_FALSE(config.ok());
+  return config.ok() ? "" : config.status().message();
+}
+
+// Shapes fuzz/session_fuzz found throwing out of LoadSessionConfig.
+TEST(Session, ConfigErrorsForMisshapenFramesAndNoise) {
+  TempDir temp;
+  const std::string dir = temp.File("s");
+  ASSERT_TRUE(InitSession(dir, Config()).ok());
+  const std::string head = "robot: r.yaml\ncamera: c.yaml\ntarget: t.yaml\n";
+  EXPECT_THAT(ConfigError(dir, head + "frames:\n  base_from_camera: [0, 0, 50, 180, 0, 0]\n"),
+              HasSubstr("session.yaml: frames.platform_from_target: missing"));
+  EXPECT_THAT(ConfigError(dir, head + "frames: 3\n"), HasSubstr("session.yaml: frames: expected"));
+  EXPECT_THAT(ConfigError(dir, head + "frames: [1, 2]\n"), HasSubstr("session.yaml: frames: expected"));
+  EXPECT_THAT(ConfigError(dir, head + "noise: 0.1\n"), HasSubstr("session.yaml: noise: expected a mapping"));
+}
+
 }  // namespace
 }  // namespace hexcal

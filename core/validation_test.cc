@@ -25,7 +25,7 @@ std::vector<Measurement> ExactMeasurements(const Robot& truth, int count) {
   EXPECT_TRUE(poses.ok()) << poses.status().message();
   std::vector<Measurement> measurements;
   for (const Vector6d& v : poses->poses) {
-    measurements.push_back({v, InverseKinematics(truth, truth.PoseFromVector(v))});
+    measurements.push_back({v, InverseKinematics(truth, truth.PoseFromVector(v)), std::nullopt});
   }
   return measurements;
 }
@@ -42,7 +42,7 @@ TEST(Validation, TheTrueRobotHasNoErrorAndTheNominalOneHasLarge) {
   const std::vector<Measurement> measurements = ExactMeasurements(nominal, 20);
   std::vector<Measurement> of_truth;
   for (const Measurement& m : measurements)
-    of_truth.push_back({m.pose, InverseKinematics(truth, truth.PoseFromVector(m.pose))});
+    of_truth.push_back({m.pose, InverseKinematics(truth, truth.PoseFromVector(m.pose)), std::nullopt});
 
   StatusOr<ValidationReport> exact = Validate(truth, of_truth);
   ASSERT_TRUE(exact.ok()) << exact.status().message();
@@ -64,7 +64,7 @@ TEST(Validation, StatisticsAreThoseOfTheRows) {
   const Robot truth = Perturbed(nominal, 0.2);
   std::vector<Measurement> measurements;
   for (const Measurement& m : ExactMeasurements(nominal, 6)) {
-    measurements.push_back({m.pose, InverseKinematics(truth, truth.PoseFromVector(m.pose))});
+    measurements.push_back({m.pose, InverseKinematics(truth, truth.PoseFromVector(m.pose)), std::nullopt});
   }
   StatusOr<ValidationReport> report = Validate(nominal, measurements);
   ASSERT_TRUE(report.ok());

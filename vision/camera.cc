@@ -11,6 +11,7 @@
 
 #include "core/atomic_file.h"
 #include "core/csv.h"
+#include "core/yaml_document.h"
 
 namespace hexcal {
 namespace {
@@ -80,25 +81,55 @@ class CameraReader {
     return Finish(camera);
   }
 
+  // The numbers of an !!opencv-matrix, read entry by entry: OpenCV's own
+  // `node >> cv::Mat` trusts rows and cols and allocates what a corrupt file
+  // claims (tens of GB, found by fuzz/camera_fuzz).
+  StatusOr<std::vector<double>> OpenCvMatrix(const cv::FileNode& node, const std::string& key) const {
+    if (node.empty()) return Error(key + ": missing");
+    if (!node.isMap()) return Error(key + ": expected an !!opencv-matrix (rows, cols, dt, data)");
+    const cv::FileNode rows = node["rows"], cols = node["cols"], data = node["data"];
+    if (!rows.isInt() || !cols.isInt()) return Error(key + ": rows, cols: missing or not whole numbers");
+    const int r = static_cast<int>(rows), c = static_cast<int>(cols);
+    constexpr int kMaxEntries = 64;  // a 3 x 3 matrix or a handful of coefficients
+    if (r < 1 || c < 1 || r > kMaxEntries || c > kMaxEntries || r * c > kMaxEntries) {
+      return Error(key + ": " + std::to_string(r) + " x " + std::to_string(c) + " is not a camera matrix or coefficient list");
+    }
+    if (!data.isSeq() || static_cast<int>(data.size()) != r * c) {
+      return Error(key + ".data: expected " + std::to_string(r * c) + " numbers (" + std::to_string(r) + " x " +
+                   std::to_string(c) + ")");
+    }
+    std::vector<double> values;
+    for (const cv::FileNode& item : data) {
+      if (!item.isReal() && !item.isInt()) {
+        return Error(key + ".data: entry " + std::to_string(values.size() + 1) + " is not a number");
+      }
+      const double value = static_cast<double>(item);
+      if (!std::isfinite(value)) {
+        return Error(key + ".data: entry " + std::to_string(values.size() + 1) + " (" + std::to_string(value) +
+                     ") is not a finite number");
+      }
+      values.push_back(value);
+    }
+    return values;
+  }
+
   StatusOr<Camera> ReadOpenCv(const std::string& text) const {
     try {
       cv::FileStorage storage(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
       if (!storage.isOpened()) return Error("not an OpenCV FileStorage file");
-      cv::Mat k, d;
-      const cv::FileNode k_node = storage["camera_matrix"], d_node = storage["distortion_coefficients"];
-      if (k_node.empty()) return Error("camera_matrix: missing");
-      if (d_node.empty()) return Error("distortion_coefficients: missing");
-      k_node >> k;
-      d_node >> d;
+      StatusOr<std::vector<double>> k = OpenCvMatrix(storage["camera_matrix"], "camera_matrix");
+      if (!k.ok()) return k.status();
+      StatusOr<std::vector<double>> d = OpenCvMatrix(storage["distortion_coefficients"], "distortion_coefficients");
+      if (!d.ok()) return d.status();
       const cv::FileNode w = storage["image_width"], h = storage["image_height"];
       if (!w.isInt() || !h.isInt()) return Error("image_width, image_height: missing or not whole numbers");
-      k.convertTo(k, CV_64F);
-      d.convertTo(d, CV_64F);
-      return FromArrays(static_cast<int>(w), static_cast<int>(h),
-                        std::vector<double>(k.begin<double>(), k.end<double>()),
-                        std::vector<double>(d.begin<double>(), d.end<double>()));
+      return FromArrays(static_cast<int>(w), static_cast<int>(h), *k, *d);
     } catch (const cv::Exception& e) {
       return Error(std::string("cannot read as OpenCV FileStorage: ") + e.msg);
+    } catch (const std::exception& e) {
+      // OpenCV 4.6's parser also lets standard exceptions out on some broken
+      // files (std::length_error, found by fuzz/camera_fuzz).
+      return Error(std::string("cannot read as OpenCV FileStorage: malformed file (") + e.what() + ")");
     }
   }
 
@@ -127,15 +158,12 @@ class CameraReader {
   // camera_calibration_parsers' layout (camera_matrix: {rows, cols, data}), or
   // the CameraInfo message's (width, height, K, D).
   StatusOr<Camera> ReadRos(const std::string& text) const {
-    YAML::Node root;
-    try {
-      root = YAML::Load(text);
-    } catch (const YAML::ParserException& e) {
-      return Error("YAML syntax error at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
-    }
+    const StatusOr<YAML::Node> document = LoadYamlDocument(text, label_);
+    if (!document.ok()) return document.status();
+    const YAML::Node& root = *document;
     if (!root.IsMap()) return Error("expected a ROS camera_info mapping or an OpenCV FileStorage file");
     const YAML::Node& map = root;
-    try {
+    return WithYamlBackstop<Camera>(label_, [&]() -> StatusOr<Camera> {
       const bool message_form = static_cast<bool>(map["K"]);
       const YAML::Node model_node = map["distortion_model"];
       if (model_node && model_node.IsScalar()) {
@@ -156,9 +184,7 @@ class CameraReader {
                        : Numbers(MapChild(map["distortion_coefficients"], "data"), "distortion_coefficients.data");
       if (!d.ok()) return d.status();
       return FromArrays(*width, *height, *k, *d);
-    } catch (const YAML::Exception& e) {
-      return Error(e.what());
-    }
+    });
   }
 
  private:
@@ -225,9 +251,11 @@ Status Camera::Validate() const {
   if (width <= 0 || height <= 0) {
     return Status::Error("image size " + std::to_string(width) + " x " + std::to_string(height) + ": must be positive");
   }
-  if (!(fx > 0) || !(fy > 0) || !std::isfinite(fx) || !std::isfinite(fy)) {
-    return Status::Error("focal lengths fx = " + FormatNumber(std::isfinite(fx) ? fx : 0) +
-                         ", fy = " + FormatNumber(std::isfinite(fy) ? fy : 0) + ": must be positive and finite");
+  for (const auto& [name, f] : {std::pair{"fx", fx}, std::pair{"fy", fy}}) {
+    if (!std::isfinite(f)) return Status::Error(std::string("focal length ") + name + ": not a finite number");
+  }
+  if (!(fx > 0) || !(fy > 0)) {
+    return Status::Error("focal lengths fx = " + FormatNumber(fx) + ", fy = " + FormatNumber(fy) + ": must be positive");
   }
   if (!std::isfinite(cx) || !std::isfinite(cy)) return Status::Error("principal point: not finite");
   for (double k : distortion) {

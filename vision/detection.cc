@@ -172,28 +172,55 @@ BoardObservation MatchToTarget(const Target& target, const Detections& detection
   return observation;
 }
 
+namespace {
+
+// PNG, JPEG (SOI and a marker), TIFF and BigTIFF, little- and big-endian.
+bool IsPngJpegOrTiff(const std::string& bytes) {
+  static const std::string kSignatures[] = {
+      std::string("\x89PNG\r\n\x1a\n", 8), std::string("\xFF\xD8\xFF", 3), std::string("II*\0", 4),
+      std::string("MM\0*", 4),              std::string("II+\0", 4),        std::string("MM\0+", 4)};
+  for (const std::string& signature : kSignatures) {
+    if (bytes.compare(0, signature.size(), signature) == 0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 StatusOr<cv::Mat> LoadGrayImage(const std::string& path) {
   StatusOr<std::string> bytes = ReadFileToString(path);
   if (!bytes.ok()) return bytes.status();
-  if (bytes->empty()) return Status::Error(path + ": empty file");
+  return DecodeGrayImage(*bytes, path);
+}
+
+StatusOr<cv::Mat> DecodeGrayImage(const std::string& bytes, const std::string& source) {
+  if (bytes.empty()) return Status::Error(source + ": empty file");
+  // imdecode tries every decoder OpenCV was built with (on Debian also DICOM,
+  // JPEG 2000, OpenEXR, WebP ...), and some abort the process on a bad file
+  // (GDCM's reader asserts: found by fuzz/image_fuzz). hexcal reads only
+  // PNG, JPEG and TIFF, so nothing else reaches imdecode.
+  if (!IsPngJpegOrTiff(bytes)) return Status::Error(source + ": cannot decode: not a PNG, JPEG or TIFF file");
   // Truncated files are caught here, before the decoders print their own
   // complaints on stderr.
-  const std::string& b = *bytes;
+  const std::string& b = bytes;
   if (b.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0 &&
       b.find("IEND", b.size() > 64 ? b.size() - 64 : 0) == std::string::npos) {
-    return Status::Error(path + ": truncated PNG (no IEND chunk)");
+    return Status::Error(source + ": truncated PNG (no IEND chunk)");
   }
   if (b.compare(0, 2, "\xFF\xD8") == 0 && b.find("\xFF\xD9", b.size() > 64 ? b.size() - 64 : 0) == std::string::npos) {
-    return Status::Error(path + ": truncated JPEG (no end-of-image marker)");
+    return Status::Error(source + ": truncated JPEG (no end-of-image marker)");
   }
   cv::Mat image;
   try {
-    const cv::Mat buffer(1, static_cast<int>(bytes->size()), CV_8U, bytes->data());
+    // imdecode only reads the buffer; the const_cast is what cv::Mat's constructor needs.
+    const cv::Mat buffer(1, static_cast<int>(bytes.size()), CV_8U, const_cast<char*>(bytes.data()));
     image = cv::imdecode(buffer, cv::IMREAD_GRAYSCALE);
   } catch (const cv::Exception& e) {
-    return Status::Error(path + ": cannot decode: " + e.msg);
+    return Status::Error(source + ": cannot decode: " + e.msg);
+  } catch (const std::exception& e) {  // e.g. std::bad_alloc for a header claiming a huge image
+    return Status::Error(source + ": cannot decode: " + e.what());
   }
-  if (image.empty()) return Status::Error(path + ": cannot decode: corrupt, truncated or not an image");
+  if (image.empty()) return Status::Error(source + ": cannot decode: corrupt, truncated or not an image");
   return image;
 }
 

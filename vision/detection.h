@@ -112,5 +112,7 @@ BoardObservation MatchToTarget(const Target& target, const Detections& detection
 // An image file as 8-bit grey. Errors name the file: missing, empty, or not a
 // readable PNG / JPEG / TIFF ("cannot decode: corrupt or not an image").
 StatusOr<cv::Mat> LoadGrayImage(const std::string& path);
+// The same for the file's bytes already in memory; `source` names it in messages.
+StatusOr<cv::Mat> DecodeGrayImage(const std::string& bytes, const std::string& source);
 
 }  // namespace hexcal

@@ -100,8 +100,28 @@ StatusOr<std::vector<ImageMeasurement>> MeasureImages(const std::vector<std::str
 }
 
 std::vector<std::string> ImageMeasurementColumns() {
-  return {"file",    "x",        "y",        "z",        "q1",     "q2",   "q3",     "sigma_x", "sigma_y",
-          "sigma_z", "sigma_q1", "sigma_q2", "sigma_q3", "rms_px", "tags", "status", "message"};
+  std::vector<std::string> columns = {"file",     "x",        "y",        "z",        "q1",     "q2",
+                                      "q3",       "sigma_x",  "sigma_y",  "sigma_z",  "sigma_q1", "sigma_q2",
+                                      "sigma_q3", "rms_px",   "tags",     "status",   "message"};
+  const char* names[6] = {"x", "y", "z", "q1", "q2", "q3"};
+  for (int a = 0; a < 6; ++a)
+    for (int b = a + 1; b < 6; ++b) columns.push_back(std::string("corr_") + names[a] + "_" + names[b]);
+  return columns;
+}
+
+std::optional<Matrix6d> CovarianceFromSigmasAndCorrelations(const std::array<double, 6>& sigma,
+                                                            const std::array<double, 15>& correlation) {
+  Matrix6d covariance = Matrix6d::Zero();
+  int k = 0;
+  for (int a = 0; a < 6; ++a) {
+    if (!(sigma[a] >= 0) || !std::isfinite(sigma[a])) return std::nullopt;
+    covariance(a, a) = sigma[a] * sigma[a];
+    for (int b = a + 1; b < 6; ++b, ++k) {
+      if (!(std::abs(correlation[k]) <= 1)) return std::nullopt;
+      covariance(a, b) = covariance(b, a) = correlation[k] * sigma[a] * sigma[b];
+    }
+  }
+  return covariance;
 }
 
 std::vector<std::string> ImageMeasurementRow(const ImageMeasurement& measurement) {
@@ -118,7 +138,48 @@ std::vector<std::string> ImageMeasurementRow(const ImageMeasurement& measurement
   row.push_back(std::to_string(pose.num_tags));
   row.push_back(PoseStatusName(pose.status));
   row.push_back(pose.message);
+  for (int a = 0; a < 6; ++a) {
+    for (int b = a + 1; b < 6; ++b) {
+      const double scale = std::sqrt(pose.covariance_vector(a, a) * pose.covariance_vector(b, b));
+      row.push_back(pose.has_pose && scale > 0 ? FormatNumber(pose.covariance_vector(a, b) / scale) : "");
+    }
+  }
   return row;
+}
+
+StatusOr<std::vector<ImageMeasurementRecord>> ParseImageMeasurementsCsv(const std::string& text,
+                                                                        const std::string& source) {
+  StatusOr<CsvTable> table = ParseCsv(text, source);
+  if (!table.ok()) return table.status();
+  if (table->header != ImageMeasurementColumns())
+    return Status::Error(source + ": not the columns hexcal measure writes; remove it to re-measure");
+  std::vector<ImageMeasurementRecord> records;
+  for (size_t r = 0; r < table->rows.size(); ++r) {
+    ImageMeasurementRecord record;
+    record.cells = table->rows[r];
+    record.file = record.cells[0];
+    record.ok = record.cells[15] == "ok";
+    if (record.ok) {
+      // Columns 1-6 the pose, 7-12 its σ, 17-31 the correlations.
+      Vector6d v;
+      std::array<double, 6> sigma;
+      std::array<double, 15> correlation;
+      for (int k = 0; k < 27; ++k) {
+        const int column = k < 12 ? 1 + k : 17 + (k - 12);
+        StatusOr<double> value = NumberAt(*table, r, column);
+        if (!value.ok()) return value.status();
+        (k < 6 ? v[k] : k < 12 ? sigma[k - 6] : correlation[k - 12]) = *value;
+      }
+      record.camera_from_target = PoseFromVector(v, EulerConvention::kXYZ);
+      std::optional<Matrix6d> covariance = CovarianceFromSigmasAndCorrelations(sigma, correlation);
+      if (!covariance)
+        return Status::Error(source + ":" + std::to_string(r + 2) +
+                             ": a sigma is negative or a correlation is outside [-1, 1]");
+      record.covariance = *covariance;
+    }
+    records.push_back(std::move(record));
+  }
+  return records;
 }
 
 Status WriteImageMeasurementsCsv(const std::string& path, const std::vector<ImageMeasurement>& measurements) {

@@ -11,8 +11,10 @@
 //   Status written = WriteImageMeasurementsCsv("measurements.csv", *rows);
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,9 +54,30 @@ StatusOr<std::vector<ImageMeasurement>> MeasureImages(
     const std::vector<std::string>& files, const Camera& camera, const Target& target, const MeasureOptions& options,
     const std::function<void(int done, int total)>& progress = nullptr, const std::atomic<bool>* cancel = nullptr);
 
-// The columns of measurements.csv (docs/conventions.md).
+// The columns of measurements.csv (docs/conventions.md): the pose, its σ,
+// rms_px, tags, status, message, then the 15 correlations corr_A_B of the
+// pose vector (A before B in x, y, z, q1, q2, q3), empty without a pose.
 std::vector<std::string> ImageMeasurementColumns();
+// The pose covariance back from the σ and correlation columns; nullopt when a
+// σ is negative or not finite or a correlation is outside [-1, 1].
+std::optional<Matrix6d> CovarianceFromSigmasAndCorrelations(const std::array<double, 6>& sigma,
+                                                            const std::array<double, 15>& correlation);
 std::vector<std::string> ImageMeasurementRow(const ImageMeasurement& measurement);
+// One row of a measurements.csv read back: the pose and its covariance when
+// the status is ok, and the cells as written (to write the table again).
+struct ImageMeasurementRecord {
+  std::string file;
+  bool ok = false;
+  Pose camera_from_target;                 // target unit; when ok
+  Matrix6d covariance = Matrix6d::Zero();  // of the pose vector (Euler xyz): target unit², degrees²; when ok
+  std::vector<std::string> cells;
+};
+// Parses a table written by WriteImageMeasurementsCsv; `source` names it in
+// errors: other columns ("not the columns hexcal measure writes"), a cell
+// that is not a number, a σ or correlation out of range, each with its line.
+StatusOr<std::vector<ImageMeasurementRecord>> ParseImageMeasurementsCsv(const std::string& text,
+                                                                        const std::string& source);
+
 // Written atomically (core/atomic_file.h); `file` is written as it is in the measurement.
 Status WriteImageMeasurementsCsv(const std::string& path, const std::vector<ImageMeasurement>& measurements);
 

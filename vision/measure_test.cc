@@ -5,6 +5,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "core/atomic_file.h"
 #include "core/csv.h"
 #include "tests/test_support.h"
 #include "vision/renderer.h"
@@ -64,6 +65,40 @@ TEST(MeasureTest, EveryFileGetsAStatusAndTheBatchCarriesOn) {
   EXPECT_EQ(table->rows[2][15], "unreadable");
   EXPECT_EQ(table->rows[2][1], "");  // no pose
   EXPECT_NEAR(*NumberAt(*table, 0, 3), poses[0].position.z(), 0.1);
+  // The covariance comes back whole from the σ and correlation columns.
+  ASSERT_EQ(table->header.size(), 32u);
+  StatusOr<std::string> text = ReadFileToString(out);
+  ASSERT_TRUE(text.ok());
+  StatusOr<std::vector<ImageMeasurementRecord>> records = ParseImageMeasurementsCsv(*text, out);
+  ASSERT_TRUE(records.ok()) << records.status().message();
+  ASSERT_EQ(records->size(), 6u);
+  for (size_t i : {0u, 1u}) {
+    const ImageMeasurementRecord& record = (*records)[i];
+    ASSERT_TRUE(record.ok);
+    const Matrix6d& expected = (*rows)[i].pose.covariance_vector;
+    EXPECT_LT((record.covariance - expected).norm(), 1e-12 * expected.norm()) << record.file;
+    EXPECT_LT((record.camera_from_target.position - (*rows)[i].pose.camera_from_target.position).norm(), 1e-9);
+  }
+  EXPECT_FALSE((*records)[2].ok);
+  EXPECT_EQ((*records)[2].cells, table->rows[2]);
+  EXPECT_EQ(table->rows[2][17], "");
+}
+
+TEST(MeasureTest, CovarianceFromColumnsRejectsBadValues) {
+  std::array<double, 6> sigma = {1, 2, 3, 4, 5, 6};
+  std::array<double, 15> correlation{};
+  correlation[0] = 0.5;
+  const std::optional<Matrix6d> covariance = CovarianceFromSigmasAndCorrelations(sigma, correlation);
+  ASSERT_TRUE(covariance.has_value());
+  EXPECT_DOUBLE_EQ((*covariance)(0, 1), 1.0);
+  EXPECT_DOUBLE_EQ((*covariance)(5, 5), 36.0);
+  correlation[3] = 1.5;
+  EXPECT_FALSE(CovarianceFromSigmasAndCorrelations(sigma, correlation).has_value());
+  correlation[3] = 0;
+  sigma[2] = -1;
+  EXPECT_FALSE(CovarianceFromSigmasAndCorrelations(sigma, correlation).has_value());
+  sigma[2] = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(CovarianceFromSigmasAndCorrelations(sigma, correlation).has_value());
 }
 
 TEST(MeasureTest, ListImagesErrors) {

@@ -11,6 +11,7 @@
 
 #include "core/atomic_file.h"
 #include "core/csv.h"
+#include "core/yaml_document.h"
 #include "vision/tag_family.h"
 
 namespace hexcal {
@@ -40,19 +41,10 @@ class TargetReader {
   explicit TargetReader(const std::string& source) : label_("target file '" + source + "'") {}
 
   StatusOr<Target> Read(const std::string& text) const {
-    YAML::Node root;
-    try {
-      root = YAML::Load(text);
-    } catch (const YAML::ParserException& e) {
-      return Status::Error(label_ + ": YAML syntax error at line " + std::to_string(e.mark.line + 1) + ", column " +
-                           std::to_string(e.mark.column + 1) + ": " + e.msg);
-    }
-    if (!root.IsMap()) return Error("top level", "expected a mapping with keys " + KnownKeys());
-    try {
-      return ReadMap(root);
-    } catch (const YAML::Exception& e) {  // every access is checked; this is a backstop
-      return Status::Error(label_ + ": " + e.what());
-    }
+    const StatusOr<YAML::Node> root = LoadYamlDocument(text, label_);
+    if (!root.ok()) return root.status();
+    if (!root->IsMap()) return Error("top level", "expected a mapping with keys " + KnownKeys());
+    return WithYamlBackstop<Target>(label_, [&] { return ReadMap(*root); });
   }
 
  private:

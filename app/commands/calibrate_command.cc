@@ -123,8 +123,13 @@ int RunCalibrate(const CalibrateCliOptions& cli, std::ostream& out, std::ostream
   options.loss_scale = cli.loss_scale;
   options.weighted = cli.weighted;
   options.noise = cli.noise;
+  // Past valid options, what CheckCalibrationInput and Calibrate reject is the
+  // measurement file's content: name the file.
+  std::string options_error;
+  if (!options.IsValid(&options_error)) return ReportError(err, "calibrate", Status::Error(options_error));
+  const auto in_file = [&](const Status& s) { return Status::Error(cli.measurements + ": " + s.message()); };
   if (Status s = CheckCalibrationInput(*robot, *measurements, options); !s.ok()) {
-    return ReportError(err, "calibrate", s);
+    return ReportError(err, "calibrate", in_file(s));
   }
   std::error_code exists_error;
   if (!cli.force && std::filesystem::exists(cli.out, exists_error)) {
@@ -134,7 +139,7 @@ int RunCalibrate(const CalibrateCliOptions& cli, std::ostream& out, std::ostream
   ProgressBar progress("calibrate (legs)");
   StatusOr<CalibrationResult> result =
       Calibrate(*robot, *measurements, options, [&](int done, int total) { progress.Update(done, total); });
-  if (!result.ok()) return ReportError(err, "calibrate", result.status(), kExitFailure);
+  if (!result.ok()) return ReportError(err, "calibrate", in_file(result.status()), kExitFailure);
   const CalibrationInputs inputs{cli.robot, cli.measurements, options, CurrentUtcTimestamp()};
   if (Status s = SaveCalibratedRobot(cli.out, *result, inputs); !s.ok()) {
     return ReportError(err, "calibrate", s, kExitFailure);

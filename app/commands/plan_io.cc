@@ -53,6 +53,10 @@ StatusOr<CandidatePool> BuildCandidatePool(const PlanningModel& model, const std
   }
   std::copy_if(raw.begin(), raw.end(), std::back_inserter(pool.poses),
                [&](const Vector6d& pose) { return model.IsFeasible(pose); });
+  if (pool.poses.empty() && !file.empty()) {
+    return Status::Error(file + ": none of its " + std::to_string(raw.size()) +
+                         " poses satisfies the robot and measurement constraints (all unreachable)");
+  }
   if (pool.poses.empty()) return Status::Error("no candidate pose satisfies the robot and measurement constraints");
   return pool;
 }

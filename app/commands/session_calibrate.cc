@@ -18,46 +18,29 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A name in session.yaml: a file relative to the session folder when one
-// exists there, otherwise as given (a preset or a path).
-std::string Resolve(const std::string& dir, const std::string& name) {
-  std::error_code error;
-  const fs::path in_session = fs::path(dir) / name;
-  return fs::exists(in_session, error) ? in_session.string() : name;
-}
-
 struct CameraPose {
   bool ok = false;
   Pose camera_from_target;  // target unit
+  Matrix6d covariance = Matrix6d::Zero();  // of the pose vector (Euler xyz): target unit², degrees²
 };
 
 // measurements.csv rows by image; measures the images missing from it and
 // rewrites it with every row (old rows kept as they were).
 StatusOr<std::map<std::string, CameraPose>> MeasureSession(const SessionPaths& paths, const std::vector<LegsRow>& legs,
-                                                           const Camera& camera, const Target& target) {
+                                                           const Camera& camera, const Target& target,
+                                                           const SessionCalibrateHooks& hooks) {
   std::vector<std::vector<std::string>> rows;
   std::map<std::string, CameraPose> poses;
   const std::vector<std::string> columns = ImageMeasurementColumns();
   std::error_code error;
   if (fs::exists(paths.measurements, error)) {
-    StatusOr<CsvTable> table = ReadCsv(paths.measurements);
-    if (!table.ok()) return table.status();
-    if (table->header != columns)
-      return Status::Error(paths.measurements + ": not the columns hexcal measure writes; remove it to re-measure");
-    for (size_t r = 0; r < table->rows.size(); ++r) {
-      CameraPose pose;
-      pose.ok = table->rows[r][15] == "ok";
-      if (pose.ok) {
-        Vector6d v;
-        for (int k = 0; k < 6; ++k) {
-          StatusOr<double> value = NumberAt(*table, r, 1 + k);
-          if (!value.ok()) return value.status();
-          v[k] = *value;
-        }
-        pose.camera_from_target = PoseFromVector(v, EulerConvention::kXYZ);
-      }
-      poses[table->rows[r][0]] = pose;
-      rows.push_back(table->rows[r]);
+    StatusOr<std::string> text = ReadFileToString(paths.measurements);
+    if (!text.ok()) return text.status();
+    StatusOr<std::vector<ImageMeasurementRecord>> records = ParseImageMeasurementsCsv(*text, paths.measurements);
+    if (!records.ok()) return records.status();
+    for (ImageMeasurementRecord& record : *records) {
+      poses[record.file] = CameraPose{record.ok, record.camera_from_target, record.covariance};
+      rows.push_back(std::move(record.cells));
     }
   }
   std::vector<std::string> missing;
@@ -66,13 +49,19 @@ StatusOr<std::map<std::string, CameraPose>> MeasureSession(const SessionPaths& p
   if (missing.empty()) return poses;
   ProgressBar progress("measure (images)");
   StatusOr<std::vector<ImageMeasurement>> measured = MeasureImages(
-      missing, camera, target, MeasureOptions{}, [&](int done, int total) { progress.Update(done, total); });
+      missing, camera, target, MeasureOptions{},
+      [&](int done, int total) {
+        progress.Update(done, total);
+        if (hooks.progress) hooks.progress(done, total);
+      },
+      hooks.cancel);
   if (!measured.ok()) return measured.status();
   for (ImageMeasurement m : *measured) {
     m.file = fs::path(m.file).filename().string();
     CameraPose pose;
     pose.ok = m.pose.status == PoseStatus::kOk;
     pose.camera_from_target = m.pose.camera_from_target;
+    pose.covariance = m.pose.covariance_vector;
     poses[m.file] = pose;
     rows.push_back(ImageMeasurementRow(m));
   }
@@ -90,19 +79,26 @@ nlohmann::json StatsJson(const ValidationReport& report) {
 
 }  // namespace
 
-int RunSessionCalibrate(const std::string& dir, bool json, std::ostream& out, std::ostream& err) {
+std::string ResolveSessionFile(const std::string& dir, const std::string& name) {
+  std::error_code error;
+  const fs::path in_session = fs::path(dir) / name;
+  return fs::exists(in_session, error) ? in_session.string() : name;
+}
+
+int RunSessionCalibrate(const std::string& dir, bool json, std::ostream& out, std::ostream& err,
+                        const SessionCalibrateHooks& hooks) {
   const char* kCommand = "calibrate";
   const SessionPaths paths(dir);
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   if (!config.ok()) return ReportError(err, kCommand, config.status());
   StatusOr<std::vector<LegsRow>> legs = LoadSessionLegs(dir);
   if (!legs.ok()) return ReportError(err, kCommand, legs.status());
-  const std::string robot_name = Resolve(dir, config->robot);
+  const std::string robot_name = ResolveSessionFile(dir, config->robot);
   StatusOr<Robot> nominal = LoadRobot(robot_name);
   if (!nominal.ok()) return ReportError(err, kCommand, nominal.status());
-  StatusOr<Camera> camera = LoadCamera(Resolve(dir, config->camera));
+  StatusOr<Camera> camera = LoadCamera(ResolveSessionFile(dir, config->camera));
   if (!camera.ok()) return ReportError(err, kCommand, camera.status());
-  StatusOr<Target> target = LoadTarget(Resolve(dir, config->target));
+  StatusOr<Target> target = LoadTarget(ResolveSessionFile(dir, config->target));
   if (!target.ok()) return ReportError(err, kCommand, target.status());
   const std::optional<PoseBox> box = nominal->limits.SamplingBox();
   if (!box || !box->IsComplete())
@@ -111,7 +107,7 @@ int RunSessionCalibrate(const std::string& dir, bool json, std::ostream& out, st
   for (int k = 0; k < 6; ++k) centre[k] = box->bounds[k]->Centre();
   const Pose fk_start = nominal->PoseFromVector(centre);
 
-  StatusOr<std::map<std::string, CameraPose>> poses = MeasureSession(paths, *legs, *camera, *target);
+  StatusOr<std::map<std::string, CameraPose>> poses = MeasureSession(paths, *legs, *camera, *target, hooks);
   if (!poses.ok()) return ReportError(err, kCommand, poses.status());
   const double scale = MetresPerUnit(target->length_unit) / MetresPerUnit(nominal->length_unit);
 
@@ -131,6 +127,10 @@ int RunSessionCalibrate(const std::string& dir, bool json, std::ostream& out, st
     Pose camera_from_target = pose.camera_from_target;
     camera_from_target.position *= scale;
     input.camera_from_target.push_back(camera_from_target);
+    Matrix6d covariance = pose.covariance;  // to the robot unit
+    covariance.topRows<3>() *= scale;
+    covariance.leftCols<3>() *= scale;
+    input.camera_pose_covariance.push_back(covariance);
     input.legs.push_back(row.legs);
     input.fk_start.push_back(fk_start);
   }
@@ -138,10 +138,19 @@ int RunSessionCalibrate(const std::string& dir, bool json, std::ostream& out, st
   registration.position_sigma = config->noise.PositionStdDev();
   registration.angle_sigma_deg = RadToDeg(config->noise.AngleStdDevRad());
   CalibrationOptions calibration;
+  // Weighted by each image's own pose covariance and the model's reading
+  // noise; σ at least the a priori one (calibration.h, UncertaintyScale).
   calibration.weighted = true;
   calibration.noise = config->noise;
+  calibration.uncertainty_scale = UncertaintyScale::kAtLeastAPriori;
   ProgressBar progress("register and calibrate");
-  StatusOr<CameraCalibrationResult> result = CalibrateFromCameraPoses(*nominal, input, registration, calibration);
+  StatusOr<CameraCalibrationResult> result =
+      CalibrateFromCameraPoses(*nominal, input, registration, calibration,
+                               [&](int done, int total) {
+                                 progress.Update(done, total);
+                                 if (hooks.progress) hooks.progress(done, total);
+                               },
+                               hooks.cancel);
   if (!result.ok()) return ReportError(err, kCommand, result.status(), kExitFailure);
   progress.Update(1, 1);
 
@@ -221,6 +230,16 @@ int RunSessionCalibrate(const std::string& dir, bool json, std::ostream& out, st
     }
   }
   full["parameters"] = parameters;
+  nlohmann::json legs_fit = nlohmann::json::array();
+  for (int i = 0; i < kNumLegs; ++i) {
+    const LegCalibration& leg = result->calibration.legs[i];
+    legs_fit.push_back({{"leg", i + 1},
+                        {"variance_factor", leg.variance_factor},
+                        {"residual_rms", leg.residual_rms},
+                        {"iterations", leg.iterations},
+                        {"termination", leg.termination}});
+  }
+  full["legs"] = legs_fit;
   const std::string report_path = (fs::path(paths.results) / "report.json").string();
   if (Status s = WriteFileAtomically(report_path, full.dump(2) + "\n"); !s.ok())
     return ReportError(err, kCommand, s, kExitFailure);

@@ -5,12 +5,27 @@
 // measures images (vision); core/session.h holds the folder itself.
 #pragma once
 
+#include <atomic>
+#include <functional>
 #include <ostream>
 #include <string>
 
 namespace hexcal::cli {
 
-// Exit code as every command's: 0, kExitFailure or kExitBadInput.
-int RunSessionCalibrate(const std::string& dir, bool json, std::ostream& out, std::ostream& err);
+// A name in session.yaml: a file relative to the session folder when one
+// exists there, otherwise as given (a preset name or a path).
+std::string ResolveSessionFile(const std::string& dir, const std::string& name);
+
+// For a caller with its own progress display and a Cancel button (the GUI).
+struct SessionCalibrateHooks {
+  // (done, total) of the current stage: images measured, then legs calibrated.
+  std::function<void(int done, int total)> progress;
+  const std::atomic<bool>* cancel = nullptr;  // when raised, stops at the next image or solver iteration
+};
+
+// Exit code as every command's: 0, kExitFailure or kExitBadInput; a cancelled
+// run returns kExitFailure with "cancelled" and writes nothing new to results/.
+int RunSessionCalibrate(const std::string& dir, bool json, std::ostream& out, std::ostream& err,
+                        const SessionCalibrateHooks& hooks = {});
 
 }  // namespace hexcal::cli

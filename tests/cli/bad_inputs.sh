@@ -5,9 +5,9 @@
 # pattern, and leave no output file behind. The table is one case a line:
 #   FILE | EXIT CODE | PATTERN (extended grep, after the file name) | ARGUMENTS
 # with @IN@ for the bad file and @OUT@ for an output path in a fresh folder.
-# Images are the exception: `measure` records an unreadable image as a row of
-# its (complete) measurements table, so for them the output must exist and say
-# "unreadable" (the OUT=table marker).
+# Images are the exception: `measure` records an unreadable image, or one
+# without the target, as a row of its (complete) measurements table, so for
+# them the output must exist and give the row that status (OUT=table:STATUS).
 set -u
 hexcal=$1 data=$2
 corpus=$data/bad_inputs
@@ -19,7 +19,7 @@ table=$(cat <<'EOF'
 poses_empty.csv | 2 | no header line | ik ROBOT --poses @IN@ --out @OUT@
 poses_comment_only.csv | 2 | no header line | ik ROBOT --poses @IN@ --out @OUT@
 poses_header_only.csv | 2 | no poses | ik ROBOT --poses @IN@ --out @OUT@
-poses_missing_header.csv | 2 | :1: duplicate column '0' in header | ik ROBOT --poses @IN@ --out @OUT@
+poses_missing_header.csv | 2 | :1: no header: column 1 is the number '0', and the first line must name the columns | ik ROBOT --poses @IN@ --out @OUT@
 poses_duplicate_header.csv | 2 | :1: duplicate column 'z' | ik ROBOT --poses @IN@ --out @OUT@
 poses_missing_column.csv | 2 | missing column 'q3' | ik ROBOT --poses @IN@ --out @OUT@
 poses_short_row.csv | 2 | :3: 5 columns, header has 6 | ik ROBOT --poses @IN@ --out @OUT@
@@ -40,6 +40,11 @@ measurements_duplicate_header.csv | 2 | :1: duplicate column 'L6' | calibrate RO
 measurements_short_row.csv | 2 | :2: 11 columns, header has 12 | calibrate ROBOT --measurements @IN@ --out @OUT@
 measurements_inf.csv | 2 | :2: column 'L4': '-inf' is not a finite number | calibrate ROBOT --measurements @IN@ --out @OUT@
 measurements_huge.csv | 2 | :2: column 'L5': '1e999' is not a finite number | calibrate ROBOT --measurements @IN@ --out @OUT@
+measurements_missing_header.csv | 2 | :1: no header: column 1 is the number | calibrate ROBOT --measurements @IN@ --out @OUT@
+measurements_fewer_than_parameters.csv | 2 | at least 7 measurements \(7 parameters per leg\), got 6 | calibrate ROBOT --measurements @IN@ --out @OUT@
+measurements_singular_poses.csv | 1 | degenerate pose set: leg 1's identification Jacobian has rank 1 of 7 | calibrate ROBOT --measurements @IN@ --out @OUT@
+measurements_wrong_unit.csv | 2 | measurement 1: L1 = 22.58914313 is far outside the stroke \[0, 3.5\] cm | calibrate ROBOT --measurements @IN@ --out @OUT@
+poses_unreachable.csv | 2 | none of its 4 poses satisfies the robot and measurement constraints | plan ROBOT --poses 7 --candidates @IN@ --out @OUT@
 settings_empty.yaml | 2 | expected a mapping at the top level | plan ROBOT --settings @IN@ --out @OUT@
 settings_top_level_list.yaml | 2 | expected a mapping at the top level | plan ROBOT --settings @IN@ --out @OUT@
 settings_syntax_error.yaml | 2 | error at line 2, column 1 | plan ROBOT --settings @IN@ --out @OUT@
@@ -57,15 +62,19 @@ target_nan_size.yaml | 2 | tag_size: '.nan' is not a finite number | measure --c
 camera_empty.yaml | 2 | empty file | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_garbage.yaml | 2 | expected a ROS camera_info mapping or an OpenCV FileStorage file | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_truncated.yaml | 2 | cannot read as OpenCV FileStorage | measure --camera @IN@ --images IMAGE --out @OUT@
-camera_nan_focal.yaml | 2 | focal lengths .*must be positive and finite | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_nan_focal.yaml | 2 | camera_matrix.data: entry 1 \(-?nan\) is not a finite number | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_wrong_matrix_size.yaml | 2 | camera_matrix: expected 9 numbers \(3 x 3\), found 4 | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_ros_missing_k.yaml | 2 | camera_matrix.data: expected a list of numbers | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_huge_matrix.yaml | 2 | camera_matrix: 2147483647 x 8 is not a camera matrix | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_parser_exception.yaml | 2 | cannot read as OpenCV FileStorage: malformed file | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_zero_size.yaml | 2 | image size 0 x 768: must be positive | render --camera @IN@ --poses POSES --out @OUT@
-image_empty.png | 1 | empty file | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table
-image_header_only.png | 1 | truncated PNG \(no IEND chunk\) | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table
-image_truncated.png | 1 | truncated PNG \(no IEND chunk\) | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table
-image_bad_crc.png | 1 | cannot decode: corrupt, truncated or not an image | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table
-image_garbage.png | 1 | cannot decode: corrupt, truncated or not an image | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table
+image_empty.png | 1 | empty file | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
+image_header_only.png | 1 | truncated PNG \(no IEND chunk\) | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
+image_truncated.png | 1 | truncated PNG \(no IEND chunk\) | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
+image_bad_crc.png | 1 | cannot decode: corrupt, truncated or not an image | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
+image_garbage.png | 1 | cannot decode: not a PNG, JPEG or TIFF file | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
+image_dicom_assert.png | 1 | cannot decode: not a PNG, JPEG or TIFF file | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
+image_no_target.png | 1 | no_target: no tag of the target found | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:no_target
 EOF
 )
 
@@ -79,14 +88,14 @@ while IFS='|' read -r file code pattern args; do
   dir=$work/case$cases
   mkdir "$dir"
   out=$dir/out
-  expect_table=0
+  expect_status=""
   argv=()
   for word in $args; do
     case $word in
       ROBOT) argv+=($ROBOT) ;;
       IMAGE) argv+=("$corpus/image_garbage.png") ;;
       POSES) argv+=("$data/poses/vision_views.csv") ;;
-      OUT=table) expect_table=1 ;;
+      OUT=table:*) expect_status=${word#OUT=table:} ;;
       *) word=${word//@IN@/$corpus/$file}; argv+=("${word//@OUT@/$out}") ;;
     esac
   done
@@ -99,8 +108,8 @@ while IFS='|' read -r file code pattern args; do
     problem="exit code $got, expected $code"
   elif ! grep -Eq -- "$file.*$pattern" <<<"$output"; then
     problem="output does not name the file and match /$pattern/"
-  elif [ "$expect_table" = 1 ]; then
-    grep -q "$file,.*,unreadable," "$out" 2>/dev/null || problem="no 'unreadable' row for it in $out"
+  elif [ -n "$expect_status" ]; then
+    grep -q "$file,.*,$expect_status," "$out" 2>/dev/null || problem="no '$expect_status' row for it in $out"
   elif compgen -G "$out*" >/dev/null || compgen -G "$dir/.out*" >/dev/null; then
     problem="left output behind: $(ls -A "$dir")"
   fi

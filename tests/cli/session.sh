@@ -77,8 +77,16 @@ if "$hexcal" report --session "$s" --out "$dir/report.html" 2>"$dir/err"; then e
 grep -q "report.html: exists; use --force" "$dir/err"
 # Measured images are not measured again.
 cp "$s/measurements.csv" "$dir/m1.csv"
-"$hexcal" calibrate --session "$s" >/dev/null
+"$hexcal" calibrate --session "$s" --json >"$dir/report2.json"
 cmp "$s/measurements.csv" "$dir/m1.csv"
+# ... and give the same calibration: the pose covariance read back whole.
+python3 - "$dir/report.json" "$dir/report2.json" <<'PY'
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:3])
+for p, q in zip(a["parameters"], b["parameters"]):
+    # Equal up to the solvers' tolerances: far below σ (a lost correlation moved them by σ/2).
+    assert abs(p["estimate"] - q["estimate"]) < 1e-4 * p["sigma"] and abs(p["sigma"] - q["sigma"]) < 1e-4 * p["sigma"], (p, q)
+PY
 
 # Bad folders: a row for an absent image, an image without a row, a short row.
 cp "$s/legs.csv" "$dir/legs.good"

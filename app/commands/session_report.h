@@ -1,0 +1,22 @@
+// The HTML report of a calibrated session (docs/session.md): one
+// self-contained page with the plan (indices, leg lengths as in Fig. 8 of the
+// paper), measurement quality per image, the registration, the calibration
+// residuals before and after, the calibrated parameters with σ and their
+// change from nominal, and the held-out validation before and after. Charts
+// are inline SVG (app/plots/svg_chart.h); nothing is fetched.
+//
+//   StatusOr<std::string> html = SessionReportHtml("run1");
+//   if (html.ok()) WriteFileAtomically("run1/results/report.html", *html);
+#pragma once
+
+#include <string>
+
+#include "core/status.h"
+
+namespace hexcal::cli {
+
+// Needs DIR/results/report.json (hexcal calibrate --session); the plan and
+// residual sections appear when plan.csv and the calibration files exist.
+StatusOr<std::string> SessionReportHtml(const std::string& dir);
+
+}  // namespace hexcal::cli

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# demo.sh HEXCAL: `hexcal demo` end to end on a small case (docs/session.md):
+# plan 14 poses, render, measure, register, calibrate, validate on 4 held-out
+# images. The calibrated parameters must be within their 3σ of the hidden
+# truth for ≥ 95 % of them and much closer than the nominal ones, the held-out
+# pose error must drop at least 3 times, and report.html must hold its charts.
+# A second run into the folder needs --force; a folder that is not a demo is
+# never replaced.
+set -eu
+hexcal=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+
+for robot in inria-left-hand deltalab-table; do
+  out=$dir/$robot
+  "$hexcal" demo --robot "$robot" --poses 14 --holdout 4 --seed 3 --out "$out" --json >"$dir/summary.json" 2>"$dir/log"
+  grep -q "\[5/5" "$dir/log"  # progress of every step
+  python3 - "$dir/summary.json" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+assert s["within_3sigma"] >= 0.95, s["within_3sigma"]
+e = s["parameter_error"]
+assert e["mean"] * 5 < e["nominal_mean"], e
+v = s["validation"]
+assert v["after"]["position_rms"] * 3 < v["before"]["position_rms"], v
+assert v["after"]["orientation_rms"] * 3 < v["before"]["orientation_rms"], v
+assert s["usable_images"] == 18, s["usable_images"]
+PY
+  report=$out/results/report.html
+  [ "$(grep -c '<svg' "$report")" -eq 5 ]
+  for section in Plan Registration Measurements Validation Residuals "Calibrated parameters"; do
+    grep -q "<h2>$section" "$report"
+  done
+  [ -s "$out/truth/robot.yaml" ] && [ -s "$out/plan.csv" ] && [ "$(ls "$out/images" | wc -l)" -eq 18 ]
+done
+
+# Text output: the figures a person reads.
+"$hexcal" demo --poses 14 --holdout 4 --seed 3 --out "$dir/inria-left-hand" --force >"$dir/text"
+grep -q "within 3 sigma of the truth" "$dir/text" && grep -q "before calibration: position" "$dir/text"
+if "$hexcal" demo --poses 14 --holdout 4 --out "$dir/inria-left-hand" 2>"$dir/err"; then exit 1; fi
+grep -q "exists; use --force" "$dir/err"
+mkdir -p "$dir/mine" && echo keep >"$dir/mine/notes.txt"
+if "$hexcal" demo --poses 14 --holdout 4 --out "$dir/mine" --force 2>"$dir/err"; then exit 1; fi
+grep -q "is not a demo folder" "$dir/err" && [ -s "$dir/mine/notes.txt" ]
+echo "demo: ok"

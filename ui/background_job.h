@@ -1,0 +1,56 @@
+// One long job at a time, on a worker thread, for one panel.
+//
+// The work function runs on the worker; it gets the cancel flag (hand it to
+// the core function: PlanPoses, MeasureImages, ...) and a progress reporter.
+// It must not touch widgets: it computes a value and returns a closure that
+// applies that value, and the closure runs on the GUI thread when the work is
+// done. Progress reaches the GUI thread as a queued signal.
+//
+//   job_->Start("planning", [options](const JobContext& context) {
+//     PlanResult result = ...;  // worker thread
+//     return [this, result] { ShowPlan(result); };  // GUI thread
+//   });
+#pragma once
+
+#include <QObject>
+#include <QString>
+#include <atomic>
+#include <functional>
+
+class QThread;
+
+namespace hexcal::ui {
+
+struct JobContext {
+  const std::atomic<bool>* cancel;
+  std::function<void(int done, int total)> progress;  // thread-safe
+};
+
+using GuiContinuation = std::function<void()>;
+using JobWork = std::function<GuiContinuation(const JobContext&)>;
+
+class BackgroundJob : public QObject {
+  Q_OBJECT
+ public:
+  explicit BackgroundJob(QObject* parent = nullptr);
+  // Cancels the job and waits for the worker: a job never outlives its panel.
+  ~BackgroundJob() override;
+
+  bool Running() const { return thread_ != nullptr; }
+  // False if a job is already running.
+  bool Start(const QString& what, JobWork work);
+  void Cancel();
+  bool CancelRequested() const { return cancel_.load(); }
+
+ signals:
+  void Progress(int done, int total, const QString& what);
+  void Started(const QString& what);
+  void Finished();  // after the continuation ran
+
+ private:
+  QThread* thread_ = nullptr;
+  std::atomic<bool> cancel_{false};
+  QString what_;
+};
+
+}  // namespace hexcal::ui

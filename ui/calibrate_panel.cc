@@ -1,0 +1,210 @@
+#include "ui/calibrate_panel.h"
+
+#include <QChartView>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QSplitter>
+#include <QTableWidget>
+#include <QVBoxLayout>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "app/commands/session_calibrate.h"
+#include "core/inverse_kinematics.h"
+#include "core/measurements.h"
+#include "core/robot_io.h"
+#include "ui/background_job.h"
+#include "ui/charts.h"
+#include "ui/error_dialog.h"
+#include "ui/session_jobs.h"
+
+namespace hexcal::ui {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string ResultsFile(const SessionState& session, const char* name) {
+  return (fs::path(session.Paths().results) / name).string();
+}
+
+QString Number(const nlohmann::json& value, int precision = 5) {
+  return value.is_number() ? QString::number(value.get<double>(), 'g', precision) : QString("—");
+}
+
+}  // namespace
+
+CalibratePanel::CalibratePanel(SessionState* session, QWidget* parent)
+    : QWidget(parent), session_(session), job_(new BackgroundJob(this)) {
+  run_ = new QPushButton("Calibrate session");
+  run_->setObjectName("calibrate_run");
+  run_->setToolTip(
+      "Measure the images not yet measured, register camera and target with the nominal robot, "
+      "calibrate on the images not held out, validate on the held-out ones; writes results/.");
+  cancel_ = new QPushButton("Cancel");
+  cancel_->setEnabled(false);
+  progress_ = new QProgressBar;
+  status_ = new QLabel("Record images and readings (Measure), then calibrate.");
+  status_->setWordWrap(true);
+  status_->setObjectName("calibrate_status");
+  summary_ = new QLabel;
+  summary_->setWordWrap(true);
+  summary_->setObjectName("calibrate_summary");
+  summary_->setTextFormat(Qt::RichText);
+  parameters_ = new QTableWidget(0, 7);
+  parameters_->setObjectName("parameter_table");
+  parameters_->setHorizontalHeaderLabels({"leg", "parameter", "nominal", "calibrated", "change", "σ", "|change|/σ"});
+  parameters_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  parameters_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  parameters_->setSortingEnabled(true);
+  parameters_->sortByColumn(0, Qt::AscendingOrder);
+  residuals_ = MakeChartView("Leg residuals on the calibration poses", "pose × leg", "|P + R b − a| − (L + l)");
+  connect(run_, &QPushButton::clicked, this, &CalibratePanel::Run);
+  connect(cancel_, &QPushButton::clicked, this, [this] {
+    job_->Cancel();
+    SetOutcome("cancelling… (stops after the measuring)");
+  });
+  connect(job_, &BackgroundJob::Progress, this, [this](int done, int total, const QString& what) {
+    progress_->setFormat(what + " %v/%m");
+    progress_->setRange(0, total);
+    progress_->setValue(done);
+  });
+
+  auto* controls = new QHBoxLayout;
+  controls->addWidget(run_);
+  controls->addWidget(cancel_);
+  controls->addWidget(progress_, 1);
+  auto* splitter = new QSplitter(Qt::Vertical);
+  splitter->addWidget(parameters_);
+  splitter->addWidget(residuals_);
+  splitter->setSizes({400, 400});
+  auto* layout = new QVBoxLayout(this);
+  layout->addLayout(controls);
+  layout->addWidget(status_);
+  layout->addWidget(summary_);
+  layout->addWidget(splitter, 1);
+  connect(session_, &SessionState::Changed, this, &CalibratePanel::Refresh);
+}
+
+void CalibratePanel::SetOutcome(const QString& text) {
+  outcome_ = text;
+  status_->setText(text);
+}
+
+void CalibratePanel::Run() {
+  if (!session_->IsOpen()) return ShowError(this, "Calibrate", "Open or create a session first (File menu).");
+  if (!session_->LegsError().isEmpty())
+    return ShowError(this, "Calibrate", "legs.csv: " + session_->LegsError() + "\nFix it in the Measure step.");
+  if (!session_->SessionCamera() || !session_->SessionTarget())
+    return ShowError(this, "Calibrate", "The session's camera or target does not load: fix session.yaml.");
+  std::vector<std::string> files;
+  for (const QString& file : session_->ImageFiles()) files.push_back(file.toStdString());
+  const std::string dir = session_->Dir().toStdString(), measurements = session_->Paths().measurements;
+  const Camera camera = *session_->SessionCamera();
+  const Target target = *session_->SessionTarget();
+  run_->setEnabled(false);
+  cancel_->setEnabled(true);
+  SetOutcome("calibrating…");
+  job_->Start("calibrating", [=](const JobContext& context) -> GuiContinuation {
+    int usable = 0;
+    if (!MeasurementsCover(measurements, files)) {
+      const Status measured = MeasureImagesInto(files, camera, target, measurements, context, &usable);
+      if (!measured.ok()) return [this, measured] { Finish(measured, ""); };
+    }
+    if (context.cancel->load()) return [this] { Finish(Status::Cancelled(), ""); };
+    context.progress(0, 0);  // a busy bar until the legs report
+    std::ostringstream out, err;
+    const int code = cli::RunSessionCalibrate(dir, /*json=*/false, out, err, {context.progress, context.cancel});
+    const Status status =
+        code == 0 ? Status::Ok() : (context.cancel->load() ? Status::Cancelled() : Status::Error(err.str()));
+    return [this, status, text = out.str()] { Finish(status, QString::fromStdString(text)); };
+  });
+}
+
+void CalibratePanel::Finish(const Status& status, const QString& report) {
+  run_->setEnabled(true);
+  cancel_->setEnabled(false);
+  if (status.cancelled()) {
+    SetOutcome("cancelled: results/ is unchanged.");
+  } else if (!status.ok()) {
+    SetOutcome("failed.");
+    ShowError(this, "Calibrate",
+              QString::fromStdString(status.message()).trimmed() +
+                  "\nCheck the Measure step: enough images with an ok target pose and their readings.");
+  } else {
+    SetOutcome("done. " + report.trimmed());
+  }
+  session_->Reload();
+}
+
+void CalibratePanel::Refresh() {
+  parameters_->setSortingEnabled(false);
+  parameters_->setRowCount(0);
+  summary_->clear();
+  std::ifstream file(ResultsFile(*session_, "report.json"));
+  nlohmann::json report = nlohmann::json::parse(file, nullptr, /*allow_exceptions=*/false);
+  if (!report.is_object() || !report.contains("parameters")) {
+    PlotResiduals();
+    return;
+  }
+  const std::string unit = report.value("length_unit", "");
+  summary_->setText(QString("%1 images: %2 for calibration, %3 held out, %4 without a usable target pose.<br>"
+                            "Closure (camera vs robot) RMS: nominal robot %5 %7, %6°; calibrated %8 %7, %9°.")
+                        .arg(report.value("images", 0))
+                        .arg(report.value("calibration_images", 0))
+                        .arg(report.value("held_out_images", 0))
+                        .arg(report.value("unusable_images", 0))
+                        .arg(Number(report["registration"]["position_rms"], 3))
+                        .arg(Number(report["registration"]["angle_rms_deg"], 3))
+                        .arg(QString::fromStdString(unit))
+                        .arg(Number(report["closure_after_calibration"]["position_rms"], 3))
+                        .arg(Number(report["closure_after_calibration"]["angle_rms_deg"], 3)));
+  const nlohmann::json& rows = report["parameters"];
+  parameters_->setRowCount(static_cast<int>(rows.size()));
+  for (int r = 0; r < static_cast<int>(rows.size()); ++r) {
+    const nlohmann::json& p = rows[r];
+    const double nominal = p.value("nominal", 0.0), estimate = p.value("estimate", 0.0);
+    const double change = estimate - nominal;
+    const bool has_sigma = p["sigma"].is_number();
+    const double sigma = has_sigma ? p["sigma"].get<double>() : 0;
+    const auto cell = [](const QVariant& v) {
+      auto* item = new QTableWidgetItem;
+      item->setData(Qt::DisplayRole, v);
+      return item;
+    };
+    parameters_->setItem(r, 0, cell(p.value("leg", 0)));
+    parameters_->setItem(r, 1, cell(QString::fromStdString(p.value("name", ""))));
+    parameters_->setItem(r, 2, cell(nominal));
+    parameters_->setItem(r, 3, cell(estimate));
+    parameters_->setItem(r, 4, cell(change));
+    parameters_->setItem(r, 5, has_sigma ? cell(sigma) : cell("—"));
+    parameters_->setItem(r, 6, has_sigma && sigma > 0 ? cell(std::abs(change) / sigma) : cell("—"));
+  }
+  parameters_->setSortingEnabled(true);
+  PlotResiduals();
+}
+
+void CalibratePanel::PlotResiduals() {
+  StatusOr<std::vector<Measurement>> rows = LoadMeasurements(ResultsFile(*session_, "calibration_measurements.csv"));
+  StatusOr<Robot> calibrated = LoadRobot(ResultsFile(*session_, "calibrated.yaml"));
+  if (!rows.ok() || !calibrated.ok()) return SetLines(residuals_, {});
+  LineData nominal{"nominal robot", {}, false, true}, after{"calibrated robot", {}, false, true};
+  const Robot& robot = session_->NominalRobot();
+  for (size_t j = 0; j < rows->size(); ++j) {
+    const Measurement& m = (*rows)[j];
+    const LegReadings before = InverseKinematics(robot, robot.PoseFromVector(m.pose)) - m.legs;
+    const LegReadings now = InverseKinematics(*calibrated, calibrated->PoseFromVector(m.pose)) - m.legs;
+    for (int i = 0; i < kNumLegs; ++i) {
+      const double x = j + (i + 0.5) / kNumLegs;
+      nominal.points.emplace_back(x, before[i]);
+      after.points.emplace_back(x, now[i]);
+    }
+  }
+  SetLines(residuals_, {nominal, after});
+}
+
+}  // namespace hexcal::ui

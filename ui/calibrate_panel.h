@@ -1,0 +1,54 @@
+// Calibrate step: the session calibration of `hexcal calibrate --session`
+// (register the camera with the nominal robot, calibrate the 42 parameters,
+// validate on held-out images) on a worker thread. The long part, measuring
+// the images, runs first and can be cancelled; the registration and
+// calibration that follow take about a second and are not interrupted.
+// Shows the 42 parameters (nominal, calibrated, change, σ) from
+// results/report.json and the leg residuals of the nominal and the calibrated
+// robot on the calibration poses.
+#pragma once
+
+#include <QWidget>
+
+#include "ui/session_state.h"
+
+class QLabel;
+class QProgressBar;
+class QPushButton;
+class QTableWidget;
+namespace QtCharts {
+class QChartView;
+}
+
+namespace hexcal::ui {
+
+class BackgroundJob;
+
+class CalibratePanel : public QWidget {
+  Q_OBJECT
+ public:
+  CalibratePanel(SessionState* session, QWidget* parent = nullptr);
+  BackgroundJob* Job() const { return job_; }
+  QTableWidget* ParameterTable() const { return parameters_; }
+  const QString& LastOutcome() const { return outcome_; }
+
+ public slots:
+  void Run();
+  void Refresh();
+
+ private:
+  void Finish(const Status& status, const QString& report);
+  void PlotResiduals();
+  void SetOutcome(const QString& text);
+
+  SessionState* session_;
+  BackgroundJob* job_;
+  QPushButton *run_, *cancel_;
+  QProgressBar* progress_;
+  QLabel *status_, *summary_;
+  QTableWidget* parameters_;
+  QtCharts::QChartView* residuals_;
+  QString outcome_;
+};
+
+}  // namespace hexcal::ui

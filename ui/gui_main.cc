@@ -1,0 +1,52 @@
+// hexcal-gui [SESSION]
+// hexcal-gui --demo          opens the demo session (made by `hexcal demo` the first time)
+// hexcal-gui --screenshot FILE [--panel robot|plan|measure|calibrate|validate] [SESSION]
+//   renders the window for SESSION to a PNG and exits (tests, docs/gui.md).
+#include <QVTKOpenGLNativeWidget.h>
+
+#include <QApplication>
+#include <QCommandLineParser>
+#include <QSurfaceFormat>
+#include <iostream>
+
+#include "ui/error_dialog.h"
+#include "ui/main_window.h"
+#include "ui/screenshot.h"
+
+int main(int argc, char** argv) {
+  // Before QApplication: VTK needs its OpenGL core profile on every GL widget.
+  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  QApplication app(argc, argv);
+  QApplication::setApplicationName("hexcal-gui");
+  QApplication::setOrganizationName("hexcal");
+  QCommandLineParser parser;
+  parser.setApplicationDescription("hexcal-gui: plan, measure, calibrate and validate a hexapod");
+  parser.addHelpOption();
+  parser.addOption({"screenshot", "Render the window to FILE (PNG) and exit.", "FILE"});
+  parser.addOption({"panel", "Panel to show: robot, plan, measure, calibrate, validate.", "NAME"});
+  parser.addOption({"demo", "Open the demo session (hexcal demo makes it the first time, about 15 s)."});
+  parser.addPositionalArgument("session", "A session folder (hexcal session init, or File > New).");
+  parser.process(app);
+
+  const QString screenshot = parser.value("screenshot");
+  hexcal::ui::SetInteractive(screenshot.isEmpty());
+  hexcal::ui::MainWindow window;
+  if (!parser.positionalArguments().isEmpty() && !window.OpenSession(parser.positionalArguments().front()) &&
+      !screenshot.isEmpty())
+    return 2;
+  if (parser.isSet("panel") && !window.ShowPanelNamed(parser.value("panel"))) {
+    std::cerr << "hexcal-gui: --panel: '" << parser.value("panel").toStdString()
+              << "' is not robot, plan, measure, calibrate or validate\n";
+    return 2;
+  }
+  window.show();
+  if (parser.isSet("demo")) window.OpenDemoSession();
+  if (!screenshot.isEmpty()) {
+    if (!hexcal::ui::SaveWindowScreenshot(&window, screenshot)) {
+      std::cerr << "hexcal-gui: could not write " << screenshot.toStdString() << "\n";
+      return 1;
+    }
+    return 0;
+  }
+  return app.exec();
+}

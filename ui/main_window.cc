@@ -1,0 +1,167 @@
+#include "ui/main_window.h"
+
+#include <QCloseEvent>
+#include <QDir>
+#include <QFileDialog>
+#include <QHBoxLayout>
+#include <QMenuBar>
+#include <QSettings>
+#include <QStackedWidget>
+#include <QStandardPaths>
+#include <QStatusBar>
+#include <sstream>
+
+#include "app/commands/command_table.h"
+#include "ui/background_job.h"
+#include "ui/calibrate_panel.h"
+#include "ui/error_dialog.h"
+#include "ui/measure_panel.h"
+#include "ui/new_session_dialog.h"
+#include "ui/plan_panel.h"
+#include "ui/robot_panel.h"
+#include "ui/step_list.h"
+#include "ui/validate_panel.h"
+
+namespace hexcal::ui {
+namespace {
+
+constexpr int kRecentSessions = 8;
+const char* kRecentKey = "recent_sessions";
+
+}  // namespace
+
+MainWindow::MainWindow(QWidget* parent)
+    : QMainWindow(parent), session_(new SessionState(this)), demo_job_(new BackgroundJob(this)) {
+  setWindowTitle("hexcal — hexapod calibration");
+  steps_ = new StepList(session_);
+  stack_ = new QStackedWidget;
+  robot_ = new RobotPanel(session_);
+  plan_ = new PlanPanel(session_);
+  measure_ = new MeasurePanel(session_);
+  calibrate_ = new CalibratePanel(session_);
+  validate_ = new ValidatePanel(session_);
+  for (QWidget* panel : std::initializer_list<QWidget*>{robot_, plan_, measure_, calibrate_, validate_})
+    stack_->addWidget(panel);
+  connect(steps_, &QListWidget::currentRowChanged, stack_, &QStackedWidget::setCurrentIndex);
+  connect(plan_, &PlanPanel::PoseSelected, robot_, &RobotPanel::ShowPlannedPose);
+  connect(session_, &SessionState::Changed, this, [this] {
+    setWindowTitle("hexcal — " + session_->Dir());
+    statusBar()->showMessage("session " + session_->Dir() + " (every change is saved to the folder)");
+  });
+  auto* central = new QWidget;
+  auto* layout = new QHBoxLayout(central);
+  layout->addWidget(steps_);
+  layout->addWidget(stack_, 1);
+  setCentralWidget(central);
+  BuildMenus();
+  steps_->setCurrentRow(0);
+  statusBar()->showMessage("Open a session (File > Open) or the demo session (File > Open demo session).");
+  resize(1400, 880);
+}
+
+void MainWindow::BuildMenus() {
+  QMenu* file = menuBar()->addMenu("&File");
+  file->addAction("&New session…", this, &MainWindow::NewSession, QKeySequence::New);
+  file->addAction("&Open session…", this, &MainWindow::OpenSessionDialog, QKeySequence::Open);
+  file->addAction("Open &demo session", this, &MainWindow::OpenDemoSession);
+  recent_menu_ = file->addMenu("&Recent sessions");
+  file->addAction("&Save session", this, &MainWindow::SaveSession, QKeySequence::Save);
+  file->addSeparator();
+  file->addAction("&Quit", this, &QWidget::close, QKeySequence::Quit);
+  QMenu* view = menuBar()->addMenu("&View");
+  for (int k = 0; k < kNumSteps; ++k)
+    view->addAction(
+        StepName(static_cast<Step>(k)), this, [this, k] { ShowStep(static_cast<Step>(k)); },
+        QKeySequence(Qt::CTRL + Qt::Key_1 + k));
+  FillRecentMenu();
+}
+
+bool MainWindow::OpenSession(const QString& dir) {
+  const Status opened = session_->Open(dir);
+  if (!opened.ok()) {
+    ShowError(this, "Open session",
+              QString::fromStdString(opened.message()) +
+                  "\nA session folder holds session.yaml (hexcal session init, or File > New).");
+    return false;
+  }
+  RememberRecent(session_->Dir());
+  return true;
+}
+
+void MainWindow::ShowStep(Step step) { steps_->setCurrentRow(static_cast<int>(step)); }
+
+bool MainWindow::ShowPanelNamed(const QString& name) {
+  for (int k = 0; k < kNumSteps; ++k)
+    if (name.compare(StepName(static_cast<Step>(k)), Qt::CaseInsensitive) == 0) {
+      ShowStep(static_cast<Step>(k));
+      return true;
+    }
+  return false;
+}
+
+void MainWindow::NewSession() {
+  NewSessionDialog dialog(this);
+  if (dialog.exec() != QDialog::Accepted) return;
+  const Status made = session_->Create(dialog.Folder(), dialog.Config());
+  if (!made.ok()) return ShowError(this, "New session", QString::fromStdString(made.message()));
+  RememberRecent(session_->Dir());
+  ShowStep(Step::kPlan);
+}
+
+void MainWindow::OpenSessionDialog() {
+  const QString dir = QFileDialog::getExistingDirectory(this, "Open session folder");
+  if (!dir.isEmpty()) OpenSession(dir);
+}
+
+// `hexcal demo --out DIR`: a virtual robot and camera, planned, recorded and
+// calibrated; a few tens of seconds, on a worker.
+void MainWindow::OpenDemoSession() {
+  const QString dir = QDir(QStandardPaths::writableLocation(QStandardPaths::AppDataLocation)).filePath("demo-session");
+  if (QFileInfo::exists(dir + "/session.yaml")) {
+    OpenSession(dir);
+    return;
+  }
+  QDir().mkpath(QFileInfo(dir).path());
+  statusBar()->showMessage("making the demo session in " + dir + " (hexcal demo)…");
+  demo_job_->Start("demo", [this, dir](const JobContext&) -> GuiContinuation {
+    const std::string out = dir.toStdString();
+    const char* argv[] = {"hexcal", "demo", "--out", out.c_str(), "--force"};
+    const int code = cli::RunHexcal(5, argv);
+    return [this, dir, code] {
+      if (code != 0) return ShowError(this, "Demo session", "hexcal demo failed (see the terminal).");
+      OpenSession(dir);
+    };
+  });
+}
+
+void MainWindow::SaveSession() {
+  const Status saved = session_->Save();
+  if (!saved.ok()) return ShowError(this, "Save session", QString::fromStdString(saved.message()));
+  statusBar()->showMessage("saved " + session_->Dir(), 4000);
+}
+
+void MainWindow::RememberRecent(const QString& dir) {
+  if (!Interactive()) return;  // --screenshot and tests leave the operator's list alone
+  QSettings settings("hexcal", "hexcal-gui");
+  QStringList recent = settings.value(kRecentKey).toStringList();
+  recent.removeAll(dir);
+  recent.prepend(dir);
+  while (recent.size() > kRecentSessions) recent.removeLast();
+  settings.setValue(kRecentKey, recent);
+  FillRecentMenu();
+}
+
+void MainWindow::FillRecentMenu() {
+  recent_menu_->clear();
+  const QStringList recent = QSettings("hexcal", "hexcal-gui").value(kRecentKey).toStringList();
+  for (const QString& dir : recent) recent_menu_->addAction(dir, this, [this, dir] { OpenSession(dir); });
+  recent_menu_->setEnabled(!recent.isEmpty());
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+  // Everything recorded is already in the folder; session.yaml and plan.csv once more for good measure.
+  if (session_->IsOpen()) session_->Save();
+  event->accept();
+}
+
+}  // namespace hexcal::ui

@@ -1,0 +1,262 @@
+#include "ui/measure_panel.h"
+
+#include <QFileInfo>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QListWidget>
+#include <QPlainTextEdit>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QSpinBox>
+#include <QSplitter>
+#include <QTableWidget>
+#include <QVBoxLayout>
+#include <filesystem>
+#include <map>
+
+#include "core/csv.h"
+#include "ui/background_job.h"
+#include "ui/error_dialog.h"
+#include "ui/image_overlay.h"
+#include "ui/session_jobs.h"
+#include "vision/measure.h"
+
+namespace hexcal::ui {
+namespace {
+
+QString Message(const Status& status) { return QString::fromStdString(status.message()); }
+
+// measurements.csv by file name: "ok 0.21 px" or the status.
+std::map<QString, QString> MeasuredStatus(const SessionPaths& paths) {
+  std::map<QString, QString> status;
+  StatusOr<CsvTable> table = ReadCsv(paths.measurements);
+  if (!table.ok()) return status;
+  for (const auto& row : table->rows)
+    if (row.size() >= 16)
+      status[QString::fromStdString(row[0])] = QString::fromStdString(row[15]) + ", RMS " +
+                                               QString::number(QString::fromStdString(row[13]).toDouble(), 'f', 3) +
+                                               " px";
+  return status;
+}
+
+}  // namespace
+
+MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
+    : QWidget(parent), session_(session), job_(new BackgroundJob(this)), preview_(new BackgroundJob(this)) {
+  images_ = new QListWidget;
+  images_->setObjectName("image_list");
+  picture_ = new QLabel("Select an image to see its detection.");
+  picture_->setAlignment(Qt::AlignCenter);
+  picture_->setMinimumSize(320, 240);
+  picture_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Ignored);
+  picture_info_ = new QLabel;
+  picture_info_->setObjectName("image_status");
+  legs_ = new QTableWidget(0, 8);
+  legs_->setObjectName("legs_table");
+  legs_->setHorizontalHeaderLabels({"image", "L1", "L2", "L3", "L4", "L5", "L6", "holdout (0/1)"});
+  legs_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  legs_->setToolTip(
+      "Leg readings at each image (robot unit). Edit a cell: legs.csv is saved at once. "
+      "holdout 1 keeps the image out of the calibration to validate it.");
+  progress_ = new QProgressBar;
+  status_ = new QLabel;
+  status_->setWordWrap(true);
+  status_->setObjectName("measure_status");
+  report_ = new QPlainTextEdit;
+  report_->setReadOnly(true);
+  report_->setObjectName("intrinsics_report");
+  report_->setPlaceholderText("Intrinsics report");
+  report_->setMaximumHeight(140);
+  camera_index_ = new QSpinBox;
+  camera_index_->setRange(0, 16);
+  camera_index_->setPrefix("camera ");
+  camera_index_->setToolTip("OpenCV VideoCapture device index");
+
+  auto* buttons = new QVBoxLayout;
+  const auto add_button = [&](const QString& text, const QString& tip, auto slot) {
+    auto* button = new QPushButton(text);
+    button->setToolTip(tip);
+    connect(button, &QPushButton::clicked, this, slot);
+    buttons->addWidget(button);
+    return button;
+  };
+  add_button("Load image folder…", "Copy the PNG/JPEG/TIFF images of a folder into the session's images/",
+             [this] { LoadImageFolder(); });
+  auto* capture_row = new QHBoxLayout;
+  capture_row->addWidget(camera_index_);
+  buttons->addLayout(capture_row);
+  add_button("Capture for next planned pose", "Grab one frame from the camera into images/ and enter the readings",
+             [this] { CaptureFromCamera(); });
+  add_button("Import leg readings…", "Use a CSV image,L1..L6[,holdout] as the session's legs.csv",
+             [this] { ImportLegs(); });
+  add_button("Measure all images", "Detect the target in every image and write measurements.csv",
+             [this] { MeasureAll(); });
+  add_button("Intrinsics from folder…", "Calibrate the camera from target images; the session then uses camera.yaml",
+             [this] { IntrinsicsFromFolder(); });
+  cancel_ = add_button("Cancel", "Stop the running job", [this] { job_->Cancel(); });
+  cancel_->setEnabled(false);
+  connect(job_, &BackgroundJob::Started, this, [this](const QString& what) {
+    cancel_->setEnabled(true);
+    status_->setText(what + "…");
+  });
+  connect(job_, &BackgroundJob::Finished, this, [this] { cancel_->setEnabled(false); });
+  connect(job_, &BackgroundJob::Progress, this, [this](int done, int total, const QString& what) {
+    progress_->setFormat(what + " %v/%m");
+    progress_->setRange(0, total);
+    progress_->setValue(done);
+  });
+  connect(images_, &QListWidget::currentRowChanged, this, &MeasurePanel::ShowImage);
+  connect(preview_, &BackgroundJob::Finished, this, [this] {
+    if (pending_row_ < 0) return;
+    const int row = pending_row_;
+    pending_row_ = -1;
+    ShowImage(row);
+  });
+  connect(legs_, &QTableWidget::cellChanged, this, &MeasurePanel::OnLegEdited);
+
+  auto* left = new QWidget;
+  auto* left_layout = new QVBoxLayout(left);
+  left_layout->addWidget(new QLabel("Images (status from measurements.csv)"));
+  left_layout->addWidget(images_, 1);
+  left_layout->addLayout(buttons);
+  left_layout->addWidget(progress_);
+  left_layout->addWidget(status_);
+  auto* centre = new QWidget;
+  auto* centre_layout = new QVBoxLayout(centre);
+  centre_layout->addWidget(picture_, 1);
+  centre_layout->addWidget(picture_info_);
+  centre_layout->addWidget(report_);
+  auto* top = new QSplitter;
+  top->addWidget(left);
+  top->addWidget(centre);
+  top->setStretchFactor(1, 3);
+  auto* vertical = new QSplitter(Qt::Vertical);
+  vertical->addWidget(top);
+  vertical->addWidget(legs_);
+  vertical->setStretchFactor(0, 3);
+  auto* layout = new QVBoxLayout(this);
+  layout->addWidget(vertical);
+  connect(session_, &SessionState::Changed, this, &MeasurePanel::Refresh);
+}
+
+void MeasurePanel::Refresh() {
+  const int current = images_->currentRow();
+  const std::map<QString, QString> measured = MeasuredStatus(session_->Paths());
+  images_->blockSignals(true);
+  images_->clear();
+  for (const QString& file : session_->ImageFiles()) {
+    const QString name = QFileInfo(file).fileName();
+    const auto found = measured.find(name);
+    auto* item = new QListWidgetItem(name + "  —  " + (found == measured.end() ? "not measured" : found->second));
+    item->setData(Qt::UserRole, file);
+    if (found != measured.end()) item->setForeground(found->second.startsWith("ok") ? Qt::darkGreen : Qt::red);
+    images_->addItem(item);
+  }
+  images_->blockSignals(false);
+  // Keep the selection; show the first image when there was none.
+  if (images_->count() > 0) images_->setCurrentRow(current >= 0 && current < images_->count() ? current : 0);
+  if (!session_->LegsError().isEmpty()) status_->setText("legs.csv: " + session_->LegsError());
+  FillLegsTable();
+}
+
+void MeasurePanel::FillLegsTable() {
+  filling_ = true;
+  const std::vector<LegsRow>& rows = session_->Legs();
+  legs_->setRowCount(static_cast<int>(rows.size()));
+  for (int r = 0; r < static_cast<int>(rows.size()); ++r) {
+    auto* image = new QTableWidgetItem(QString::fromStdString(rows[r].image));
+    image->setFlags(image->flags() & ~Qt::ItemIsEditable);
+    legs_->setItem(r, 0, image);
+    for (int i = 0; i < kNumLegs; ++i)
+      legs_->setItem(r, 1 + i, new QTableWidgetItem(QString::number(rows[r].legs[i], 'g', 10)));
+    legs_->setItem(r, 7, new QTableWidgetItem(rows[r].holdout ? "1" : "0"));
+  }
+  filling_ = false;
+}
+
+void MeasurePanel::OnLegEdited(int row, int column) {
+  if (filling_ || column == 0) return;
+  std::vector<LegsRow> rows = session_->Legs();
+  bool number = false;
+  const double value = legs_->item(row, column)->text().toDouble(&number);
+  if (!number || (column == 7 && value != 0 && value != 1)) {
+    FillLegsTable();
+    return ShowError(this, "Leg readings",
+                     column == 7 ? "holdout is 0 or 1." : "A reading is a number in the robot unit.");
+  }
+  if (column == 7) {
+    rows[row].holdout = value == 1;
+  } else {
+    rows[row].legs[column - 1] = value;
+  }
+  if (Status s = session_->SetLegs(rows); !s.ok()) ShowError(this, "Leg readings", Message(s));
+}
+
+void MeasurePanel::StartJob(const QString& what, JobWork work) {
+  if (!job_->Start(what, std::move(work)))
+    ShowError(this, what, "Another job is running: wait for it, or press Cancel.");
+}
+
+bool MeasurePanel::CameraAndTargetReady(const QString& step) {
+  if (!session_->IsOpen()) return ShowError(this, step, "Open or create a session first (File menu)."), false;
+  if (!session_->SessionCamera() || !session_->SessionTarget()) {
+    ShowError(this, step,
+              "The session's camera or target does not load: fix 'camera:' and 'target:' in session.yaml, "
+              "or calibrate the intrinsics from a folder of target images.");
+    return false;
+  }
+  return true;
+}
+
+void MeasurePanel::ShowImage(int row) {
+  if (row < 0 || row >= images_->count() || !CameraAndTargetReady("Show image")) return;
+  if (preview_->Running()) {
+    pending_row_ = row;
+    return;
+  }
+  const QString file = images_->item(row)->data(Qt::UserRole).toString();
+  picture_info_->setText("detecting " + QFileInfo(file).fileName() + "…");
+  const Camera camera = *session_->SessionCamera();
+  const Target target = *session_->SessionTarget();
+  preview_->Start("detecting", [this, file, camera, target](const JobContext&) -> GuiContinuation {
+    OverlayResult overlay = DetectAndDraw(file, camera, target);
+    return [this, file, overlay] {
+      picture_->setPixmap(
+          QPixmap::fromImage(overlay.image).scaled(picture_->size(), Qt::KeepAspectRatio, Qt::SmoothTransformation));
+      shown_status_ = overlay.status;
+      picture_info_->setText(QString("%1: %2 — %3 target tags, reprojection RMS %4 px  "
+                                     "(green: detected tags and ids; red: the board reprojected)")
+                                 .arg(QFileInfo(file).fileName(), overlay.status)
+                                 .arg(overlay.tags)
+                                 .arg(overlay.rms_px, 0, 'f', 3));
+    };
+  });
+}
+
+void MeasurePanel::MeasureAll() {
+  if (!CameraAndTargetReady("Measure")) return;
+  std::vector<std::string> files;
+  for (const QString& file : session_->ImageFiles()) files.push_back(file.toStdString());
+  if (files.empty()) return ShowError(this, "Measure", "images/ is empty: load an image folder or capture images.");
+  const Camera camera = *session_->SessionCamera();
+  const Target target = *session_->SessionTarget();
+  const std::string out = session_->Paths().measurements;
+  StartJob("measuring", [this, files, camera, target, out](const JobContext& context) -> GuiContinuation {
+    int usable = 0;
+    const Status written = MeasureImagesInto(files, camera, target, out, context, &usable);
+    return [this, written, usable, total = files.size()] {
+      if (written.cancelled()) {
+        status_->setText("measuring cancelled: measurements.csv is unchanged.");
+      } else if (!written.ok()) {
+        status_->setText("measuring failed.");
+        ShowError(this, "Measure", Message(written));
+      } else {
+        status_->setText(QString("measured %1 images, %2 with a usable target pose.").arg(total).arg(usable));
+      }
+      session_->Reload();
+    };
+  });
+}
+
+}  // namespace hexcal::ui

@@ -1,0 +1,68 @@
+// Measure step: the session's images (load a folder, or capture one from a
+// camera for the next planned pose), the leg readings (enter in the table or
+// import a CSV), each image with its detected tags and reprojected board, its
+// status and RMS; the batch measurement into measurements.csv; camera
+// intrinsics from a folder of target images, with their report.
+#pragma once
+
+#include <QWidget>
+
+#include "ui/background_job.h"
+#include "ui/session_state.h"
+
+class QLabel;
+class QListWidget;
+class QPlainTextEdit;
+class QProgressBar;
+class QPushButton;
+class QSpinBox;
+class QTableWidget;
+
+namespace hexcal::ui {
+
+class BackgroundJob;
+
+class MeasurePanel : public QWidget {
+  Q_OBJECT
+ public:
+  MeasurePanel(SessionState* session, QWidget* parent = nullptr);
+  BackgroundJob* Job() const { return job_; }
+  BackgroundJob* PreviewJob() const { return preview_; }
+  QListWidget* ImageList() const { return images_; }
+  QTableWidget* LegsTable() const { return legs_; }
+  const QString& ShownStatus() const { return shown_status_; }
+
+ public slots:
+  void Refresh();
+  void LoadImageFolder(const QString& folder = {});
+  void ImportLegs(const QString& file = {});
+  void MeasureAll();
+  void CaptureFromCamera();
+  void IntrinsicsFromFolder(const QString& folder = {});
+  void ShowImage(int row);
+
+ private:
+  void FillLegsTable();
+  void OnLegEdited(int row, int column);
+  bool CameraAndTargetReady(const QString& step);
+  void AskReadingsAndSave(const QString& image_name);
+  void StartJob(const QString& what, JobWork work);
+
+  SessionState* session_;
+  BackgroundJob* job_;      // measuring, capture, intrinsics: one at a time
+  BackgroundJob* preview_;  // the selected image's detection
+  QListWidget* images_;
+  QLabel* picture_;
+  QLabel* picture_info_;
+  QTableWidget* legs_;
+  QProgressBar* progress_;
+  QLabel* status_;
+  QPushButton* cancel_;
+  QSpinBox* camera_index_;
+  QPlainTextEdit* report_;
+  QString shown_status_;
+  int pending_row_ = -1;  // picked while a detection ran
+  bool filling_ = false;
+};
+
+}  // namespace hexcal::ui

@@ -1,0 +1,174 @@
+// MeasurePanel's recording actions: images from a folder or a camera, leg
+// readings from a file or typed in, camera intrinsics from target images.
+// The panel's layout, preview and batch measurement are in measure_panel.cc.
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QDir>
+#include <QDoubleSpinBox>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFormLayout>
+#include <QLabel>
+#include <QPlainTextEdit>
+#include <QSpinBox>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "core/inverse_kinematics.h"
+#include "ui/background_job.h"
+#include "ui/error_dialog.h"
+#include "ui/measure_panel.h"
+#include "vision/intrinsics.h"
+#include "vision/measure.h"
+
+namespace hexcal::ui {
+namespace {
+
+QString Message(const Status& status) { return QString::fromStdString(status.message()); }
+
+}  // namespace
+
+void MeasurePanel::LoadImageFolder(const QString& chosen) {
+  if (!session_->IsOpen()) return ShowError(this, "Load images", "Open or create a session first (File menu).");
+  const QString folder = chosen.isEmpty() ? QFileDialog::getExistingDirectory(this, "Folder of images") : chosen;
+  if (folder.isEmpty()) return;
+  StatusOr<std::vector<std::string>> files = ListImages(folder.toStdString());
+  if (!files.ok()) return ShowError(this, "Load images", Message(files.status()));
+  int copied = 0;
+  for (const std::string& file : *files) {
+    const QString target = QDir(QString::fromStdString(session_->Paths().images))
+                               .filePath(QFileInfo(QString::fromStdString(file)).fileName());
+    if (QFileInfo::exists(target)) continue;  // recorded images are never overwritten
+    copied += QFile::copy(QString::fromStdString(file), target);
+  }
+  status_->setText(
+      QString("copied %1 of %2 images into images/ (existing names kept).").arg(copied).arg(files->size()));
+  session_->Reload();
+}
+
+void MeasurePanel::ImportLegs(const QString& chosen) {
+  if (!session_->IsOpen()) return ShowError(this, "Import readings", "Open or create a session first (File menu).");
+  const QString file =
+      chosen.isEmpty() ? QFileDialog::getOpenFileName(this, "Leg readings", {}, "CSV (*.csv)") : chosen;
+  if (file.isEmpty()) return;
+  const QString legs = QString::fromStdString(session_->Paths().legs);
+  QFile::remove(legs + ".previous");
+  QFile::rename(legs, legs + ".previous");  // kept until the new file loads
+  if (!QFile::copy(file, legs))
+    return ShowError(this, "Import readings", "Could not copy " + file + " into the session.");
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(session_->Dir().toStdString());
+  if (!rows.ok()) {
+    QFile::remove(legs);
+    QFile::rename(legs + ".previous", legs);
+    return ShowError(this, "Import readings", Message(rows.status()) + "\nThe previous legs.csv is kept.");
+  }
+  QFile::remove(legs + ".previous");
+  session_->Reload();
+}
+
+void MeasurePanel::CaptureFromCamera() {
+  if (!session_->IsOpen()) return ShowError(this, "Capture", "Open or create a session first (File menu).");
+  const int device = camera_index_->value();
+  const QString name = QString("capture_%1.png").arg(session_->ImageFiles().size(), 4, 10, QChar('0'));
+  const std::string path = QDir(QString::fromStdString(session_->Paths().images)).filePath(name).toStdString();
+  StartJob("capturing", [this, device, path, name](const JobContext&) -> GuiContinuation {
+    cv::VideoCapture capture(device);
+    cv::Mat frame;
+    const bool grabbed = capture.isOpened() && capture.read(frame) && !frame.empty();
+    const bool written = grabbed && cv::imwrite(path, frame);
+    return [this, device, grabbed, written, name] {
+      if (!grabbed)
+        return ShowError(this, "Capture",
+                         QString("No frame from camera %1: check it is connected and not "
+                                 "used by another program, or choose another index.")
+                             .arg(device));
+      if (!written) return ShowError(this, "Capture", "Could not write " + name + " into images/: check the folder.");
+      AskReadingsAndSave(name);
+    };
+  });
+}
+
+// The readings at the captured image, prefilled with the planned pose's leg
+// lengths (what the controller was asked for); the operator types the sensors'.
+void MeasurePanel::AskReadingsAndSave(const QString& image_name) {
+  const std::vector<Vector6d>& plan = session_->Plan();
+  const size_t next = session_->Legs().size();
+  LegReadings readings = LegReadings::Zero();
+  const Robot& robot = session_->NominalRobot();
+  if (next < plan.size()) readings = InverseKinematics(robot, robot.PoseFromVector(plan[next]));
+  LegsRow row;
+  row.image = image_name.toStdString();
+  row.legs = readings;
+  if (Interactive()) {
+    QDialog dialog(this);
+    dialog.setWindowTitle("Leg readings at " + image_name);
+    auto* form = new QFormLayout(&dialog);
+    std::array<QDoubleSpinBox*, kNumLegs> boxes;
+    for (int i = 0; i < kNumLegs; ++i) {
+      boxes[i] = new QDoubleSpinBox;
+      boxes[i]->setRange(-1e6, 1e6);
+      boxes[i]->setDecimals(5);
+      boxes[i]->setValue(readings[i]);
+      form->addRow(QString("L%1 (%2)").arg(i + 1).arg(LengthUnitName(robot.length_unit)), boxes[i]);
+    }
+    auto* ok = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
+    form->addRow(ok);
+    connect(ok, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
+    connect(ok, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+    if (dialog.exec() != QDialog::Accepted) return session_->Reload();
+    for (int i = 0; i < kNumLegs; ++i) row.legs[i] = boxes[i]->value();
+  }
+  std::vector<LegsRow> rows = session_->Legs();
+  rows.push_back(row);
+  if (Status s = session_->SetLegs(rows); !s.ok()) ShowError(this, "Capture", Message(s));
+}
+
+void MeasurePanel::IntrinsicsFromFolder(const QString& chosen) {
+  if (!session_->IsOpen() || !session_->SessionTarget())
+    return ShowError(this, "Intrinsics", "Open a session whose target loads first.");
+  const QString folder = chosen.isEmpty() ? QFileDialog::getExistingDirectory(this, "Folder of target images") : chosen;
+  if (folder.isEmpty()) return;
+  StatusOr<std::vector<std::string>> files = ListImages(folder.toStdString());
+  if (!files.ok()) return ShowError(this, "Intrinsics", Message(files.status()));
+  const Target target = *session_->SessionTarget();
+  const std::string out = (std::filesystem::path(session_->Dir().toStdString()) / "camera.yaml").string();
+  StartJob("intrinsics", [this, files = *files, target, out](const JobContext& context) -> GuiContinuation {
+    StatusOr<IntrinsicsResult> result =
+        CalibrateIntrinsics(files, target, IntrinsicsOptions{}, context.progress, context.cancel);
+    if (!result.ok())
+      return [this, s = result.status()] {
+        if (!s.cancelled())
+          ShowError(this, "Intrinsics", Message(s) + "\nUse more views of the target, tilted and filling the image.");
+      };
+    CameraFileExtras extras;
+    extras.views = result->used_views;
+    extras.rms_px = result->rms_px;
+    extras.std_dev.assign(result->std_dev.begin(), result->std_dev.end());
+    const Status saved = SaveCamera(result->camera, out, extras);
+    QString report = QString("%1 of %2 views used, RMS %3 px\nfx %4 fy %5 cx %6 cy %7 (σ %8 %9 %10 %11)\n")
+                         .arg(result->used_views)
+                         .arg(result->views.size())
+                         .arg(result->rms_px, 0, 'f', 3)
+                         .arg(result->camera.fx)
+                         .arg(result->camera.fy)
+                         .arg(result->camera.cx)
+                         .arg(result->camera.cy)
+                         .arg(result->std_dev[0], 0, 'g', 3)
+                         .arg(result->std_dev[1], 0, 'g', 3)
+                         .arg(result->std_dev[2], 0, 'g', 3)
+                         .arg(result->std_dev[3], 0, 'g', 3);
+    for (const CalibrationView& view : result->views)
+      report += QString("%1: %2\n")
+                    .arg(QString::fromStdString(std::filesystem::path(view.file).filename().string()),
+                         view.used ? QString("RMS %1 px").arg(view.rms_px, 0, 'f', 3)
+                                   : "not used, " + QString::fromStdString(view.reason));
+    return [this, saved, report] {
+      report_->setPlainText(report);
+      if (!saved.ok()) return ShowError(this, "Intrinsics", Message(saved));
+      if (Status s = session_->SetCamera("camera.yaml"); !s.ok()) ShowError(this, "Intrinsics", Message(s));
+    };
+  });
+}
+
+}  // namespace hexcal::ui

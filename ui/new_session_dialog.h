@@ -1,0 +1,29 @@
+// File > New session: the folder, and the robot, camera and target it names
+// (presets or files), and the noise model, as `hexcal session init` takes them.
+#pragma once
+
+#include <QDialog>
+
+#include "core/session.h"
+
+class QComboBox;
+class QDoubleSpinBox;
+class QLineEdit;
+
+namespace hexcal::ui {
+
+class NewSessionDialog : public QDialog {
+  Q_OBJECT
+ public:
+  explicit NewSessionDialog(QWidget* parent = nullptr);
+  QString Folder() const;
+  SessionConfig Config() const;
+
+ private:
+  QLineEdit* folder_;
+  QComboBox* robot_;
+  QLineEdit *camera_, *target_;
+  QDoubleSpinBox *noise_position_, *noise_angle_, *noise_leg_;
+};
+
+}  // namespace hexcal::ui

@@ -1,0 +1,292 @@
+#include "ui/plan_panel.h"
+
+#include <QChartView>
+#include <QFileDialog>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QPointer>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QScrollArea>
+#include <QSplitter>
+#include <QTableWidget>
+#include <QVBoxLayout>
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+#include "app/commands/plan_io.h"
+#include "core/csv.h"
+#include "core/inverse_kinematics.h"
+#include "ui/background_job.h"
+#include "ui/charts.h"
+#include "ui/error_dialog.h"
+#include "ui/plan_options.h"
+
+namespace hexcal::ui {
+namespace {
+
+const QStringList kColumns = {"#",  "x",  "y",  "z",  "q1 °", "q2 °", "q3 °",
+                              "L1", "L2", "L3", "L4", "L5",   "L6",   "feasible"};
+
+std::string HistoryPath(const SessionState& session) {
+  return (std::filesystem::path(session.Dir().toStdString()) / "plan_history.csv").string();
+}
+
+PlanningModel ModelOf(const SessionState& session) {
+  return PlanningModel{session.NominalRobot(), session.Config().noise, std::nullopt};
+}
+
+QTableWidgetItem* NumberItem(double value, bool editable) {
+  auto* item = new QTableWidgetItem;
+  // Micrometre / micro-degree display: IK round-off (1e-15) reads as 0.
+  item->setData(Qt::DisplayRole, std::round(value * 1e6) / 1e6);
+  if (!editable) item->setFlags(item->flags() & ~Qt::ItemIsEditable);
+  return item;
+}
+
+}  // namespace
+
+PlanPanel::PlanPanel(SessionState* session, QWidget* parent)
+    : QWidget(parent), session_(session), options_(new PlanOptionsForm), job_(new BackgroundJob(this)) {
+  run_ = new QPushButton("Run planner");
+  run_->setObjectName("plan_run");
+  cancel_ = new QPushButton("Cancel");
+  cancel_->setEnabled(false);
+  progress_ = new QProgressBar;
+  status_ = new QLabel("Choose the options and run the planner.");
+  status_->setWordWrap(true);
+  status_->setObjectName("plan_status");
+  auto* export_button = new QPushButton("Export plan.csv…");
+  connect(run_, &QPushButton::clicked, this, &PlanPanel::Run);
+  connect(cancel_, &QPushButton::clicked, this, &PlanPanel::Cancel);
+  connect(export_button, &QPushButton::clicked, this, &PlanPanel::ExportPlan);
+  connect(job_, &BackgroundJob::Progress, this, [this](int done, int total, const QString& what) {
+    progress_->setFormat(what + " %v/%m");
+    progress_->setRange(0, total);
+    progress_->setValue(done);
+  });
+
+  auto* scroll = new QScrollArea;
+  scroll->setWidget(options_);
+  scroll->setWidgetResizable(true);
+  auto* left = new QWidget;
+  auto* left_layout = new QVBoxLayout(left);
+  left_layout->addWidget(scroll, 1);
+  auto* buttons = new QHBoxLayout;
+  buttons->addWidget(run_);
+  buttons->addWidget(cancel_);
+  left_layout->addLayout(buttons);
+  left_layout->addWidget(progress_);
+  left_layout->addWidget(status_);
+  left_layout->addWidget(export_button);
+
+  table_ = new QTableWidget(0, kColumns.size());
+  table_->setObjectName("pose_table");
+  table_->setHorizontalHeaderLabels(kColumns);
+  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  table_->setSortingEnabled(true);
+  table_->sortByColumn(0, Qt::AscendingOrder);
+  table_->setSelectionBehavior(QAbstractItemView::SelectRows);
+  connect(table_, &QTableWidget::cellChanged, this, &PlanPanel::OnCellEdited);
+  connect(table_, &QTableWidget::currentCellChanged, this, [this](int row) {
+    if (row >= 0 && table_->item(row, 0)) emit PoseSelected(table_->item(row, 0)->data(Qt::UserRole).toInt());
+  });
+  auto* delete_button = new QPushButton("Delete selected poses");
+  auto* add_button = new QPushButton("Add pose (home, then edit)");
+  connect(delete_button, &QPushButton::clicked, this, &PlanPanel::DeleteSelectedPoses);
+  connect(add_button, &QPushButton::clicked, this, &PlanPanel::AddPose);
+  auto* table_box = new QWidget;
+  auto* table_layout = new QVBoxLayout(table_box);
+  table_layout->addWidget(table_, 1);
+  auto* table_buttons = new QHBoxLayout;
+  table_buttons->addWidget(add_button);
+  table_buttons->addWidget(delete_button);
+  table_buttons->addStretch();
+  table_layout->addLayout(table_buttons);
+
+  indices_chart_ = MakeChartView("Observability indices per iteration (figs 6, 10–12)", "iteration", "index");
+  legs_chart_ = MakeChartView("Leg lengths per planned pose (fig. 8)", "pose", "reading L");
+  auto* charts = new QSplitter(Qt::Horizontal);
+  charts->addWidget(indices_chart_);
+  charts->addWidget(legs_chart_);
+  auto* right = new QSplitter(Qt::Vertical);
+  right->addWidget(charts);
+  right->addWidget(table_box);
+  right->setSizes({420, 400});
+  auto* splitter = new QSplitter;
+  splitter->addWidget(left);
+  splitter->addWidget(right);
+  splitter->setStretchFactor(1, 3);
+  splitter->setSizes({330, 1050});
+  auto* layout = new QVBoxLayout(this);
+  layout->addWidget(splitter);
+  connect(session_, &SessionState::Changed, this, &PlanPanel::Refresh);
+}
+
+void PlanPanel::SetOutcome(const QString& text) {
+  outcome_ = text;
+  status_->setText(text);
+}
+
+void PlanPanel::Run() {
+  if (!session_->IsOpen()) return ShowError(this, "Plan", "Open or create a session first (File menu).");
+  StatusOr<PlanJobOptions> options = options_->Options();
+  if (!options.ok()) return ShowError(this, "Plan", QString::fromStdString(options.status().message()));
+  const PlanningModel model = ModelOf(*session_);
+  SetLines(indices_chart_, {});
+  run_->setEnabled(false);
+  cancel_->setEnabled(true);
+  SetOutcome("planning…");
+  QPointer<PlanPanel> self(this);
+  job_->Start("planning", [this, self, model, options = *options](const JobContext& context) -> GuiContinuation {
+    const PlannerOptions& planner = options.planner;
+    StatusOr<std::vector<Vector6d>> initial = cli::InitialPoses(model, options.init, planner.num_poses, planner.seed);
+    if (!initial.ok()) return [this, s = initial.status()] { Finish(s, {}); };
+    StatusOr<cli::CandidatePool> pool =
+        cli::BuildCandidatePool(model, "", {options.candidate_kind}, options.candidate_count, planner.continuous,
+                                planner.seed, [&](int done, int total) { context.progress(done, total); });
+    if (!pool.ok()) return [this, s = pool.status()] { Finish(s, {}); };
+    const auto live = [&, self](int iteration, int budget, double best) {
+      context.progress(iteration, budget);
+      // A queued call: the chart is touched on the GUI thread only.
+      QMetaObject::invokeMethod(
+          self,
+          [self, iteration, best] {
+            if (self) AppendPoint(self->indices_chart_, 0, "best primary (live)", QPointF(iteration, best));
+          },
+          Qt::QueuedConnection);
+    };
+    StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, *initial, planner, live, context.cancel);
+    if (!plan.ok()) return [this, s = plan.status()] { Finish(s, {}); };
+    return [this, result = *plan] { Finish(Status::Ok(), result); };
+  });
+}
+
+void PlanPanel::Finish(const Status& status, const PlanResult& result) {
+  run_->setEnabled(true);
+  cancel_->setEnabled(false);
+  if (status.cancelled()) return SetOutcome("cancelled: the plan is unchanged.");
+  if (!status.ok()) {
+    SetOutcome("failed: " + QString::fromStdString(status.message()));
+    return ShowError(
+        this, "Plan",
+        QString::fromStdString(status.message()) + "\nTry more candidates, another candidate kind, or fewer poses.");
+  }
+  if (Status s = cli::WriteHistoryCsv(HistoryPath(*session_), result); !s.ok())
+    ShowError(this, "Plan", QString::fromStdString(s.message()));
+  if (Status s = session_->SetPlan(result.poses); !s.ok()) ShowError(this, "Plan", QString::fromStdString(s.message()));
+  SetOutcome(QString("done: %1 iterations in %2 s%3; O1 %4 → %5, O3 %6 → %7")
+                 .arg(result.iterations)
+                 .arg(result.seconds, 0, 'f', 1)
+                 .arg(result.converged ? " (converged)" : "")
+                 .arg(result.initial.o1, 0, 'g', 4)
+                 .arg(result.final.o1, 0, 'g', 4)
+                 .arg(result.initial.o3, 0, 'g', 4)
+                 .arg(result.final.o3, 0, 'g', 4));
+}
+
+void PlanPanel::Cancel() {
+  job_->Cancel();
+  SetOutcome("cancelling…");
+}
+
+void PlanPanel::Refresh() {
+  FillTable();
+  PlotLegLengths();
+  PlotHistory();
+}
+
+void PlanPanel::FillTable() {
+  filling_ = true;
+  table_->setSortingEnabled(false);
+  const std::vector<Vector6d>& plan = session_->Plan();
+  const PlanningModel model = ModelOf(*session_);
+  table_->setRowCount(static_cast<int>(plan.size()));
+  for (int j = 0; j < static_cast<int>(plan.size()); ++j) {
+    QTableWidgetItem* index = NumberItem(j + 1, false);
+    index->setData(Qt::UserRole, j);
+    table_->setItem(j, 0, index);
+    for (int k = 0; k < 6; ++k) table_->setItem(j, 1 + k, NumberItem(plan[j][k], true));
+    const LegReadings legs = InverseKinematics(model.robot, model.robot.PoseFromVector(plan[j]));
+    for (int i = 0; i < kNumLegs; ++i) table_->setItem(j, 7 + i, NumberItem(legs[i], false));
+    auto* feasible = new QTableWidgetItem(model.IsFeasible(plan[j]) ? "yes" : "NO");
+    feasible->setFlags(feasible->flags() & ~Qt::ItemIsEditable);
+    table_->setItem(j, 13, feasible);
+  }
+  table_->setSortingEnabled(true);
+  filling_ = false;
+}
+
+void PlanPanel::OnCellEdited(int row, int column) {
+  if (filling_ || column < 1 || column > 6) return;
+  std::vector<Vector6d> plan = session_->Plan();
+  const int index = table_->item(row, 0)->data(Qt::UserRole).toInt();
+  plan[index][column - 1] = table_->item(row, column)->data(Qt::DisplayRole).toDouble();
+  if (Status s = session_->SetPlan(plan); !s.ok()) ShowError(this, "Plan", QString::fromStdString(s.message()));
+}
+
+void PlanPanel::DeleteSelectedPoses() {
+  std::set<int> doomed;
+  for (const QModelIndex& row : table_->selectionModel()->selectedRows())
+    doomed.insert(table_->item(row.row(), 0)->data(Qt::UserRole).toInt());
+  if (doomed.empty()) return ShowError(this, "Plan", "Select the rows of the poses to delete first.");
+  std::vector<Vector6d> plan;
+  for (int j = 0; j < static_cast<int>(session_->Plan().size()); ++j)
+    if (!doomed.count(j)) plan.push_back(session_->Plan()[j]);
+  if (Status s = session_->SetPlan(plan); !s.ok()) ShowError(this, "Plan", QString::fromStdString(s.message()));
+}
+
+void PlanPanel::AddPose() {
+  Vector6d home = Vector6d::Zero();
+  if (auto box = session_->NominalRobot().limits.SamplingBox(); box && box->IsComplete())
+    for (int k = 0; k < 6; ++k) home[k] = box->bounds[k]->Centre();
+  std::vector<Vector6d> plan = session_->Plan();
+  plan.push_back(home);
+  if (Status s = session_->SetPlan(plan); !s.ok()) ShowError(this, "Plan", QString::fromStdString(s.message()));
+}
+
+void PlanPanel::ExportPlan() {
+  if (session_->Plan().empty()) return ShowError(this, "Export plan", "There is no plan yet: run the planner first.");
+  const QString file = QFileDialog::getSaveFileName(this, "Export plan", "plan.csv", "CSV (*.csv)");
+  if (file.isEmpty()) return;
+  if (Status s = cli::WritePlanCsv(file.toStdString(), ModelOf(*session_), session_->Plan()); !s.ok())
+    ShowError(this, "Export plan", QString::fromStdString(s.message()));
+}
+
+void PlanPanel::PlotLegLengths() {
+  const Robot& robot = session_->NominalRobot();
+  const std::vector<Vector6d>& plan = session_->Plan();
+  std::vector<LineData> lines(kNumLegs);
+  for (int i = 0; i < kNumLegs; ++i) lines[i].name = QString("L%1").arg(i + 1);
+  for (int j = 0; j < static_cast<int>(plan.size()); ++j) {
+    const LegReadings legs = InverseKinematics(robot, robot.PoseFromVector(plan[j]));
+    for (int i = 0; i < kNumLegs; ++i) lines[i].points.emplace_back(j + 1, legs[i]);
+  }
+  if (!plan.empty()) {
+    const double last = std::max<double>(2, plan.size());
+    lines.push_back({"stroke min", {{1, robot.legs[0].stroke_min}, {last, robot.legs[0].stroke_min}}, true});
+    lines.push_back({"stroke max", {{1, robot.legs[0].stroke_max}, {last, robot.legs[0].stroke_max}}, true});
+  }
+  SetLines(legs_chart_, lines);
+}
+
+void PlanPanel::PlotHistory() {
+  if (job_->Running()) return;  // the live plot is on
+  std::vector<LineData> lines(4);
+  for (int k = 0; k < 4; ++k) lines[k].name = QString("O%1").arg(k + 1);
+  StatusOr<CsvTable> history = ReadCsv(HistoryPath(*session_));
+  if (history.ok()) {
+    for (size_t r = 0; r < history->rows.size(); ++r)
+      for (int k = 0; k < 4; ++k) {
+        StatusOr<double> iteration = NumberAt(*history, r, 0), value = NumberAt(*history, r, 1 + k);
+        if (iteration.ok() && value.ok()) lines[k].points.emplace_back(*iteration, *value);
+      }
+  }
+  SetLines(indices_chart_, lines, /*log_y=*/true);
+  indices_chart_->chart()->setTitle(history.ok() ? "Observability indices per iteration (figs 6, 10–12)"
+                                                 : "Indices per iteration: run the planner to see them");
+}
+
+}  // namespace hexcal::ui

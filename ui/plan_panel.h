@@ -1,0 +1,68 @@
+// Plan step: the IOOPS planner (core/ioops.h) on a worker thread with every
+// option, progress and Cancel; the indices per iteration (paper figs 6,
+// 10-12), live while it runs; the pose table (sortable, editable, delete and
+// add poses); the leg lengths per pose against the strokes (fig. 8); export.
+// The plan is the session's plan.csv, written on every change; the indices
+// per iteration go to plan_history.csv (the columns of `hexcal plan --history`).
+#pragma once
+
+#include <QWidget>
+
+#include "core/ioops.h"
+#include "ui/session_state.h"
+
+class QLabel;
+class QProgressBar;
+class QPushButton;
+class QTableWidget;
+namespace QtCharts {
+class QChartView;
+}
+
+namespace hexcal::ui {
+
+class BackgroundJob;
+class PlanOptionsForm;
+
+class PlanPanel : public QWidget {
+  Q_OBJECT
+ public:
+  PlanPanel(SessionState* session, QWidget* parent = nullptr);
+  PlanOptionsForm* Options() const { return options_; }
+  BackgroundJob* Job() const { return job_; }
+  QTableWidget* PoseTable() const { return table_; }
+  const QString& LastOutcome() const { return outcome_; }
+
+ public slots:
+  void Run();
+  void Cancel();
+  void Refresh();
+  void DeleteSelectedPoses();
+  void AddPose();
+  void ExportPlan();
+
+ signals:
+  // A row of the pose table was picked: show that planned pose in 3D.
+  void PoseSelected(int index);
+
+ private:
+  void Finish(const Status& status, const PlanResult& result);
+  void FillTable();
+  void PlotLegLengths();
+  void PlotHistory();
+  void OnCellEdited(int row, int column);
+  void SetOutcome(const QString& text);
+
+  SessionState* session_;
+  PlanOptionsForm* options_;
+  BackgroundJob* job_;
+  QPushButton *run_, *cancel_;
+  QProgressBar* progress_;
+  QLabel* status_;
+  QTableWidget* table_;
+  QtCharts::QChartView *indices_chart_, *legs_chart_;
+  QString outcome_;
+  bool filling_ = false;
+};
+
+}  // namespace hexcal::ui

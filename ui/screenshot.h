@@ -1,0 +1,14 @@
+// The window as a PNG: the widgets plus the 3D view's framebuffer (the GL
+// widget is drawn into the grab by Qt). For --screenshot, tests and docs/.
+#pragma once
+
+#include <QString>
+
+class QWidget;
+
+namespace hexcal::ui {
+
+// Lets pending events and the worker-free refreshes settle, then grabs.
+bool SaveWindowScreenshot(QWidget* window, const QString& file);
+
+}  // namespace hexcal::ui

@@ -1,0 +1,24 @@
+// The step list on the left of the main window: Robot, Plan, Measure,
+// Calibrate, Validate, each marked done (✓), stale (⟳, an input changed since)
+// or to do (○). Picking a step shows its panel.
+#pragma once
+
+#include <QListWidget>
+
+#include "ui/session_state.h"
+
+namespace hexcal::ui {
+
+class StepList : public QListWidget {
+  Q_OBJECT
+ public:
+  StepList(SessionState* session, QWidget* parent = nullptr);
+
+ public slots:
+  void Refresh();
+
+ private:
+  SessionState* session_;
+};
+
+}  // namespace hexcal::ui

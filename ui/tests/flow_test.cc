@@ -1,0 +1,235 @@
+// The whole GUI flow on a fresh copy of the test session (make_session.sh):
+// open it, plan, delete a pose, cancel a plan, load the rendered images,
+// measure, look at one image's detection, calibrate, validate, export, and a
+// screenshot of every panel. Run under xvfb-run (ui/CMakeLists.txt).
+#include <QVTKOpenGLNativeWidget.h>
+#include <gtest/gtest.h>
+
+#include <QApplication>
+#include <QDir>
+#include <QElapsedTimer>
+#include <QFile>
+#include <QListWidget>
+#include <QPlainTextEdit>
+#include <QSurfaceFormat>
+#include <QTableWidget>
+#include <QTemporaryDir>
+#include <QThread>
+#include <functional>
+
+#include "core/csv.h"
+#include "ui/background_job.h"
+#include "ui/calibrate_panel.h"
+#include "ui/error_dialog.h"
+#include "ui/main_window.h"
+#include "ui/measure_panel.h"
+#include "ui/plan_options.h"
+#include "ui/plan_panel.h"
+#include "ui/robot_panel.h"
+#include "ui/robot_view.h"
+#include "ui/screenshot.h"
+#include "ui/validate_panel.h"
+
+namespace hexcal::ui {
+namespace {
+
+QString sessions_dir;  // argv[1]: what make_session.sh wrote
+
+// Runs the event loop until `done` or the timeout; the workers deliver their
+// results through it.
+bool WaitFor(const std::function<bool()>& done, int timeout_ms = 60000) {
+  QElapsedTimer timer;
+  timer.start();
+  while (!done()) {
+    if (timer.elapsed() > timeout_ms) return false;
+    QApplication::processEvents(QEventLoop::AllEvents, 20);
+    QThread::msleep(5);
+  }
+  QApplication::processEvents();
+  return true;
+}
+
+bool CopyFolder(const QString& from, const QString& to) {
+  QDir().mkpath(to);
+  for (const QFileInfo& entry : QDir(from).entryInfoList(QDir::Files | QDir::Dirs | QDir::NoDotAndDotDot)) {
+    const QString target = to + "/" + entry.fileName();
+    if (entry.isDir() ? !CopyFolder(entry.filePath(), target) : !QFile::copy(entry.filePath(), target)) return false;
+  }
+  return true;
+}
+
+int CsvRows(const QString& path) {
+  StatusOr<CsvTable> table = ReadCsv(path.toStdString());
+  return table.ok() ? static_cast<int>(table->rows.size()) : -1;
+}
+
+TEST(UiFlow, PlanMeasureCalibrateValidate) {
+  QTemporaryDir temp;
+  const QString dir = temp.filePath("session");
+  ASSERT_TRUE(CopyFolder(sessions_dir + "/session", dir));
+  MainWindow window;
+  window.show();
+  ASSERT_TRUE(window.OpenSession(dir));
+  SessionState& session = *window.Session();
+  EXPECT_EQ(session.State(Step::kRobot), StepState::kDone);
+  EXPECT_EQ(session.State(Step::kPlan), StepState::kTodo);
+  // legs.csv names images that are not loaded yet: the session says so.
+  EXPECT_TRUE(session.LegsError().contains("is not in images/")) << session.LegsError().toStdString();
+
+  // Plan: a small run, then the table, the file and the 3D view follow.
+  PlanPanel* plan = window.Plan();
+  plan->Options()->SetValue("poses", 8);
+  plan->Options()->SetValue("candidate_count", 300);
+  plan->Options()->SetValue("iterations", 20);
+  plan->Run();
+  ASSERT_TRUE(WaitFor([&] { return !plan->Job()->Running(); }));
+  EXPECT_TRUE(plan->LastOutcome().startsWith("done")) << plan->LastOutcome().toStdString();
+  EXPECT_EQ(session.Plan().size(), 8u);
+  EXPECT_EQ(plan->PoseTable()->rowCount(), 8);
+  EXPECT_EQ(CsvRows(dir + "/plan.csv"), 8);
+  EXPECT_GT(CsvRows(dir + "/plan_history.csv"), 1);
+  EXPECT_EQ(session.State(Step::kPlan), StepState::kDone);
+
+  // Delete the first pose: the indices are renumbered 1..7 and plan.csv follows.
+  plan->PoseTable()->sortItems(0);
+  plan->PoseTable()->selectRow(0);
+  plan->DeleteSelectedPoses();
+  EXPECT_EQ(plan->PoseTable()->rowCount(), 7);
+  EXPECT_EQ(CsvRows(dir + "/plan.csv"), 7);
+  for (int r = 0; r < 7; ++r) EXPECT_EQ(plan->PoseTable()->item(r, 0)->data(Qt::DisplayRole).toInt(), r + 1);
+  plan->AddPose();
+  EXPECT_EQ(plan->PoseTable()->rowCount(), 8);
+  window.Robot()->ShowPlannedPose(7);
+
+  // Cancel: a long plan stops and leaves the plan as it was.
+  plan->Options()->SetValue("iterations", 100000);
+  plan->Options()->SetValue("tabu", 3);
+  plan->Run();
+  plan->Cancel();
+  ASSERT_TRUE(WaitFor([&] { return !plan->Job()->Running(); }));
+  EXPECT_TRUE(plan->LastOutcome().startsWith("cancelled")) << plan->LastOutcome().toStdString();
+  EXPECT_EQ(session.Plan().size(), 8u);
+
+  // Measure: load the rendered images, then legs.csv loads; measure them all.
+  MeasurePanel* measure = window.Measure();
+  measure->LoadImageFolder(sessions_dir + "/rendered");
+  EXPECT_TRUE(session.LegsError().isEmpty()) << session.LegsError().toStdString();
+  EXPECT_EQ(measure->ImageList()->count(), 16);
+  EXPECT_EQ(measure->LegsTable()->rowCount(), 16);
+  measure->MeasureAll();
+  ASSERT_TRUE(WaitFor([&] { return !measure->Job()->Running(); }));
+  EXPECT_EQ(CsvRows(dir + "/measurements.csv"), 16);
+  EXPECT_EQ(session.State(Step::kMeasure), StepState::kDone);
+  EXPECT_TRUE(measure->ImageList()->item(0)->text().contains("ok"))
+      << measure->ImageList()->item(0)->text().toStdString();
+  measure->ImageList()->setCurrentRow(1);
+  ASSERT_TRUE(WaitFor([&] { return !measure->PreviewJob()->Running(); }));
+  EXPECT_TRUE(measure->ShownStatus().startsWith("ok")) << measure->ShownStatus().toStdString();
+
+  // Calibrate: 42 parameters; the steps after it are done.
+  CalibratePanel* calibrate = window.Calibrate();
+  calibrate->Run();
+  ASSERT_TRUE(WaitFor([&] { return !calibrate->Job()->Running(); }));
+  EXPECT_TRUE(calibrate->LastOutcome().startsWith("done")) << calibrate->LastOutcome().toStdString();
+  EXPECT_EQ(calibrate->ParameterTable()->rowCount(), 42);
+  EXPECT_EQ(session.State(Step::kCalibrate), StepState::kDone);
+  EXPECT_EQ(session.State(Step::kValidate), StepState::kDone);
+
+  // Validate: before and after on the 4 held-out images.
+  ValidatePanel* validate = window.Validate();
+  bool number = false;
+  const double before = validate->SummaryTable()->item(0, 0)->text().toDouble(&number);
+  EXPECT_TRUE(number);
+  const double after = validate->SummaryTable()->item(0, 1)->text().toDouble(&number);
+  EXPECT_TRUE(number);
+  EXPECT_GT(before, 0);
+  EXPECT_LT(after, before);  // the true robot differs from the nominal one
+  validate->ExportCalibratedRobot(temp.filePath("calibrated.yaml"));
+  EXPECT_TRUE(QFile::exists(temp.filePath("calibrated.yaml")));
+  validate->ExportHtmlReport(temp.filePath("report.html"));
+  EXPECT_TRUE(QFile::exists(temp.filePath("report.html")));
+
+  // An edited reading makes the calibration stale.
+  QThread::msleep(1100);  // file times have a 1 s resolution on some file systems
+  const double reading = measure->LegsTable()->item(0, 1)->text().toDouble();
+  measure->LegsTable()->item(0, 1)->setText(QString::number(reading + 0.001, 'g', 10));
+  EXPECT_NEAR(session.Legs()[0].legs[0], reading + 0.001, 1e-9);
+  EXPECT_EQ(session.State(Step::kCalibrate), StepState::kStale);
+
+  // Every panel renders, the 3D view included.
+  for (const char* panel : {"robot", "plan", "measure", "calibrate", "validate"}) {
+    ASSERT_TRUE(window.ShowPanelNamed(panel));
+    const QString file = temp.filePath(QString(panel) + ".png");
+    EXPECT_TRUE(SaveWindowScreenshot(&window, file)) << panel;
+    EXPECT_GT(QFileInfo(file).size(), 10000) << panel;
+  }
+  const QImage view = window.Robot()->View()->Snapshot();
+  EXPECT_GT(view.width(), 100);
+}
+
+TEST(UiFlow, ClosingTheWindowCancelsARunningJob) {
+  QTemporaryDir temp;
+  const QString dir = temp.filePath("session");
+  ASSERT_TRUE(CopyFolder(sessions_dir + "/calibrated", dir));
+  const std::vector<Vector6d> plan_before = [&] {
+    MainWindow window;
+    EXPECT_TRUE(window.OpenSession(dir));
+    return window.Session()->Plan();
+  }();
+  QElapsedTimer timer;
+  timer.start();
+  {
+    MainWindow window;
+    ASSERT_TRUE(window.OpenSession(dir));
+    window.Plan()->Options()->SetValue("iterations", 100000);
+    window.Plan()->Options()->SetValue("tabu", 3);
+    window.Plan()->Run();
+    ASSERT_TRUE(window.Plan()->Job()->Running());
+    QThread::msleep(200);
+  }  // the window dies with the job running: cancelled and joined, no crash
+  EXPECT_LT(timer.elapsed(), 20000);
+  MainWindow window;
+  ASSERT_TRUE(window.OpenSession(dir));
+  EXPECT_EQ(window.Session()->Plan().size(), plan_before.size());
+}
+
+TEST(UiFlow, IntrinsicsFromTargetImages) {
+  QTemporaryDir temp;
+  const QString dir = temp.filePath("session");
+  ASSERT_TRUE(CopyFolder(sessions_dir + "/session", dir));
+  MainWindow window;
+  ASSERT_TRUE(window.OpenSession(dir));
+  MeasurePanel* measure = window.Measure();
+  measure->IntrinsicsFromFolder(sessions_dir + "/rendered");
+  ASSERT_TRUE(WaitFor([&] { return !measure->Job()->Running(); }));
+  EXPECT_EQ(window.Session()->Config().camera, "camera.yaml");
+  ASSERT_TRUE(window.Session()->SessionCamera().has_value());
+  EXPECT_NEAR(window.Session()->SessionCamera()->width, 1024, 0);
+  const auto* report = measure->findChild<QPlainTextEdit*>("intrinsics_report");
+  ASSERT_NE(report, nullptr);
+  EXPECT_TRUE(report->toPlainText().contains("views used")) << report->toPlainText().toStdString();
+}
+
+TEST(UiFlow, BadSessionIsAnErrorNotACrash) {
+  MainWindow window;
+  EXPECT_FALSE(window.OpenSession("/nonexistent/session"));
+  EXPECT_FALSE(window.Session()->IsOpen());
+  window.Plan()->Run();  // no session: an error message, nothing runs
+  EXPECT_FALSE(window.Plan()->Job()->Running());
+}
+
+}  // namespace
+}  // namespace hexcal::ui
+
+int main(int argc, char** argv) {
+  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  QApplication app(argc, argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: ui_flow_test SESSIONS (made by ui/tests/make_session.sh)\n");
+    return 2;
+  }
+  hexcal::ui::sessions_dir = argv[1];
+  hexcal::ui::SetInteractive(false);
+  return RUN_ALL_TESTS();
+}

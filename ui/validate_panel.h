@@ -1,0 +1,38 @@
+// Validate/Report step: the held-out images' errors before (nominal robot)
+// and after calibration, overall and per image (forward kinematics from the
+// readings against the camera pose, from results/report.json); export of the
+// calibrated robot file and of the HTML report (`hexcal report`).
+#pragma once
+
+#include <QWidget>
+
+#include "ui/session_state.h"
+
+class QLabel;
+class QTableWidget;
+namespace QtCharts {
+class QChartView;
+}
+
+namespace hexcal::ui {
+
+class ValidatePanel : public QWidget {
+  Q_OBJECT
+ public:
+  ValidatePanel(SessionState* session, QWidget* parent = nullptr);
+  QTableWidget* SummaryTable() const { return summary_; }
+
+ public slots:
+  void Refresh();
+  // Empty path: ask with a file dialog.
+  void ExportCalibratedRobot(const QString& path = {});
+  void ExportHtmlReport(const QString& path = {});
+
+ private:
+  SessionState* session_;
+  QLabel* status_;
+  QTableWidget* summary_;
+  QtCharts::QChartView *position_chart_, *orientation_chart_;
+};
+
+}  // namespace hexcal::ui
