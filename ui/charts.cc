@@ -3,6 +3,7 @@
 #include <QBarCategoryAxis>
 #include <QBarSeries>
 #include <QBarSet>
+#include <QCategoryAxis>
 #include <QChart>
 #include <QChartView>
 #include <QLineSeries>
@@ -24,6 +25,23 @@ void ClearAxes(QChart* chart) {
   }
 }
 
+// Labels at round values (1, 2 or 5 × 10^k apart), each printed from an exact
+// multiple of the step, so that zero reads "0" and not "-2.78e-17" (Qt's own
+// ticks add the interval up from the minimum and carry its rounding).
+void SetRoundTicks(QCategoryAxis* axis, double min, double max) {
+  for (const QString& label : axis->categoriesLabels()) axis->remove(label);
+  if (!(max > min)) max = min + 1;
+  const double raw = (max - min) / 5;
+  const double power = std::pow(10.0, std::floor(std::log10(raw)));
+  const double ratio = raw / power;
+  const double step = (ratio <= 1 ? 1 : ratio <= 2 ? 2 : ratio <= 5 ? 5 : 10) * power;
+  const long first = std::lround(std::floor(min / step)), last = std::lround(std::ceil(max / step));
+  axis->setStartValue((first - 1e-6) * step);
+  for (long k = first; k <= last; ++k) axis->append(QString::number(k * step, 'g', 6), k * step);
+  axis->setLabelsPosition(QCategoryAxis::AxisLabelsPositionOnValue);
+  axis->setRange(first * step, last * step);
+}
+
 }  // namespace
 
 QChartView* MakeChartView(const QString& title, const QString& x_title, const QString& y_title) {
@@ -42,8 +60,7 @@ void SetLines(QChartView* view, const std::vector<LineData>& lines, bool log_y) 
   QChart* chart = view->chart();
   chart->removeAllSeries();
   ClearAxes(chart);
-  auto* x_values = new QValueAxis;
-  x_values->setLabelFormat("%g");
+  auto* x_values = new QCategoryAxis;
   QAbstractAxis* x_axis = x_values;
   x_axis->setTitleText(chart->property("x_title").toString());
   QAbstractAxis* y_axis = nullptr;
@@ -52,9 +69,7 @@ void SetLines(QChartView* view, const std::vector<LineData>& lines, bool log_y) 
     log_axis->setLabelFormat("%.2g");
     y_axis = log_axis;
   } else {
-    auto* value_axis = new QValueAxis;
-    value_axis->setLabelFormat("%.3g");
-    y_axis = value_axis;
+    y_axis = new QCategoryAxis;
   }
   y_axis->setTitleText(chart->property("y_title").toString());
   chart->addAxis(x_axis, Qt::AlignBottom);
@@ -82,11 +97,11 @@ void SetLines(QChartView* view, const std::vector<LineData>& lines, bool log_y) 
   if (x_min > x_max) return;
   if (x_min == x_max) x_max = x_min + 1;
   const double pad = log_y ? 0 : 0.05 * std::max(y_max - y_min, 1e-12);
-  x_axis->setRange(x_min, x_max);
-  y_axis->setRange(log_y ? y_min / 1.5 : y_min - pad, log_y ? y_max * 1.5 : y_max + pad);
-  // Round ticks (1, 2, 5 × 10^k) instead of the range split in equal parts.
-  x_values->applyNiceNumbers();
-  if (!log_y) static_cast<QValueAxis*>(y_axis)->applyNiceNumbers();
+  SetRoundTicks(x_values, x_min, x_max);
+  if (log_y)
+    y_axis->setRange(y_min / 1.5, y_max * 1.5);
+  else
+    SetRoundTicks(static_cast<QCategoryAxis*>(y_axis), y_min - pad, y_max + pad);
 }
 
 void AppendPoint(QChartView* view, int index, const QString& name, QPointF point) {
@@ -97,10 +112,13 @@ void AppendPoint(QChartView* view, int index, const QString& name, QPointF point
   }
   auto* series = static_cast<QXYSeries*>(chart->series()[index]);
   series->append(point);
-  auto* x_axis = static_cast<QValueAxis*>(chart->axes(Qt::Horizontal).front());
-  auto* y_axis = static_cast<QValueAxis*>(chart->axes(Qt::Vertical).front());
-  x_axis->setRange(std::min(x_axis->min(), point.x()), std::max(x_axis->max(), point.x()));
-  y_axis->setRange(std::min(y_axis->min(), point.y()), std::max(y_axis->max(), point.y()));
+  auto* x_axis = qobject_cast<QCategoryAxis*>(chart->axes(Qt::Horizontal).front());
+  if (x_axis) SetRoundTicks(x_axis, std::min(x_axis->min(), point.x()), std::max(x_axis->max(), point.x()));
+  QAbstractAxis* y = chart->axes(Qt::Vertical).front();
+  if (auto* y_axis = qobject_cast<QCategoryAxis*>(y))
+    SetRoundTicks(y_axis, std::min(y_axis->min(), point.y()), std::max(y_axis->max(), point.y()));
+  else if (auto* log_axis = qobject_cast<QLogValueAxis*>(y))
+    log_axis->setRange(std::min(log_axis->min(), point.y()), std::max(log_axis->max(), point.y()));
 }
 
 void SetBars(QChartView* view, const QStringList& categories,
@@ -126,6 +144,7 @@ void SetBars(QChartView* view, const QStringList& categories,
   y_axis->setLabelFormat("%.3g");
   y_axis->setTitleText(chart->property("y_title").toString());
   y_axis->setRange(0, top > 0 ? 1.1 * top : 1);
+  y_axis->applyNiceNumbers();  // ticks at 1, 2, 5 × 10^k
   chart->addAxis(x_axis, Qt::AlignBottom);
   chart->addAxis(y_axis, Qt::AlignLeft);
   series->attachAxis(x_axis);

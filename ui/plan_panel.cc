@@ -177,9 +177,12 @@ void PlanPanel::Finish(const Status& status, const PlanResult& result) {
   if (Status s = cli::WriteHistoryCsv(HistoryPath(*session_), result); !s.ok())
     ShowError(this, "Plan", QString::fromStdString(s.message()));
   if (Status s = session_->SetPlan(result.poses); !s.ok()) ShowError(this, "Plan", QString::fromStdString(s.message()));
+  // The bar stops where the planner converged; show it complete.
+  progress_->setFormat("done");
+  progress_->setValue(progress_->maximum());
   SetOutcome(QString("done: %1 iterations in %2 s%3; O1 %4 → %5, O3 %6 → %7")
                  .arg(result.iterations)
-                 .arg(result.seconds, 0, 'f', 1)
+                 .arg(result.seconds, 0, 'g', 2)
                  .arg(result.converged ? " (converged)" : "")
                  .arg(result.initial.o1, 0, 'g', 4)
                  .arg(result.final.o1, 0, 'g', 4)
