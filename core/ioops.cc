@@ -104,7 +104,8 @@ void ScoreInParallel(const DesignState& state, Criterion criterion, const Candid
 
 StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vector6d>& candidates,
                                const std::vector<Vector6d>& initial, const PlannerOptions& options,
-                               const PlanProgress& progress, const std::atomic<bool>* cancel) {
+                               const PlanProgress& progress, const std::atomic<bool>* cancel,
+                               const PlanIterationObserver& on_iteration) {
   const auto start_time = std::chrono::steady_clock::now();
   std::string error;
   if (!options.IsValid(&error)) return Status::Error(error);
@@ -138,6 +139,7 @@ StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vec
     PlanIteration step{iteration, PaperIndices(model.robot, plan), state.Value(options.criterion),
                        options.secondary ? state.Value(*options.secondary) : 0.0, exchanged};
     result.history.push_back(step);
+    if (on_iteration) on_iteration(step);
   };
   record(0, false);
   result.initial = result.history.back().indices;

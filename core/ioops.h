@@ -64,12 +64,16 @@ struct PlanResult {
 };
 
 using PlanProgress = std::function<void(int iteration, int budget, double best)>;
+// Each history entry as it is recorded (iteration 0 first), for live plots of
+// the indices (figs 6, 10-12); called on the planning thread.
+using PlanIterationObserver = std::function<void(const PlanIteration& step)>;
 
 // `candidates` is the finite search set (and the start list in continuous
 // mode); `initial` holds N poses to start from.
 StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vector6d>& candidates,
                                const std::vector<Vector6d>& initial, const PlannerOptions& options,
-                               const PlanProgress& progress = {}, const std::atomic<bool>* cancel = nullptr);
+                               const PlanProgress& progress = {}, const std::atomic<bool>* cancel = nullptr,
+                               const PlanIterationObserver& on_iteration = {});
 
 // Scores every candidate with DesignState::ScoreAdditions on `threads` threads.
 void ScoreInParallel(const DesignState& state, Criterion criterion, const CandidateRows& candidates,

@@ -57,8 +57,15 @@ TEST_F(IoopsTest, BoundaryPlanReachesThePapersO2) {
 TEST_F(IoopsTest, PlainIoopsNeverDecreasesAndConverges) {
   const std::vector<Vector6d> candidates = Generate(model_.robot, CandidateKind::kRandom, 1500, 3);
   PlannerOptions options;
-  StatusOr<PlanResult> plan = PlanPoses(model_, candidates, random18_, options);
+  std::vector<PlanIteration> observed;  // the live feed must be the history, entry for entry
+  StatusOr<PlanResult> plan = PlanPoses(model_, candidates, random18_, options, {}, nullptr,
+                                        [&](const PlanIteration& step) { observed.push_back(step); });
   ASSERT_TRUE(plan.ok()) << plan.status().message();
+  ASSERT_EQ(observed.size(), plan->history.size());
+  for (size_t k = 0; k < observed.size(); ++k) {
+    EXPECT_EQ(observed[k].iteration, plan->history[k].iteration);
+    EXPECT_EQ(observed[k].indices.o2, plan->history[k].indices.o2);
+  }
   EXPECT_TRUE(plan->converged);
   for (size_t k = 1; k < plan->history.size(); ++k) {
     EXPECT_GE(plan->history[k].primary, plan->history[k - 1].primary * (1 - 1e-12)) << "iteration " << k;

@@ -148,17 +148,14 @@ void PlanPanel::Run() {
         cli::BuildCandidatePool(model, "", {options.candidate_kind}, options.candidate_count, planner.continuous,
                                 planner.seed, [&](int done, int total) { context.progress(done, total); });
     if (!pool.ok()) return [this, s = pool.status()] { Finish(s, {}); };
-    const auto live = [&, self](int iteration, int budget, double best) {
-      context.progress(iteration, budget);
-      // A queued call: the chart is touched on the GUI thread only.
+    const auto progress = [&](int iteration, int budget, double) { context.progress(iteration, budget); };
+    // O1..O4 of every iteration as it is recorded. A queued call: the chart
+    // is touched on the GUI thread only.
+    const auto live = [self](const PlanIteration& step) {
       QMetaObject::invokeMethod(
-          self,
-          [self, iteration, best] {
-            if (self) AppendPoint(self->indices_chart_, 0, "best primary (live)", QPointF(iteration, best));
-          },
-          Qt::QueuedConnection);
+          self, [self, step] { if (self) self->PlotIteration(step); }, Qt::QueuedConnection);
     };
-    StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, *initial, planner, live, context.cancel);
+    StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, *initial, planner, progress, context.cancel, live);
     if (!plan.ok()) return [this, s = plan.status()] { Finish(s, {}); };
     return [this, result = *plan] { Finish(Status::Ok(), result); };
   });
@@ -273,6 +270,21 @@ void PlanPanel::PlotLegLengths() {
     lines.push_back({"stroke max", {{1, robot.legs[0].stroke_max}, {last, robot.legs[0].stroke_max}}, true});
   }
   SetLines(legs_chart_, lines);
+}
+
+void PlanPanel::PlotIteration(const PlanIteration& step) {
+  const double values[4] = {step.indices.o1, step.indices.o2, step.indices.o3, step.indices.o4};
+  if (step.iteration == 0) {
+    std::vector<LineData> lines(4);
+    for (int k = 0; k < 4; ++k) {
+      lines[k].name = QString("O%1").arg(k + 1);
+      if (values[k] > 0) lines[k].points.emplace_back(0, values[k]);
+    }
+    SetLines(indices_chart_, lines, /*log_y=*/true);
+    return;
+  }
+  for (int k = 0; k < 4; ++k)
+    if (values[k] > 0) AppendPoint(indices_chart_, k, QString("O%1").arg(k + 1), QPointF(step.iteration, values[k]));
 }
 
 void PlanPanel::PlotHistory() {

@@ -47,6 +47,8 @@ class PlanPanel : public QWidget {
 
  private:
   void Finish(const Status& status, const PlanResult& result);
+  // One planner iteration on the live O1..O4 chart (log scale); iteration 0 starts it.
+  void PlotIteration(const PlanIteration& step);
   void FillTable();
   void PlotLegLengths();
   void PlotHistory();
