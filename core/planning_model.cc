@@ -5,8 +5,10 @@
 #include <cmath>
 #include <set>
 
+#include "core/atomic_file.h"
 #include "core/constraints.h"
 #include "core/inverse_kinematics.h"
+#include "core/yaml_document.h"
 
 namespace hexcal {
 
@@ -120,6 +122,7 @@ StatusOr<Eigen::Vector3d> Vector3(const YAML::Node& node, const std::string& pat
 StatusOr<Pose> PoseNode(const YAML::Node& node, const std::string& path, const std::string& key, const Robot& robot) {
   if (!node.IsMap()) return SettingsError(path, key, "expected {position: [x, y, z], rotation_deg: [q1, q2, q3]}");
   for (const auto& item : node) {
+    if (!item.first.IsScalar()) return SettingsError(path, key, "a key that is not a name");
     const std::string name = item.first.as<std::string>();
     if (name != "position" && name != "rotation_deg") return SettingsError(path, key + "." + name, "unknown key");
   }
@@ -134,25 +137,22 @@ StatusOr<Pose> PoseNode(const YAML::Node& node, const std::string& path, const s
 
 }  // namespace
 
-StatusOr<PlanSettings> LoadPlanSettings(const std::string& path, const Robot& robot) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    return Status::Error("plan settings '" + path + "': cannot read the file");
-  } catch (const YAML::Exception& e) {
-    return Status::Error("plan settings '" + path + "': " + e.what());
-  }
+namespace {
+
+StatusOr<PlanSettings> ReadPlanSettings(const YAML::Node& root, const std::string& path, const Robot& robot) {
   if (!root.IsMap()) return Status::Error("plan settings '" + path + "': expected a mapping at the top level");
   static const std::set<std::string> kKeys = {"noise", "camera", "target", "field_of_view_deg", "max_view_angle_deg"};
   for (const auto& item : root) {
+    if (!item.first.IsScalar()) return SettingsError(path, "top level", "a key that is not a name");
     const std::string key = item.first.as<std::string>();
     if (!kKeys.count(key)) return SettingsError(path, key, "unknown key");
   }
   PlanSettings settings;
   if (root["noise"]) {
+    if (!root["noise"].IsMap()) return SettingsError(path, "noise", "expected {position, angle_deg, leg}");
     NoiseModel noise;
     for (const auto& item : root["noise"]) {
+      if (!item.first.IsScalar()) return SettingsError(path, "noise", "a key that is not a name");
       const std::string key = item.first.as<std::string>();
       StatusOr<double> value = FiniteNumber(item.second, path, "noise." + key);
       if (!value.ok()) return value.status();
@@ -194,6 +194,21 @@ StatusOr<PlanSettings> LoadPlanSettings(const std::string& path, const Robot& ro
     settings.measurement = c;
   }
   return settings;
+}
+
+}  // namespace
+
+StatusOr<PlanSettings> ParsePlanSettings(const std::string& text, const std::string& path, const Robot& robot) {
+  const std::string label = "plan settings '" + path + "'";
+  StatusOr<YAML::Node> root = LoadYamlDocument(text, label);
+  if (!root.ok()) return root.status();
+  return WithYamlBackstop<PlanSettings>(label, [&] { return ReadPlanSettings(*root, path, robot); });
+}
+
+StatusOr<PlanSettings> LoadPlanSettings(const std::string& path, const Robot& robot) {
+  StatusOr<std::string> text = ReadFileToString(path);
+  if (!text.ok()) return Status::Error("plan settings: " + text.status().message());
+  return ParsePlanSettings(*text, path, robot);
 }
 
 }  // namespace hexcal

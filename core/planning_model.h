@@ -53,5 +53,7 @@ struct PlanSettings {
   std::optional<MeasurementConstraints> measurement;
 };
 StatusOr<PlanSettings> LoadPlanSettings(const std::string& path, const Robot& robot);
+// The same from the file's text; `path` names it in messages.
+StatusOr<PlanSettings> ParsePlanSettings(const std::string& text, const std::string& path, const Robot& robot);
 
 }  // namespace hexcal
