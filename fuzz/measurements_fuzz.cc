@@ -8,7 +8,6 @@
 #include <cstdlib>
 #include <string>
 
-#include "core/csv.h"
 #include "core/measurements.h"
 #include "vision/measure.h"
 

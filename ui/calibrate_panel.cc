@@ -21,7 +21,6 @@
 #include "ui/background_job.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
-#include "ui/session_jobs.h"
 
 namespace hexcal::ui {
 namespace {
@@ -66,7 +65,7 @@ CalibratePanel::CalibratePanel(SessionState* session, QWidget* parent)
   connect(run_, &QPushButton::clicked, this, &CalibratePanel::Run);
   connect(cancel_, &QPushButton::clicked, this, [this] {
     job_->Cancel();
-    SetOutcome("cancelling… (stops after the measuring)");
+    SetOutcome("cancelling…");
   });
   connect(job_, &BackgroundJob::Progress, this, [this](int done, int total, const QString& what) {
     progress_->setFormat(what + " %v/%m");
@@ -101,22 +100,14 @@ void CalibratePanel::Run() {
     return ShowError(this, "Calibrate", "legs.csv: " + session_->LegsError() + "\nFix it in the Measure step.");
   if (!session_->SessionCamera() || !session_->SessionTarget())
     return ShowError(this, "Calibrate", "The session's camera or target does not load: fix session.yaml.");
-  std::vector<std::string> files;
-  for (const QString& file : session_->ImageFiles()) files.push_back(file.toStdString());
-  const std::string dir = session_->Dir().toStdString(), measurements = session_->Paths().measurements;
-  const Camera camera = *session_->SessionCamera();
-  const Target target = *session_->SessionTarget();
+  const std::string dir = session_->Dir().toStdString();
   run_->setEnabled(false);
   cancel_->setEnabled(true);
   SetOutcome("calibrating…");
   job_->Start("calibrating", [=](const JobContext& context) -> GuiContinuation {
-    int usable = 0;
-    if (!MeasurementsCover(measurements, files)) {
-      const Status measured = MeasureImagesInto(files, camera, target, measurements, context, &usable);
-      if (!measured.ok()) return [this, measured] { Finish(measured, ""); };
-    }
-    if (context.cancel->load()) return [this] { Finish(Status::Cancelled(), ""); };
-    context.progress(0, 0);  // a busy bar until the legs report
+    // The session calibration measures the images not yet in measurements.csv
+    // (keeping the rows already there), as `hexcal calibrate --session` does.
+    context.progress(0, 0);  // a busy bar until the first report
     std::ostringstream out, err;
     const int code = cli::RunSessionCalibrate(dir, /*json=*/false, out, err, {context.progress, context.cancel});
     const Status status =

@@ -1,8 +1,7 @@
 // Calibrate step: the session calibration of `hexcal calibrate --session`
 // (register the camera with the nominal robot, calibrate the 42 parameters,
-// validate on held-out images) on a worker thread. The long part, measuring
-// the images, runs first and can be cancelled; the registration and
-// calibration that follow take about a second and are not interrupted.
+// validate on held-out images) on a worker thread, with its progress (the
+// images it measures, then the legs) and Cancel throughout.
 // Shows the 42 parameters (nominal, calibrated, change, σ) from
 // results/report.json and the leg residuals of the nominal and the calibrated
 // robot on the calibration poses.

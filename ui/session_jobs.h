@@ -17,7 +17,4 @@ namespace hexcal::ui {
 Status MeasureImagesInto(const std::vector<std::string>& files, const Camera& camera, const Target& target,
                          const std::string& measurements_csv, const JobContext& context, int* usable);
 
-// True when measurements.csv has a row for every file (by file name).
-bool MeasurementsCover(const std::string& measurements_csv, const std::vector<std::string>& files);
-
 }  // namespace hexcal::ui

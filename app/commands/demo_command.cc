@@ -181,7 +181,10 @@ int RunDemo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
                                    [&](int done, int total) { render_progress.Update(done, total); });
       !s.ok())
     return ReportError(err, kCommand, s, kExitFailure);
-  // The planner's indices per iteration, as `hexcal plan --history` writes them (the GUI plots them).
+  // The plan and the planner's indices per iteration, as `hexcal plan --out --history` writes them.
+  const SessionPaths paths(options.out);
+  if (Status s = WritePlanCsv(paths.plan, model, plan->poses); !s.ok())
+    return ReportError(err, kCommand, s, kExitFailure);
   if (Status s = WriteHistoryCsv((fs::path(options.out) / "plan_history.csv").string(), *plan); !s.ok())
     return ReportError(err, kCommand, s, kExitFailure);
 

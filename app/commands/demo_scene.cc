@@ -136,15 +136,7 @@ Status RecordDemoSession(const DemoScene& scene, const std::string& robot_name, 
       progress);
   for (const Status& s : written)
     if (!s.ok()) return s;
-  if (Status s = WriteCsv(paths.legs, {"image", "L1", "L2", "L3", "L4", "L5", "L6", "holdout"}, legs_rows); !s.ok())
-    return s;
-  std::vector<std::vector<std::string>> plan_rows;
-  for (const Vector6d& v : planned) {
-    std::vector<std::string> row;
-    for (int k = 0; k < 6; ++k) row.push_back(FormatNumber(v[k]));
-    plan_rows.push_back(row);
-  }
-  return WriteCsv(paths.plan, {"x", "y", "z", "q1", "q2", "q3"}, plan_rows);
+  return WriteCsv(paths.legs, {"image", "L1", "L2", "L3", "L4", "L5", "L6", "holdout"}, legs_rows);
 }
 
 }  // namespace hexcal::cli

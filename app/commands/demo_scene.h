@@ -46,8 +46,8 @@ DemoScene MakeDemoScene(const Robot& nominal, const Camera& camera, const Target
 
 // Initialises the session folder DIR (hexcal session init) with the robot and
 // camera names as given (a preset or a path) and records one
-// image and one legs.csv row per pose: `planned` for the calibration (also
-// written to plan.csv), then `held_out` with holdout = 1. The hidden truth is
+// image and one legs.csv row per pose: `planned` for the calibration, then
+// `held_out` with holdout = 1. The hidden truth is
 // written to DIR/truth/ (robot.yaml, frames.yaml) for the comparison.
 Status RecordDemoSession(const DemoScene& scene, const std::string& robot_name, const std::string& camera_name,
                          const std::vector<Vector6d>& planned,

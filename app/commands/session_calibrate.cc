@@ -152,7 +152,6 @@ int RunSessionCalibrate(const std::string& dir, bool json, std::ostream& out, st
                                },
                                hooks.cancel);
   if (!result.ok()) return ReportError(err, kCommand, result.status(), kExitFailure);
-  progress.Update(1, 1);
 
   // Held-out rows: the camera pose mapped into the registered base frame.
   std::vector<Measurement> validation_rows;

@@ -35,13 +35,15 @@ std::string Escape(const std::string& text) {
   return escaped;
 }
 
-std::string Number(const nlohmann::json& value) {
-  if (!value.is_number()) return "–";
+// 4 significant digits.
+std::string Figure(double value) {
   std::ostringstream out;
   out.precision(4);
-  out << value.get<double>();
+  out << value;
   return out.str();
 }
+
+std::string Number(const nlohmann::json& value) { return value.is_number() ? Figure(value.get<double>()) : "–"; }
 
 // Per-image reprojection RMS (px) of measurements.csv, in file order.
 plots::LineSeries MeasurementRms(const std::string& path) {
@@ -70,13 +72,6 @@ std::string ParameterTable(const nlohmann::json& parameters, const std::string& 
             "</td><td>" + Number(p["sigma"]) + "</td></tr>\n";
   }
   return html + "</table><p>Lengths in " + Escape(unit) + ".</p>\n";
-}
-
-std::string Figure(double value) {
-  std::ostringstream out;
-  out.precision(4);
-  out << value;
-  return out.str();
 }
 
 // The plan: its indices with the nominal robot (paper section 2) and the leg
