@@ -17,6 +17,11 @@ Status ErrnoError(const std::string& path, const std::string& what, int error_nu
   return Status::Error(path + ": " + what + ": " + std::strerror(error_number));
 }
 
+// A write that the disk refused: an I/O error, not bad input.
+Status WriteErrnoError(const std::string& path, const std::string& what, int error_number) {
+  return Status::IoError(path + ": " + what + ": " + std::strerror(error_number));
+}
+
 // The umask cannot be read without setting it (umask(2)), which would race with
 // other threads creating files; Linux publishes it in /proc/self/status.
 mode_t ProcessUmask() {
@@ -57,12 +62,12 @@ bool WriteAll(int fd, const std::string& contents) {
 // and say so with EINVAL; the data is still written, so that is not a failure.
 Status SyncDirectory(const std::string& path, const std::string& dir) {
   const int dir_fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dir_fd < 0) return ErrnoError(path, "cannot open folder '" + dir + "' to sync it", errno);
+  if (dir_fd < 0) return WriteErrnoError(path, "cannot open folder '" + dir + "' to sync it", errno);
   const int result = ::fsync(dir_fd);
   const int sync_errno = errno;
   ::close(dir_fd);
   if (result != 0 && sync_errno != EINVAL) {
-    return ErrnoError(path, "cannot sync folder '" + dir + "'", sync_errno);
+    return WriteErrnoError(path, "cannot sync folder '" + dir + "'", sync_errno);
   }
   return Status::Ok();
 }
@@ -100,14 +105,14 @@ Status WriteFileAtomically(const std::string& path, const std::string& contents)
   temp_name.push_back('\0');
 
   const int fd = ::mkstemp(temp_name.data());
-  if (fd < 0) return ErrnoError(path, "cannot create a temporary file in '" + dir + "'", errno);
+  if (fd < 0) return WriteErrnoError(path, "cannot create a temporary file in '" + dir + "'", errno);
   temp_path = temp_name.data();
 
   // Every failure below removes the temp file and reports the first error.
   auto fail = [&](const std::string& what, int error_number, bool close_fd) {
     if (close_fd) ::close(fd);
     ::unlink(temp_path.c_str());
-    return ErrnoError(path, what, error_number);
+    return WriteErrnoError(path, what, error_number);
   };
   if (::fchmod(fd, ModeForTarget(path)) != 0) return fail("cannot set permissions", errno, true);
   if (!WriteAll(fd, contents)) return fail("write failed", errno, true);

@@ -16,23 +16,44 @@
 
 namespace hexcal {
 
+// What went wrong, for the front ends: the CLI maps it to an exit code in one
+// place (app/commands/cli_common.h), the GUI to a dialog or a status line.
+enum class StatusKind {
+  kOk,
+  kBadInput,   // a file, an option or a value the user gave is wrong
+  kFailed,     // the computation failed (no convergence, too few usable poses)
+  kCancelled,  // a long job stopped by its caller: not a success, not a failure
+  kIo,         // reading or writing the disk failed (full disk, permissions)
+};
+
 class Status {
  public:
   Status() = default;  // OK
   static Status Ok() { return Status(); }
-  static Status Error(std::string message) { return Status(std::move(message), false); }
-  // A long job stopped by its caller: not a success, not a failure.
-  static Status Cancelled(std::string message = "cancelled") { return Status(std::move(message), true); }
+  // Bad user input or configuration (the default kind of an error).
+  static Status Error(std::string message) { return Status(std::move(message), StatusKind::kBadInput); }
+  static Status Failed(std::string message) { return Status(std::move(message), StatusKind::kFailed); }
+  static Status IoError(std::string message) { return Status(std::move(message), StatusKind::kIo); }
+  static Status Cancelled(std::string message = "cancelled") {
+    return Status(std::move(message), StatusKind::kCancelled);
+  }
 
-  bool ok() const { return !failed_; }
-  bool cancelled() const { return cancelled_; }
+  bool ok() const { return kind_ == StatusKind::kOk; }
+  bool cancelled() const { return kind_ == StatusKind::kCancelled; }
+  StatusKind kind() const { return kind_; }
   const std::string& message() const { return message_; }
 
+  // The same error as a failed computation: for a step whose input was
+  // accepted but whose work did not succeed (a cancel stays a cancel).
+  Status AsFailure() const {
+    if (ok() || cancelled() || kind_ == StatusKind::kIo) return *this;
+    return Failed(message_);
+  }
+
  private:
-  Status(std::string message, bool cancelled) : message_(std::move(message)), failed_(true), cancelled_(cancelled) {}
+  Status(std::string message, StatusKind kind) : message_(std::move(message)), kind_(kind) {}
   std::string message_;
-  bool failed_ = false;
-  bool cancelled_ = false;
+  StatusKind kind_ = StatusKind::kOk;
 };
 
 template <typename T>
