@@ -75,22 +75,21 @@ StatusOr<CandidateSet> BoundaryCandidates(const Robot& robot, const std::functio
 
 }  // namespace
 
+const std::vector<std::pair<std::string, CandidateKind>>& CandidateKindNames() {
+  static const std::vector<std::pair<std::string, CandidateKind>> kNames = {
+      {"random", CandidateKind::kRandom}, {"uniform", CandidateKind::kUniform}, {"boundary", CandidateKind::kBoundary}};
+  return kNames;
+}
+
 std::optional<CandidateKind> ParseCandidateKind(const std::string& text) {
-  if (text == "random") return CandidateKind::kRandom;
-  if (text == "uniform") return CandidateKind::kUniform;
-  if (text == "boundary") return CandidateKind::kBoundary;
+  for (const auto& [name, kind] : CandidateKindNames())
+    if (text == name) return kind;
   return std::nullopt;
 }
 
 const char* CandidateKindName(CandidateKind kind) {
-  switch (kind) {
-    case CandidateKind::kRandom:
-      return "random";
-    case CandidateKind::kUniform:
-      return "uniform";
-    case CandidateKind::kBoundary:
-      return "boundary";
-  }
+  for (const auto& [name, value] : CandidateKindNames())
+    if (value == kind) return name.c_str();
   return "?";
 }
 

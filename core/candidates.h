@@ -14,6 +14,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/robot.h"
@@ -22,6 +23,8 @@
 namespace hexcal {
 
 enum class CandidateKind { kRandom, kUniform, kBoundary };
+// The names users type, in this order (the one table for parsing, printing and option forms).
+const std::vector<std::pair<std::string, CandidateKind>>& CandidateKindNames();
 std::optional<CandidateKind> ParseCandidateKind(const std::string& text);
 const char* CandidateKindName(CandidateKind kind);
 

@@ -70,26 +70,22 @@ double LogDetOrMinusInfinity(const InfoBlock& block) {
 
 }  // namespace
 
-std::optional<Criterion> ParseCriterion(const std::string& text) {
-  static const std::pair<const char*, Criterion> kNames[] = {
+const std::vector<std::pair<std::string, Criterion>>& CriterionNames() {
+  static const std::vector<std::pair<std::string, Criterion>> kNames = {
       {"O1", Criterion::kO1}, {"O2", Criterion::kO2}, {"O3", Criterion::kO3}, {"O4", Criterion::kO4},
       {"D", Criterion::kD},   {"A", Criterion::kA},   {"E", Criterion::kE}};
-  for (const auto& [name, criterion] : kNames) {
+  return kNames;
+}
+
+std::optional<Criterion> ParseCriterion(const std::string& text) {
+  for (const auto& [name, criterion] : CriterionNames())
     if (text == name) return criterion;
-  }
   return std::nullopt;
 }
 
 const char* CriterionName(Criterion criterion) {
-  switch (criterion) {
-    case Criterion::kO1: return "O1";
-    case Criterion::kO2: return "O2";
-    case Criterion::kO3: return "O3";
-    case Criterion::kO4: return "O4";
-    case Criterion::kD: return "D";
-    case Criterion::kA: return "A";
-    case Criterion::kE: return "E";
-  }
+  for (const auto& [name, value] : CriterionNames())
+    if (value == criterion) return name.c_str();
   return "?";
 }
 

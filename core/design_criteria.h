@@ -17,6 +17,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/identification.h"
@@ -24,6 +25,9 @@
 namespace hexcal {
 
 enum class Criterion { kO1, kO2, kO3, kO4, kD, kA, kE };
+// The names of the criteria as users type them, in this order: the one table
+// ParseCriterion, CriterionName and every option form use.
+const std::vector<std::pair<std::string, Criterion>>& CriterionNames();
 std::optional<Criterion> ParseCriterion(const std::string& text);
 const char* CriterionName(Criterion criterion);
 

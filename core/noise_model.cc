@@ -29,6 +29,33 @@ bool NoiseModel::IsValid(std::string* error) const {
   return true;
 }
 
+const OptionTable<NoiseModel>& NoiseModelOptions() {
+  static const OptionTable<NoiseModel> table = [] {
+    OptionTable<NoiseModel> t;
+    const auto number = [&t](std::string key, std::string flag, std::string label, std::string unit,
+                             std::string help, double NoiseModel::*field) {
+      OptionSpec<NoiseModel> spec;
+      spec.key = std::move(key);
+      spec.flag = std::move(flag);
+      spec.label = std::move(label);
+      spec.unit = std::move(unit);
+      spec.max = 1e9;
+      spec.help = std::move(help);
+      spec.get_number = [field](const NoiseModel& n) { return n.*field; };
+      spec.set_number = [field](NoiseModel& n, double v) { n.*field = v; };
+      t.push_back(std::move(spec));
+    };
+    number("position", "position", "Noise: position", "robot unit",
+           "half-width of the uniform noise on the measured x, y, z", &NoiseModel::position);
+    number("angle_deg", "angle", "Noise: angle", "deg", "half-width of the uniform noise on the measured q1, q2, q3",
+           &NoiseModel::angle_deg);
+    number("leg", "leg", "Noise: leg reading", "robot unit", "half-width of the uniform noise on each leg reading",
+           &NoiseModel::leg);
+    return t;
+  }();
+  return table;
+}
+
 // Uniform on [-h, h] has variance h²/3.
 double NoiseModel::PositionStdDev() const { return position / std::sqrt(3.0); }
 double NoiseModel::AngleStdDevRad() const { return DegToRad(angle_deg) / std::sqrt(3.0); }

@@ -14,6 +14,7 @@
 #include <array>
 #include <string>
 
+#include "core/option_spec.h"
 #include "core/robot.h"
 
 namespace hexcal {
@@ -28,6 +29,10 @@ struct NoiseModel {
   double AngleStdDevRad() const;
   double LegStdDev() const;
 };
+
+// The three half-widths described once (core/option_spec.h): the `noise:`
+// sections of session.yaml and plan settings, the --noise-* flags, the GUI.
+const OptionTable<NoiseModel>& NoiseModelOptions();
 
 // dR/dq_k for the Euler angles of `convention` (q in radians).
 std::array<Eigen::Matrix3d, 3> RotationEulerPartials(const Eigen::Vector3d& q_rad, EulerConvention convention);

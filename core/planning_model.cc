@@ -8,6 +8,7 @@
 #include "core/atomic_file.h"
 #include "core/constraints.h"
 #include "core/inverse_kinematics.h"
+#include "core/noise_yaml.h"
 #include "core/yaml_document.h"
 
 namespace hexcal {
@@ -141,7 +142,8 @@ namespace {
 
 StatusOr<PlanSettings> ReadPlanSettings(const YAML::Node& root, const std::string& path, const Robot& robot) {
   if (!root.IsMap()) return Status::Error("plan settings '" + path + "': expected a mapping at the top level");
-  static const std::set<std::string> kKeys = {"noise", "camera", "target", "field_of_view_deg", "max_view_angle_deg"};
+  static const std::set<std::string> kKeys = {"noise",  "planner",           "camera",
+                                                 "target", "field_of_view_deg", "max_view_angle_deg"};
   for (const auto& item : root) {
     if (!item.first.IsScalar()) return SettingsError(path, "top level", "a key that is not a name");
     const std::string key = item.first.as<std::string>();
@@ -149,21 +151,15 @@ StatusOr<PlanSettings> ReadPlanSettings(const YAML::Node& root, const std::strin
   }
   PlanSettings settings;
   if (root["noise"]) {
-    if (!root["noise"].IsMap()) return SettingsError(path, "noise", "expected {position, angle_deg, leg}");
-    NoiseModel noise;
-    for (const auto& item : root["noise"]) {
-      if (!item.first.IsScalar()) return SettingsError(path, "noise", "a key that is not a name");
-      const std::string key = item.first.as<std::string>();
-      StatusOr<double> value = FiniteNumber(item.second, path, "noise." + key);
-      if (!value.ok()) return value.status();
-      if (key == "position") noise.position = *value;
-      else if (key == "angle_deg") noise.angle_deg = *value;
-      else if (key == "leg") noise.leg = *value;
-      else return SettingsError(path, "noise." + key, "unknown key (position, angle_deg, leg)");
-    }
-    std::string error;
-    if (!noise.IsValid(&error)) return SettingsError(path, "noise", error);
-    settings.noise = noise;
+    StatusOr<NoiseModel> noise = ReadNoiseSection(root["noise"], "plan settings '" + path + "': noise");
+    if (!noise.ok()) return noise.status();
+    settings.noise = *noise;
+  }
+  if (root["planner"]) {
+    StatusOr<std::vector<std::pair<std::string, std::string>>> entries =
+        ScalarEntries(root["planner"], "plan settings '" + path + "': planner");
+    if (!entries.ok()) return entries.status();
+    settings.planner = *entries;
   }
   const bool any_measurement = root["camera"] || root["target"] || root["field_of_view_deg"];
   if (any_measurement) {

@@ -51,6 +51,9 @@ std::vector<double> MeasurementMargins(const MeasurementConstraints& constraints
 struct PlanSettings {
   std::optional<NoiseModel> noise;
   std::optional<MeasurementConstraints> measurement;
+  // The `planner:` section's (key, value) entries, applied by the plan step
+  // against its option table (workflow/plan_options.h).
+  std::vector<std::pair<std::string, std::string>> planner;
 };
 StatusOr<PlanSettings> LoadPlanSettings(const std::string& path, const Robot& robot);
 // The same from the file's text; `path` names it in messages.

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "core/noise_yaml.h"
 #include "core/csv.h"
 #include "core/yaml_document.h"
 
@@ -144,10 +145,9 @@ StatusOr<SessionConfig> LoadSessionConfig(const std::string& dir) {
     config.camera = root["camera"].as<std::string>();
     config.target = root["target"].as<std::string>();
     if (const YAML::Node noise = root["noise"]) {
-      if (!noise.IsMap()) return Status::Error(paths.config + ": noise: expected a mapping {position, angle_deg, leg}");
-      if (noise["position"]) config.noise.position = noise["position"].as<double>();
-      if (noise["angle_deg"]) config.noise.angle_deg = noise["angle_deg"].as<double>();
-      if (noise["leg"]) config.noise.leg = noise["leg"].as<double>();
+      StatusOr<NoiseModel> read = ReadNoiseSection(noise, paths.config + ": noise");
+      if (!read.ok()) return read.status();
+      config.noise = *read;
     }
   } catch (const YAML::Exception& e) {
     return Status::Error(paths.config + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);

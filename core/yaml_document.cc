@@ -13,4 +13,17 @@ StatusOr<YAML::Node> LoadYamlDocument(const std::string& text, const std::string
   }
 }
 
+StatusOr<std::vector<std::pair<std::string, std::string>>> ScalarEntries(const YAML::Node& map,
+                                                                         const std::string& where) {
+  if (!map.IsMap()) return Status::Error(where + ": expected a mapping of keys to values");
+  std::vector<std::pair<std::string, std::string>> entries;
+  for (const auto& item : map) {
+    if (!item.first.IsScalar()) return Status::Error(where + ": a key that is not a name");
+    const std::string key = item.first.Scalar();
+    if (!item.second.IsScalar()) return Status::Error(where + "." + key.substr(0, 40) + ": expected a single value");
+    entries.emplace_back(key, item.second.Scalar());
+  }
+  return entries;
+}
+
 }  // namespace hexcal

@@ -15,6 +15,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/status.h"
 
@@ -22,6 +24,11 @@ namespace hexcal {
 
 // `label` starts every message, e.g. "target file 'board.yaml'".
 StatusOr<YAML::Node> LoadYamlDocument(const std::string& text, const std::string& label);
+
+// The (key, scalar text) entries of a mapping, for ApplyOptionEntries
+// (core/option_spec.h); `where` names the section in errors ("plan.yaml: noise").
+StatusOr<std::vector<std::pair<std::string, std::string>>> ScalarEntries(const YAML::Node& map,
+                                                                         const std::string& where);
 
 // read() with every YAML::Exception it throws turned into "<label>: <what>".
 // Readers check each access; this is the backstop for the one they miss.

@@ -10,17 +10,14 @@
 #include <QTableWidget>
 #include <QVBoxLayout>
 #include <filesystem>
-#include <fstream>
-#include <nlohmann/json.hpp>
-#include <sstream>
 
-#include "app/commands/session_calibrate.h"
 #include "core/inverse_kinematics.h"
 #include "core/measurements.h"
 #include "core/robot_io.h"
 #include "ui/background_job.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
+#include "workflow/session_calibrate.h"
 
 namespace hexcal::ui {
 namespace {
@@ -29,10 +26,6 @@ namespace fs = std::filesystem;
 
 std::string ResultsFile(const SessionState& session, const char* name) {
   return (fs::path(session.Paths().results) / name).string();
-}
-
-QString Number(const nlohmann::json& value, int precision = 5) {
-  return value.is_number() ? QString::number(value.get<double>(), 'g', precision) : QString("—");
 }
 
 }  // namespace
@@ -108,11 +101,11 @@ void CalibratePanel::Run() {
     // The session calibration measures the images not yet in measurements.csv
     // (keeping the rows already there), as `hexcal calibrate --session` does.
     context.progress(0, 0);  // a busy bar until the first report
-    std::ostringstream out, err;
-    const int code = cli::RunSessionCalibrate(dir, /*json=*/false, out, err, {context.progress, context.cancel});
-    const Status status =
-        code == 0 ? Status::Ok() : (context.cancel->load() ? Status::Cancelled() : Status::Error(err.str()));
-    return [this, status, text = out.str()] { Finish(status, QString::fromStdString(text)); };
+    StatusOr<workflow::CalibrationReport> report =
+        workflow::CalibrateSession({dir}, JobHooks{context.progress, context.cancel});
+    const Status status = report.ok() ? Status::Ok() : report.status();
+    const std::string text = report.ok() ? workflow::FormatCalibrationSummary(*report) : "";
+    return [this, status, text] { Finish(status, QString::fromStdString(text)); };
   });
 }
 
@@ -136,47 +129,52 @@ void CalibratePanel::Refresh() {
   parameters_->setSortingEnabled(false);
   parameters_->setRowCount(0);
   summary_->clear();
-  std::ifstream file(ResultsFile(*session_, "report.json"));
-  nlohmann::json report = nlohmann::json::parse(file, nullptr, /*allow_exceptions=*/false);
-  if (!report.is_object() || !report.contains("parameters")) {
+  const std::string path = workflow::CalibrationReportPath(session_->Dir().toStdString());
+  std::error_code error;
+  StatusOr<workflow::CalibrationReport> loaded =
+      session_->IsOpen() && fs::exists(path, error) ? workflow::LoadCalibrationReport(path)
+                                                    : StatusOr<workflow::CalibrationReport>(Status::Error(""));
+  if (!loaded.ok()) {
+    summary_->setText(QString::fromStdString(loaded.status().message()).toHtmlEscaped());
     PlotResiduals();
     return;
   }
-  const std::string unit = report.value("length_unit", "");
+  const workflow::CalibrationReport& report = *loaded;
+  const workflow::RegistrationSummary& reg = report.registration;
   summary_->setText(QString("%1 images: %2 for calibration, %3 held out, %4 without a usable target pose.<br>"
                             "Closure (camera vs robot) RMS: nominal robot %5 %7, %6°; calibrated %8 %7, %9°.")
-                        .arg(report.value("images", 0))
-                        .arg(report.value("calibration_images", 0))
-                        .arg(report.value("held_out_images", 0))
-                        .arg(report.value("unusable_images", 0))
-                        .arg(Number(report["registration"]["position_rms"], 3))
-                        .arg(Number(report["registration"]["angle_rms_deg"], 3))
-                        .arg(QString::fromStdString(unit))
-                        .arg(Number(report["closure_after_calibration"]["position_rms"], 3))
-                        .arg(Number(report["closure_after_calibration"]["angle_rms_deg"], 3)));
-  const nlohmann::json& rows = report["parameters"];
+                        .arg(report.images)
+                        .arg(report.calibration_images)
+                        .arg(report.held_out_images)
+                        .arg(report.unusable_images)
+                        .arg(reg.position_rms, 0, 'g', 3)
+                        .arg(reg.angle_rms_deg, 0, 'g', 3)
+                        .arg(QString::fromStdString(report.length_unit).toHtmlEscaped())
+                        .arg(report.closure_position_rms, 0, 'g', 3)
+                        .arg(report.closure_angle_rms_deg, 0, 'g', 3));
+  FillParameterTable(report.parameters);
+  PlotResiduals();
+}
+
+void CalibratePanel::FillParameterTable(const std::vector<workflow::ParameterEstimate>& rows) {
+  const auto cell = [](const QVariant& v) {
+    auto* item = new QTableWidgetItem;
+    item->setData(Qt::DisplayRole, v);
+    return item;
+  };
   parameters_->setRowCount(static_cast<int>(rows.size()));
   for (int r = 0; r < static_cast<int>(rows.size()); ++r) {
-    const nlohmann::json& p = rows[r];
-    const double nominal = p.value("nominal", 0.0), estimate = p.value("estimate", 0.0);
-    const double change = estimate - nominal;
-    const bool has_sigma = p["sigma"].is_number();
-    const double sigma = has_sigma ? p["sigma"].get<double>() : 0;
-    const auto cell = [](const QVariant& v) {
-      auto* item = new QTableWidgetItem;
-      item->setData(Qt::DisplayRole, v);
-      return item;
-    };
-    parameters_->setItem(r, 0, cell(p.value("leg", 0)));
-    parameters_->setItem(r, 1, cell(QString::fromStdString(p.value("name", ""))));
-    parameters_->setItem(r, 2, cell(nominal));
-    parameters_->setItem(r, 3, cell(estimate));
+    const workflow::ParameterEstimate& p = rows[r];
+    const double change = p.estimate - p.nominal;
+    parameters_->setItem(r, 0, cell(p.leg));
+    parameters_->setItem(r, 1, cell(QString::fromStdString(p.name)));
+    parameters_->setItem(r, 2, cell(p.nominal));
+    parameters_->setItem(r, 3, cell(p.estimate));
     parameters_->setItem(r, 4, cell(change));
-    parameters_->setItem(r, 5, has_sigma ? cell(sigma) : cell("—"));
-    parameters_->setItem(r, 6, has_sigma && sigma > 0 ? cell(std::abs(change) / sigma) : cell("—"));
+    parameters_->setItem(r, 5, p.sigma ? cell(*p.sigma) : cell("—"));
+    parameters_->setItem(r, 6, p.sigma && *p.sigma > 0 ? cell(std::abs(change) / *p.sigma) : cell("—"));
   }
   parameters_->setSortingEnabled(true);
-  PlotResiduals();
 }
 
 void CalibratePanel::PlotResiduals() {

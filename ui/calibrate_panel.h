@@ -9,7 +9,10 @@
 
 #include <QWidget>
 
+#include <vector>
+
 #include "ui/session_state.h"
+#include "workflow/calibration_report.h"
 
 class QLabel;
 class QProgressBar;
@@ -38,6 +41,7 @@ class CalibratePanel : public QWidget {
  private:
   void Finish(const Status& status, const QString& report);
   void PlotResiduals();
+  void FillParameterTable(const std::vector<workflow::ParameterEstimate>& rows);
   void SetOutcome(const QString& text);
 
   SessionState* session_;

@@ -11,7 +11,6 @@
 #include <QStatusBar>
 #include <sstream>
 
-#include "app/commands/command_table.h"
 #include "ui/background_job.h"
 #include "ui/calibrate_panel.h"
 #include "ui/error_dialog.h"
@@ -21,6 +20,7 @@
 #include "ui/robot_panel.h"
 #include "ui/step_list.h"
 #include "ui/validate_panel.h"
+#include "workflow/demo.h"
 
 namespace hexcal::ui {
 namespace {
@@ -123,12 +123,16 @@ void MainWindow::OpenDemoSession() {
   }
   QDir().mkpath(QFileInfo(dir).path());
   statusBar()->showMessage("making the demo session in " + dir + " (hexcal demo)…");
-  demo_job_->Start("demo", [this, dir](const JobContext&) -> GuiContinuation {
-    const std::string out = dir.toStdString();
-    const char* argv[] = {"hexcal", "demo", "--out", out.c_str(), "--force"};
-    const int code = cli::RunHexcal(5, argv);
-    return [this, dir, code] {
-      if (code != 0) return ShowError(this, "Demo session", "hexcal demo failed (see the terminal).");
+  demo_job_->Start("demo", [this, dir](const JobContext& context) -> GuiContinuation {
+    workflow::DemoRequest request;
+    request.out = dir.toStdString();
+    request.force = true;
+    const StatusOr<workflow::DemoResult> demo = workflow::RunDemo(request, JobHooks{context.progress, context.cancel});
+    const Status status = demo.ok() ? Status::Ok() : demo.status();
+    return [this, dir, status] {
+      if (!status.ok())
+        return ShowError(this, "Demo session", "The demo session could not be made: " +
+                                                   QString::fromStdString(status.message()));
       OpenSession(dir);
     };
   });

@@ -2,7 +2,6 @@
 
 #include <QComboBox>
 #include <QDialogButtonBox>
-#include <QDoubleSpinBox>
 #include <QFileDialog>
 #include <QFormLayout>
 #include <QHBoxLayout>
@@ -12,20 +11,6 @@
 #include "core/robot_io.h"
 
 namespace hexcal::ui {
-namespace {
-
-QDoubleSpinBox* Noise(double value, const QString& suffix, const QString& tip) {
-  auto* box = new QDoubleSpinBox;
-  box->setDecimals(4);
-  box->setRange(0, 10);
-  box->setSingleStep(0.001);
-  box->setValue(value);
-  box->setSuffix(suffix);
-  box->setToolTip(tip);
-  return box;
-}
-
-}  // namespace
 
 NewSessionDialog::NewSessionDialog(QWidget* parent) : QDialog(parent) {
   setWindowTitle("New session");
@@ -43,9 +28,6 @@ NewSessionDialog::NewSessionDialog(QWidget* parent) : QDialog(parent) {
   camera_->setToolTip("A camera preset or an OpenCV/ROS camera file; the Measure step can calibrate one");
   target_ = new QLineEdit("aprilgrid-6x6");
   target_->setToolTip("A target preset or a target YAML (Kalibr names)");
-  noise_position_ = Noise(0.005, " (robot unit)", "Half-width of the camera's position noise");
-  noise_angle_ = Noise(0.02, " °", "Half-width of the camera's angle noise");
-  noise_leg_ = Noise(0.001, " (robot unit)", "Half-width of the leg sensors' noise");
   auto* folder_row = new QHBoxLayout;
   folder_row->addWidget(folder_, 1);
   folder_row->addWidget(browse);
@@ -54,9 +36,11 @@ NewSessionDialog::NewSessionDialog(QWidget* parent) : QDialog(parent) {
   form->addRow("Robot", robot_);
   form->addRow("Camera", camera_);
   form->addRow("Target", target_);
-  form->addRow("Noise: position", noise_position_);
-  form->addRow("Noise: angle", noise_angle_);
-  form->addRow("Noise: leg reading", noise_leg_);
+  // A camera's pose noise is larger than the paper's laser tracker's.
+  NoiseModel noise;
+  noise.position = 0.005;
+  noise.angle_deg = 0.02;
+  noise_ = AddOptionRows(form, NoiseModelOptions(), noise);
   auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
   connect(buttons, &QDialogButtonBox::accepted, this, &QDialog::accept);
   connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
@@ -70,9 +54,8 @@ SessionConfig NewSessionDialog::Config() const {
   config.robot = robot_->currentText().toStdString();
   config.camera = camera_->text().toStdString();
   config.target = target_->text().toStdString();
-  config.noise.position = noise_position_->value();
-  config.noise.angle_deg = noise_angle_->value();
-  config.noise.leg = noise_leg_->value();
+  StatusOr<NoiseModel> noise = ReadOptionRows(NoiseModelOptions(), noise_);
+  if (noise.ok()) config.noise = *noise;  // the spin boxes hold values in range
   return config;
 }
 

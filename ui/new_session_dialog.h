@@ -5,9 +5,9 @@
 #include <QDialog>
 
 #include "core/session.h"
+#include "ui/option_form.h"
 
 class QComboBox;
-class QDoubleSpinBox;
 class QLineEdit;
 
 namespace hexcal::ui {
@@ -23,7 +23,7 @@ class NewSessionDialog : public QDialog {
   QLineEdit* folder_;
   QComboBox* robot_;
   QLineEdit *camera_, *target_;
-  QDoubleSpinBox *noise_position_, *noise_angle_, *noise_leg_;
+  OptionRows noise_;  // NoiseModelOptions()
 };
 
 }  // namespace hexcal::ui

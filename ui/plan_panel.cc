@@ -16,13 +16,13 @@
 #include <filesystem>
 #include <set>
 
-#include "app/commands/plan_io.h"
 #include "core/csv.h"
 #include "core/inverse_kinematics.h"
 #include "ui/background_job.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
 #include "ui/plan_options.h"
+#include "workflow/plan_step.h"
 
 namespace hexcal::ui {
 namespace {
@@ -132,7 +132,7 @@ void PlanPanel::SetOutcome(const QString& text) {
 
 void PlanPanel::Run() {
   if (!session_->IsOpen()) return ShowError(this, "Plan", "Open or create a session first (File menu).");
-  StatusOr<PlanJobOptions> options = options_->Options();
+  StatusOr<workflow::PlanSetup> options = options_->Options();
   if (!options.ok()) return ShowError(this, "Plan", QString::fromStdString(options.status().message()));
   const PlanningModel model = ModelOf(*session_);
   SetLines(indices_chart_, {});
@@ -140,24 +140,17 @@ void PlanPanel::Run() {
   cancel_->setEnabled(true);
   SetOutcome("planning…");
   QPointer<PlanPanel> self(this);
-  job_->Start("planning", [this, self, model, options = *options](const JobContext& context) -> GuiContinuation {
-    const PlannerOptions& planner = options.planner;
-    StatusOr<std::vector<Vector6d>> initial = cli::InitialPoses(model, options.init, planner.num_poses, planner.seed);
-    if (!initial.ok()) return [this, s = initial.status()] { Finish(s, {}); };
-    StatusOr<cli::CandidatePool> pool =
-        cli::BuildCandidatePool(model, "", {options.candidate_kind}, options.candidate_count, planner.continuous,
-                                planner.seed, [&](int done, int total) { context.progress(done, total); });
-    if (!pool.ok()) return [this, s = pool.status()] { Finish(s, {}); };
-    const auto progress = [&](int iteration, int budget, double) { context.progress(iteration, budget); };
+  job_->Start("planning", [this, self, model, setup = *options](const JobContext& context) -> GuiContinuation {
     // O1..O4 of every iteration as it is recorded. A queued call: the chart
     // is touched on the GUI thread only.
     const auto live = [self](const PlanIteration& step) {
       QMetaObject::invokeMethod(
           self, [self, step] { if (self) self->PlotIteration(step); }, Qt::QueuedConnection);
     };
-    StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, *initial, planner, progress, context.cancel, live);
+    StatusOr<workflow::PlanOutcome> plan =
+        workflow::RunPlan(model, setup, "", JobHooks{context.progress, context.cancel}, live);
     if (!plan.ok()) return [this, s = plan.status()] { Finish(s, {}); };
-    return [this, result = *plan] { Finish(Status::Ok(), result); };
+    return [this, result = plan->plan] { Finish(Status::Ok(), result); };
   });
 }
 
@@ -171,7 +164,7 @@ void PlanPanel::Finish(const Status& status, const PlanResult& result) {
         this, "Plan",
         QString::fromStdString(status.message()) + "\nTry more candidates, another candidate kind, or fewer poses.");
   }
-  if (Status s = cli::WriteHistoryCsv(HistoryPath(*session_), result); !s.ok())
+  if (Status s = workflow::WriteHistoryCsv(HistoryPath(*session_), result); !s.ok())
     ShowError(this, "Plan", QString::fromStdString(s.message()));
   if (Status s = session_->SetPlan(result.poses); !s.ok()) ShowError(this, "Plan", QString::fromStdString(s.message()));
   // The bar stops where the planner converged; show it complete.
@@ -251,7 +244,7 @@ void PlanPanel::ExportPlan() {
   if (session_->Plan().empty()) return ShowError(this, "Export plan", "There is no plan yet: run the planner first.");
   const QString file = QFileDialog::getSaveFileName(this, "Export plan", "plan.csv", "CSV (*.csv)");
   if (file.isEmpty()) return;
-  if (Status s = cli::WritePlanCsv(file.toStdString(), ModelOf(*session_), session_->Plan()); !s.ok())
+  if (Status s = workflow::WritePlanCsv(file.toStdString(), ModelOf(*session_), session_->Plan()); !s.ok())
     ShowError(this, "Export plan", QString::fromStdString(s.message()));
 }
 

@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "app/commands/plan_io.h"
-#include "app/commands/session_calibrate.h"
+#include "workflow/plan_step.h"
+#include "workflow/session_calibrate.h"
 #include "core/csv.h"
 #include "core/robot_io.h"
 #include "vision/measure.h"
@@ -41,7 +41,7 @@ const char* StepName(Step step) {
 SessionState::SessionState(QObject* parent) : QObject(parent) {}
 
 std::string SessionState::Resolve(const std::string& name) const {
-  return cli::ResolveSessionFile(dir_.toStdString(), name);
+  return workflow::ResolveSessionFile(dir_.toStdString(), name);
 }
 
 Status SessionState::LoadAll(const QString& dir) {
@@ -102,7 +102,7 @@ void SessionState::Reload() {
 Status SessionState::Save() {
   if (!IsOpen()) return Status::Error("no session is open");
   if (Status s = SaveSessionConfig(dir_.toStdString(), config_); !s.ok()) return s;
-  if (!plan_.empty()) return cli::WritePlanCsv(Paths().plan, PlanningModel{robot_, std::nullopt, std::nullopt}, plan_);
+  if (!plan_.empty()) return workflow::WritePlanCsv(Paths().plan, PlanningModel{robot_, std::nullopt, std::nullopt}, plan_);
   return Status::Ok();
 }
 
@@ -113,7 +113,7 @@ Status SessionState::SetPlan(const std::vector<Vector6d>& poses) {
     std::error_code error;
     fs::remove(Paths().plan, error);
   } else {
-    written = cli::WritePlanCsv(Paths().plan, PlanningModel{robot_, std::nullopt, std::nullopt}, poses);
+    written = workflow::WritePlanCsv(Paths().plan, PlanningModel{robot_, std::nullopt, std::nullopt}, poses);
   }
   emit Changed();
   return written;

@@ -11,21 +11,20 @@
 #include <QTableWidget>
 #include <QVBoxLayout>
 #include <filesystem>
-#include <fstream>
-#include <nlohmann/json.hpp>
+#include <array>
+#include <cmath>
 
-#include "app/commands/command_table.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
+#include "workflow/session_report.h"
 
 namespace hexcal::ui {
 namespace {
 
 namespace fs = std::filesystem;
 
-double Value(const nlohmann::json& j, const char* key) {
-  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::nan("");
-}
+// A missing figure (FK did not converge) draws no bar.
+double ValueOrNan(const std::optional<double>& value) { return value.value_or(std::nan("")); }
 
 }  // namespace
 
@@ -64,44 +63,50 @@ ValidatePanel::ValidatePanel(SessionState* session, QWidget* parent) : QWidget(p
 void ValidatePanel::Refresh() {
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 2; ++c) summary_->setItem(r, c, new QTableWidgetItem("—"));
-  std::ifstream file((fs::path(session_->Paths().results) / "report.json").string());
-  const nlohmann::json report = nlohmann::json::parse(file, nullptr, false);
-  if (!report.is_object()) {
-    status_->setText("No results yet: run the Calibrate step.");
-    SetBars(position_chart_, {}, {});
-    SetBars(orientation_chart_, {}, {});
-    return;
-  }
-  const nlohmann::json& validation = report["validation"];
-  if (!validation.is_object()) {
+  const std::string path = workflow::CalibrationReportPath(session_->Dir().toStdString());
+  std::error_code error;
+  StatusOr<workflow::CalibrationReport> report =
+      session_->IsOpen() && fs::exists(path, error)
+          ? workflow::LoadCalibrationReport(path)
+          : StatusOr<workflow::CalibrationReport>(Status::Error("No results yet: run the Calibrate step."));
+  SetBars(position_chart_, {}, {});
+  SetBars(orientation_chart_, {}, {});
+  if (!report.ok()) return status_->setText(QString::fromStdString(report.status().message()));
+  if (!report->validation) {
     status_->setText(
         "No image was held out (holdout column of legs.csv), so there is nothing to validate on. "
         "Mark some images with holdout 1 in the Measure step and calibrate again.");
     return;
   }
-  const QString unit = QString::fromStdString(report.value("length_unit", ""));
+  ShowValidation(*report->validation, QString::fromStdString(report->length_unit));
+}
+
+void ValidatePanel::ShowValidation(const workflow::ValidationSummary& validation, const QString& unit) {
   status_->setText(QString("%1 held-out images: forward kinematics from their readings against the camera's pose, "
                            "lengths in %2. Rows where FK did not converge: before %3, after %4.")
-                       .arg(validation.value("rows", 0))
+                       .arg(validation.rows)
                        .arg(unit)
-                       .arg(validation["before"].value("failed", 0))
-                       .arg(validation["after"].value("failed", 0)));
-  const char* keys[] = {"position_rms", "position_max", "orientation_rms", "orientation_max"};
+                       .arg(validation.before.failed)
+                       .arg(validation.after.failed));
+  const auto figures = [](const workflow::PoseErrorStats& s) {
+    return std::array<double, 4>{s.position_rms, s.position_max, s.orientation_rms, s.orientation_max};
+  };
+  const std::array<double, 4> before = figures(validation.before), after = figures(validation.after);
   for (int r = 0; r < 4; ++r) {
-    summary_->setItem(r, 0, new QTableWidgetItem(QString::number(Value(validation["before"], keys[r]), 'g', 4)));
-    summary_->setItem(r, 1, new QTableWidgetItem(QString::number(Value(validation["after"], keys[r]), 'g', 4)));
+    summary_->setItem(r, 0, new QTableWidgetItem(QString::number(before[r], 'g', 4)));
+    summary_->setItem(r, 1, new QTableWidgetItem(QString::number(after[r], 'g', 4)));
   }
   QStringList images;
   std::vector<double> position_before, position_after, angle_before, angle_after;
-  for (const nlohmann::json& row : validation["per_image"]) {
+  for (const workflow::HeldOutImage& row : validation.per_image) {
     // The number in the image name fits under a bar.
-    const QString name = QString::fromStdString(row.value("image", "")).section('.', 0, 0);
+    const QString name = QString::fromStdString(row.image).section('.', 0, 0);
     const QRegularExpressionMatch number = QRegularExpression("(\\d+)$").match(name);
     images << (number.hasMatch() ? number.captured(1) : name);
-    position_before.push_back(Value(row, "position_before"));
-    position_after.push_back(Value(row, "position_after"));
-    angle_before.push_back(Value(row, "orientation_before"));
-    angle_after.push_back(Value(row, "orientation_after"));
+    position_before.push_back(ValueOrNan(row.position_before));
+    position_after.push_back(ValueOrNan(row.position_after));
+    angle_before.push_back(ValueOrNan(row.orientation_before));
+    angle_after.push_back(ValueOrNan(row.orientation_after));
   }
   SetBars(position_chart_, images, {{"before", position_before}, {"after", position_after}});
   SetBars(orientation_chart_, images, {{"before", angle_before}, {"after", angle_after}});
@@ -125,11 +130,11 @@ void ValidatePanel::ExportHtmlReport(const QString& chosen) {
                            ? QFileDialog::getSaveFileName(this, "Export HTML report", "report.html", "HTML (*.html)")
                            : chosen;
   if (path.isEmpty()) return;
-  // The same code as `hexcal report`, so the page is the CLI's.
-  const std::string dir = session_->Dir().toStdString(), out = path.toStdString();
-  const char* argv[] = {"hexcal", "report", "--session", dir.c_str(), "--out", out.c_str(), "--force"};
-  if (cli::RunHexcal(7, argv) != 0)
-    ShowError(this, "Export report", "hexcal report failed (see the terminal): run the Calibrate step first.");
+  // The same step as `hexcal report`, so the page is the CLI's.
+  const StatusOr<std::string> written =
+      workflow::WriteSessionReport({session_->Dir().toStdString(), path.toStdString(), /*force=*/true});
+  if (!written.ok())
+    ShowError(this, "Export report", QString::fromStdString(written.status().message()));
 }
 
 }  // namespace hexcal::ui

@@ -7,6 +7,7 @@
 #include <QWidget>
 
 #include "ui/session_state.h"
+#include "workflow/calibration_report.h"
 
 class QLabel;
 class QTableWidget;
@@ -29,6 +30,8 @@ class ValidatePanel : public QWidget {
   void ExportHtmlReport(const QString& path = {});
 
  private:
+  void ShowValidation(const workflow::ValidationSummary& validation, const QString& unit);
+
   SessionState* session_;
   QLabel* status_;
   QTableWidget* summary_;

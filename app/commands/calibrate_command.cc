@@ -1,7 +1,7 @@
 // hexcal calibrate --robot R --measurements M.csv --out calibrated.yaml [--force]
 //   [--loss none|huber|cauchy] [--loss-scale s]
 //   [--weighted [--noise-position p] [--noise-angle a] [--noise-leg l]] [--json]
-// hexcal calibrate --session DIR [--json]   (app/commands/session_calibrate.h)
+// hexcal calibrate --session DIR [--json]   (workflow/session_calibrate.h)
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -9,10 +9,11 @@
 
 #include "app/commands/cli_common.h"
 #include "app/commands/command_table.h"
-#include "app/commands/session_calibrate.h"
+#include "app/commands/option_flags.h"
 #include "core/calibration.h"
 #include "core/calibration_file.h"
 #include "core/robot_io.h"
+#include "workflow/session_calibrate.h"
 
 namespace hexcal::cli {
 namespace {
@@ -21,8 +22,20 @@ struct CalibrateCliOptions {
   std::string robot, measurements, out, session, loss = "none";
   double loss_scale = 1.0;
   bool weighted = false, force = false, json = false;
-  NoiseModel noise;
+  std::shared_ptr<OptionEntries> noise = std::make_shared<OptionEntries>();  // --noise-* over the defaults
 };
+
+int RunCalibrateSession(const std::string& dir, bool json, std::ostream& out, std::ostream& err) {
+  TerminalJob job;
+  StatusOr<workflow::CalibrationReport> report = workflow::CalibrateSession({dir}, job.hooks());
+  if (!report.ok()) return ReportError(err, "calibrate", report.status());
+  if (json) {
+    out << workflow::ToJson(*report).dump(2) << "\n";
+  } else {
+    out << workflow::FormatCalibrationSummary(*report);
+  }
+  return kExitOk;
+}
 
 std::string DirectionText(const LegParameters& direction) {
   std::string text;
@@ -122,7 +135,8 @@ int RunCalibrate(const CalibrateCliOptions& cli, std::ostream& out, std::ostream
   options.loss = *loss;
   options.loss_scale = cli.loss_scale;
   options.weighted = cli.weighted;
-  options.noise = cli.noise;
+  if (Status s = ApplyOptionEntries(NoiseModelOptions(), *cli.noise, &options.noise, "noise"); !s.ok())
+    return ReportError(err, "calibrate", s);
   // Past valid options, what CheckCalibrationInput and Calibrate reject is the
   // measurement file's content: name the file.
   std::string options_error;
@@ -139,10 +153,10 @@ int RunCalibrate(const CalibrateCliOptions& cli, std::ostream& out, std::ostream
   ProgressBar progress("calibrate (legs)");
   StatusOr<CalibrationResult> result =
       Calibrate(*robot, *measurements, options, [&](int done, int total) { progress.Update(done, total); });
-  if (!result.ok()) return ReportError(err, "calibrate", in_file(result.status()), kExitFailure);
+  if (!result.ok()) return ReportError(err, "calibrate", in_file(result.status()).AsFailure());
   const CalibrationInputs inputs{cli.robot, cli.measurements, options, CurrentUtcTimestamp()};
   if (Status s = SaveCalibratedRobot(cli.out, *result, inputs); !s.ok()) {
-    return ReportError(err, "calibrate", s, kExitFailure);
+    return ReportError(err, "calibrate", s.AsFailure());
   }
 
   if (cli.json) {
@@ -186,19 +200,12 @@ void AddCalibrateCommand(CLI::App& app, int* exit_code) {
   CLI::Option* weighted = sub->add_flag("--weighted", options->weighted,
                                         "weight each residual by its standard deviation under the noise model")
                               ->excludes(session);
-  sub->add_option("--noise-position", options->noise.position, "position noise half-width (robot unit)")
-      ->capture_default_str()
-      ->needs(weighted);
-  sub->add_option("--noise-angle", options->noise.angle_deg, "angle noise half-width (degrees)")
-      ->capture_default_str()
-      ->needs(weighted);
-  sub->add_option("--noise-leg", options->noise.leg, "leg-reading noise half-width (robot unit)")
-      ->capture_default_str()
-      ->needs(weighted);
+  for (const OptionSpec<NoiseModel>& spec : NoiseModelOptions())
+    AddOneOptionFlag(sub, spec, options->noise, "noise-")->needs(weighted);
   sub->add_flag("--json", options->json, "print one JSON object on stdout");
   sub->callback([=] {
     if (!options->session.empty()) {
-      *exit_code = RunSessionCalibrate(options->session, options->json, std::cout, std::cerr);
+      *exit_code = RunCalibrateSession(options->session, options->json, std::cout, std::cerr);
     } else if (options->robot.empty() || options->measurements.empty() || options->out.empty()) {
       *exit_code =
           ReportError(std::cerr, "calibrate", Status::Error("give --robot, --measurements and --out, or --session"));

@@ -36,7 +36,7 @@ int RunCandidates(const CandidatesCliOptions& cli, std::ostream& out, std::ostre
   ProgressBar progress(std::string("candidates (") + cli.kind + ")");
   StatusOr<CandidateSet> set =
       GenerateCandidates(*robot, options, [&](int done, int total) { progress.Update(done, total); });
-  if (!set.ok()) return ReportError(err, "candidates", set.status(), kExitFailure);
+  if (!set.ok()) return ReportError(err, "candidates", set.status().AsFailure());
 
   std::vector<std::vector<std::string>> rows;
   for (const Vector6d& v : set->poses) {
@@ -45,7 +45,7 @@ int RunCandidates(const CandidatesCliOptions& cli, std::ostream& out, std::ostre
     rows.push_back(row);
   }
   if (Status s = WriteCsv(cli.out, {"x", "y", "z", "q1", "q2", "q3"}, rows); !s.ok()) {
-    return ReportError(err, "candidates", s, kExitFailure);
+    return ReportError(err, "candidates", s.AsFailure());
   }
   if (cli.json) {
     nlohmann::json j = {{"count", set->poses.size()}, {"kind", cli.kind}, {"out", cli.out}, {"draws", set->draws}};

@@ -9,38 +9,23 @@
 
 namespace hexcal::cli {
 
-int ReportError(std::ostream& err, const std::string& command, const Status& status, int code) {
-  err << "hexcal " << command << ": " << status.message() << "\n";
-  return code;
-}
-
-nlohmann::json PoseJson(const Robot& robot, const Pose& pose) {
-  const Vector6d v = robot.VectorFromPose(pose);
-  return {{"x", v[0]}, {"y", v[1]}, {"z", v[2]}, {"q1", v[3]}, {"q2", v[4]}, {"q3", v[5]}};
-}
-
-nlohmann::json IndicesJson(const ObservabilityIndices& o) {
-  return {{"O1", o.o1},
-          {"O2", o.o2},
-          {"O3", o.o3},
-          {"O4", o.o4},
-          {"sigma_min", o.sigma_min},
-          {"sigma_max", o.sigma_max},
-          {"poses", o.num_poses}};
-}
-
-nlohmann::json RobotJson(const Robot& robot) {
-  nlohmann::json legs = nlohmann::json::array();
-  for (const Leg& leg : robot.legs) {
-    legs.push_back({{"a", {leg.a_in_base.x(), leg.a_in_base.y(), leg.a_in_base.z()}},
-                    {"b", {leg.b_in_platform.x(), leg.b_in_platform.y(), leg.b_in_platform.z()}},
-                    {"l", leg.offset},
-                    {"stroke", {leg.stroke_min, leg.stroke_max}}});
+int ExitCodeFor(const Status& status) {
+  switch (status.kind()) {
+    case StatusKind::kOk:
+      return kExitOk;
+    case StatusKind::kBadInput:
+      return kExitBadInput;
+    case StatusKind::kFailed:
+    case StatusKind::kCancelled:
+    case StatusKind::kIo:
+      return kExitFailure;
   }
-  return {{"name", robot.name},
-          {"length_unit", LengthUnitName(robot.length_unit)},
-          {"euler", EulerConventionName(robot.euler)},
-          {"legs", legs}};
+  return kExitFailure;
+}
+
+int ReportError(std::ostream& err, const std::string& command, const Status& status) {
+  err << "hexcal " << command << ": " << status.message() << "\n";
+  return ExitCodeFor(status);
 }
 
 StatusOr<std::vector<double>> ParseNumberList(const std::string& text, int count, const std::string& what) {
@@ -73,6 +58,22 @@ void ProgressBar::Update(int done, int total) {
   const int width = 30, filled = width * percent / 100;
   std::cerr << "\r" << label_ << " [" << std::string(filled, '#') << std::string(width - filled, ' ') << "] " << percent
             << "% (" << done << "/" << total << ")" << std::flush;
+}
+
+TerminalJob::TerminalJob(std::string label, std::ostream* log) {
+  if (!label.empty()) bar_ = std::make_unique<ProgressBar>(label);
+  hooks_.progress = [this](int done, int total) {
+    if (bar_) bar_->Update(done, total);
+  };
+  hooks_.stage = [this](const std::string& stage) {
+    bar_.reset();  // ends the previous bar's line first
+    bar_ = std::make_unique<ProgressBar>(stage);
+  };
+  hooks_.note = [this, log](const std::string& line) {
+    if (log == nullptr) return;
+    bar_.reset();
+    *log << line << "\n" << std::flush;
+  };
 }
 
 }  // namespace hexcal::cli

@@ -3,27 +3,33 @@
 #pragma once
 
 #include <iosfwd>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "core/constraints.h"
+#include "core/job_hooks.h"
 #include "core/observability.h"
 #include "core/robot.h"
 #include "core/status.h"
+#include "workflow/json_forms.h"
 
 namespace hexcal::cli {
 
 // Exit codes of every command.
 constexpr int kExitOk = 0;
-constexpr int kExitFailure = 1;   // the computation failed (no convergence, ...)
+constexpr int kExitFailure = 1;   // the computation failed (no convergence, ...), an I/O error, a cancel
 constexpr int kExitBadInput = 2;  // a file or an option is wrong
 
-// Prints "hexcal <command>: <message>" on err and returns `code`.
-int ReportError(std::ostream& err, const std::string& command, const Status& status, int code = kExitBadInput);
+// The one mapping of a status's kind to an exit code (docs/cli.md).
+int ExitCodeFor(const Status& status);
 
-nlohmann::json PoseJson(const Robot& robot, const Pose& pose);
-nlohmann::json IndicesJson(const ObservabilityIndices& indices);
-nlohmann::json RobotJson(const Robot& robot);
+// Prints "hexcal <command>: <message>" on err and returns ExitCodeFor(status).
+int ReportError(std::ostream& err, const std::string& command, const Status& status);
+
+using workflow::IndicesJson;
+using workflow::PoseJson;
+using workflow::RobotJson;
 
 // "1.5,2,3,..." -> exactly `count` finite numbers.
 StatusOr<std::vector<double>> ParseNumberList(const std::string& text, int count, const std::string& what);
@@ -39,6 +45,18 @@ class ProgressBar {
   std::string label_;
   bool enabled_;
   int last_percent_ = -1;
+};
+
+// JobHooks for a command on a terminal: each stage gets its own progress bar
+// (labelled with the stage, or `label` before the first stage); notes go to `log`.
+class TerminalJob {
+ public:
+  explicit TerminalJob(std::string label = "", std::ostream* log = nullptr);
+  const JobHooks& hooks() const { return hooks_; }
+
+ private:
+  std::unique_ptr<ProgressBar> bar_;
+  JobHooks hooks_;
 };
 
 }  // namespace hexcal::cli

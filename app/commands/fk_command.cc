@@ -53,12 +53,12 @@ int RunFk(const FkOptions& options, std::ostream& out, std::ostream& err) {
     if (!start.ok()) return ReportError(err, "fk", start.status());
     StatusOr<LocalFkResult> local =
         ForwardKinematicsLocal(*robot, readings, robot->PoseFromVector(Eigen::Map<const Vector6d>(start->data())));
-    if (!local.ok()) return ReportError(err, "fk", local.status(), kExitFailure);
+    if (!local.ok()) return ReportError(err, "fk", local.status().AsFailure());
     poses.push_back(local->pose);
     summary = {{"method", "local"}, {"iterations", local->iterations}, {"max_residual", local->max_residual}};
   } else {
     StatusOr<FkAllResult> modes = ForwardKinematicsAll(*robot, readings);
-    if (!modes.ok()) return ReportError(err, "fk", modes.status(), kExitFailure);
+    if (!modes.ok()) return ReportError(err, "fk", modes.status().AsFailure());
     for (const Pose& pose : modes->poses) {
       if (options.all || IsFeasible(*robot, pose)) poses.push_back(pose);
     }

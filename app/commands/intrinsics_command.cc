@@ -42,13 +42,13 @@ int RunIntrinsics(const IntrinsicsCliOptions& cli, std::ostream& out, std::ostre
   // Unusable images (sizes, too few views) are the usual cause: bad input.
   if (!result.ok()) return ReportError(err, "intrinsics", result.status());
   if (Status s = SaveCamera(result->camera, cli.out, ExtrasOf(*result)); !s.ok()) {
-    return ReportError(err, "intrinsics", s, kExitFailure);
+    return ReportError(err, "intrinsics", s.AsFailure());
   }
   const std::string coverage_path = cli.coverage.empty() ? DefaultCoveragePath(cli.out) : cli.coverage;
   std::vector<uint8_t> png;
   cv::imencode(".png", CoverageImage(*result), png);
   if (Status s = WriteFileAtomically(coverage_path, std::string(png.begin(), png.end())); !s.ok()) {
-    return ReportError(err, "intrinsics", s, kExitFailure);
+    return ReportError(err, "intrinsics", s.AsFailure());
   }
   const Camera& c = result->camera;
   const std::array<double, 9> values = {

@@ -50,14 +50,14 @@ int RunMeasure(const MeasureCliOptions& cli, std::ostream& out, std::ostream& er
   ProgressBar progress("measure");
   StatusOr<std::vector<ImageMeasurement>> measurements =
       MeasureImages(*files, *camera, *target, cli.measure, [&](int done, int total) { progress.Update(done, total); });
-  if (!measurements.ok()) return ReportError(err, "measure", measurements.status(), kExitFailure);
+  if (!measurements.ok()) return ReportError(err, "measure", measurements.status().AsFailure());
   // Names relative to the folder, so that the table moves with the images.
   const bool folder = std::filesystem::is_directory(cli.images, fs_error);
   for (ImageMeasurement& m : *measurements) {
     if (folder) m.file = std::filesystem::path(m.file).filename().string();
   }
   if (Status s = WriteImageMeasurementsCsv(cli.out, *measurements); !s.ok()) {
-    return ReportError(err, "measure", s, kExitFailure);
+    return ReportError(err, "measure", s.AsFailure());
   }
   std::map<std::string, int> counts;
   for (const ImageMeasurement& m : *measurements) ++counts[PoseStatusName(m.pose.status)];

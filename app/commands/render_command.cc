@@ -67,7 +67,7 @@ int RunRender(const RenderCliOptions& cli, std::ostream& out, std::ostream& err)
       },
       [&](int done, int total) { progress.Update(done, total); });
   for (const Status& s : written) {
-    if (!s.ok()) return ReportError(err, "render", s, kExitFailure);
+    if (!s.ok()) return ReportError(err, "render", s.AsFailure());
   }
   std::vector<std::vector<std::string>> truth, corners;
   int visible = 0;
@@ -86,10 +86,10 @@ int RunRender(const RenderCliOptions& cli, std::ostream& out, std::ostream& err)
   if (Status s =
           WriteCsv((folder / "corners.csv").string(), {"file", "tag_id", "corner", "u", "v", "visible"}, corners);
       !s.ok()) {
-    return ReportError(err, "render", s, kExitFailure);
+    return ReportError(err, "render", s.AsFailure());
   }
   if (Status s = WriteCsv(truth_path, {"file", "x", "y", "z", "q1", "q2", "q3"}, truth); !s.ok()) {
-    return ReportError(err, "render", s, kExitFailure);
+    return ReportError(err, "render", s.AsFailure());
   }
   if (cli.json) {
     out << nlohmann::json{{"images", views.size()},

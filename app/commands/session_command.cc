@@ -5,6 +5,7 @@
 
 #include "app/commands/cli_common.h"
 #include "app/commands/command_table.h"
+#include "app/commands/option_flags.h"
 #include "core/robot_io.h"
 #include "core/session.h"
 #include "vision/camera.h"
@@ -17,9 +18,12 @@ struct SessionInitOptions {
   std::string dir;
   SessionConfig config;
   bool json = false;
+  std::shared_ptr<OptionEntries> noise = std::make_shared<OptionEntries>();  // --noise-*
 };
 
-int RunSessionInit(const SessionInitOptions& cli, std::ostream& out, std::ostream& err) {
+int RunSessionInit(SessionInitOptions cli, std::ostream& out, std::ostream& err) {
+  if (Status s = ApplyOptionEntries(NoiseModelOptions(), *cli.noise, &cli.config.noise, "noise"); !s.ok())
+    return ReportError(err, "session init", s);
   // Check that the names load now rather than at the first calibration.
   if (StatusOr<Robot> robot = LoadRobot(cli.config.robot); !robot.ok())
     return ReportError(err, "session init", robot.status());
@@ -49,12 +53,7 @@ void AddSessionCommand(CLI::App& app, int* exit_code) {
   init->add_option("--robot", options->config.robot, "nominal robot file or preset name")->required();
   init->add_option("--camera", options->config.camera, "camera file (hexcal intrinsics)")->required();
   init->add_option("--target", options->config.target, "target file or name")->required();
-  init->add_option("--noise-position", options->config.noise.position, "pose position noise half-width (robot unit)")
-      ->capture_default_str();
-  init->add_option("--noise-angle", options->config.noise.angle_deg, "pose angle noise half-width (degrees)")
-      ->capture_default_str();
-  init->add_option("--noise-leg", options->config.noise.leg, "leg-reading noise half-width (robot unit)")
-      ->capture_default_str();
+  AddOptionFlags(init, NoiseModelOptions(), options->noise, "noise-");
   init->add_flag("--json", options->json, "print one JSON object on stdout");
   init->callback([=] { *exit_code = RunSessionInit(*options, std::cout, std::cerr); });
 }

@@ -11,6 +11,7 @@
 
 #include "app/commands/cli_common.h"
 #include "app/commands/command_table.h"
+#include "app/commands/option_flags.h"
 #include "app/plots/simulation_figures.h"
 #include "core/candidates.h"
 #include "core/csv.h"
@@ -28,6 +29,7 @@ struct SimulateCliOptions {
   bool weighted = false;  // calibrate with residuals weighted by the study's noise model
   std::string random_box;  // "x:-5:5,y:-5:5,..." for the random sets
   SimulationOptions study;
+  std::shared_ptr<OptionEntries> noise = std::make_shared<OptionEntries>();  // --noise-* over study.noise
 };
 
 // "x:-5:5,q3:-20:20" -> a pose box with those bounds.
@@ -220,6 +222,8 @@ Status WriteTable(const std::string& path, const SimulationResult& result, const
 }
 
 int RunSimulate(SimulateCliOptions cli, std::ostream& out, std::ostream& err) {
+  if (Status s = ApplyOptionEntries(NoiseModelOptions(), *cli.noise, &cli.study.noise, "noise"); !s.ok())
+    return ReportError(err, "simulate", s);
   if (cli.weighted) {
     cli.study.calibration.weighted = true;
     cli.study.calibration.noise = cli.study.noise;
@@ -245,24 +249,24 @@ int RunSimulate(SimulateCliOptions cli, std::ostream& out, std::ostream& err) {
     ProgressBar progress("simulate (runs)");  // ends its line before the sweep's bar starts
     return Simulate(*robot, *sets, cli.study, [&](int done, int total) { progress.Update(done, total); });
   }();
-  if (!result.ok()) return ReportError(err, "simulate", result.status(), kExitFailure);
+  if (!result.ok()) return ReportError(err, "simulate", result.status().AsFailure());
   std::optional<SweepResult> sweep;
   if (sweep_range) {
     ProgressBar progress("sweep (runs)");
     StatusOr<SweepResult> swept = SimulateSweep(*robot, *sets, sweep_range->first, sweep_range->second, cli.study,
                                                 [&](int done, int total) { progress.Update(done, total); });
-    if (!swept.ok()) return ReportError(err, "simulate", swept.status(), kExitFailure);
+    if (!swept.ok()) return ReportError(err, "simulate", swept.status().AsFailure());
     sweep = std::move(*swept);
   }
 
   if (!cli.csv.empty()) {
-    if (Status s = WriteTable(cli.csv, *result, sweep); !s.ok()) return ReportError(err, "simulate", s, kExitFailure);
+    if (Status s = WriteTable(cli.csv, *result, sweep); !s.ok()) return ReportError(err, "simulate", s.AsFailure());
   }
   std::vector<std::string> figures;
   if (!cli.plots.empty()) {
     const Status s = plots::WriteSimulationFigures(cli.plots, *result, sweep ? &*sweep : nullptr,
                                                    LengthUnitName(robot->length_unit), &figures);
-    if (!s.ok()) return ReportError(err, "simulate", s, kExitFailure);
+    if (!s.ok()) return ReportError(err, "simulate", s.AsFailure());
   }
   if (cli.json) {
     out << ResultJson(*robot, cli, *result, sweep).dump(2) << "\n";
@@ -289,12 +293,7 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--seed", options->study.seed, "random seed")->capture_default_str();
   sub->add_option("--perturb", options->study.perturb, "half-width of the parameter perturbation (robot unit)")
       ->capture_default_str();
-  sub->add_option("--noise-position", options->study.noise.position, "position noise half-width (robot unit)")
-      ->capture_default_str();
-  sub->add_option("--noise-angle", options->study.noise.angle_deg, "angle noise half-width (degrees)")
-      ->capture_default_str();
-  sub->add_option("--noise-leg", options->study.noise.leg, "leg-reading noise half-width (robot unit)")
-      ->capture_default_str();
+  AddOptionFlags(sub, NoiseModelOptions(), options->noise, "noise-");
   sub->add_option("--random-box", options->random_box,
                   "draw random sets in this box, e.g. x:-5:5,y:-5:5,z:50:57,q1:-20:20,q2:-20:20,q3:-20:20 "
                   "(intersected with the robot's pose box; the robot's constraints still apply)");

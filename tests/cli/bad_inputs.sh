@@ -51,7 +51,7 @@ settings_syntax_error.yaml | 2 | error at line 2, column 1 | plan ROBOT --settin
 settings_nan.yaml | 2 | noise.position: expected a finite number | plan ROBOT --settings @IN@ --out @OUT@
 settings_negative_noise.yaml | 2 | noise levels must be finite and non-negative | plan ROBOT --settings @IN@ --out @OUT@
 settings_list_key.yaml | 2 | top level: a key that is not a name | plan ROBOT --settings @IN@ --out @OUT@
-settings_noise_list.yaml | 2 | noise: expected \{position, angle_deg, leg\} | plan ROBOT --settings @IN@ --out @OUT@
+settings_noise_list.yaml | 2 | noise: expected a mapping \{position, angle_deg, leg\} | plan ROBOT --settings @IN@ --out @OUT@
 settings_camera_short_vector.yaml | 2 | measurement constraints need all three | plan ROBOT --settings @IN@ --out @OUT@
 target_empty.yaml | 2 | top level: expected a mapping | target print --target @IN@ --out @OUT@.pdf
 target_syntax_error.yaml | 2 | YAML syntax error at line 3 | target print --target @IN@ --out @OUT@.pdf

@@ -1,11 +1,9 @@
-#include "app/commands/session_report.h"
+#include "workflow/session_report.h"
 
 #include <cmath>
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "app/commands/session_calibrate.h"
 #include "app/plots/svg_chart.h"
 #include "core/atomic_file.h"
 #include "core/csv.h"
@@ -14,8 +12,10 @@
 #include "core/observability.h"
 #include "core/robot_io.h"
 #include "core/session.h"
+#include "workflow/calibration_report.h"
+#include "workflow/session_calibrate.h"
 
-namespace hexcal::cli {
+namespace hexcal::workflow {
 namespace {
 
 namespace fs = std::filesystem;
@@ -43,7 +43,7 @@ std::string Figure(double value) {
   return out.str();
 }
 
-std::string Number(const nlohmann::json& value) { return value.is_number() ? Figure(value.get<double>()) : "–"; }
+std::string Number(const std::optional<double>& value) { return value ? Figure(*value) : "–"; }
 
 // Per-image reprojection RMS (px) of measurements.csv, in file order.
 plots::LineSeries MeasurementRms(const std::string& path) {
@@ -61,15 +61,15 @@ plots::LineSeries MeasurementRms(const std::string& path) {
   return series;
 }
 
-std::string ParameterTable(const nlohmann::json& parameters, const std::string& unit) {
+std::string ParameterTable(const std::vector<ParameterEstimate>& parameters, const std::string& unit) {
   std::string html =
       "<table><tr><th>leg</th><th>parameter</th><th>nominal</th><th>calibrated</th><th>change</th>"
       "<th>&sigma;</th></tr>\n";
-  for (const nlohmann::json& p : parameters) {
-    const double change = p["estimate"].get<double>() - p["nominal"].get<double>();
-    html += "<tr><td>" + std::to_string(p["leg"].get<int>()) + "</td><td>" + p["name"].get<std::string>() +
-            "</td><td>" + Number(p["nominal"]) + "</td><td>" + Number(p["estimate"]) + "</td><td>" + Number(change) +
-            "</td><td>" + Number(p["sigma"]) + "</td></tr>\n";
+  for (const ParameterEstimate& p : parameters) {
+    const double change = p.estimate - p.nominal;
+    html += "<tr><td>" + std::to_string(p.leg) + "</td><td>" + Escape(p.name) + "</td><td>" + Figure(p.nominal) +
+            "</td><td>" + Figure(p.estimate) + "</td><td>" + Figure(change) + "</td><td>" + Number(p.sigma) +
+            "</td></tr>\n";
   }
   return html + "</table><p>Lengths in " + Escape(unit) + ".</p>\n";
 }
@@ -146,34 +146,28 @@ std::string ResidualSection(const SessionPaths& paths, const Robot& nominal, con
 
 StatusOr<std::string> SessionReportHtml(const std::string& dir) {
   const SessionPaths paths(dir);
-  const std::string json_path = (fs::path(paths.results) / "report.json").string();
-  StatusOr<std::string> text = ReadFileToString(json_path);
-  if (!text.ok()) return Status::Error(text.status().message() + " (run hexcal calibrate --session first)");
-  nlohmann::json report;
-  try {
-    report = nlohmann::json::parse(*text);
-  } catch (const nlohmann::json::exception& e) {
-    return Status::Error(json_path + ": " + e.what());
-  }
-  const std::string unit = report.value("length_unit", "");
+  StatusOr<CalibrationReport> loaded = LoadCalibrationReport(CalibrationReportPath(dir));
+  if (!loaded.ok()) return Status::Error(loaded.status().message() + " (run hexcal calibrate --session first)");
+  const CalibrationReport& report = *loaded;
+  const std::string unit = report.length_unit;
   std::string html =
       "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>hexcal session report</title><style>"
       "body{font-family:sans-serif;max-width:900px;margin:2em auto}table{border-collapse:collapse}"
       "td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}</style></head><body>\n";
-  html += "<h1>Session " + Escape(dir) + "</h1>\n<p>" + std::to_string(report["images"].get<int>()) +
-          " images: " + std::to_string(report["calibration_images"].get<int>()) + " for calibration, " +
-          std::to_string(report["held_out_images"].get<int>()) + " held out, " +
-          std::to_string(report["unusable_images"].get<int>()) + " without a usable target pose.</p>\n";
+  html += "<h1>Session " + Escape(dir) + "</h1>\n<p>" + std::to_string(report.images) +
+          " images: " + std::to_string(report.calibration_images) + " for calibration, " +
+          std::to_string(report.held_out_images) + " held out, " +
+          std::to_string(report.unusable_images) + " without a usable target pose.</p>\n";
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   if (!config.ok()) return config.status();
   StatusOr<Robot> nominal = LoadRobot(ResolveSessionFile(dir, config->robot));
   if (!nominal.ok()) return nominal.status();
   html += PlanSection(paths, *nominal);
-  const nlohmann::json& reg = report["registration"];
+  const RegistrationSummary& reg = report.registration;
   html += "<h2>Registration</h2><p>Closure |A&middot;Y &minus; X&middot;B| with the nominal robot: RMS " +
-          Number(reg["position_rms"]) + " " + Escape(unit) + ", " + Number(reg["angle_rms_deg"]) +
-          "&deg;; with the calibrated robot: " + Number(report["closure_after_calibration"]["position_rms"]) + " " +
-          Escape(unit) + ", " + Number(report["closure_after_calibration"]["angle_rms_deg"]) + "&deg;.</p>\n";
+          Figure(reg.position_rms) + " " + Escape(unit) + ", " + Figure(reg.angle_rms_deg) +
+          "&deg;; with the calibrated robot: " + Figure(report.closure_position_rms) + " " + Escape(unit) + ", " +
+          Figure(report.closure_angle_rms_deg) + "&deg;.</p>\n";
 
   plots::ChartOptions quality;
   quality.title = "Measurement quality";
@@ -182,17 +176,17 @@ StatusOr<std::string> SessionReportHtml(const std::string& dir) {
   const plots::LineSeries rms = MeasurementRms(paths.measurements);
   if (!rms.x.empty()) html += "<h2>Measurements</h2>\n" + plots::LineChartSvg(quality, {rms}) + "\n";
 
-  const nlohmann::json& validation = report["validation"];
-  if (validation.is_object()) {
+  if (report.validation) {
+    const ValidationSummary& validation = *report.validation;
     plots::ChartOptions chart;
     chart.title = "Held-out validation (forward kinematics against the camera)";
     chart.y_label = "RMS error";
     chart.log_y = true;
     std::vector<plots::Bar> bars = {
-        {"position before (" + unit + ")", validation["before"]["position_rms"].get<double>(), 0},
-        {"position after (" + unit + ")", validation["after"]["position_rms"].get<double>(), 0},
-        {"orientation before (deg)", validation["before"]["orientation_rms"].get<double>(), 0},
-        {"orientation after (deg)", validation["after"]["orientation_rms"].get<double>(), 0}};
+        {"position before (" + unit + ")", validation.before.position_rms, 0},
+        {"position after (" + unit + ")", validation.after.position_rms, 0},
+        {"orientation before (deg)", validation.before.orientation_rms, 0},
+        {"orientation after (deg)", validation.after.orientation_rms, 0}};
     html += "<h2>Validation</h2>\n" + plots::BarChartSvg(chart, bars) + "\n";
   }
 
@@ -203,14 +197,23 @@ StatusOr<std::string> SessionReportHtml(const std::string& dir) {
   change.y_label = "change (" + unit + ")";
   change.width = 900;
   std::vector<plots::Bar> changes;
-  for (const nlohmann::json& p : report["parameters"]) {
-    const double sigma = p["sigma"].is_number() ? p["sigma"].get<double>() : 0;
-    changes.push_back({std::to_string(p["leg"].get<int>()) + p["name"].get<std::string>(),
-                       p["estimate"].get<double>() - p["nominal"].get<double>(), sigma});
-  }
+  for (const ParameterEstimate& p : report.parameters)
+    changes.push_back({std::to_string(p.leg) + p.name, p.estimate - p.nominal, p.sigma.value_or(0)});
   html += "<h2>Calibrated parameters</h2>\n" + plots::BarChartSvg(change, changes) + "\n" +
-          ParameterTable(report["parameters"], unit);
+          ParameterTable(report.parameters, unit);
   return html + "</body></html>\n";
 }
 
-}  // namespace hexcal::cli
+StatusOr<std::string> WriteSessionReport(const ReportRequest& request) {
+  const std::string out =
+      request.out.empty() ? (fs::path(SessionPaths(request.session).results) / "report.html").string() : request.out;
+  std::error_code exists_error;
+  if (!request.out.empty() && !request.force && fs::exists(out, exists_error))
+    return Status::Error(out + ": exists; use --force to overwrite it");
+  StatusOr<std::string> html = SessionReportHtml(request.session);
+  if (!html.ok()) return html.status();
+  if (Status s = WriteFileAtomically(out, *html); !s.ok()) return s;
+  return out;
+}
+
+}  // namespace hexcal::workflow

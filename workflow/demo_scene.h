@@ -20,7 +20,7 @@
 #include "vision/camera.h"
 #include "vision/target.h"
 
-namespace hexcal::cli {
+namespace hexcal::workflow {
 
 struct DemoSceneOptions {
   double perturb_m = 0.0005;       // ± on each of the 42 parameters of the true robot, metres
@@ -54,4 +54,4 @@ Status RecordDemoSession(const DemoScene& scene, const std::string& robot_name, 
                          const std::vector<Vector6d>& held_out, const std::string& dir,
                          const std::function<void(int, int)>& progress);
 
-}  // namespace hexcal::cli
+}  // namespace hexcal::workflow

@@ -3,7 +3,7 @@
 // paper), measurement quality per image, the registration, the calibration
 // residuals before and after, the calibrated parameters with σ and their
 // change from nominal, and the held-out validation before and after. Charts
-// are inline SVG (app/plots/svg_chart.h); nothing is fetched.
+// are inline SVG (charts/); nothing is fetched.
 //
 //   StatusOr<std::string> html = SessionReportHtml("run1");
 //   if (html.ok()) WriteFileAtomically("run1/results/report.html", *html);
@@ -13,10 +13,19 @@
 
 #include "core/status.h"
 
-namespace hexcal::cli {
+namespace hexcal::workflow {
 
 // Needs DIR/results/report.json (hexcal calibrate --session); the plan and
 // residual sections appear when plan.csv and the calibration files exist.
 StatusOr<std::string> SessionReportHtml(const std::string& dir);
 
-}  // namespace hexcal::cli
+struct ReportRequest {
+  std::string session;
+  std::string out;     // the HTML file to write; empty: DIR/results/report.html
+  bool force = false;  // replace an existing `out` (DIR/results/report.html is always replaced)
+};
+
+// Writes the page; returns the path written.
+StatusOr<std::string> WriteSessionReport(const ReportRequest& request);
+
+}  // namespace hexcal::workflow

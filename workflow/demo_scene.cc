@@ -1,4 +1,4 @@
-#include "app/commands/demo_scene.h"
+#include "workflow/demo_scene.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -15,7 +15,7 @@
 #include "vision/parallel.h"
 #include "vision/renderer.h"
 
-namespace hexcal::cli {
+namespace hexcal::workflow {
 namespace {
 
 namespace fs = std::filesystem;
@@ -139,4 +139,4 @@ Status RecordDemoSession(const DemoScene& scene, const std::string& robot_name, 
   return WriteCsv(paths.legs, {"image", "L1", "L2", "L3", "L4", "L5", "L6", "holdout"}, legs_rows);
 }
 
-}  // namespace hexcal::cli
+}  // namespace hexcal::workflow

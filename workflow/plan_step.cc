@@ -1,16 +1,16 @@
-#include "app/commands/plan_io.h"
+#include "workflow/plan_step.h"
 
 #include <algorithm>
 #include <iomanip>
-#include <ostream>
+#include <sstream>
 #include <random>
 
-#include "app/commands/cli_common.h"
 #include "core/candidates.h"
 #include "core/csv.h"
 #include "core/inverse_kinematics.h"
+#include "core/robot_io.h"
 
-namespace hexcal::cli {
+namespace hexcal::workflow {
 namespace {
 
 StatusOr<CandidateSet> Generate(const Robot& robot, CandidateKind kind, int count, uint64_t seed,
@@ -123,8 +123,9 @@ Status WriteHistoryCsv(const std::string& path, const PlanResult& plan) {
   return WriteCsv(path, {"iteration", "O1", "O2", "O3", "O4", "primary", "secondary", "exchanged"}, rows);
 }
 
-nlohmann::json PlanSummaryJson(const PlannerOptions& options, const PlanResult& plan, const CandidatePool& pool,
-                               const nlohmann::json& certificate, const std::string& out) {
+nlohmann::json ToJson(const PlanOutcome& outcome) {
+  const PlannerOptions& options = outcome.setup.planner;
+  const PlanResult& plan = outcome.plan;
   nlohmann::json j = {{"initial", IndicesOnly(plan.initial)},
                       {"final", IndicesOnly(plan.final)},
                       {"iterations", plan.iterations},
@@ -135,18 +136,24 @@ nlohmann::json PlanSummaryJson(const PlannerOptions& options, const PlanResult& 
                       {"criterion", CriterionName(options.criterion)},
                       {"criterion_initial", plan.initial_primary},
                       {"criterion_final", plan.final_primary},
-                      {"candidates", pool.poses.size()},
-                      {"candidate_sources", pool.sources},
+                      {"candidates", outcome.pool.poses.size()},
+                      {"candidate_sources", outcome.pool.sources},
                       {"continuous", options.continuous},
-                      {"out", out}};
+                      {"out", outcome.out}};
   if (options.secondary) j["secondary"] = CriterionName(*options.secondary);
-  if (!certificate.is_null()) {
-    for (auto it = certificate.begin(); it != certificate.end(); ++it) j[it.key()] = it.value();
+  if (const std::optional<PlanCertificate>& cert = outcome.certificate) {
+    j["d_efficiency"] = cert->d_efficiency;
+    j["gap"] = cert->design.gap;
+    j["design_converged"] = cert->design.converged;
+    j["design_support"] = cert->design.support;
+    j["design_iterations"] = cert->design.iterations;
   }
   return j;
 }
 
-void PrintPlanSummary(const nlohmann::json& s, std::ostream& out) {
+std::string FormatPlanSummary(const PlanOutcome& outcome) {
+  const nlohmann::json s = ToJson(outcome);
+  std::ostringstream out;
   auto line = [&](const char* label, const nlohmann::json& o) {
     out << "  " << std::left << std::setw(9) << label << std::right << std::fixed << std::setprecision(4)
         << "O1 " << std::setw(10) << o["O1"].get<double>() << "  O2 " << std::setw(8) << o["O2"].get<double>()
@@ -167,7 +174,81 @@ void PrintPlanSummary(const nlohmann::json& s, std::ostream& out) {
     out << "  D-efficiency >= " << std::setprecision(4) << s["d_efficiency"].get<double>()
         << " (design bound gap " << s["gap"].get<double>() << ")\n";
   }
-  out << "written to " << s["out"].get<std::string>() << "\n";
+  if (!outcome.out.empty()) out << "written to " << outcome.out << "\n";
+  return out.str();
 }
 
-}  // namespace hexcal::cli
+StatusOr<PlanOutcome> RunPlan(const PlanningModel& model, const PlanSetup& setup, const std::string& candidates_file,
+                              const JobHooks& hooks, const PlanIterationObserver& on_iteration) {
+  if (Status s = setup.Check(); !s.ok()) return s;
+  const PlannerOptions& planner = setup.planner;
+  // A file the user named that is wrong is bad input; a generated set that
+  // cannot be had is a failed computation.
+  StatusOr<std::vector<Vector6d>> initial = InitialPoses(model, setup.init, planner.num_poses, planner.seed);
+  if (!initial.ok()) return ParseCandidateKind(setup.init) ? initial.status().AsFailure() : initial.status();
+  hooks.Stage("candidates");
+  StatusOr<CandidatePool> pool = BuildCandidatePool(model, candidates_file, setup.candidate_kinds,
+                                                    setup.candidate_count, planner.continuous, planner.seed,
+                                                    hooks.progress);
+  if (!pool.ok()) return candidates_file.empty() ? pool.status().AsFailure() : pool.status();
+  hooks.Stage("planning");
+  StatusOr<PlanResult> plan = PlanPoses(
+      model, pool->poses, *initial, planner, [&](int iteration, int budget, double) { hooks.Progress(iteration, budget); },
+      hooks.cancel, on_iteration);
+  if (!plan.ok()) return plan.status().AsFailure();
+  PlanOutcome outcome{setup, std::move(*pool), std::move(*plan), std::nullopt, ""};
+  if (!planner.continuous && setup.certificate) {
+    hooks.Stage("certificate");
+    OptimalDesignOptions design_options;
+    design_options.max_seconds = setup.certificate_seconds;
+    StatusOr<PlanCertificate> cert = CertifyPlan(model, outcome.pool.poses, outcome.plan.poses, design_options);
+    if (!cert.ok()) return cert.status().AsFailure();
+    outcome.certificate = *cert;
+  }
+  return outcome;
+}
+
+namespace {
+
+// Robot, settings file and entries: the model and the setup of a request.
+StatusOr<std::pair<PlanningModel, PlanSetup>> ResolvePlanRequest(const PlanRequest& request) {
+  StatusOr<Robot> robot = LoadRobot(request.robot);
+  if (!robot.ok()) return robot.status();
+  PlanningModel model{*robot, std::nullopt, std::nullopt};
+  PlanSetup setup;
+  if (!request.settings.empty()) {
+    StatusOr<PlanSettings> settings = LoadPlanSettings(request.settings, *robot);
+    if (!settings.ok()) return settings.status();
+    model.noise = settings->noise;
+    model.measurement = settings->measurement;
+    const std::string section = "plan settings '" + request.settings + "': planner";
+    if (Status s = ApplyOptionEntries(PlanSetupOptions(), settings->planner, &setup, section); !s.ok()) return s;
+  }
+  if (Status s = ApplyOptionEntries(PlanSetupOptions(), request.planner_entries, &setup, "plan"); !s.ok()) return s;
+  if (!request.noise_entries.empty()) {
+    NoiseModel noise = model.noise.value_or(NoiseModel{});
+    if (Status s = ApplyOptionEntries(NoiseModelOptions(), request.noise_entries, &noise, "noise"); !s.ok()) return s;
+    model.noise = noise;
+  }
+  return std::make_pair(model, setup);
+}
+
+}  // namespace
+
+StatusOr<PlanOutcome> PlanFromRequest(const PlanRequest& request, const JobHooks& hooks) {
+  StatusOr<std::pair<PlanningModel, PlanSetup>> resolved = ResolvePlanRequest(request);
+  if (!resolved.ok()) return resolved.status();
+  const auto& [model, setup] = *resolved;
+  StatusOr<PlanOutcome> outcome = RunPlan(model, setup, request.candidates_file, hooks);
+  if (!outcome.ok()) return outcome.status();
+  if (!request.out.empty()) {
+    if (Status s = WritePlanCsv(request.out, model, outcome->plan.poses); !s.ok()) return s.AsFailure();
+    outcome->out = request.out;
+  }
+  if (!request.history.empty()) {
+    if (Status s = WriteHistoryCsv(request.history, outcome->plan); !s.ok()) return s.AsFailure();
+  }
+  return outcome;
+}
+
+}  // namespace hexcal::workflow

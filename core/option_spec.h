@@ -1,0 +1,167 @@
+// One description per option of a settings struct (key, type, unit, range,
+// default, help), from which every front end is made: the CLI11 flags
+// (app/commands/option_flags.h), the YAML sections of settings files
+// (ReadOptionEntries below), the GUI forms (ui/option_form.h) and the tables
+// in docs/cli.md (OptionsMarkdownTable, checked by a test). The default is
+// the struct's own in-class initialiser, so adding an option is one entry.
+//
+//   const OptionTable<NoiseModel>& table = NoiseModelOptions();
+//   NoiseModel noise;
+//   Status s = ApplyOptionText(FindOption(table, "leg"), "0.002", &noise, "plan.yaml: noise.leg");
+#pragma once
+
+#include <cmath>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/csv.h"
+#include "core/status.h"
+
+namespace hexcal {
+
+// kChoiceList: one or more of the choices, as "a,b" in text (a repeated CLI flag).
+enum class OptionType { kInteger, kNumber, kFlag, kChoice, kChoiceList };
+
+template <typename T>
+struct OptionSpec {
+  std::string key;    // YAML key; the CLI flag is `flag`, or "--" + key with '_' as '-'
+  std::string label;  // GUI label
+  OptionType type = OptionType::kNumber;
+  std::string unit;        // shown after the value ("" for none)
+  double min = 0, max = 0;  // inclusive range of a number or integer
+  std::string help;         // one sentence a user can act on
+  std::vector<std::string> choices;  // kChoice, kChoiceList: the accepted names
+  // Numbers, integers and flags (1/0) read and write through these ...
+  std::function<double(const T&)> get_number;
+  std::function<void(T&, double)> set_number;
+  // ... choices (and comma-joined choice lists) through these.
+  std::function<std::string(const T&)> get_choice;
+  std::function<void(T&, const std::string&)> set_choice;
+  std::string flag;  // CLI flag when it is not derived from the key
+  bool file_allowed = false;  // kChoice: any other value is taken as a file name
+
+  std::string Flag(const std::string& prefix = "") const {
+    if (!flag.empty()) return "--" + prefix + flag;
+    std::string name = key;
+    for (char& c : name) c = c == '_' ? '-' : c;
+    return "--" + prefix + name;
+  }
+};
+
+template <typename T>
+using OptionTable = std::vector<OptionSpec<T>>;
+
+// The spec of `key`, or nullptr.
+template <typename T>
+const OptionSpec<T>* FindOption(const OptionTable<T>& table, const std::string& key) {
+  for (const OptionSpec<T>& spec : table)
+    if (spec.key == key) return &spec;
+  return nullptr;
+}
+
+// The value of one option as text: numbers in their shortest exact form.
+template <typename T>
+std::string OptionText(const OptionSpec<T>& spec, const T& values) {
+  if (spec.type == OptionType::kChoice || spec.type == OptionType::kChoiceList) return spec.get_choice(values);
+  const double value = spec.get_number(values);
+  if (spec.type == OptionType::kFlag) return value != 0 ? "true" : "false";
+  return FormatNumber(value);
+}
+
+// Parses `text` by the option's type, checks the range or the choices and
+// sets it; the error starts with `where` (a flag, a file and key, a label).
+inline std::vector<std::string> SplitOptionList(const std::string& text) {
+  std::vector<std::string> items;
+  std::string item;
+  for (char c : text + ",") {
+    if (c != ',') {
+      if (c != ' ') item += c;
+      continue;
+    }
+    items.push_back(item);
+    item.clear();
+  }
+  return items;
+}
+
+template <typename T>
+Status CheckChoices(const OptionSpec<T>& spec, const std::vector<std::string>& items, const std::string& where) {
+  for (const std::string& item : items) {
+    if (spec.file_allowed && !item.empty()) continue;
+    bool known = false;
+    for (const std::string& choice : spec.choices) known = known || choice == item;
+    if (known) continue;
+    std::string names;
+    for (const std::string& choice : spec.choices) names += (names.empty() ? "" : ", ") + choice;
+    return Status::Error(where + ": expected " + (spec.type == OptionType::kChoiceList ? "one or more of " : "one of ") +
+                         names);
+  }
+  return Status::Ok();
+}
+
+template <typename T>
+Status ApplyOptionText(const OptionSpec<T>& spec, const std::string& text, T* values, const std::string& where) {
+  if (spec.type == OptionType::kChoice || spec.type == OptionType::kChoiceList) {
+    const std::vector<std::string> items =
+        spec.type == OptionType::kChoice ? std::vector<std::string>{text} : SplitOptionList(text);
+    if (Status s = CheckChoices(spec, items, where); !s.ok()) return s;
+    spec.set_choice(*values, text);
+    return Status::Ok();
+  }
+  if (spec.type == OptionType::kFlag) {
+    if (text == "true" || text == "1") spec.set_number(*values, 1);
+    else if (text == "false" || text == "0") spec.set_number(*values, 0);
+    else return Status::Error(where + ": expected true or false");
+    return Status::Ok();
+  }
+  StatusOr<double> value = ParseNumber(text);
+  if (!value.ok()) return Status::Error(where + ": expected a finite number");
+  if (spec.type == OptionType::kInteger && *value != std::floor(*value))
+    return Status::Error(where + ": expected a whole number, got " + FormatNumber(*value));
+  if (*value < spec.min || *value > spec.max) {
+    return Status::Error(where + ": " + FormatNumber(*value) + " is outside [" + FormatNumber(spec.min) + ", " +
+                         FormatNumber(spec.max) + "]" + (spec.unit.empty() ? "" : " " + spec.unit));
+  }
+  spec.set_number(*values, *value);
+  return Status::Ok();
+}
+
+// Applies the (key, text) entries of a settings-file section; an unknown key
+// is an error that lists the known ones. `section` names it ("plan.yaml: planner").
+template <typename T>
+Status ApplyOptionEntries(const OptionTable<T>& table, const std::vector<std::pair<std::string, std::string>>& entries,
+                          T* values, const std::string& section) {
+  for (const auto& [key, text] : entries) {
+    const OptionSpec<T>* spec = FindOption(table, key);
+    if (spec == nullptr) {
+      std::string keys;
+      for (const OptionSpec<T>& known : table) keys += (keys.empty() ? "" : ", ") + known.key;
+      return Status::Error(section + "." + key.substr(0, 40) + ": unknown key (" + keys + ")");
+    }
+    if (Status s = ApplyOptionText(*spec, text, values, section + "." + key); !s.ok()) return s;
+  }
+  return Status::Ok();
+}
+
+// The docs table: | key | flag | type | unit | range | default | meaning |.
+template <typename T>
+std::string OptionsMarkdownTable(const OptionTable<T>& table, const std::string& flag_prefix = "") {
+  static const char* kTypeNames[] = {"integer", "number", "flag", "choice", "list of choices"};
+  const T defaults{};
+  std::string text = "| key | flag | type | unit | range | default | meaning |\n|---|---|---|---|---|---|---|\n";
+  for (const OptionSpec<T>& spec : table) {
+    std::string range;
+    if (spec.type == OptionType::kChoice || spec.type == OptionType::kChoiceList) {
+      for (const std::string& choice : spec.choices) range += (range.empty() ? "" : ", ") + choice;
+    } else if (spec.type != OptionType::kFlag) {
+      range = FormatNumber(spec.min) + " – " + FormatNumber(spec.max);
+    }
+    text += "| `" + spec.key + "` | `" + spec.Flag(flag_prefix) + "` | " + kTypeNames[static_cast<int>(spec.type)] +
+            " | " + spec.unit + " | " + range + " | " + OptionText(spec, defaults) + " | " + spec.help + " |\n";
+  }
+  return text;
+}
+
+}  // namespace hexcal

@@ -1,0 +1,174 @@
+#include "workflow/calibration_report.h"
+
+#include <filesystem>
+
+#include "core/atomic_file.h"
+#include "workflow/json_fields.h"
+#include "workflow/json_forms.h"
+
+namespace hexcal::workflow {
+namespace {
+
+nlohmann::json Optional(const std::optional<double>& value) {
+  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
+std::vector<double> Values(const Vector6d& v) { return {v.data(), v.data() + 6}; }
+
+Vector6d VectorOf(const std::vector<double>& values) {
+  Vector6d v;
+  for (int k = 0; k < 6; ++k) v[k] = values[k];
+  return v;
+}
+
+nlohmann::json StatsJson(const PoseErrorStats& stats) {
+  return {{"position_rms", stats.position_rms},
+          {"position_max", stats.position_max},
+          {"orientation_rms", stats.orientation_rms},
+          {"orientation_max", stats.orientation_max},
+          {"failed", stats.failed}};
+}
+
+PoseErrorStats StatsFromJson(JsonFields fields) {
+  return {fields.Number("position_rms"), fields.Number("position_max"), fields.Number("orientation_rms"),
+          fields.Number("orientation_max"), fields.Int("failed")};
+}
+
+nlohmann::json ValidationJson(const ValidationSummary& validation) {
+  nlohmann::json per_image = nlohmann::json::array();
+  for (const HeldOutImage& row : validation.per_image) {
+    per_image.push_back({{"image", row.image},
+                         {"position_before", Optional(row.position_before)},
+                         {"position_after", Optional(row.position_after)},
+                         {"orientation_before", Optional(row.orientation_before)},
+                         {"orientation_after", Optional(row.orientation_after)}});
+  }
+  return {{"rows", validation.rows},
+          {"before", StatsJson(validation.before)},
+          {"after", StatsJson(validation.after)},
+          {"per_image", per_image}};
+}
+
+ValidationSummary ValidationFromJson(JsonFields fields) {
+  ValidationSummary validation;
+  validation.rows = fields.Int("rows");
+  validation.before = StatsFromJson(fields.Object("before"));
+  validation.after = StatsFromJson(fields.Object("after"));
+  for (JsonFields row : fields.Array("per_image")) {
+    validation.per_image.push_back({row.String("image"), row.OptionalNumber("position_before"),
+                                    row.OptionalNumber("position_after"), row.OptionalNumber("orientation_before"),
+                                    row.OptionalNumber("orientation_after")});
+  }
+  return validation;
+}
+
+nlohmann::json RegistrationJson(const RegistrationSummary& r) {
+  return {{"position_rms", r.position_rms},
+          {"angle_rms_deg", r.angle_rms_deg},
+          {"position_max", r.position_max},
+          {"angle_max_deg", r.angle_max_deg},
+          {"base_from_camera", Values(r.base_from_camera)},
+          {"platform_from_target", Values(r.platform_from_target)}};
+}
+
+RegistrationSummary RegistrationFromJson(JsonFields fields) {
+  RegistrationSummary r;
+  r.position_rms = fields.Number("position_rms");
+  r.angle_rms_deg = fields.Number("angle_rms_deg");
+  r.position_max = fields.Number("position_max");
+  r.angle_max_deg = fields.Number("angle_max_deg");
+  r.base_from_camera = VectorOf(fields.Numbers("base_from_camera", 6));
+  r.platform_from_target = VectorOf(fields.Numbers("platform_from_target", 6));
+  return r;
+}
+
+nlohmann::json ParametersJson(const std::vector<ParameterEstimate>& parameters) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const ParameterEstimate& p : parameters) {
+    rows.push_back({{"leg", p.leg},
+                    {"name", p.name},
+                    {"nominal", p.nominal},
+                    {"estimate", p.estimate},
+                    {"sigma", Optional(p.sigma)}});
+  }
+  return rows;
+}
+
+nlohmann::json LegsJson(const std::vector<LegFit>& legs) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const LegFit& leg : legs) {
+    rows.push_back({{"leg", leg.leg},
+                    {"variance_factor", leg.variance_factor},
+                    {"residual_rms", leg.residual_rms},
+                    {"iterations", leg.iterations},
+                    {"termination", leg.termination}});
+  }
+  return rows;
+}
+
+}  // namespace
+
+nlohmann::json ToJson(const CalibrationReport& report) {
+  return {{"session", report.session},
+          {"images", report.images},
+          {"unusable_images", report.unusable_images},
+          {"calibration_images", report.calibration_images},
+          {"held_out_images", report.held_out_images},
+          {"length_unit", report.length_unit},
+          {"registration", RegistrationJson(report.registration)},
+          {"closure_after_calibration",
+           {{"position_rms", report.closure_position_rms}, {"angle_rms_deg", report.closure_angle_rms_deg}}},
+          {"validation", report.validation ? ValidationJson(*report.validation) : nlohmann::json(nullptr)},
+          {"calibrated_robot", report.calibrated_robot},
+          {"robot", RobotJson(report.robot)},
+          {"parameters", ParametersJson(report.parameters)},
+          {"legs", LegsJson(report.legs)}};
+}
+
+StatusOr<CalibrationReport> CalibrationReportFromJson(const nlohmann::json& json, const std::string& source) {
+  JsonFields fields(json, source);
+  CalibrationReport report;
+  report.session = fields.String("session");
+  report.images = fields.Int("images");
+  report.unusable_images = fields.Int("unusable_images");
+  report.calibration_images = fields.Int("calibration_images");
+  report.held_out_images = fields.Int("held_out_images");
+  report.length_unit = fields.String("length_unit");
+  report.registration = RegistrationFromJson(fields.Object("registration"));
+  JsonFields closure = fields.Object("closure_after_calibration");
+  report.closure_position_rms = closure.Number("position_rms");
+  report.closure_angle_rms_deg = closure.Number("angle_rms_deg");
+  if (fields.Has("validation")) report.validation = ValidationFromJson(fields.Object("validation"));
+  report.calibrated_robot = fields.String("calibrated_robot");
+  report.robot = RobotFromJson(fields.Object("robot"));
+  for (JsonFields p : fields.Array("parameters")) {
+    report.parameters.push_back(
+        {p.Int("leg"), p.String("name"), p.Number("nominal"), p.Number("estimate"), p.OptionalNumber("sigma")});
+  }
+  if (fields.status().ok() && report.parameters.size() != static_cast<size_t>(kNumParams))
+    fields.Fail("parameters", "expected " + std::to_string(kNumParams) + " parameters");
+  for (JsonFields leg : fields.Array("legs")) {
+    report.legs.push_back({leg.Int("leg"), leg.Number("variance_factor"), leg.Number("residual_rms"),
+                           leg.Int("iterations"), leg.String("termination")});
+  }
+  if (!fields.status().ok()) return fields.status();
+  return report;
+}
+
+std::string CalibrationReportPath(const std::string& session_dir) {
+  return (std::filesystem::path(session_dir) / "results" / "report.json").string();
+}
+
+StatusOr<CalibrationReport> LoadCalibrationReport(const std::string& path) {
+  StatusOr<std::string> text = ReadFileToString(path);
+  if (!text.ok()) return text.status();
+  StatusOr<nlohmann::json> json = ParseJsonText(*text, path);
+  if (!json.ok()) return json.status();
+  return CalibrationReportFromJson(*json, path);
+}
+
+Status SaveCalibrationReport(const std::string& path, const CalibrationReport& report) {
+  return WriteFileAtomically(path, ToJson(report).dump(2) + "\n");
+}
+
+}  // namespace hexcal::workflow

@@ -1,0 +1,85 @@
+// The result of a session calibration (`hexcal calibrate --session`, the
+// GUI's Calibrate step), as one typed value: what results/report.json holds.
+// Written by CalibrateSession, read back by the HTML report, the demo and the
+// GUI panels through CalibrationReportFromJson, which names the key and the
+// problem of a wrong file instead of aborting (docs/session.md has the keys).
+//
+//   StatusOr<CalibrationReport> report = LoadCalibrationReport("run1/results/report.json");
+//   if (report.ok() && report->validation) Print(report->validation->after.position_rms);
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/robot.h"
+#include "core/status.h"
+
+namespace hexcal::workflow {
+
+struct PoseErrorStats {
+  double position_rms = 0, position_max = 0;        // robot unit
+  double orientation_rms = 0, orientation_max = 0;  // degrees
+  int failed = 0;                                   // rows whose FK did not converge
+};
+
+struct HeldOutImage {
+  std::string image;
+  // Empty where FK did not converge for that robot.
+  std::optional<double> position_before, position_after;        // robot unit
+  std::optional<double> orientation_before, orientation_after;  // degrees
+};
+
+struct ValidationSummary {
+  int rows = 0;
+  PoseErrorStats before, after;  // nominal robot, calibrated robot
+  std::vector<HeldOutImage> per_image;
+};
+
+struct RegistrationSummary {
+  // Closure |A·Y − X·B| with the nominal robot (registration.h).
+  double position_rms = 0, angle_rms_deg = 0, position_max = 0, angle_max_deg = 0;
+  Vector6d base_from_camera = Vector6d::Zero();      // x y z (robot unit) and Euler xyz (deg)
+  Vector6d platform_from_target = Vector6d::Zero();  // the same
+};
+
+struct ParameterEstimate {
+  int leg = 0;       // 1..6
+  std::string name;  // ax, ay, az, bx, by, bz, l
+  double nominal = 0, estimate = 0;
+  std::optional<double> sigma;  // robot unit; none when the leg has no uncertainty
+};
+
+struct LegFit {
+  int leg = 0;
+  double variance_factor = 0, residual_rms = 0;
+  int iterations = 0;
+  std::string termination;
+};
+
+struct CalibrationReport {
+  std::string session;
+  int images = 0, unusable_images = 0, calibration_images = 0, held_out_images = 0;
+  std::string length_unit;
+  RegistrationSummary registration;
+  double closure_position_rms = 0, closure_angle_rms_deg = 0;  // with the calibrated robot
+  std::optional<ValidationSummary> validation;                 // none without held-out images
+  std::string calibrated_robot;                                // path of results/calibrated.yaml
+  Robot robot;                                                 // the calibrated robot (legs only)
+  std::vector<ParameterEstimate> parameters;                   // 42, leg by leg
+  std::vector<LegFit> legs;                                    // 6
+
+  int usable_images() const { return images - unusable_images; }
+};
+
+nlohmann::json ToJson(const CalibrationReport& report);
+// `source` names the document in errors (its path).
+StatusOr<CalibrationReport> CalibrationReportFromJson(const nlohmann::json& json, const std::string& source);
+
+// results/report.json of a session folder.
+std::string CalibrationReportPath(const std::string& session_dir);
+StatusOr<CalibrationReport> LoadCalibrationReport(const std::string& path);
+Status SaveCalibrationReport(const std::string& path, const CalibrationReport& report);
+
+}  // namespace hexcal::workflow

@@ -1,0 +1,251 @@
+#include "workflow/demo.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "core/identification.h"
+#include "core/registration.h"
+#include "core/robot_io.h"
+#include "core/session.h"
+#include "workflow/demo_scene.h"
+#include "workflow/json_forms.h"
+#include "workflow/plan_step.h"
+#include "workflow/session_calibrate.h"
+#include "workflow/session_report.h"
+
+namespace hexcal::workflow {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Log lines "[k/5 t s] what" with the time since the start.
+class StepLog {
+ public:
+  explicit StepLog(const JobHooks& hooks) : hooks_(hooks), start_(std::chrono::steady_clock::now()) {}
+  void Step(const std::string& what) {
+    std::ostringstream line;
+    line << "[" << ++step_ << "/5 " << Seconds() << " s] " << what;
+    hooks_.Note(line.str());
+  }
+  double Seconds() const {
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    return std::round(s * 10) / 10;
+  }
+
+ private:
+  const JobHooks& hooks_;
+  std::chrono::steady_clock::time_point start_;
+  int step_ = 0;
+};
+
+// An existing folder is replaced only with `force` and only when it is a demo
+// folder (it has truth/frames.yaml) or empty: a user's session is never removed.
+Status PrepareOutFolder(const std::string& out, bool force) {
+  std::error_code error;
+  if (!fs::exists(out, error)) return Status::Ok();
+  const bool empty = fs::is_directory(out, error) && fs::is_empty(out, error);
+  if (empty) return Status::Ok();
+  if (!fs::exists(fs::path(out) / "truth" / "frames.yaml", error))
+    return Status::Error(out + ": exists and is not a demo folder; choose another --out");
+  if (!force) return Status::Error(out + ": exists; use --force to replace the demo in it");
+  fs::remove_all(out, error);
+  if (error) return Status::IoError(out + ": cannot remove: " + error.message());
+  return Status::Ok();
+}
+
+// The truth moved into the registered frames, G = X X*⁻¹ and H = Y Y*⁻¹
+// (registration.h), against the calibrated parameters and their σ.
+Status CompareWithTruth(const DemoScene& scene, const std::string& dir, DemoResult* result) {
+  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
+  if (!config.ok()) return config.status();
+  if (!config->base_from_camera || !config->platform_from_target)
+    return Status::Failed(dir + "/session.yaml: no registered frames after the calibration");
+  const Robot truth = ExpressInFrames(scene.truth, Compose(*config->base_from_camera, Inverse(scene.base_from_camera)),
+                                      Compose(*config->platform_from_target, Inverse(scene.platform_from_target)));
+  const ParameterVector true_parameters = ParametersOf(truth);
+  const ParameterVector nominal_parameters = ParametersOf(scene.nominal);
+  int within = 0;
+  for (int k = 0; k < kNumParams; ++k) {
+    const ParameterEstimate& p = result->calibration.parameters[k];
+    const double error = std::abs(p.estimate - true_parameters[k]);
+    const double nominal_error = std::abs(nominal_parameters[k] - true_parameters[k]);
+    result->error_mean += error / kNumParams;
+    result->error_max = std::max(result->error_max, error);
+    result->nominal_error_mean += nominal_error / kNumParams;
+    result->nominal_error_max = std::max(result->nominal_error_max, nominal_error);
+    result->parameters.push_back({p.leg, p.name, error, p.sigma});
+    if (p.sigma) {
+      ++result->with_sigma;
+      within += error <= 3 * *p.sigma;
+    }
+  }
+  result->within_3sigma = result->with_sigma > 0 ? static_cast<double>(within) / result->with_sigma : 0;
+  return Status::Ok();
+}
+
+// Step 1: IOOPS among random and boundary candidates in the camera's view.
+StatusOr<PlanResult> PlanDemo(const DemoRequest& request, const PlanningModel& model, const JobHooks& hooks,
+                              int* candidates) {
+  StatusOr<CandidatePool> pool =
+      BuildCandidatePool(model, "", {"random", "boundary"}, 2000, false, request.seed, hooks.progress);
+  if (!pool.ok()) return pool.status().AsFailure();
+  *candidates = static_cast<int>(pool->poses.size());
+  StatusOr<std::vector<Vector6d>> initial = InitialPoses(model, "random", request.poses, request.seed);
+  if (!initial.ok()) return initial.status().AsFailure();
+  PlannerOptions planner;
+  planner.num_poses = request.poses;
+  planner.secondary = Criterion::kO4;
+  planner.tabu = 4;
+  planner.seed = request.seed;
+  StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, *initial, planner,
+                                        [&](int done, int total, double) { hooks.Progress(done, total); });
+  if (!plan.ok()) return plan.status().AsFailure();
+  return plan;
+}
+
+// Step 2: the session folder, with the plan and its history as `hexcal plan` writes them.
+Status RecordDemo(const DemoRequest& request, const DemoScene& scene, const PlanningModel& model,
+                  const PlanResult& plan, const std::string& robot_name, const JobHooks& hooks) {
+  StatusOr<std::vector<Vector6d>> held_out = InitialPoses(model, "random", request.holdout, request.seed + 1000);
+  if (!held_out.ok()) return held_out.status().AsFailure();
+  if (Status s = RecordDemoSession(scene, robot_name, kSimulatedCameraName, plan.poses, *held_out, request.out,
+                                   hooks.progress);
+      !s.ok())
+    return s.AsFailure();
+  if (Status s = WritePlanCsv(SessionPaths(request.out).plan, model, plan.poses); !s.ok()) return s;
+  return WriteHistoryCsv((fs::path(request.out) / "plan_history.csv").string(), plan);
+}
+
+std::string FormatPlanLine(int candidates, const PlanResult& plan) {
+  std::ostringstream line;
+  line << "      " << candidates << " candidates; O1 " << plan.initial.o1 << " -> " << plan.final.o1 << ", O2 "
+       << plan.initial.o2 << " -> " << plan.final.o2 << " (random set -> plan) in " << plan.iterations
+       << " iterations";
+  return line.str();
+}
+
+// Steps 3-5 on the recorded folder: calibrate, compare, report.
+Status CalibrateAndCompare(const DemoRequest& request, const DemoScene& scene, StepLog* steps, const JobHooks& hooks,
+                           DemoResult* result) {
+  steps->Step("measure the images, register the camera and target frames, calibrate, validate (calibrate --session)");
+  StatusOr<CalibrationReport> calibration = CalibrateSession({request.out}, hooks);
+  if (!calibration.ok()) return calibration.status();
+  std::istringstream lines(FormatCalibrationSummary(*calibration));
+  for (std::string line; std::getline(lines, line);) hooks.Note("      " + line);
+  if (!calibration->validation) return Status::Failed(CalibrationReportPath(request.out) + ": no validation section");
+  result->calibration = *calibration;
+  result->usable_images = calibration->usable_images();
+
+  steps->Step("compare the calibrated parameters with the hidden truth (in the registered frames)");
+  if (Status s = CompareWithTruth(scene, request.out, result); !s.ok()) return s;
+  steps->Step("write the report");
+  StatusOr<std::string> report = WriteSessionReport({request.out, "", true});
+  if (!report.ok()) return report.status().AsFailure();
+  result->report = *report;
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status DemoRequest::Check() const {
+  if (poses < 8) return Status::Error("--poses must be at least 8");
+  if (holdout < 1) return Status::Error("--holdout must be at least 1");
+  return Status::Ok();
+}
+
+StatusOr<DemoResult> RunDemo(const DemoRequest& request, const JobHooks& hooks) {
+  if (Status s = request.Check(); !s.ok()) return s;
+  StatusOr<Robot> nominal = LoadRobot(request.robot);
+  if (!nominal.ok()) return nominal.status();
+  // A robot file is written into the session by its absolute path.
+  std::error_code error;
+  const std::string robot_name =
+      fs::exists(request.robot, error) ? fs::absolute(request.robot, error).string() : request.robot;
+  StatusOr<Camera> camera = LoadCamera(kSimulatedCameraName);
+  if (!camera.ok()) return camera.status().AsFailure();
+  StatusOr<Target> target = LoadTarget(kDefaultTargetName);
+  if (!target.ok()) return target.status().AsFailure();
+  if (Status s = PrepareOutFolder(request.out, request.force); !s.ok()) return s;
+
+  StepLog steps(hooks);
+  DemoSceneOptions scene_options;
+  scene_options.seed = request.seed;
+  const DemoScene scene = MakeDemoScene(*nominal, *camera, *target, scene_options);
+  DemoResult result{nominal->name, LengthUnitName(nominal->length_unit), request.out, request.poses, request.holdout};
+
+  steps.Step("plan " + std::to_string(request.poses) + " poses (IOOPS: O1, secondary O4, Tabu 4) among random and "
+             "boundary candidates with the target in the camera's view");
+  const PlanningModel model{*nominal, std::nullopt, scene.view};
+  StatusOr<PlanResult> plan = PlanDemo(request, model, hooks, &result.plan_candidates);
+  if (!plan.ok()) return plan.status();
+  hooks.Note(FormatPlanLine(result.plan_candidates, *plan));
+  result.random_indices = plan->initial;
+  result.plan_indices = plan->final;
+  result.plan_iterations = plan->iterations;
+
+  steps.Step("record the session in " + request.out + ": hidden true robot (every parameter ±0.5 mm), " +
+             std::to_string(request.poses + request.holdout) + " rendered images (" +
+             std::to_string(request.holdout) + " held out), leg readings ±" + FormatNumber(scene.noise.leg) + " " +
+             result.length_unit);
+  if (Status s = RecordDemo(request, scene, model, *plan, robot_name, hooks); !s.ok()) return s;
+  if (Status s = CalibrateAndCompare(request, scene, &steps, hooks, &result); !s.ok()) return s;
+  result.seconds = steps.Seconds();
+  return result;
+}
+
+nlohmann::json ToJson(const DemoResult& r) {
+  nlohmann::json parameters = nlohmann::json::array();
+  for (const ParameterError& p : r.parameters) {
+    nlohmann::json row = {{"leg", p.leg}, {"name", p.name}, {"error", p.error},
+                          {"sigma", p.sigma ? nlohmann::json(*p.sigma) : nlohmann::json(nullptr)}};
+    if (p.sigma) row["error_over_sigma"] = *p.sigma > 0 ? nlohmann::json(p.error / *p.sigma) : nlohmann::json(nullptr);
+    parameters.push_back(row);
+  }
+  const ValidationSummary& v = *r.calibration.validation;
+  const auto pose_errors = [](const PoseErrorStats& s) {
+    return nlohmann::json{{"position_rms", s.position_rms}, {"orientation_rms", s.orientation_rms}};
+  };
+  return {{"robot", r.robot},
+          {"length_unit", r.length_unit},
+          {"session", r.session},
+          {"poses", r.poses},
+          {"held_out", r.held_out},
+          {"usable_images", r.usable_images},
+          {"plan", {{"random", IndicesJson(r.random_indices)}, {"selected", IndicesJson(r.plan_indices)}}},
+          {"parameter_error",
+           {{"mean", r.error_mean},
+            {"max", r.error_max},
+            {"nominal_mean", r.nominal_error_mean},
+            {"nominal_max", r.nominal_error_max}}},
+          {"within_3sigma", r.within_3sigma},
+          {"parameters", parameters},
+          {"validation", {{"before", pose_errors(v.before)}, {"after", pose_errors(v.after)}}},
+          {"report", r.report},
+          {"seconds", r.seconds}};
+}
+
+std::string FormatDemoSummary(const DemoResult& r) {
+  const ValidationSummary& v = *r.calibration.validation;
+  const char* unit = r.length_unit.c_str();
+  char text[400];
+  std::string out;
+  std::snprintf(text, sizeof text,
+                "\nparameter error against the truth (%s): mean %.4g, max %.4g (nominal robot: mean %.4g, max %.4g)\n"
+                "within 3 sigma of the truth: %.1f %% of %d parameters\n",
+                unit, r.error_mean, r.error_max, r.nominal_error_mean, r.nominal_error_max, 100 * r.within_3sigma,
+                r.with_sigma);
+  out += text;
+  std::snprintf(text, sizeof text,
+                "held-out pose error (RMS over %d images, FK against the camera):\n"
+                "  before calibration: position %.4g %s, orientation %.4g deg\n"
+                "  after calibration:  position %.4g %s, orientation %.4g deg\n",
+                v.rows, v.before.position_rms, unit, v.before.orientation_rms, v.after.position_rms, unit,
+                v.after.orientation_rms);
+  out += text;
+  return out + "report: " + r.report + "\ndone in " + FormatNumber(r.seconds) + " s\n";
+}
+
+}  // namespace hexcal::workflow

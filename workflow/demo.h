@@ -1,0 +1,70 @@
+// `hexcal demo` and the GUI's "Open demo session": the whole calibration
+// flow on a virtual robot and camera (docs/session.md, "hexcal demo"):
+//  1. plan N poses with IOOPS (O1 primary, O4 secondary, Tabu 4) among random
+//     and boundary candidates the camera can see;
+//  2. record a session folder: a hidden true robot (nominal ± 0.5 mm on every
+//     parameter) at unknown camera and target frames, an image rendered at
+//     every pose (demo_scene.h) and noisy leg readings, plus random held-out
+//     poses;
+//  3. measure → register → calibrate → validate (CalibrateSession);
+//  4. compare the calibrated parameters with the truth in the registered
+//     frames (the gauge, docs/session.md), and write results/report.html.
+//
+//   StatusOr<DemoResult> demo = RunDemo({.out = "demo", .force = true}, hooks);
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/job_hooks.h"
+#include "core/observability.h"
+#include "core/status.h"
+#include "workflow/calibration_report.h"
+
+namespace hexcal::workflow {
+
+struct DemoRequest {
+  std::string robot = "inria-left-hand";  // robot file or preset name
+  std::string out = "hexcal-demo";        // the session folder to write
+  int poses = 24;                         // planned calibration poses
+  int holdout = 8;                        // random poses kept out to validate
+  uint64_t seed = 1;                      // of the truth, the candidates and the noise
+  bool force = false;                     // replace an earlier demo in `out`
+
+  Status Check() const;
+};
+
+struct ParameterError {
+  int leg = 0;
+  std::string name;
+  double error = 0;              // |calibrated − truth in the gauge|, robot unit
+  std::optional<double> sigma;   // the calibration's σ
+};
+
+struct DemoResult {
+  std::string robot, length_unit, session;
+  int poses = 0, held_out = 0, usable_images = 0;
+  ObservabilityIndices random_indices, plan_indices;  // the random start set and the plan
+  int plan_candidates = 0, plan_iterations = 0;
+  double error_mean = 0, error_max = 0;                  // calibrated − truth
+  double nominal_error_mean = 0, nominal_error_max = 0;  // nominal − truth
+  double within_3sigma = 0;                              // fraction of the parameters with a σ
+  int with_sigma = 0;
+  std::vector<ParameterError> parameters;
+  CalibrationReport calibration;  // results/report.json
+  std::string report;             // results/report.html
+  double seconds = 0;
+};
+
+// Progress: hooks.stage gets "[k/5] ..." step descriptions.
+StatusOr<DemoResult> RunDemo(const DemoRequest& request, const JobHooks& hooks = {});
+
+// The JSON `hexcal demo --json` prints.
+nlohmann::json ToJson(const DemoResult& result);
+// The closing lines `hexcal demo` prints.
+std::string FormatDemoSummary(const DemoResult& result);
+
+}  // namespace hexcal::workflow

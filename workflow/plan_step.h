@@ -1,0 +1,81 @@
+// The Plan step (`hexcal plan`, the GUI's Plan panel, the demo): the
+// candidate pool and the initial set, IOOPS (core/ioops.h), the D-optimality
+// certificate, and the plan and history files.
+//
+//   PlanRequest request;
+//   request.robot = "inria-left-hand";
+//   request.planner_entries = {{"poses", "18"}, {"tabu", "4"}};
+//   request.out = "plan.csv";
+//   StatusOr<PlanOutcome> plan = PlanFromRequest(request, hooks);
+#pragma once
+
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/ioops.h"
+#include "core/job_hooks.h"
+#include "core/optimal_design.h"
+#include "workflow/plan_options.h"
+
+namespace hexcal::workflow {
+
+using OptionEntries = std::vector<std::pair<std::string, std::string>>;
+
+struct CandidatePool {
+  std::vector<Vector6d> poses;
+  nlohmann::json sources;  // [{"kind": ..., "count": ...}, ...]
+};
+
+// From a file, or pooled generated sets (default: one random set). Poses that
+// break a measurement constraint are dropped.
+StatusOr<CandidatePool> BuildCandidatePool(const PlanningModel& model, const std::string& file,
+                                           const std::vector<std::string>& kinds, int count, bool continuous,
+                                           uint64_t seed, const std::function<void(int, int)>& progress);
+
+// N starting poses: random | uniform | boundary (N drawn from the boundary set) | a pose CSV.
+StatusOr<std::vector<Vector6d>> InitialPoses(const PlanningModel& model, const std::string& init, int count,
+                                             uint64_t seed);
+
+Status WritePlanCsv(const std::string& path, const PlanningModel& model, const std::vector<Vector6d>& poses);
+Status WriteHistoryCsv(const std::string& path, const PlanResult& plan);
+
+struct PlanOutcome {
+  PlanSetup setup;
+  CandidatePool pool;
+  PlanResult plan;
+  std::optional<PlanCertificate> certificate;  // finite candidates with setup.certificate
+  std::string out;                             // the plan CSV written, if any
+};
+
+// The summary `hexcal plan --json` prints.
+nlohmann::json ToJson(const PlanOutcome& outcome);
+// The lines `hexcal plan` prints.
+std::string FormatPlanSummary(const PlanOutcome& outcome);
+
+// Pool, initial set, IOOPS and (finite sets) the certificate, on a model and
+// setup already resolved. Stages through hooks: "candidates", "planning",
+// "certificate". `on_iteration` sees each history entry as it is recorded.
+StatusOr<PlanOutcome> RunPlan(const PlanningModel& model, const PlanSetup& setup,
+                              const std::string& candidates_file = "", const JobHooks& hooks = {},
+                              const PlanIterationObserver& on_iteration = {});
+
+struct PlanRequest {
+  std::string robot;            // robot file or preset name
+  std::string settings;         // plan settings YAML (noise, planner, camera visibility); may be empty
+  std::string candidates_file;  // candidate pose CSV instead of generated sets; may be empty
+  // (key, value) over the defaults and the settings file's sections: the flags.
+  OptionEntries planner_entries;  // keys of PlanSetupOptions()
+  OptionEntries noise_entries;    // keys of NoiseModelOptions(); any makes the plan noise-weighted
+  std::string out;                // plan CSV to write; may be empty
+  std::string history;            // indices per iteration CSV; may be empty
+};
+
+// Loads the robot and the settings, applies the entries (defaults < settings
+// file < request), plans and writes `out` and `history`.
+StatusOr<PlanOutcome> PlanFromRequest(const PlanRequest& request, const JobHooks& hooks = {});
+
+}  // namespace hexcal::workflow

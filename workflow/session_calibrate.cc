@@ -1,0 +1,282 @@
+#include "workflow/session_calibrate.h"
+
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "core/calibration_file.h"
+#include "core/csv.h"
+#include "core/registration.h"
+#include "core/robot_io.h"
+#include "core/session.h"
+#include "core/validation.h"
+#include "vision/measure.h"
+
+namespace hexcal::workflow {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CameraPose {
+  bool ok = false;
+  Pose camera_from_target;                 // target unit
+  Matrix6d covariance = Matrix6d::Zero();  // of the pose vector (Euler xyz): target unit², degrees²
+};
+using CameraPoses = std::map<std::string, CameraPose>;
+
+// What session.yaml names, loaded.
+struct SessionInputs {
+  SessionConfig config;
+  std::vector<LegsRow> legs;
+  std::string robot_name;
+  Robot nominal;
+  Camera camera;
+  Target target;
+  Pose fk_start;  // the centre of the robot's pose box
+};
+
+StatusOr<SessionInputs> LoadSessionInputs(const std::string& dir) {
+  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
+  if (!config.ok()) return config.status();
+  StatusOr<std::vector<LegsRow>> legs = LoadSessionLegs(dir);
+  if (!legs.ok()) return legs.status();
+  const std::string robot_name = ResolveSessionFile(dir, config->robot);
+  StatusOr<Robot> nominal = LoadRobot(robot_name);
+  if (!nominal.ok()) return nominal.status();
+  StatusOr<Camera> camera = LoadCamera(ResolveSessionFile(dir, config->camera));
+  if (!camera.ok()) return camera.status();
+  StatusOr<Target> target = LoadTarget(ResolveSessionFile(dir, config->target));
+  if (!target.ok()) return target.status();
+  const std::optional<PoseBox> box = nominal->limits.SamplingBox();
+  if (!box || !box->IsComplete()) return Status::Error(robot_name + ": needs a complete pose_box to start the FK from");
+  Vector6d centre;
+  for (int k = 0; k < 6; ++k) centre[k] = box->bounds[k]->Centre();
+  const Pose fk_start = nominal->PoseFromVector(centre);
+  return SessionInputs{*config, *legs, robot_name, *nominal, *camera, *target, fk_start};
+}
+
+// Rows of an existing measurements.csv, by image; `rows` receives their cells.
+StatusOr<CameraPoses> ReadMeasuredPoses(const std::string& path, std::vector<std::vector<std::string>>* rows) {
+  CameraPoses poses;
+  std::error_code error;
+  if (!fs::exists(path, error)) return poses;
+  StatusOr<std::string> text = ReadFileToString(path);
+  if (!text.ok()) return text.status();
+  StatusOr<std::vector<ImageMeasurementRecord>> records = ParseImageMeasurementsCsv(*text, path);
+  if (!records.ok()) return records.status();
+  for (ImageMeasurementRecord& record : *records) {
+    poses[record.file] = CameraPose{record.ok, record.camera_from_target, record.covariance};
+    rows->push_back(std::move(record.cells));
+  }
+  return poses;
+}
+
+// measurements.csv rows by image; measures the images missing from it and
+// rewrites it with every row (old rows kept as they were).
+StatusOr<CameraPoses> MeasureSession(const SessionPaths& paths, const SessionInputs& in, const JobHooks& hooks) {
+  std::vector<std::vector<std::string>> rows;
+  StatusOr<CameraPoses> poses = ReadMeasuredPoses(paths.measurements, &rows);
+  if (!poses.ok()) return poses.status();
+  std::vector<std::string> missing;
+  for (const LegsRow& row : in.legs)
+    if (poses->count(row.image) == 0) missing.push_back((fs::path(paths.images) / row.image).string());
+  if (missing.empty()) return poses;
+  hooks.Stage("measure (images)");
+  StatusOr<std::vector<ImageMeasurement>> measured =
+      MeasureImages(missing, in.camera, in.target, MeasureOptions{}, hooks.progress, hooks.cancel);
+  if (!measured.ok()) return measured.status();
+  for (ImageMeasurement m : *measured) {
+    m.file = fs::path(m.file).filename().string();
+    (*poses)[m.file] = CameraPose{m.pose.status == PoseStatus::kOk, m.pose.camera_from_target,
+                                  m.pose.covariance_vector};
+    rows.push_back(ImageMeasurementRow(m));
+  }
+  if (Status s = WriteFileAtomically(paths.measurements, FormatCsv(ImageMeasurementColumns(), rows)); !s.ok())
+    return s;
+  return poses;
+}
+
+// The calibration rows (usable, not held out) and the held-out rows.
+struct SplitRows {
+  CameraCalibrationInput input;
+  std::vector<const LegsRow*> held_out;
+  int unusable = 0;
+};
+
+SplitRows SplitSessionRows(const SessionInputs& in, const CameraPoses& poses, double scale) {
+  SplitRows split;
+  for (const LegsRow& row : in.legs) {
+    const CameraPose& pose = poses.at(row.image);
+    if (!pose.ok) {
+      ++split.unusable;
+      continue;
+    }
+    if (row.holdout) {
+      split.held_out.push_back(&row);
+      continue;
+    }
+    Pose camera_from_target = pose.camera_from_target;
+    camera_from_target.position *= scale;
+    split.input.camera_from_target.push_back(camera_from_target);
+    Matrix6d covariance = pose.covariance;  // to the robot unit
+    covariance.topRows<3>() *= scale;
+    covariance.leftCols<3>() *= scale;
+    split.input.camera_pose_covariance.push_back(covariance);
+    split.input.legs.push_back(row.legs);
+    split.input.fk_start.push_back(in.fk_start);
+  }
+  return split;
+}
+
+PoseErrorStats StatsOf(const ValidationReport& report) {
+  return {report.position.rms, report.position.max, report.orientation_deg.rms, report.orientation_deg.max,
+          report.failed};
+}
+
+std::optional<double> IfOk(bool ok, double value) { return ok ? std::optional<double>(value) : std::nullopt; }
+
+// Held-out rows: the camera pose mapped into the registered base frame, FK
+// with the nominal and the calibrated robot.
+StatusOr<std::optional<ValidationSummary>> ValidateHeldOut(const SessionInputs& in, const CameraPoses& poses,
+                                                           const std::vector<const LegsRow*>& held_out,
+                                                           const CameraCalibrationResult& result, double scale) {
+  if (held_out.empty()) return std::optional<ValidationSummary>();
+  std::vector<Measurement> rows;
+  for (const LegsRow* row : held_out) {
+    Pose camera_from_target = poses.at(row->image).camera_from_target;
+    camera_from_target.position *= scale;
+    Measurement m;
+    m.pose = in.nominal.VectorFromPose(BaseFromPlatform(result.registration, camera_from_target));
+    m.legs = row->legs;
+    rows.push_back(m);
+  }
+  StatusOr<ValidationReport> before = Validate(in.nominal, rows);
+  if (!before.ok()) return before.status().AsFailure();
+  StatusOr<ValidationReport> after = Validate(result.calibration.robot, rows);
+  if (!after.ok()) return after.status().AsFailure();
+  ValidationSummary summary{static_cast<int>(rows.size()), StatsOf(*before), StatsOf(*after), {}};
+  for (size_t j = 0; j < held_out.size(); ++j) {
+    const ValidationRow &b = before->rows[j], &a = after->rows[j];
+    summary.per_image.push_back({held_out[j]->image, IfOk(b.ok, b.position_error), IfOk(a.ok, a.position_error),
+                                 IfOk(b.ok, b.orientation_error_deg), IfOk(a.ok, a.orientation_error_deg)});
+  }
+  return std::optional<ValidationSummary>(summary);
+}
+
+void FillParameters(const CalibrationResult& calibration, CalibrationReport* report) {
+  for (int i = 0; i < kNumLegs; ++i) {
+    const LegCalibration& leg = calibration.legs[i];
+    for (int k = 0; k < kParamsPerLeg; ++k) {
+      report->parameters.push_back({i + 1, ParameterName(k), leg.initial[k], leg.estimate[k],
+                                    leg.has_uncertainty ? std::optional<double>(leg.std_dev[k]) : std::nullopt});
+    }
+    report->legs.push_back({i + 1, leg.variance_factor, leg.residual_rms, leg.iterations, leg.termination});
+  }
+}
+
+CalibrationReport MakeReport(const std::string& dir, const SessionInputs& in, const SplitRows& split,
+                             const CameraCalibrationResult& result) {
+  CalibrationReport report;
+  report.session = dir;
+  report.images = static_cast<int>(in.legs.size());
+  report.unusable_images = split.unusable;
+  report.calibration_images = static_cast<int>(split.input.legs.size());
+  report.held_out_images = static_cast<int>(split.held_out.size());
+  report.length_unit = LengthUnitName(in.nominal.length_unit);
+  const Registration& reg = result.registration;
+  report.registration = {reg.position_rms,
+                         reg.angle_rms_deg,
+                         reg.position_max,
+                         reg.angle_max_deg,
+                         VectorFromPose(reg.base_from_camera, EulerConvention::kXYZ),
+                         VectorFromPose(reg.platform_from_target, EulerConvention::kXYZ)};
+  report.closure_position_rms = result.calibrated_position_rms;
+  report.closure_angle_rms_deg = result.calibrated_angle_rms_deg;
+  report.calibrated_robot = (fs::path(SessionPaths(dir).results) / "calibrated.yaml").string();
+  report.robot = result.calibration.robot;
+  FillParameters(result.calibration, &report);
+  return report;
+}
+
+// The calibrated robot, the rows it was fitted to, the frames, report.json.
+Status WriteCalibrationResults(const std::string& dir, SessionInputs* in, const CameraCalibrationResult& result,
+                               const CalibrationOptions& calibration, const CalibrationReport& report) {
+  const SessionPaths paths(dir);
+  const std::string used_measurements = (fs::path(paths.results) / "calibration_measurements.csv").string();
+  if (Status s = SaveMeasurements(used_measurements, result.measurements); !s.ok()) return s;
+  const CalibrationInputs inputs{in->robot_name, used_measurements, calibration, CurrentUtcTimestamp()};
+  if (Status s = SaveCalibratedRobot(report.calibrated_robot, result.calibration, inputs); !s.ok()) return s;
+  in->config.base_from_camera = result.registration.base_from_camera;
+  in->config.platform_from_target = result.registration.platform_from_target;
+  if (Status s = SaveSessionConfig(dir, in->config); !s.ok()) return s;
+  return SaveCalibrationReport(CalibrationReportPath(dir), report);
+}
+
+// Weighted by each image's own pose covariance and the model's reading
+// noise; σ at least the a priori one (calibration.h, UncertaintyScale).
+CalibrationOptions SessionCalibrationOptions(const NoiseModel& noise) {
+  CalibrationOptions calibration;
+  calibration.weighted = true;
+  calibration.noise = noise;
+  calibration.uncertainty_scale = UncertaintyScale::kAtLeastAPriori;
+  return calibration;
+}
+
+}  // namespace
+
+std::string ResolveSessionFile(const std::string& dir, const std::string& name) {
+  std::error_code error;
+  const fs::path in_session = fs::path(dir) / name;
+  return fs::exists(in_session, error) ? in_session.string() : name;
+}
+
+StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& request, const JobHooks& hooks) {
+  const std::string& dir = request.session;
+  StatusOr<SessionInputs> in = LoadSessionInputs(dir);
+  if (!in.ok()) return in.status();
+  StatusOr<CameraPoses> poses = MeasureSession(SessionPaths(dir), *in, hooks);
+  if (!poses.ok()) return poses.status();
+  const double scale = MetresPerUnit(in->target.length_unit) / MetresPerUnit(in->nominal.length_unit);
+  const SplitRows split = SplitSessionRows(*in, *poses, scale);
+
+  RegistrationOptions registration;
+  registration.position_sigma = in->config.noise.PositionStdDev();
+  registration.angle_sigma_deg = RadToDeg(in->config.noise.AngleStdDevRad());
+  const CalibrationOptions calibration = SessionCalibrationOptions(in->config.noise);
+  hooks.Stage("register and calibrate");
+  StatusOr<CameraCalibrationResult> result = CalibrateFromCameraPoses(in->nominal, split.input, registration,
+                                                                      calibration, hooks.progress, hooks.cancel);
+  if (!result.ok()) return result.status().AsFailure();
+  StatusOr<std::optional<ValidationSummary>> validation = ValidateHeldOut(*in, *poses, split.held_out, *result, scale);
+  if (!validation.ok()) return validation.status();
+
+  CalibrationReport report = MakeReport(dir, *in, split, *result);
+  report.validation = *validation;
+  if (Status s = WriteCalibrationResults(dir, &*in, *result, calibration, report); !s.ok()) return s.AsFailure();
+  return report;
+}
+
+std::string FormatCalibrationSummary(const CalibrationReport& report) {
+  const std::string& unit = report.length_unit;
+  const RegistrationSummary& reg = report.registration;
+  std::ostringstream out;
+  out << "session " << report.session << ": " << report.images << " images, " << report.calibration_images
+      << " for calibration, " << report.held_out_images << " held out, " << report.unusable_images
+      << " without a usable target pose\n"
+      << "registration (nominal robot): closure RMS " << reg.position_rms << " " << unit << ", " << reg.angle_rms_deg
+      << " deg\n"
+      << "after calibration: closure RMS " << report.closure_position_rms << " " << unit << ", "
+      << report.closure_angle_rms_deg << " deg\n";
+  if (report.validation) {
+    const ValidationSummary& v = *report.validation;
+    out << "held-out validation (position RMS " << unit << ", orientation RMS deg): before "
+        << v.before.position_rms << ", " << v.before.orientation_rms << "; after " << v.after.position_rms << ", "
+        << v.after.orientation_rms << "\n";
+  }
+  out << "wrote " << report.calibrated_robot << ", " << CalibrationReportPath(report.session) << ", frames in "
+      << SessionPaths(report.session).config << "\n";
+  return out.str();
+}
+
+}  // namespace hexcal::workflow

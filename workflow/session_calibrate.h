@@ -1,0 +1,37 @@
+// The session steps behind `hexcal calibrate --session DIR` and the GUI's
+// Calibrate step (docs/session.md): measure the images not yet in
+// measurements.csv, register the camera and target frames with the nominal
+// robot, calibrate on the rows not held out, validate on the held-out rows,
+// write results/ (calibrated.yaml, calibration_measurements.csv, report.json)
+// and the registered frames into session.yaml.
+//
+//   StatusOr<CalibrationReport> report = CalibrateSession({"run1"}, hooks);
+//   if (report.ok()) std::cout << FormatCalibrationSummary(*report);
+#pragma once
+
+#include <string>
+
+#include "core/job_hooks.h"
+#include "core/status.h"
+#include "workflow/calibration_report.h"
+
+namespace hexcal::workflow {
+
+struct CalibrateSessionRequest {
+  std::string session;  // the session folder
+};
+
+// Stages reported through hooks.stage: "measure (images)", then "register and
+// calibrate" (progress: legs). A cancelled run returns Status::Cancelled and
+// writes nothing new to results/.
+StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& request, const JobHooks& hooks = {});
+
+// A name in session.yaml: a file relative to the session folder when one
+// exists there, otherwise as given (a preset name or a path).
+std::string ResolveSessionFile(const std::string& dir, const std::string& name);
+
+// The lines `hexcal calibrate --session` prints: counts, closure before and
+// after, held-out validation, files written.
+std::string FormatCalibrationSummary(const CalibrationReport& report);
+
+}  // namespace hexcal::workflow
