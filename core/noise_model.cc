@@ -1,6 +1,7 @@
 #include "core/noise_model.h"
 
 #include <cmath>
+#include <limits>
 
 #include "core/inverse_kinematics.h"
 
@@ -39,7 +40,7 @@ const OptionTable<NoiseModel>& NoiseModelOptions() {
       spec.flag = std::move(flag);
       spec.label = std::move(label);
       spec.unit = std::move(unit);
-      spec.max = 1e9;
+      spec.max = std::numeric_limits<double>::infinity();
       spec.help = std::move(help);
       spec.get_number = [field](const NoiseModel& n) { return n.*field; };
       spec.set_number = [field](NoiseModel& n, double v) { n.*field = v; };

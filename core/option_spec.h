@@ -53,6 +53,14 @@ struct OptionSpec {
 template <typename T>
 using OptionTable = std::vector<OptionSpec<T>>;
 
+// The flag a user types: a flag option that is on by default is turned off
+// with --no-KEY.
+template <typename T>
+std::string OptionCliFlag(const OptionSpec<T>& spec, const std::string& prefix = "") {
+  if (spec.type == OptionType::kFlag && spec.get_number(T{}) != 0) return "--" + prefix + "no-" + spec.Flag().substr(2);
+  return spec.Flag(prefix);
+}
+
 // The spec of `key`, or nullptr.
 template <typename T>
 const OptionSpec<T>* FindOption(const OptionTable<T>& table, const std::string& key) {
@@ -120,10 +128,11 @@ Status ApplyOptionText(const OptionSpec<T>& spec, const std::string& text, T* va
   if (!value.ok()) return Status::Error(where + ": expected a finite number");
   if (spec.type == OptionType::kInteger && *value != std::floor(*value))
     return Status::Error(where + ": expected a whole number, got " + FormatNumber(*value));
-  if (*value < spec.min || *value > spec.max) {
-    return Status::Error(where + ": " + FormatNumber(*value) + " is outside [" + FormatNumber(spec.min) + ", " +
-                         FormatNumber(spec.max) + "]" + (spec.unit.empty() ? "" : " " + spec.unit));
-  }
+  const std::string unit = spec.unit.empty() ? "" : " " + spec.unit;
+  if (*value < spec.min)
+    return Status::Error(where + ": must be at least " + FormatNumber(spec.min) + unit + ", got " + FormatNumber(*value));
+  if (*value > spec.max)
+    return Status::Error(where + ": must be at most " + FormatNumber(spec.max) + unit + ", got " + FormatNumber(*value));
   spec.set_number(*values, *value);
   return Status::Ok();
 }
@@ -156,9 +165,9 @@ std::string OptionsMarkdownTable(const OptionTable<T>& table, const std::string&
     if (spec.type == OptionType::kChoice || spec.type == OptionType::kChoiceList) {
       for (const std::string& choice : spec.choices) range += (range.empty() ? "" : ", ") + choice;
     } else if (spec.type != OptionType::kFlag) {
-      range = FormatNumber(spec.min) + " – " + FormatNumber(spec.max);
+      range = std::isinf(spec.max) ? "≥ " + FormatNumber(spec.min) : FormatNumber(spec.min) + " – " + FormatNumber(spec.max);
     }
-    text += "| `" + spec.key + "` | `" + spec.Flag(flag_prefix) + "` | " + kTypeNames[static_cast<int>(spec.type)] +
+    text += "| `" + spec.key + "` | `" + OptionCliFlag(spec, flag_prefix) + "` | " + kTypeNames[static_cast<int>(spec.type)] +
             " | " + spec.unit + " | " + range + " | " + OptionText(spec, defaults) + " | " + spec.help + " |\n";
   }
   return text;

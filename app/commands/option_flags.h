@@ -29,9 +29,8 @@ CLI::Option* AddOneOptionFlag(CLI::App* sub, const OptionSpec<T>& spec, std::sha
   const std::string help = spec.help + (spec.unit.empty() ? "" : " (" + spec.unit + ")");
   if (spec.type == OptionType::kFlag) {
     const bool on_by_default = spec.get_number(defaults) != 0;
-    const std::string flag = on_by_default ? "--" + prefix + "no-" + spec.Flag().substr(2) : spec.Flag(prefix);
     const std::string value = on_by_default ? "false" : "true";
-    return sub->add_flag_callback(flag, [entries, key, value] { entries->emplace_back(key, value); },
+    return sub->add_flag_callback(OptionCliFlag(spec, prefix), [entries, key, value] { entries->emplace_back(key, value); },
                                   on_by_default ? "do not: " + help : help);
   }
   if (spec.type == OptionType::kChoiceList) {
@@ -44,22 +43,23 @@ CLI::Option* AddOneOptionFlag(CLI::App* sub, const OptionSpec<T>& spec, std::sha
               entries->emplace_back(key, joined);
             },
             help + "; repeat to pool")
+        ->type_name("NAME")
         ->check(CLI::IsMember(spec.choices))
         ->default_str(OptionText(spec, defaults));
   }
   CLI::Option* option = sub->add_option_function<std::string>(
       spec.Flag(prefix), [entries, key](const std::string& value) { entries->emplace_back(key, value); }, help);
   if (spec.type == OptionType::kChoice) {
+    option->type_name(spec.file_allowed ? "NAME|FILE" : "NAME");
     if (!spec.file_allowed) option->check(CLI::IsMember(spec.choices));
     return option->default_str(OptionText(spec, defaults));
   }
-  option->check(
-      [spec](const std::string& text) {
-        T scratch{};
-        const Status s = ApplyOptionText(spec, text, &scratch, "value");
-        return s.ok() ? std::string() : s.message();
-      },
-      spec.type == OptionType::kInteger ? "INT" : "NUMBER");
+  option->check([spec](const std::string& text) {
+    T scratch{};
+    const Status s = ApplyOptionText(spec, text, &scratch, "");
+    return s.ok() ? std::string() : s.message().substr(2);  // CLI11 names the flag
+  });
+  option->type_name(spec.type == OptionType::kInteger ? "INT" : "NUMBER");
   return option->default_str(OptionText(spec, defaults));
 }
 

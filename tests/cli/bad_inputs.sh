@@ -49,7 +49,7 @@ settings_empty.yaml | 2 | expected a mapping at the top level | plan ROBOT --set
 settings_top_level_list.yaml | 2 | expected a mapping at the top level | plan ROBOT --settings @IN@ --out @OUT@
 settings_syntax_error.yaml | 2 | error at line 2, column 1 | plan ROBOT --settings @IN@ --out @OUT@
 settings_nan.yaml | 2 | noise.position: expected a finite number | plan ROBOT --settings @IN@ --out @OUT@
-settings_negative_noise.yaml | 2 | noise levels must be finite and non-negative | plan ROBOT --settings @IN@ --out @OUT@
+settings_negative_noise.yaml | 2 | noise.position: must be at least 0 | plan ROBOT --settings @IN@ --out @OUT@
 settings_list_key.yaml | 2 | top level: a key that is not a name | plan ROBOT --settings @IN@ --out @OUT@
 settings_noise_list.yaml | 2 | noise: expected a mapping \{position, angle_deg, leg\} | plan ROBOT --settings @IN@ --out @OUT@
 settings_camera_short_vector.yaml | 2 | measurement constraints need all three | plan ROBOT --settings @IN@ --out @OUT@

@@ -1,0 +1,110 @@
+#include "workflow/calibration_report.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "core/presets.h"
+#include "core/calibration.h"
+#include "core/robot_io.h"
+#include "workflow/json_fields.h"
+#include "tests/test_support.h"
+
+namespace hexcal::workflow {
+namespace {
+
+using ::testing::HasSubstr;
+using hexcal::testing::ReadTextFile;
+using hexcal::testing::SourceDir;
+using hexcal::testing::TempDir;
+using hexcal::testing::WriteTextFile;
+
+CalibrationReport SampleReport() {
+  CalibrationReport report;
+  report.session = "run1";
+  report.images = 10;
+  report.unusable_images = 1;
+  report.calibration_images = 7;
+  report.held_out_images = 2;
+  report.length_unit = "cm";
+  report.registration.position_rms = 0.15;
+  report.registration.base_from_camera << 1, 2, 3, 4, 5, 6;
+  report.registration.platform_from_target << -1, -2, -3, 0.5, 0, 90;
+  report.closure_position_rms = 0.004;
+  report.closure_angle_rms_deg = 0.02;
+  ValidationSummary validation;
+  validation.rows = 2;
+  validation.before = {0.04, 0.05, 0.2, 0.3, 0};
+  validation.after = {0.004, 0.005, 0.01, 0.02, 1};
+  validation.per_image = {{"a.png", 0.03, 0.003, 0.1, 0.01}, {"b.png", 0.05, std::nullopt, 0.2, std::nullopt}};
+  report.validation = validation;
+  report.calibrated_robot = "run1/results/calibrated.yaml";
+  report.robot = *LoadRobot("inria-left-hand");
+  for (int k = 0; k < kNumParams; ++k)
+    report.parameters.push_back({k / 7 + 1, ParameterName(k % 7), 1.0 * k, 1.0 * k + 0.01,
+                                 k % 5 == 0 ? std::nullopt : std::optional<double>(0.001 * k)});
+  for (int i = 1; i <= 6; ++i) report.legs.push_back({i, 1.1, 0.001, 5, "CONVERGENCE"});
+  return report;
+}
+
+TEST(CalibrationReport, JsonRoundTripIsExact) {
+  const CalibrationReport report = SampleReport();
+  const nlohmann::json json = ToJson(report);
+  StatusOr<CalibrationReport> read = CalibrationReportFromJson(json, "report.json");
+  ASSERT_TRUE(read.ok()) << read.status().message();
+  EXPECT_EQ(ToJson(*read), json);
+  EXPECT_EQ(read->validation->per_image[1].position_after, std::nullopt);
+  EXPECT_EQ(read->parameters[0].sigma, std::nullopt);
+  EXPECT_DOUBLE_EQ(*read->parameters[1].sigma, 0.001);
+}
+
+TEST(CalibrationReport, WithoutValidationRoundTrips) {
+  CalibrationReport report = SampleReport();
+  report.validation.reset();
+  StatusOr<CalibrationReport> read = CalibrationReportFromJson(ToJson(report), "report.json");
+  ASSERT_TRUE(read.ok()) << read.status().message();
+  EXPECT_FALSE(read->validation.has_value());
+}
+
+std::string ErrorOf(const std::string& text) {
+  StatusOr<nlohmann::json> json = ParseJsonText(text, "r.json");
+  if (!json.ok()) return json.status().message();
+  StatusOr<CalibrationReport> read = CalibrationReportFromJson(*json, "r.json");
+  EXPECT_FALSE(read.ok());
+  return read.ok() ? "" : read.status().message();
+}
+
+// Wrong documents are refused with the key and the problem, never an abort.
+TEST(CalibrationReport, WrongDocumentsNameTheKey) {
+  EXPECT_THAT(ErrorOf("{}"), HasSubstr("r.json: key 'session': missing (expected a string)"));
+  EXPECT_THAT(ErrorOf("[]"), HasSubstr("r.json: expected a JSON object"));
+  EXPECT_THAT(ErrorOf("null"), HasSubstr("expected a JSON object"));
+  EXPECT_THAT(ErrorOf("not json"), HasSubstr("r.json: not valid JSON"));
+  nlohmann::json json = ToJson(SampleReport());
+  json["images"] = "ten";
+  EXPECT_THAT(ErrorOf(json.dump()), HasSubstr("key 'images': expected a whole number"));
+  json = ToJson(SampleReport());
+  json["registration"]["base_from_camera"] = {1, 2};
+  EXPECT_THAT(ErrorOf(json.dump()), HasSubstr("key 'registration.base_from_camera': expected a list of 6 numbers"));
+  json = ToJson(SampleReport());
+  json["parameters"][3]["estimate"] = "x";
+  EXPECT_THAT(ErrorOf(json.dump()), HasSubstr("key 'parameters[3].estimate': expected a finite number"));
+  json = ToJson(SampleReport());
+  json["parameters"].erase(0);
+  EXPECT_THAT(ErrorOf(json.dump()), HasSubstr("key 'parameters': expected 42 parameters"));
+  json = ToJson(SampleReport());
+  json["validation"]["per_image"] = 5;
+  EXPECT_THAT(ErrorOf(json.dump()), HasSubstr("key 'validation.per_image': expected a list"));
+}
+
+TEST(CalibrationReport, SaveAndLoad) {
+  TempDir dir;
+  const std::string path = dir.File("report.json");
+  ASSERT_TRUE(SaveCalibrationReport(path, SampleReport()).ok());
+  StatusOr<CalibrationReport> read = LoadCalibrationReport(path);
+  ASSERT_TRUE(read.ok()) << read.status().message();
+  EXPECT_EQ(ToJson(*read), ToJson(SampleReport()));
+  EXPECT_THAT(LoadCalibrationReport(dir.File("none.json")).status().message(), HasSubstr("no such file"));
+}
+
+}  // namespace
+}  // namespace hexcal::workflow

@@ -1,0 +1,122 @@
+// The demo and the session calibration as the front ends call them: typed
+// requests and results, stages and progress through JobHooks, cancel.
+#include "workflow/demo.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "core/atomic_file.h"
+#include "tests/test_support.h"
+#include "workflow/session_calibrate.h"
+#include "workflow/session_report.h"
+
+namespace hexcal::workflow {
+namespace {
+
+using ::testing::HasSubstr;
+using hexcal::testing::ReadTextFile;
+using hexcal::testing::SourceDir;
+using hexcal::testing::TempDir;
+using hexcal::testing::WriteTextFile;
+
+class DemoSession : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new TempDir;
+    DemoRequest request;
+    request.out = dir_->File("demo");
+    request.poses = 10;
+    request.holdout = 3;
+    request.seed = 3;
+    JobHooks hooks;
+    hooks.note = [](const std::string& line) { notes_.push_back(line); };
+    StatusOr<DemoResult> demo = RunDemo(request, hooks);
+    ASSERT_TRUE(demo.ok()) << demo.status().message();
+    result_ = new DemoResult(*demo);
+  }
+  static void TearDownTestSuite() {
+    delete result_;
+    delete dir_;
+  }
+  static std::string Session() { return dir_->File("demo"); }
+
+  static TempDir* dir_;
+  static DemoResult* result_;
+  static std::vector<std::string> notes_;
+};
+TempDir* DemoSession::dir_ = nullptr;
+DemoResult* DemoSession::result_ = nullptr;
+std::vector<std::string> DemoSession::notes_;
+
+TEST_F(DemoSession, CalibratesCloserToTheTruth) {
+  EXPECT_EQ(result_->usable_images, 13);
+  EXPECT_LT(result_->error_mean, result_->nominal_error_mean / 3);
+  EXPECT_GE(result_->within_3sigma, 0.9);
+  ASSERT_TRUE(result_->calibration.validation.has_value());
+  EXPECT_LT(result_->calibration.validation->after.position_rms, result_->calibration.validation->before.position_rms);
+  EXPECT_EQ(notes_.size(), 11u);  // 5 steps, the plan line, 5 calibration lines
+  EXPECT_THAT(notes_.front(), HasSubstr("[1/5 "));
+  EXPECT_TRUE(std::filesystem::exists(result_->report));
+}
+
+// The report on disk is the typed result the demo returned.
+TEST_F(DemoSession, ReportJsonIsTheReturnedReport) {
+  StatusOr<CalibrationReport> stored = LoadCalibrationReport(CalibrationReportPath(Session()));
+  ASSERT_TRUE(stored.ok()) << stored.status().message();
+  EXPECT_EQ(ToJson(*stored), ToJson(result_->calibration));
+}
+
+// A second run keeps the measurements and gives the same parameters.
+TEST_F(DemoSession, RecalibrationIsRepeatable) {
+  std::vector<std::string> stages;
+  JobHooks hooks;
+  hooks.stage = [&](const std::string& stage) { stages.push_back(stage); };
+  StatusOr<CalibrationReport> again = CalibrateSession({Session()}, hooks);
+  ASSERT_TRUE(again.ok()) << again.status().message();
+  EXPECT_EQ(stages, std::vector<std::string>{"register and calibrate"});  // nothing left to measure
+  for (size_t k = 0; k < again->parameters.size(); ++k)
+    EXPECT_NEAR(again->parameters[k].estimate, result_->calibration.parameters[k].estimate, 1e-9);
+}
+
+TEST_F(DemoSession, CancelReturnsCancelledAndKeepsResults) {
+  const std::string report = ReadTextFile(CalibrationReportPath(Session()));
+  std::atomic<bool> cancel{true};
+  StatusOr<CalibrationReport> cancelled = CalibrateSession({Session()}, JobHooks{{}, &cancel});
+  ASSERT_FALSE(cancelled.ok());
+  EXPECT_EQ(cancelled.status().kind(), StatusKind::kCancelled);
+  EXPECT_EQ(ReadTextFile(CalibrationReportPath(Session())), report);
+}
+
+TEST_F(DemoSession, ReportPageRefusesToOverwriteWithoutForce) {
+  const std::string out = dir_->File("page.html");
+  ASSERT_TRUE(WriteSessionReport({Session(), out, false}).ok());
+  StatusOr<std::string> again = WriteSessionReport({Session(), out, false});
+  EXPECT_THAT(again.status().message(), HasSubstr("exists; use --force"));
+  EXPECT_TRUE(WriteSessionReport({Session(), out, true}).ok());
+}
+
+TEST(CalibrateSession, MissingSessionIsBadInput) {
+  TempDir dir;
+  StatusOr<CalibrationReport> report = CalibrateSession({dir.File("nothing")});
+  ASSERT_FALSE(report.ok());
+  EXPECT_EQ(report.status().kind(), StatusKind::kBadInput);
+  EXPECT_THAT(report.status().message(), HasSubstr("session.yaml"));
+}
+
+TEST(RunDemo, RefusesAUsersFolderAndBadCounts) {
+  TempDir dir;
+  std::filesystem::create_directories(dir.File("mine"));
+  WriteTextFile(dir.File("mine/notes.txt"), "keep me");
+  DemoRequest request;
+  request.out = dir.File("mine");
+  request.force = true;
+  EXPECT_THAT(RunDemo(request).status().message(), HasSubstr("is not a demo folder"));
+  EXPECT_EQ(ReadTextFile(dir.File("mine/notes.txt")), "keep me");
+  request.poses = 3;
+  EXPECT_EQ(RunDemo(request).status().kind(), StatusKind::kBadInput);
+}
+
+}  // namespace
+}  // namespace hexcal::workflow
