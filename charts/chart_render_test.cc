@@ -35,6 +35,7 @@ ChartSpec TwoLines() {
 
 struct ParsedSvg {
   QString error;              // empty when the document is well-formed
+  int empty_groups = 0;       // <g> elements with nothing inside
   QString root;               // the first element's name
   QString width, height;      // its attributes
   QStringList texts;          // the text of every <text> element
@@ -44,8 +45,14 @@ struct ParsedSvg {
 ParsedSvg Parse(const std::string& svg) {
   ParsedSvg parsed;
   QXmlStreamReader xml(QByteArray::fromStdString(svg));
+  bool group_open = false;  // the last element opened is a <g> with nothing in it yet
   while (!xml.atEnd()) {
-    if (xml.readNext() != QXmlStreamReader::StartElement) continue;
+    const QXmlStreamReader::TokenType token = xml.readNext();
+    if (token == QXmlStreamReader::EndElement && xml.name() == QLatin1String("g") && group_open) ++parsed.empty_groups;
+    if (token == QXmlStreamReader::StartElement || token == QXmlStreamReader::EndElement) {
+      group_open = token == QXmlStreamReader::StartElement && xml.name() == QLatin1String("g");
+    }
+    if (token != QXmlStreamReader::StartElement) continue;
     if (parsed.root.isEmpty()) {
       parsed.root = xml.name().toString();
       parsed.width = xml.attributes().value("width").toString();
@@ -88,6 +95,8 @@ TEST(ChartRender, SvgParsesAndHoldsTheTitleAxesAndEverySeries) {
   // Both lines are drawn, in the first two colours of the palette.
   EXPECT_THAT(parsed.strokes_and_fills.toStdString(), HasSubstr("#4477aa"));
   EXPECT_THAT(parsed.strokes_and_fills.toStdString(), HasSubstr("#ee6677"));
+  EXPECT_EQ(parsed.empty_groups, 0);               // QSvgGenerator's empty state groups are dropped
+  EXPECT_THAT(*svg, HasSubstr(", sans-serif\""));  // a browser without Qt's font still draws sans
   // It is drawn on the offscreen platform: no display was needed.
   EXPECT_EQ(QGuiApplication::platformName(), "offscreen");
 }
@@ -99,6 +108,19 @@ TEST(ChartRender, SvgElementIsTheBareSvgForAnHtmlPage) {
   EXPECT_THAT(*svg, HasSubstr("width=\"900\""));
   EXPECT_TRUE(Parse(*svg).error.isEmpty());
   EXPECT_TRUE(Parse(*svg).texts.contains("Calibrated minus nominal, with 1 sigma"));
+}
+
+// 42 parameters under a 900 px chart: every label is drawn in full.
+TEST(ChartRender, EveryParameterLabelIsReadable) {
+  std::vector<ParameterChange> changes;
+  for (int leg = 1; leg <= 6; ++leg) {
+    for (const char* name : {"a_x", "a_y", "a_z", "b_x", "b_y", "b_z", "l"}) changes.push_back({leg, name, -0.1, 0.01});
+  }
+  StatusOr<std::string> svg = ChartSvg(ParameterChangeChart(changes, "cm"));
+  ASSERT_TRUE(svg.ok()) << svg.status().message();
+  const ParsedSvg parsed = Parse(*svg);
+  EXPECT_FALSE(parsed.texts.contains("...")) << parsed.texts.join(" | ").toStdString();
+  for (const char* label : {"a_x", "b_z", "l", "leg 1", "leg 6"}) EXPECT_TRUE(parsed.texts.contains(label)) << label;
 }
 
 TEST(ChartRender, PngOfTheRequestedSizeWithTheSeriesInk) {

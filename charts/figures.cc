@@ -1,6 +1,7 @@
 #include "charts/figures.h"
 
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "core/inverse_kinematics.h"
@@ -8,7 +9,12 @@
 namespace hexcal::charts {
 namespace {
 
-std::string ParameterErrorLabel(const std::string& unit) { return "|P_est - P_true| (" + unit + ")"; }
+// "label (unit)", or the label alone before the unit is known (an empty GUI chart).
+std::string WithUnit(const std::string& label, const std::string& unit) {
+  return unit.empty() ? label : label + " (" + unit + ")";
+}
+
+std::string ParameterErrorLabel(const std::string& unit) { return WithUnit("|P_est - P_true|", unit); }
 
 // The dashed stroke lines over poses 1..last: one per distinct limit, named
 // after the legs that have it when the legs differ.
@@ -65,8 +71,10 @@ ChartSpec LegReadingsChart(const Robot& robot, const std::vector<Vector6d>& plan
   ChartSpec spec;
   spec.title = "Leg readings of the " + std::to_string(plan.size()) + " planned poses (Fig. 8)";
   spec.x = LinearAxis("pose");
-  spec.y = LinearAxis("reading L (" + std::string(LengthUnitName(robot.length_unit)) + ")");
-  for (int i = 0; i < kNumLegs; ++i) spec.series.push_back(LineSeries("L" + std::to_string(i + 1), {}));
+  spec.y = LinearAxis(WithUnit("reading L", LengthUnitName(robot.length_unit)));
+  // Points, not lines: consecutive poses are unrelated, and lines between
+  // them would hide where the readings crowd.
+  for (int i = 0; i < kNumLegs; ++i) spec.series.push_back(ScatterSeries("L" + std::to_string(i + 1), {}));
   for (size_t j = 0; j < plan.size(); ++j) {
     const LegReadings legs = InverseKinematics(robot, robot.PoseFromVector(plan[j]));
     for (int i = 0; i < kNumLegs; ++i) spec.series[i].points.push_back({static_cast<double>(j + 1), legs[i]});
@@ -107,9 +115,9 @@ ChartSpec MeasurementRmsChart(const std::vector<double>& rms_px) {
 ChartSpec CalibrationResidualsChart(const Robot& nominal, const Robot& calibrated,
                                     const std::vector<Measurement>& rows) {
   ChartSpec spec;
-  spec.title = "Calibration residuals: IK(pose) − reading of every leg";
+  spec.title = "Calibration residuals: IK(pose) - reading of every leg";
   spec.x = LinearAxis("calibration pose (legs 1–6 left to right)");
-  spec.y = LinearAxis("residual (" + std::string(LengthUnitName(nominal.length_unit)) + ")");
+  spec.y = LinearAxis(WithUnit("residual", LengthUnitName(nominal.length_unit)));
   SeriesSpec before = ScatterSeries("nominal robot", {}), after = ScatterSeries("calibrated robot", {});
   for (size_t j = 0; j < rows.size(); ++j) {
     const Measurement& m = rows[j];
@@ -128,23 +136,33 @@ ChartSpec CalibrationResidualsChart(const Robot& nominal, const Robot& calibrate
 ChartSpec ParameterChangeChart(const std::vector<ParameterChange>& changes, const std::string& length_unit) {
   ChartSpec spec;
   spec.title = "Calibrated minus nominal, with 1 sigma";
-  spec.x = CategoryAxis("parameter (leg, name)", {});
-  spec.y = LinearAxis("change (" + length_unit + ")");
+  spec.x = CategoryAxis("parameter", {});
+  spec.y = LinearAxis(WithUnit("change", length_unit));
   spec.width = 900;
-  std::vector<double> values, sigmas;
+  // 42 bars in a row leave no room for their labels: group them by name.
+  std::map<std::string, size_t> category;  // name -> index, in order of appearance
+  std::map<int, size_t> series;            // leg -> series
   for (const ParameterChange& p : changes) {
-    spec.x.categories.push_back(std::to_string(p.leg) + p.name);
-    values.push_back(p.change);
-    sigmas.push_back(p.sigma);
+    if (category.emplace(p.name, spec.x.categories.size()).second) spec.x.categories.push_back(p.name);
+    if (series.emplace(p.leg, spec.series.size()).second)
+      spec.series.push_back(BarSeries("leg " + std::to_string(p.leg), {}, {}));
   }
-  spec.series.push_back(BarSeries("change ± 1σ", values, sigmas));
+  for (SeriesSpec& s : spec.series) {  // a parameter a leg does not have: no bar
+    s.values.assign(spec.x.categories.size(), std::numeric_limits<double>::quiet_NaN());
+    s.errors.assign(spec.x.categories.size(), 0);
+  }
+  for (const ParameterChange& p : changes) {
+    SeriesSpec& s = spec.series[series[p.leg]];
+    s.values[category[p.name]] = p.change;
+    s.errors[category[p.name]] = p.sigma;
+  }
   return spec;
 }
 
 ChartSpec ValidationSummaryChart(const ValidationErrors& rms, const std::string& length_unit) {
   ChartSpec spec;
   spec.title = "Held-out validation (forward kinematics against the camera)";
-  spec.x = CategoryAxis("", {"position (" + length_unit + ")", "orientation (deg)"});
+  spec.x = CategoryAxis("", {WithUnit("position", length_unit), "orientation (deg)"});
   spec.y = LogAxis("RMS error");
   spec.series.push_back(BarSeries("nominal robot (before)", {rms.position_before, rms.orientation_before}));
   spec.series.push_back(BarSeries("calibrated robot (after)", {rms.position_after, rms.orientation_after}));
@@ -157,7 +175,7 @@ ChartSpec ValidationPerImageChart(const std::vector<ImageValidation>& images, Va
   ChartSpec spec;
   spec.title = position ? "Held-out position error per image" : "Held-out orientation error per image";
   spec.x = CategoryAxis("image number", {});
-  spec.y = LinearAxis(position ? "position error (" + length_unit + ")" : "orientation error (deg)");
+  spec.y = LinearAxis(position ? WithUnit("position error", length_unit) : "orientation error (deg)");
   std::vector<double> before, after;
   for (const ImageValidation& image : images) {
     spec.x.categories.push_back(image.image);

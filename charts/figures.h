@@ -59,8 +59,9 @@ struct ParameterChange {
   double change = 0;  // calibrated - nominal, robot unit (or none for angles)
   double sigma = 0;   // 1 sigma of the estimate; NaN or 0: unknown, no error bar
 };
-// Calibrated minus nominal of every parameter, ± 1 sigma; changes can be
-// negative, and the axis holds them.
+// Calibrated minus nominal of every parameter, ± 1 sigma: one group of bars
+// per parameter name (a_x ... l), one bar per leg. Changes can be negative,
+// and the axis holds them.
 ChartSpec ParameterChangeChart(const std::vector<ParameterChange>& changes, const std::string& length_unit);
 
 // The held-out validation errors (FK from the readings against the camera).

@@ -96,6 +96,7 @@ TEST(LegReadingsChart, EveryLegOfEveryPoseAndTheStrokesIncludingReadingsBelowZer
   ExpectValid(spec);
   EXPECT_THAT(Names(spec), ElementsAre("L1", "L2", "L3", "L4", "L5", "L6", "stroke min", "stroke max"));
   EXPECT_TRUE(spec.series[6].dashed);
+  EXPECT_EQ(spec.series[0].kind, SeriesKind::kScatter);
   EXPECT_EQ(spec.series[0].points.size(), 3u);
   EXPECT_LT(MinY(spec), 0);
   EXPECT_LT(ComputeRanges(spec).y.min, MinY(spec));
@@ -161,8 +162,11 @@ TEST(ParameterChangeChart, NegativeChangesAndTheirSigmasAreOnTheAxis) {
       {1, "a_x", 0.12, 0.03}, {1, "a_y", -0.4, 0.05}, {1, "l", -0.02, kNaN}, {2, "b_z", 0.3, 0}};
   const ChartSpec spec = ParameterChangeChart(changes, "mm");
   ExpectValid(spec);
-  EXPECT_THAT(spec.x.categories, ElementsAre("1a_x", "1a_y", "1l", "2b_z"));
-  EXPECT_THAT(spec.series[0].values, ElementsAre(0.12, -0.4, -0.02, 0.3));
+  EXPECT_THAT(spec.x.categories, ElementsAre("a_x", "a_y", "l", "b_z"));
+  EXPECT_THAT(Names(spec), ElementsAre("leg 1", "leg 2"));
+  EXPECT_THAT(spec.series[0].values, ElementsAre(0.12, -0.4, -0.02, ::testing::IsNan()));
+  EXPECT_THAT(spec.series[1].values, ElementsAre(::testing::IsNan(), ::testing::IsNan(), ::testing::IsNan(), 0.3));
+  EXPECT_EQ(spec.series[0].errors[1], 0.05);
   EXPECT_LE(ComputeRanges(spec).y.min, -0.45);
   EXPECT_GE(ComputeRanges(spec).y.max, 0.3);
   EXPECT_EQ(spec.y.label, "change (mm)");
@@ -187,7 +191,9 @@ TEST(ValidationPerImageChart, OneGroupPerImage) {
   EXPECT_THAT(position.series[1].values, ElementsAre(0.01, 0));
   EXPECT_THAT(orientation.series[0].values, ElementsAre(0.2, 0.3));
   EXPECT_EQ(position.y.label, "position error (mm)");
-  ExpectValid(ValidationPerImageChart({}, ValidationQuantity::kPosition, "mm"));  // nothing held out yet
+  const ChartSpec empty = ValidationPerImageChart({}, ValidationQuantity::kPosition, "");  // no results yet
+  ExpectValid(empty);
+  EXPECT_EQ(empty.y.label, "position error");
 }
 
 }  // namespace

@@ -24,9 +24,8 @@ constexpr int kPaletteSize = 7;
 const char* const kLimitColour = "#555555";
 const char* const kErrorColour = "#222222";
 const char* const kMinorGridColour = "#f0f0f0";
-constexpr int kMaxBarLabels = 12;      // more bars and their value labels overlap
-constexpr int kMaxUprightLabels = 10;  // more categories and their labels turn vertical
-constexpr int kMaxMarkedPoints = 60;   // more points on a line and markers hide it
+constexpr int kMaxBarLabels = 12;     // more bars and their value labels overlap
+constexpr int kMaxMarkedPoints = 60;  // more points on a line and markers hide it
 
 QColor SeriesColour(int k) { return QColor(kPalette[k % kPaletteSize]); }
 
@@ -151,11 +150,11 @@ void AddBars(QChart* chart, const ChartSpec& spec, const ChartRanges& ranges) {
   auto* x_axis = new QBarCategoryAxis;
   for (const std::string& category : spec.x.categories) x_axis->append(Q(category));
   x_axis->setTitleText(Q(spec.x.label));
-  if (spec.x.categories.size() > kMaxUprightLabels) x_axis->setLabelsAngle(-90);
   QAbstractAxis* y_axis = NewValueAxis(spec.y, ranges.y);
   chart->addAxis(x_axis, Qt::AlignBottom);
   chart->addAxis(y_axis, Qt::AlignLeft);
   auto* bars = new QBarSeries;
+  if (spec.series.size() > 2) bars->setBarWidth(0.8);  // of a category: wider groups, fewer gaps
   for (const SeriesSpec& s : spec.series) {
     auto* set = new QBarSet(Q(s.name));
     // A value the axis cannot hold has no height: 0 (linear) or the bottom (log).
