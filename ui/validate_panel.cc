@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands/command_table.h"
+#include "charts/figures.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
 
@@ -40,8 +41,8 @@ ValidatePanel::ValidatePanel(SessionState* session, QWidget* parent) : QWidget(p
   summary_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
   summary_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   summary_->setMaximumHeight(160);
-  position_chart_ = MakeChartView("Held-out position error per image", "image number", "position error");
-  orientation_chart_ = MakeChartView("Held-out orientation error per image", "image number", "degrees");
+  position_chart_ = MakeChartView(charts::ValidationPerImageChart({}, charts::ValidationQuantity::kPosition, ""));
+  orientation_chart_ = MakeChartView(charts::ValidationPerImageChart({}, charts::ValidationQuantity::kOrientation, ""));
   auto* export_robot = new QPushButton("Export calibrated robot…");
   auto* export_report = new QPushButton("Export HTML report…");
   connect(export_robot, &QPushButton::clicked, this, [this] { ExportCalibratedRobot(); });
@@ -68,8 +69,8 @@ void ValidatePanel::Refresh() {
   const nlohmann::json report = nlohmann::json::parse(file, nullptr, false);
   if (!report.is_object()) {
     status_->setText("No results yet: run the Calibrate step.");
-    SetBars(position_chart_, {}, {});
-    SetBars(orientation_chart_, {}, {});
+    ShowChart(position_chart_, charts::ValidationPerImageChart({}, charts::ValidationQuantity::kPosition, ""));
+    ShowChart(orientation_chart_, charts::ValidationPerImageChart({}, charts::ValidationQuantity::kOrientation, ""));
     return;
   }
   const nlohmann::json& validation = report["validation"];
@@ -91,20 +92,20 @@ void ValidatePanel::Refresh() {
     summary_->setItem(r, 0, new QTableWidgetItem(QString::number(Value(validation["before"], keys[r]), 'g', 4)));
     summary_->setItem(r, 1, new QTableWidgetItem(QString::number(Value(validation["after"], keys[r]), 'g', 4)));
   }
-  QStringList images;
-  std::vector<double> position_before, position_after, angle_before, angle_after;
+  std::vector<charts::ImageValidation> images;
   for (const nlohmann::json& row : validation["per_image"]) {
     // The number in the image name fits under a bar.
     const QString name = QString::fromStdString(row.value("image", "")).section('.', 0, 0);
     const QRegularExpressionMatch number = QRegularExpression("(\\d+)$").match(name);
-    images << (number.hasMatch() ? number.captured(1) : name);
-    position_before.push_back(Value(row, "position_before"));
-    position_after.push_back(Value(row, "position_after"));
-    angle_before.push_back(Value(row, "orientation_before"));
-    angle_after.push_back(Value(row, "orientation_after"));
+    images.push_back({(number.hasMatch() ? number.captured(1) : name).toStdString(),
+                      {Value(row, "position_before"), Value(row, "position_after"), Value(row, "orientation_before"),
+                       Value(row, "orientation_after")}});
   }
-  SetBars(position_chart_, images, {{"before", position_before}, {"after", position_after}});
-  SetBars(orientation_chart_, images, {{"before", angle_before}, {"after", angle_after}});
+  const std::string length_unit = unit.toStdString();
+  ShowChart(position_chart_,
+            charts::ValidationPerImageChart(images, charts::ValidationQuantity::kPosition, length_unit));
+  ShowChart(orientation_chart_,
+            charts::ValidationPerImageChart(images, charts::ValidationQuantity::kOrientation, length_unit));
 }
 
 void ValidatePanel::ExportCalibratedRobot(const QString& chosen) {
