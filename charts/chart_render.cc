@@ -24,9 +24,15 @@ void QuietHandler(QtMsgType type, const QMessageLogContext& context, const QStri
   if (type == QtCriticalMsg || type == QtFatalMsg) qt_message_output(type, context, message);
 }
 
-// The CLI's QApplication, offscreen unless the user chose a platform.
+// The CLI's QApplication, offscreen unless the user chose a platform. A
+// platform that needs a display (xcb, wayland) without one would abort the
+// process in Qt's start-up, so that choice falls back to offscreen too.
 void CreateOffscreenApplication() {
-  if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
+  const QByteArray platform = qgetenv("QT_QPA_PLATFORM");
+  const bool no_display = qEnvironmentVariableIsEmpty("DISPLAY") && qEnvironmentVariableIsEmpty("WAYLAND_DISPLAY");
+  if (platform.isEmpty() || (no_display && (platform.startsWith("xcb") || platform.startsWith("wayland")))) {
+    qputenv("QT_QPA_PLATFORM", "offscreen");
+  }
   // QCoreApplication sets the user's locale, which would give printf and
   // strtod a decimal comma for the rest of the run: keep the one we had.
   const std::string locale = std::setlocale(LC_ALL, nullptr);

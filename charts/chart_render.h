@@ -6,8 +6,9 @@
 // Qt needs a QApplication for charts (they are QGraphicsWidgets). In the GUI
 // the process has one. In the CLI, the first call creates one that lives as
 // long as the process, with QT_QPA_PLATFORM=offscreen when the variable is
-// unset, so no display is needed; its start-up chatter is silenced and the C
-// locale that Qt would change is restored.
+// unset (or names xcb/wayland with no display to open), so no display is
+// needed; its start-up chatter is silenced and the C locale that Qt would
+// change is restored.
 //
 // Thread: call only on the thread that owns the QApplication (the GUI
 // thread; in the CLI, the thread of the first call). Any other thread gets an

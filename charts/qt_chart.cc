@@ -219,6 +219,8 @@ void AppendPoint(QChart* chart, ChartSpec* spec, int index, ChartPoint point) {
   const QList<QAbstractAxis*> x_axes = chart->axes(Qt::Horizontal), y_axes = chart->axes(Qt::Vertical);
   if (series == nullptr || x_axes.isEmpty() || y_axes.isEmpty()) return FillQtChart(chart, *spec);  // not spec's
   if (Drawable(point.x, spec->x.log) && Drawable(point.y, spec->y.log)) series->append(point.x, point.y);
+  if (auto* line = qobject_cast<QLineSeries*>(series))
+    Style(line, spec->series[index], line->color());  // markers off past kMaxMarkedPoints
   const ChartRanges ranges = ComputeRanges(*spec);
   ApplyRange(x_axes.front(), ranges.x);
   ApplyRange(y_axes.front(), ranges.y);

@@ -136,6 +136,11 @@ TEST_F(QtChartTest, AppendPointWidensTheAxesAsThePlannerRuns) {
   EXPECT_GE(x_max, 40);
   ExpectDrawn(Axis(chart.get(), Qt::Horizontal), ComputeRanges(spec).x);
   ExpectDrawn(Axis(chart.get(), Qt::Vertical), ComputeRanges(spec).y);
+  // A long run: the line drops its point markers, as a chart built whole would.
+  auto* o1 = qobject_cast<QLineSeries*>(chart->series()[0]);
+  EXPECT_TRUE(o1->pointsVisible());
+  for (int i = 41; i < 200; ++i) AppendPoint(chart.get(), &spec, 0, {1.0 * i, 7.5});
+  EXPECT_FALSE(o1->pointsVisible());
 }
 
 TEST_F(QtChartTest, FillReplacesSeriesAndAxes) {
