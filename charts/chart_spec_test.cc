@@ -89,6 +89,16 @@ TEST(ComputeRanges, BarChartWithNegativeBarsAndErrorsHoldsThemAll) {
   EXPECT_TRUE(RangesContainData(spec, ranges));
 }
 
+// The example at the top of chart_spec.h.
+TEST(ComputeRanges, HeaderExample) {
+  ChartSpec spec;
+  spec.x = CategoryAxis("parameter (leg, name)", {"1a_x", "1a_y"});
+  spec.series.push_back(BarSeries("change", {0.4, -0.7}, {0.1, 0.2}));
+  const ChartRanges ranges = ComputeRanges(spec);
+  EXPECT_DOUBLE_EQ(ranges.y.min, -1);
+  EXPECT_DOUBLE_EQ(ranges.y.max, 0.6);
+}
+
 TEST(ComputeRanges, BarsStandOnZero) {
   ChartSpec spec;
   spec.x.categories = {"a", "b"};
