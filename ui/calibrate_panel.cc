@@ -11,6 +11,7 @@
 #include <QVBoxLayout>
 #include <filesystem>
 
+#include "charts/figures.h"
 #include "core/inverse_kinematics.h"
 #include "core/measurements.h"
 #include "core/robot_io.h"
@@ -54,7 +55,7 @@ CalibratePanel::CalibratePanel(SessionState* session, QWidget* parent)
   parameters_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   parameters_->setSortingEnabled(true);
   parameters_->sortByColumn(0, Qt::AscendingOrder);
-  residuals_ = MakeChartView("Leg residuals on the calibration poses", "pose × leg", "|P + R b − a| − (L + l)");
+  residuals_ = MakeChartView(charts::CalibrationResidualsChart(session_->NominalRobot(), session_->NominalRobot(), {}));
   connect(run_, &QPushButton::clicked, this, &CalibratePanel::Run);
   connect(cancel_, &QPushButton::clicked, this, [this] {
     job_->Cancel();
@@ -180,20 +181,9 @@ void CalibratePanel::FillParameterTable(const std::vector<workflow::ParameterEst
 void CalibratePanel::PlotResiduals() {
   StatusOr<std::vector<Measurement>> rows = LoadMeasurements(ResultsFile(*session_, "calibration_measurements.csv"));
   StatusOr<Robot> calibrated = LoadRobot(ResultsFile(*session_, "calibrated.yaml"));
-  if (!rows.ok() || !calibrated.ok()) return SetLines(residuals_, {});
-  LineData nominal{"nominal robot", {}, false, true}, after{"calibrated robot", {}, false, true};
   const Robot& robot = session_->NominalRobot();
-  for (size_t j = 0; j < rows->size(); ++j) {
-    const Measurement& m = (*rows)[j];
-    const LegReadings before = InverseKinematics(robot, robot.PoseFromVector(m.pose)) - m.legs;
-    const LegReadings now = InverseKinematics(*calibrated, calibrated->PoseFromVector(m.pose)) - m.legs;
-    for (int i = 0; i < kNumLegs; ++i) {
-      const double x = j + (i + 0.5) / kNumLegs;
-      nominal.points.emplace_back(x, before[i]);
-      after.points.emplace_back(x, now[i]);
-    }
-  }
-  SetLines(residuals_, {nominal, after});
+  if (!rows.ok() || !calibrated.ok()) return ShowChart(residuals_, charts::CalibrationResidualsChart(robot, robot, {}));
+  ShowChart(residuals_, charts::CalibrationResidualsChart(robot, *calibrated, *rows));
 }
 
 }  // namespace hexcal::ui

@@ -1,11 +1,13 @@
-// Qt Charts helpers for the panels: line charts (indices per iteration, leg
-// lengths per pose, residuals) and grouped bars (validation before/after).
+// The panels' chart views: each shows a figure of charts/figures.h, drawn by
+// charts/qt_chart.h, the same code that draws the report's and the CLI's
+// charts. Live plots append to the view's chart with charts::AppendPoint.
+//
+//   charts::ChartSpec spec = charts::ObservabilityChart({});
+//   QtCharts::QChartView* view = MakeChartView(spec);
+//   charts::AppendPoint(view->chart(), &spec, 0, {iteration, o1});
 #pragma once
 
-#include <QPointF>
-#include <QString>
-#include <QStringList>
-#include <vector>
+#include "charts/chart_spec.h"
 
 namespace QtCharts {
 class QChartView;
@@ -13,20 +15,8 @@ class QChartView;
 
 namespace hexcal::ui {
 
-struct LineData {
-  QString name;
-  std::vector<QPointF> points;
-  bool dashed = false;   // limits and references
-  bool markers = false;  // scatter-like: points only
-};
-
-QtCharts::QChartView* MakeChartView(const QString& title, const QString& x_title, const QString& y_title);
-// Replaces the chart's series. `log_y` needs positive values (others are dropped).
-void SetLines(QtCharts::QChartView* view, const std::vector<LineData>& lines, bool log_y = false);
-// Appends one point to series `index` (made if missing) and widens the axes: live plots.
-void AppendPoint(QtCharts::QChartView* view, int index, const QString& name, QPointF point);
-// Grouped bars: one set per entry of `sets`, one group per category.
-void SetBars(QtCharts::QChartView* view, const QStringList& categories,
-             const std::vector<std::pair<QString, std::vector<double>>>& sets);
+QtCharts::QChartView* MakeChartView(const charts::ChartSpec& spec);
+// Replaces what the view shows.
+void ShowChart(QtCharts::QChartView* view, const charts::ChartSpec& spec);
 
 }  // namespace hexcal::ui

@@ -16,6 +16,8 @@
 #include <filesystem>
 #include <set>
 
+#include "charts/figures.h"
+#include "charts/qt_chart.h"
 #include "core/csv.h"
 #include "core/inverse_kinematics.h"
 #include "ui/background_job.h"
@@ -106,8 +108,9 @@ PlanPanel::PlanPanel(SessionState* session, QWidget* parent)
   table_buttons->addStretch();
   table_layout->addLayout(table_buttons);
 
-  indices_chart_ = MakeChartView("Observability indices per iteration (figs 6, 10–12)", "iteration", "index");
-  legs_chart_ = MakeChartView("Leg lengths per planned pose (fig. 8)", "pose", "reading L");
+  indices_ = charts::ObservabilityChart({});
+  indices_chart_ = MakeChartView(indices_);
+  legs_chart_ = MakeChartView(charts::LegReadingsChart(session_->NominalRobot(), {}));
   auto* charts = new QSplitter(Qt::Horizontal);
   charts->addWidget(indices_chart_);
   charts->addWidget(legs_chart_);
@@ -135,7 +138,8 @@ void PlanPanel::Run() {
   StatusOr<workflow::PlanSetup> options = options_->Options();
   if (!options.ok()) return ShowError(this, "Plan", QString::fromStdString(options.status().message()));
   const PlanningModel model = ModelOf(*session_);
-  SetLines(indices_chart_, {});
+  indices_ = charts::ObservabilityChart({});
+  ShowChart(indices_chart_, indices_);
   run_->setEnabled(false);
   cancel_->setEnabled(true);
   SetOutcome("planning…");
@@ -249,52 +253,36 @@ void PlanPanel::ExportPlan() {
 }
 
 void PlanPanel::PlotLegLengths() {
-  const Robot& robot = session_->NominalRobot();
-  const std::vector<Vector6d>& plan = session_->Plan();
-  std::vector<LineData> lines(kNumLegs);
-  for (int i = 0; i < kNumLegs; ++i) lines[i].name = QString("L%1").arg(i + 1);
-  for (int j = 0; j < static_cast<int>(plan.size()); ++j) {
-    const LegReadings legs = InverseKinematics(robot, robot.PoseFromVector(plan[j]));
-    for (int i = 0; i < kNumLegs; ++i) lines[i].points.emplace_back(j + 1, legs[i]);
-  }
-  if (!plan.empty()) {
-    const double last = std::max<double>(2, plan.size());
-    lines.push_back({"stroke min", {{1, robot.legs[0].stroke_min}, {last, robot.legs[0].stroke_min}}, true});
-    lines.push_back({"stroke max", {{1, robot.legs[0].stroke_max}, {last, robot.legs[0].stroke_max}}, true});
-  }
-  SetLines(legs_chart_, lines);
+  ShowChart(legs_chart_, charts::LegReadingsChart(session_->NominalRobot(), session_->Plan()));
 }
 
 void PlanPanel::PlotIteration(const PlanIteration& step) {
-  const double values[4] = {step.indices.o1, step.indices.o2, step.indices.o3, step.indices.o4};
   if (step.iteration == 0) {
-    std::vector<LineData> lines(4);
-    for (int k = 0; k < 4; ++k) {
-      lines[k].name = QString("O%1").arg(k + 1);
-      if (values[k] > 0) lines[k].points.emplace_back(0, values[k]);
-    }
-    SetLines(indices_chart_, lines, /*log_y=*/true);
-    return;
+    indices_ = charts::ObservabilityChart({step});
+    return ShowChart(indices_chart_, indices_);
   }
+  const std::vector<double> values = charts::IndexValues(step.indices);
   for (int k = 0; k < 4; ++k)
-    if (values[k] > 0) AppendPoint(indices_chart_, k, QString("O%1").arg(k + 1), QPointF(step.iteration, values[k]));
+    charts::AppendPoint(indices_chart_->chart(), &indices_, k, {static_cast<double>(step.iteration), values[k]});
 }
 
 void PlanPanel::PlotHistory() {
   if (job_->Running()) return;  // the live plot is on
-  std::vector<LineData> lines(4);
-  for (int k = 0; k < 4; ++k) lines[k].name = QString("O%1").arg(k + 1);
+  std::vector<PlanIteration> iterations;
   StatusOr<CsvTable> history = ReadCsv(HistoryPath(*session_));
-  if (history.ok()) {
-    for (size_t r = 0; r < history->rows.size(); ++r)
-      for (int k = 0; k < 4; ++k) {
-        StatusOr<double> iteration = NumberAt(*history, r, 0), value = NumberAt(*history, r, 1 + k);
-        if (iteration.ok() && value.ok()) lines[k].points.emplace_back(*iteration, *value);
-      }
+  for (size_t r = 0; history.ok() && r < history->rows.size(); ++r) {
+    StatusOr<double> iteration = NumberAt(*history, r, 0);
+    if (!iteration.ok()) continue;
+    double o[4];  // a missing index is NaN: not drawn
+    for (int k = 0; k < 4; ++k) {
+      StatusOr<double> value = NumberAt(*history, r, 1 + k);
+      o[k] = value.ok() ? *value : std::nan("");
+    }
+    iterations.push_back({static_cast<int>(*iteration), {o[0], o[1], o[2], o[3]}});
   }
-  SetLines(indices_chart_, lines, /*log_y=*/true);
-  indices_chart_->chart()->setTitle(history.ok() ? "Observability indices per iteration (figs 6, 10–12)"
-                                                 : "Indices per iteration: run the planner to see them");
+  indices_ = charts::ObservabilityChart(iterations);
+  if (!history.ok()) indices_.title = "Indices per iteration: run the planner to see them";
+  ShowChart(indices_chart_, indices_);
 }
 
 }  // namespace hexcal::ui

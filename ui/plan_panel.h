@@ -8,6 +8,7 @@
 
 #include <QWidget>
 
+#include "charts/chart_spec.h"
 #include "core/ioops.h"
 #include "ui/session_state.h"
 
@@ -63,6 +64,7 @@ class PlanPanel : public QWidget {
   QLabel* status_;
   QTableWidget* table_;
   QtCharts::QChartView *indices_chart_, *legs_chart_;
+  charts::ChartSpec indices_;  // what indices_chart_ shows; the live plot appends to it
   QString outcome_;
   bool filling_ = false;
 };

@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 
+#include "charts/figures.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
 #include "workflow/session_report.h"
@@ -39,8 +40,8 @@ ValidatePanel::ValidatePanel(SessionState* session, QWidget* parent) : QWidget(p
   summary_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
   summary_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   summary_->setMaximumHeight(160);
-  position_chart_ = MakeChartView("Held-out position error per image", "image number", "position error");
-  orientation_chart_ = MakeChartView("Held-out orientation error per image", "image number", "degrees");
+  position_chart_ = MakeChartView(charts::ValidationPerImageChart({}, charts::ValidationQuantity::kPosition, ""));
+  orientation_chart_ = MakeChartView(charts::ValidationPerImageChart({}, charts::ValidationQuantity::kOrientation, ""));
   auto* export_robot = new QPushButton("Export calibrated robot…");
   auto* export_report = new QPushButton("Export HTML report…");
   connect(export_robot, &QPushButton::clicked, this, [this] { ExportCalibratedRobot(); });
@@ -69,8 +70,8 @@ void ValidatePanel::Refresh() {
       session_->IsOpen() && fs::exists(path, error)
           ? workflow::LoadCalibrationReport(path)
           : StatusOr<workflow::CalibrationReport>(Status::Error("No results yet: run the Calibrate step."));
-  SetBars(position_chart_, {}, {});
-  SetBars(orientation_chart_, {}, {});
+  ShowChart(position_chart_, charts::ValidationPerImageChart({}, charts::ValidationQuantity::kPosition, ""));
+  ShowChart(orientation_chart_, charts::ValidationPerImageChart({}, charts::ValidationQuantity::kOrientation, ""));
   if (!report.ok()) return status_->setText(QString::fromStdString(report.status().message()));
   if (!report->validation) {
     status_->setText(
@@ -96,20 +97,20 @@ void ValidatePanel::ShowValidation(const workflow::ValidationSummary& validation
     summary_->setItem(r, 0, new QTableWidgetItem(QString::number(before[r], 'g', 4)));
     summary_->setItem(r, 1, new QTableWidgetItem(QString::number(after[r], 'g', 4)));
   }
-  QStringList images;
-  std::vector<double> position_before, position_after, angle_before, angle_after;
+  std::vector<charts::ImageValidation> images;
   for (const workflow::HeldOutImage& row : validation.per_image) {
     // The number in the image name fits under a bar.
     const QString name = QString::fromStdString(row.image).section('.', 0, 0);
     const QRegularExpressionMatch number = QRegularExpression("(\\d+)$").match(name);
-    images << (number.hasMatch() ? number.captured(1) : name);
-    position_before.push_back(ValueOrNan(row.position_before));
-    position_after.push_back(ValueOrNan(row.position_after));
-    angle_before.push_back(ValueOrNan(row.orientation_before));
-    angle_after.push_back(ValueOrNan(row.orientation_after));
+    images.push_back({(number.hasMatch() ? number.captured(1) : name).toStdString(),
+                      {ValueOrNan(row.position_before), ValueOrNan(row.position_after),
+                       ValueOrNan(row.orientation_before), ValueOrNan(row.orientation_after)}});
   }
-  SetBars(position_chart_, images, {{"before", position_before}, {"after", position_after}});
-  SetBars(orientation_chart_, images, {{"before", angle_before}, {"after", angle_after}});
+  const std::string length_unit = unit.toStdString();
+  ShowChart(position_chart_,
+            charts::ValidationPerImageChart(images, charts::ValidationQuantity::kPosition, length_unit));
+  ShowChart(orientation_chart_,
+            charts::ValidationPerImageChart(images, charts::ValidationQuantity::kOrientation, length_unit));
 }
 
 void ValidatePanel::ExportCalibratedRobot(const QString& chosen) {

@@ -1,13 +1,12 @@
 #include "workflow/session_report.h"
 
-#include <cmath>
 #include <filesystem>
 #include <sstream>
 
-#include "app/plots/svg_chart.h"
+#include "charts/chart_render.h"
+#include "charts/figures.h"
 #include "core/atomic_file.h"
 #include "core/csv.h"
-#include "core/inverse_kinematics.h"
 #include "core/measurements.h"
 #include "core/observability.h"
 #include "core/robot_io.h"
@@ -45,20 +44,25 @@ std::string Figure(double value) {
 
 std::string Number(const std::optional<double>& value) { return value ? Figure(*value) : "–"; }
 
+// A chart inline (charts/figures.h); a chart that cannot be drawn leaves its
+// reason in the page rather than failing the whole report.
+std::string ChartHtml(const charts::ChartSpec& spec) {
+  StatusOr<std::string> svg = charts::ChartSvgElement(spec);
+  return svg.ok() ? *svg + "\n" : "<p>Chart not drawn: " + Escape(svg.status().message()) + "</p>\n";
+}
+
 // Per-image reprojection RMS (px) of measurements.csv, in file order.
-plots::LineSeries MeasurementRms(const std::string& path) {
-  plots::LineSeries series{"reprojection RMS", {}, {}};
+std::vector<double> MeasurementRms(const std::string& path) {
+  std::vector<double> rms_px;
   StatusOr<CsvTable> table = ReadCsv(path);
-  if (!table.ok()) return series;
+  if (!table.ok()) return rms_px;
   StatusOr<int> rms = ColumnIndex(*table, "rms_px");
-  if (!rms.ok()) return series;
+  if (!rms.ok()) return rms_px;
   for (size_t r = 0; r < table->rows.size(); ++r) {
     StatusOr<double> value = NumberAt(*table, r, *rms);
-    if (!value.ok()) continue;
-    series.x.push_back(static_cast<double>(r + 1));
-    series.y.push_back(*value);
+    if (value.ok()) rms_px.push_back(*value);
   }
-  return series;
+  return rms_px;
 }
 
 std::string ParameterTable(const std::vector<ParameterEstimate>& parameters, const std::string& unit) {
@@ -88,31 +92,13 @@ std::string PlanSection(const SessionPaths& paths, const Robot& nominal) {
                      " planned poses (plan.csv). Observability of the identification Jacobian with the nominal "
                      "robot: O1 " + Figure(o.o1) + ", O2 " + Figure(o.o2) + ", O3 " + Figure(o.o3) + ", O4 " +
                      Figure(o.o4) + ".</p>\n";
-  // Fig. 8: the N x 6 leg readings in one sequence (pose by pose, legs 1-6),
-  // against the stroke of the legs; planned poses crowd at the stroke ends.
-  plots::ChartOptions chart;
-  chart.title = "Leg readings of the " + std::to_string(poses.size()) + " planned poses (as Fig. 8)";
-  chart.x_label = "leg reading (pose by pose, legs 1-6)";
-  chart.y_label = "reading L (" + std::string(LengthUnitName(nominal.length_unit)) + ")";
-  plots::LineSeries readings{"planned readings", {}, {}}, low{"stroke min", {}, {}}, high{"stroke max", {}, {}};
-  for (size_t j = 0; j < poses.size(); ++j) {
-    const LegReadings legs = InverseKinematics(nominal, poses[j]);
-    for (int i = 0; i < kNumLegs; ++i) {
-      const double x = static_cast<double>(kNumLegs * j + i + 1);
-      readings.x.push_back(x);
-      readings.y.push_back(legs[i]);
-      low.x.push_back(x);
-      low.y.push_back(nominal.legs[i].stroke_min);
-      high.x.push_back(x);
-      high.y.push_back(nominal.legs[i].stroke_max);
-    }
-  }
-  return html + plots::LineChartSvg(chart, {readings, low, high}) + "\n";
+  // Fig. 8: planned poses crowd at the stroke ends.
+  return html + ChartHtml(charts::LegReadingsChart(nominal, *plan));
 }
 
-// RMS over the legs of the implicit residual IK(pose) - reading for each
-// calibration pose, with the nominal and the calibrated robot.
-std::string ResidualSection(const SessionPaths& paths, const Robot& nominal, const std::string& unit) {
+// The implicit residual IK(pose) - reading of every leg at each calibration
+// pose, with the nominal and the calibrated robot.
+std::string ResidualSection(const SessionPaths& paths, const Robot& nominal) {
   const std::string used = (fs::path(paths.results) / "calibration_measurements.csv").string();
   const std::string calibrated_path = (fs::path(paths.results) / "calibrated.yaml").string();
   std::error_code error;
@@ -122,24 +108,9 @@ std::string ResidualSection(const SessionPaths& paths, const Robot& nominal, con
   if (!rows.ok() || !calibrated.ok())
     return "<h2>Residuals</h2><p>" + Escape(!rows.ok() ? rows.status().message() : calibrated.status().message()) +
            "</p>\n";
-  plots::LineSeries before{"nominal robot", {}, {}}, after{"calibrated robot", {}, {}};
-  for (size_t j = 0; j < rows->size(); ++j) {
-    const Measurement& m = (*rows)[j];
-    const LegReadings r0 = InverseKinematics(nominal, nominal.PoseFromVector(m.pose)) - m.legs;
-    const LegReadings r1 = InverseKinematics(*calibrated, calibrated->PoseFromVector(m.pose)) - m.legs;
-    before.x.push_back(static_cast<double>(j + 1));
-    before.y.push_back(std::sqrt(r0.squaredNorm() / kNumLegs));
-    after.x.push_back(static_cast<double>(j + 1));
-    after.y.push_back(std::sqrt(r1.squaredNorm() / kNumLegs));
-  }
-  plots::ChartOptions chart;
-  chart.title = "Calibration residuals: IK(pose) - reading, RMS over the legs";
-  chart.x_label = "calibration image";
-  chart.y_label = "residual (" + unit + ")";
-  chart.log_y = true;
-  return "<h2>Residuals</h2><p>The implicit residual (paper eq. 4, as a length) of each calibration image, "
-         "in the registered base frame.</p>\n" +
-         plots::LineChartSvg(chart, {before, after}) + "\n";
+  return "<h2>Residuals</h2><p>The implicit residual (paper eq. 4, as a length) of every leg of each "
+         "calibration image, in the registered base frame.</p>\n" +
+         ChartHtml(charts::CalibrationResidualsChart(nominal, *calibrated, *rows));
 }
 
 }  // namespace
@@ -153,7 +124,8 @@ StatusOr<std::string> SessionReportHtml(const std::string& dir) {
   std::string html =
       "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>hexcal session report</title><style>"
       "body{font-family:sans-serif;max-width:900px;margin:2em auto}table{border-collapse:collapse}"
-      "td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}</style></head><body>\n";
+      "td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}svg{max-width:100%;height:auto}"
+      "</style></head><body>\n";
   html += "<h1>Session " + Escape(dir) + "</h1>\n<p>" + std::to_string(report.images) +
           " images: " + std::to_string(report.calibration_images) + " for calibration, " +
           std::to_string(report.held_out_images) + " held out, " +
@@ -169,37 +141,21 @@ StatusOr<std::string> SessionReportHtml(const std::string& dir) {
           "&deg;; with the calibrated robot: " + Figure(report.closure_position_rms) + " " + Escape(unit) + ", " +
           Figure(report.closure_angle_rms_deg) + "&deg;.</p>\n";
 
-  plots::ChartOptions quality;
-  quality.title = "Measurement quality";
-  quality.x_label = "image (measurements.csv order)";
-  quality.y_label = "reprojection RMS (px)";
-  const plots::LineSeries rms = MeasurementRms(paths.measurements);
-  if (!rms.x.empty()) html += "<h2>Measurements</h2>\n" + plots::LineChartSvg(quality, {rms}) + "\n";
+  const std::vector<double> rms = MeasurementRms(paths.measurements);
+  if (!rms.empty()) html += "<h2>Measurements</h2>\n" + ChartHtml(charts::MeasurementRmsChart(rms));
 
   if (report.validation) {
-    const ValidationSummary& validation = *report.validation;
-    plots::ChartOptions chart;
-    chart.title = "Held-out validation (forward kinematics against the camera)";
-    chart.y_label = "RMS error";
-    chart.log_y = true;
-    std::vector<plots::Bar> bars = {
-        {"position before (" + unit + ")", validation.before.position_rms, 0},
-        {"position after (" + unit + ")", validation.after.position_rms, 0},
-        {"orientation before (deg)", validation.before.orientation_rms, 0},
-        {"orientation after (deg)", validation.after.orientation_rms, 0}};
-    html += "<h2>Validation</h2>\n" + plots::BarChartSvg(chart, bars) + "\n";
+    const ValidationSummary& v = *report.validation;
+    const charts::ValidationErrors errors{v.before.position_rms, v.after.position_rms, v.before.orientation_rms,
+                                          v.after.orientation_rms};
+    html += "<h2>Validation</h2>\n" + ChartHtml(charts::ValidationSummaryChart(errors, unit));
   }
 
-  html += ResidualSection(paths, *nominal, unit);
-  plots::ChartOptions change;
-  change.title = "Calibrated minus nominal, with 1 sigma";
-  change.x_label = "parameter (leg, name)";
-  change.y_label = "change (" + unit + ")";
-  change.width = 900;
-  std::vector<plots::Bar> changes;
+  html += ResidualSection(paths, *nominal);
+  std::vector<charts::ParameterChange> changes;
   for (const ParameterEstimate& p : report.parameters)
-    changes.push_back({std::to_string(p.leg) + p.name, p.estimate - p.nominal, p.sigma.value_or(0)});
-  html += "<h2>Calibrated parameters</h2>\n" + plots::BarChartSvg(change, changes) + "\n" +
+    changes.push_back({p.leg, p.name, p.estimate - p.nominal, p.sigma.value_or(0)});
+  html += "<h2>Calibrated parameters</h2>\n" + ChartHtml(charts::ParameterChangeChart(changes, unit)) +
           ParameterTable(report.parameters, unit);
   return html + "</body></html>\n";
 }

@@ -3,7 +3,8 @@
 // paper), measurement quality per image, the registration, the calibration
 // residuals before and after, the calibrated parameters with σ and their
 // change from nominal, and the held-out validation before and after. Charts
-// are inline SVG (charts/); nothing is fetched.
+// are inline SVG of the figures in charts/figures.h (chart_render.h); nothing
+// is fetched. Draws with Qt: call on the thread that owns the QApplication.
 //
 //   StatusOr<std::string> html = SessionReportHtml("run1");
 //   if (html.ok()) WriteFileAtomically("run1/results/report.html", *html);

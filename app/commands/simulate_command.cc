@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -12,7 +13,8 @@
 #include "app/commands/cli_common.h"
 #include "app/commands/command_table.h"
 #include "app/commands/option_flags.h"
-#include "app/plots/simulation_figures.h"
+#include "charts/chart_render.h"
+#include "charts/figures.h"
 #include "core/candidates.h"
 #include "core/csv.h"
 #include "core/robot_io.h"
@@ -31,6 +33,28 @@ struct SimulateCliOptions {
   SimulationOptions study;
   std::shared_ptr<OptionEntries> noise = std::make_shared<OptionEntries>();  // --noise-* over study.noise
 };
+
+// --plots DIR: fig14.svg/.png and, with a sweep, fig15_mean and fig15_std
+// (charts/figures.h) in DIR, created if missing.
+Status WriteFigures(const std::string& directory, const SimulationResult& result, const SweepResult* sweep,
+                    const std::string& length_unit, std::vector<std::string>* written) {
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error) return Status::IoError(directory + ": cannot create the plots folder: " + error.message());
+  if (Status s = charts::WriteChartFiles(charts::Fig14Chart(result, length_unit), directory, "fig14", written);
+      !s.ok()) {
+    return s;
+  }
+  if (sweep == nullptr) return Status::Ok();
+  for (bool std_dev : {false, true}) {
+    if (Status s = charts::WriteChartFiles(charts::Fig15Chart(*sweep, length_unit, std_dev), directory,
+                                           std_dev ? "fig15_std" : "fig15_mean", written);
+        !s.ok()) {
+      return s;
+    }
+  }
+  return Status::Ok();
+}
 
 // "x:-5:5,q3:-20:20" -> a pose box with those bounds.
 StatusOr<PoseBox> ParseBox(const std::string& text) {
@@ -264,8 +288,8 @@ int RunSimulate(SimulateCliOptions cli, std::ostream& out, std::ostream& err) {
   }
   std::vector<std::string> figures;
   if (!cli.plots.empty()) {
-    const Status s = plots::WriteSimulationFigures(cli.plots, *result, sweep ? &*sweep : nullptr,
-                                                   LengthUnitName(robot->length_unit), &figures);
+    const Status s =
+        WriteFigures(cli.plots, *result, sweep ? &*sweep : nullptr, LengthUnitName(robot->length_unit), &figures);
     if (!s.ok()) return ReportError(err, "simulate", s.AsFailure());
   }
   if (cli.json) {
