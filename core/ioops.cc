@@ -7,14 +7,17 @@
 #include <limits>
 #include <numeric>
 #include <random>
-#include <thread>
 
 #include "core/continuous_addfind.h"
+#include "core/parallel.h"
 
 namespace hexcal {
 namespace {
 
 constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
+// Candidates scored per ParallelFor item: a multiple of ScoreAdditions' own
+// 256-column chunks, large enough that the items cost far more than handing them out.
+constexpr int kScoreBlock = 1024;
 
 struct PlanEntry {
   Vector6d pose;
@@ -88,24 +91,15 @@ int PlannerOptions::IterationBudget() const {
 
 void ScoreInParallel(const DesignState& state, Criterion criterion, const CandidateRows& candidates,
                      std::vector<double>* scores, int threads) {
-  const int count = candidates.size();
-  scores->resize(count);
-  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  threads = std::max(1, std::min(threads, count / 512));
-  const int chunk = (count + threads - 1) / threads;
-  std::vector<std::thread> workers;
-  for (int t = 1; t < threads; ++t) {
-    const int begin = t * chunk, end = std::min(count, begin + chunk);
-    workers.emplace_back([&, begin, end] { state.ScoreAdditions(criterion, candidates, begin, end, scores->data() + begin); });
-  }
-  state.ScoreAdditions(criterion, candidates, 0, std::min(count, chunk), scores->data());
-  for (std::thread& worker : workers) worker.join();
+  scores->resize(candidates.size());
+  ParallelForBlocks(candidates.size(), kScoreBlock, threads, [&](int begin, int end) {
+    state.ScoreAdditions(criterion, candidates, begin, end, scores->data() + begin);
+  });
 }
 
 StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vector6d>& candidates,
                                const std::vector<Vector6d>& initial, const PlannerOptions& options,
-                               const PlanProgress& progress, const std::atomic<bool>* cancel,
-                               const PlanIterationObserver& on_iteration) {
+                               const JobHooks& hooks, const PlanIterationObserver& on_iteration) {
   const auto start_time = std::chrono::steady_clock::now();
   std::string error;
   if (!options.IsValid(&error)) return Status::Error(error);
@@ -134,18 +128,22 @@ StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vec
   std::vector<char> in_plan(count, 0);
 
   const Criterion selection = options.secondary.value_or(options.criterion);
+  std::vector<Vector6d> best = PosesOf(plan);
+  double best_value = state.Value(selection);
   PlanResult result;
   auto record = [&](int iteration, bool exchanged) {
-    PlanIteration step{iteration, PaperIndices(model.robot, plan), state.Value(options.criterion),
-                       options.secondary ? state.Value(*options.secondary) : 0.0, exchanged};
+    PlanIteration step{iteration,
+                       PaperIndices(model.robot, plan),
+                       state.Value(options.criterion),
+                       options.secondary ? state.Value(*options.secondary) : 0.0,
+                       exchanged,
+                       best_value};
     result.history.push_back(step);
     if (on_iteration) on_iteration(step);
   };
   record(0, false);
   result.initial = result.history.back().indices;
   result.initial_primary = result.history.back().primary;
-  std::vector<Vector6d> best = PosesOf(plan);
-  double best_value = state.Value(selection);
   std::deque<int64_t> tabu;
 
   const int budget = options.IterationBudget();
@@ -158,7 +156,7 @@ StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vec
   QuadraticFormCache cache;
   if (cached) cache.Reset(state, rows);
   for (int iteration = 1; iteration <= budget; ++iteration) {
-    if (cancel && cancel->load()) return Status::Cancelled("planning cancelled at iteration " + std::to_string(iteration));
+    if (hooks.Cancelled()) return Status::Cancelled("planning cancelled at iteration " + std::to_string(iteration));
     Criterion add_criterion = options.criterion;
     std::uniform_real_distribution<double> unit(0, 1);
     const bool switched = options.criterion_switch_probability > 0 && unit(rng) < options.criterion_switch_probability;
@@ -235,7 +233,6 @@ StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vec
     if (removed.id >= 0) in_plan[removed.id] = 0;
 
     const bool exchanged = removed.id != added.id;
-    record(iteration, exchanged);
     result.iterations = iteration;
     const double value = state.Value(selection);
     if (value > best_value) {
@@ -243,7 +240,8 @@ StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vec
       best = PosesOf(plan);
       result.best_iteration = iteration;
     }
-    if (progress) progress(iteration, budget, best_value);
+    record(iteration, exchanged);
+    hooks.Progress(iteration, budget);
     if (!exchanged && options.tabu == 0) {
       result.converged = true;
       break;

@@ -109,7 +109,7 @@ void CalibratePanel::Run() {
     // (keeping the rows already there), as `hexcal calibrate --session` does.
     context.progress(0, 0);  // a busy bar until the first report
     std::ostringstream out, err;
-    const int code = cli::RunSessionCalibrate(dir, /*json=*/false, out, err, {context.progress, context.cancel});
+    const int code = cli::RunSessionCalibrate(dir, /*json=*/false, out, err, context);
     const Status status =
         code == 0 ? Status::Ok() : (context.cancel->load() ? Status::Cancelled() : Status::Error(err.str()));
     return [this, status, text = out.str()] { Finish(status, QString::fromStdString(text)); };

@@ -148,14 +148,13 @@ void PlanPanel::Run() {
         cli::BuildCandidatePool(model, "", {options.candidate_kind}, options.candidate_count, planner.continuous,
                                 planner.seed, [&](int done, int total) { context.progress(done, total); });
     if (!pool.ok()) return [this, s = pool.status()] { Finish(s, {}); };
-    const auto progress = [&](int iteration, int budget, double) { context.progress(iteration, budget); };
     // O1..O4 of every iteration as it is recorded. A queued call: the chart
     // is touched on the GUI thread only.
     const auto live = [self](const PlanIteration& step) {
       QMetaObject::invokeMethod(
           self, [self, step] { if (self) self->PlotIteration(step); }, Qt::QueuedConnection);
     };
-    StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, *initial, planner, progress, context.cancel, live);
+    StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, *initial, planner, context, live);
     if (!plan.ok()) return [this, s = plan.status()] { Finish(s, {}); };
     return [this, result = *plan] { Finish(Status::Ok(), result); };
   });

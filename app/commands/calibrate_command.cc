@@ -138,7 +138,7 @@ int RunCalibrate(const CalibrateCliOptions& cli, std::ostream& out, std::ostream
 
   ProgressBar progress("calibrate (legs)");
   StatusOr<CalibrationResult> result =
-      Calibrate(*robot, *measurements, options, [&](int done, int total) { progress.Update(done, total); });
+      Calibrate(*robot, *measurements, options, {[&](int done, int total) { progress.Update(done, total); }});
   if (!result.ok()) return ReportError(err, "calibrate", in_file(result.status()), kExitFailure);
   const CalibrationInputs inputs{cli.robot, cli.measurements, options, CurrentUtcTimestamp()};
   if (Status s = SaveCalibratedRobot(cli.out, *result, inputs); !s.ok()) {

@@ -35,7 +35,7 @@ int RunCandidates(const CandidatesCliOptions& cli, std::ostream& out, std::ostre
 
   ProgressBar progress(std::string("candidates (") + cli.kind + ")");
   StatusOr<CandidateSet> set =
-      GenerateCandidates(*robot, options, [&](int done, int total) { progress.Update(done, total); });
+      GenerateCandidates(*robot, options, {[&](int done, int total) { progress.Update(done, total); }});
   if (!set.ok()) return ReportError(err, "candidates", set.status(), kExitFailure);
 
   std::vector<std::vector<std::string>> rows;

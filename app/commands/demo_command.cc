@@ -166,7 +166,7 @@ int RunDemo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
   planner.seed = options.seed;
   ProgressBar plan_progress("planning");
   StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, *initial, planner,
-                                        [&](int done, int total, double) { plan_progress.Update(done, total); });
+                                        {[&](int done, int total) { plan_progress.Update(done, total); }});
   if (!plan.ok()) return ReportError(err, kCommand, plan.status(), kExitFailure);
   log << "      " << pool->poses.size() << " candidates; O1 " << plan->initial.o1 << " -> " << plan->final.o1
       << ", O2 " << plan->initial.o2 << " -> " << plan->final.o2 << " (random set -> plan) in " << plan->iterations

@@ -75,7 +75,7 @@ int RunPlan(PlanCliOptions cli, std::ostream& out, std::ostream& err) {
 
   ProgressBar progress("planning");
   StatusOr<PlanResult> plan = PlanPoses(*model, pool->poses, *initial, cli.planner,
-                                        [&](int iteration, int budget, double) { progress.Update(iteration, budget); });
+                                        {[&](int iteration, int budget) { progress.Update(iteration, budget); }});
   if (!plan.ok()) return ReportError(err, "plan", plan.status(), kExitFailure);
 
   nlohmann::json certificate;

@@ -19,7 +19,7 @@ StatusOr<CandidateSet> Generate(const Robot& robot, CandidateKind kind, int coun
   options.kind = kind;
   options.count = count;
   options.seed = seed;
-  return GenerateCandidates(robot, options, progress);
+  return GenerateCandidates(robot, options, {progress});
 }
 
 nlohmann::json IndicesOnly(const ObservabilityIndices& o) {

@@ -28,7 +28,7 @@ struct CameraPose {
 // rewrites it with every row (old rows kept as they were).
 StatusOr<std::map<std::string, CameraPose>> MeasureSession(const SessionPaths& paths, const std::vector<LegsRow>& legs,
                                                            const Camera& camera, const Target& target,
-                                                           const SessionCalibrateHooks& hooks) {
+                                                           const JobHooks& hooks) {
   std::vector<std::vector<std::string>> rows;
   std::map<std::string, CameraPose> poses;
   const std::vector<std::string> columns = ImageMeasurementColumns();
@@ -48,13 +48,13 @@ StatusOr<std::map<std::string, CameraPose>> MeasureSession(const SessionPaths& p
     if (poses.count(row.image) == 0) missing.push_back((fs::path(paths.images) / row.image).string());
   if (missing.empty()) return poses;
   ProgressBar progress("measure (images)");
-  StatusOr<std::vector<ImageMeasurement>> measured = MeasureImages(
-      missing, camera, target, MeasureOptions{},
-      [&](int done, int total) {
-        progress.Update(done, total);
-        if (hooks.progress) hooks.progress(done, total);
-      },
-      hooks.cancel);
+  JobHooks bar_and_hooks = hooks;
+  bar_and_hooks.progress = [&](int done, int total) {
+    progress.Update(done, total);
+    hooks.Progress(done, total);
+  };
+  StatusOr<std::vector<ImageMeasurement>> measured =
+      MeasureImages(missing, camera, target, MeasureOptions{}, bar_and_hooks);
   if (!measured.ok()) return measured.status();
   for (ImageMeasurement m : *measured) {
     m.file = fs::path(m.file).filename().string();
@@ -86,7 +86,7 @@ std::string ResolveSessionFile(const std::string& dir, const std::string& name) 
 }
 
 int RunSessionCalibrate(const std::string& dir, bool json, std::ostream& out, std::ostream& err,
-                        const SessionCalibrateHooks& hooks) {
+                        const JobHooks& hooks) {
   const char* kCommand = "calibrate";
   const SessionPaths paths(dir);
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
@@ -144,13 +144,13 @@ int RunSessionCalibrate(const std::string& dir, bool json, std::ostream& out, st
   calibration.noise = config->noise;
   calibration.uncertainty_scale = UncertaintyScale::kAtLeastAPriori;
   ProgressBar progress("register and calibrate");
+  JobHooks bar_and_hooks = hooks;
+  bar_and_hooks.progress = [&](int done, int total) {
+    progress.Update(done, total);
+    hooks.Progress(done, total);
+  };
   StatusOr<CameraCalibrationResult> result =
-      CalibrateFromCameraPoses(*nominal, input, registration, calibration,
-                               [&](int done, int total) {
-                                 progress.Update(done, total);
-                                 if (hooks.progress) hooks.progress(done, total);
-                               },
-                               hooks.cancel);
+      CalibrateFromCameraPoses(*nominal, input, registration, calibration, bar_and_hooks);
   if (!result.ok()) return ReportError(err, kCommand, result.status(), kExitFailure);
 
   // Held-out rows: the camera pose mapped into the registered base frame.

@@ -5,10 +5,10 @@
 // measures images (vision); core/session.h holds the folder itself.
 #pragma once
 
-#include <atomic>
-#include <functional>
 #include <ostream>
 #include <string>
+
+#include "core/job_hooks.h"
 
 namespace hexcal::cli {
 
@@ -16,16 +16,12 @@ namespace hexcal::cli {
 // exists there, otherwise as given (a preset name or a path).
 std::string ResolveSessionFile(const std::string& dir, const std::string& name);
 
-// For a caller with its own progress display and a Cancel button (the GUI).
-struct SessionCalibrateHooks {
-  // (done, total) of the current stage: images measured, then legs calibrated.
-  std::function<void(int done, int total)> progress;
-  const std::atomic<bool>* cancel = nullptr;  // when raised, stops at the next image or solver iteration
-};
-
 // Exit code as every command's: 0, kExitFailure or kExitBadInput; a cancelled
 // run returns kExitFailure with "cancelled" and writes nothing new to results/.
+// `hooks` are for a caller with its own progress display and a Cancel button
+// (the GUI): progress is (done, total) of the current stage, images measured
+// then legs calibrated; cancel stops at the next image or solver iteration.
 int RunSessionCalibrate(const std::string& dir, bool json, std::ostream& out, std::ostream& err,
-                        const SessionCalibrateHooks& hooks = {});
+                        const JobHooks& hooks = {});
 
 }  // namespace hexcal::cli
