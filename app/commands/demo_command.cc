@@ -124,6 +124,85 @@ StatusOr<ParameterComparison> CompareWithTruth(const DemoScene& scene, const std
   return c;
 }
 
+struct DemoPlan {
+  size_t candidates = 0;
+  PlanResult plan;
+  std::vector<Vector6d> held_out;
+};
+
+// Step 1: N poses by IOOPS (O1, secondary O4, Tabu 4) among random and boundary
+// candidates the camera sees, from a random start; and the held-out poses.
+StatusOr<DemoPlan> PlanDemo(const PlanningModel& model, const DemoOptions& options) {
+  ProgressBar candidates_progress("candidates");
+  StatusOr<CandidatePool> pool =
+      BuildCandidatePool(model, "", {"random", "boundary"}, 2000, false, options.seed,
+                         [&](int done, int total) { candidates_progress.Update(done, total); });
+  if (!pool.ok()) return pool.status();
+  StatusOr<std::vector<Vector6d>> initial = InitialPoses(model, "random", options.poses, options.seed);
+  if (!initial.ok()) return initial.status();
+  StatusOr<std::vector<Vector6d>> held_out = InitialPoses(model, "random", options.holdout, options.seed + 1000);
+  if (!held_out.ok()) return held_out.status();
+  PlannerOptions planner;
+  planner.num_poses = options.poses;
+  planner.secondary = Criterion::kO4;
+  planner.tabu = 4;
+  planner.seed = options.seed;
+  ProgressBar plan_progress("planning");
+  StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, *initial, planner,
+                                        {[&](int done, int total) { plan_progress.Update(done, total); }});
+  if (!plan.ok()) return plan.status();
+  return DemoPlan{pool->poses.size(), std::move(*plan), std::move(*held_out)};
+}
+
+// What `demo --json` prints.
+nlohmann::json DemoSummaryJson(const Robot& nominal, const DemoOptions& options, const nlohmann::json& report,
+                               const PlanResult& plan, const ParameterComparison& comparison,
+                               const std::string& report_path, double seconds) {
+  const nlohmann::json& validation = report["validation"];
+  const auto pose_errors = [&](const char* when) {
+    return nlohmann::json{{"position_rms", validation[when]["position_rms"]},
+                          {"orientation_rms", validation[when]["orientation_rms"]}};
+  };
+  return {{"robot", nominal.name},
+          {"length_unit", LengthUnitName(nominal.length_unit)},
+          {"session", options.out},
+          {"poses", options.poses},
+          {"held_out", options.holdout},
+          {"usable_images", report["images"].get<int>() - report["unusable_images"].get<int>()},
+          {"plan", {{"random", IndicesJson(plan.initial)}, {"selected", IndicesJson(plan.final)}}},
+          {"parameter_error",
+           {{"mean", comparison.mean},
+            {"max", comparison.max},
+            {"nominal_mean", comparison.nominal_mean},
+            {"nominal_max", comparison.nominal_max}}},
+          {"within_3sigma", comparison.within_3sigma},
+          {"parameters", comparison.parameters},
+          {"validation", {{"before", pose_errors("before")}, {"after", pose_errors("after")}}},
+          {"report", report_path},
+          {"seconds", seconds}};
+}
+
+// The closing lines: parameter error against the truth and held-out pose error.
+void PrintDemoSummary(const ParameterComparison& comparison, const nlohmann::json& validation, const char* unit,
+                      std::ostream& out) {
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "\nparameter error against the truth (%s): mean %.4g, max %.4g (nominal robot: mean %.4g, max %.4g)\n"
+                "within 3 sigma of the truth: %.1f %% of %d parameters\n",
+                unit, comparison.mean, comparison.max, comparison.nominal_mean, comparison.nominal_max,
+                100 * comparison.within_3sigma, comparison.with_sigma);
+  out << text;
+  std::snprintf(text, sizeof text,
+                "held-out pose error (RMS over %d images, FK against the camera):\n"
+                "  before calibration: position %.4g %s, orientation %.4g deg\n"
+                "  after calibration:  position %.4g %s, orientation %.4g deg\n",
+                validation["rows"].get<int>(), validation["before"]["position_rms"].get<double>(), unit,
+                validation["before"]["orientation_rms"].get<double>(),
+                validation["after"]["position_rms"].get<double>(), unit,
+                validation["after"]["orientation_rms"].get<double>());
+  out << text;
+}
+
 int RunDemo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
   const char* kCommand = "demo";
   if (options.poses < 8) return ReportError(err, kCommand, Status::Error("--poses must be at least 8"));
@@ -150,26 +229,11 @@ int RunDemo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
   steps.Step("plan " + std::to_string(options.poses) + " poses (IOOPS: O1, secondary O4, Tabu 4) among random and "
              "boundary candidates with the target in the camera's view");
   const PlanningModel model{*nominal, std::nullopt, scene.view};
-  ProgressBar candidates_progress("candidates");
-  StatusOr<CandidatePool> pool =
-      BuildCandidatePool(model, "", {"random", "boundary"}, 2000, false, options.seed,
-                         [&](int done, int total) { candidates_progress.Update(done, total); });
-  if (!pool.ok()) return ReportError(err, kCommand, pool.status(), kExitFailure);
-  StatusOr<std::vector<Vector6d>> initial = InitialPoses(model, "random", options.poses, options.seed);
-  if (!initial.ok()) return ReportError(err, kCommand, initial.status(), kExitFailure);
-  StatusOr<std::vector<Vector6d>> held_out = InitialPoses(model, "random", options.holdout, options.seed + 1000);
-  if (!held_out.ok()) return ReportError(err, kCommand, held_out.status(), kExitFailure);
-  PlannerOptions planner;
-  planner.num_poses = options.poses;
-  planner.secondary = Criterion::kO4;
-  planner.tabu = 4;
-  planner.seed = options.seed;
-  ProgressBar plan_progress("planning");
-  StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, *initial, planner,
-                                        {[&](int done, int total) { plan_progress.Update(done, total); }});
-  if (!plan.ok()) return ReportError(err, kCommand, plan.status(), kExitFailure);
-  log << "      " << pool->poses.size() << " candidates; O1 " << plan->initial.o1 << " -> " << plan->final.o1
-      << ", O2 " << plan->initial.o2 << " -> " << plan->final.o2 << " (random set -> plan) in " << plan->iterations
+  StatusOr<DemoPlan> demo_plan = PlanDemo(model, options);
+  if (!demo_plan.ok()) return ReportError(err, kCommand, demo_plan.status(), kExitFailure);
+  const PlanResult& plan = demo_plan->plan;
+  log << "      " << demo_plan->candidates << " candidates; O1 " << plan.initial.o1 << " -> " << plan.final.o1
+      << ", O2 " << plan.initial.o2 << " -> " << plan.final.o2 << " (random set -> plan) in " << plan.iterations
       << " iterations\n";
 
   steps.Step("record the session in " + options.out + ": hidden true robot (every parameter ±0.5 mm), " +
@@ -177,15 +241,15 @@ int RunDemo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
              std::to_string(options.holdout) + " held out), leg readings ±" + FormatNumber(scene.noise.leg) + " " +
              unit);
   ProgressBar render_progress("render");
-  if (Status s = RecordDemoSession(scene, robot_name, kSimulatedCameraName, plan->poses, *held_out, options.out,
-                                   [&](int done, int total) { render_progress.Update(done, total); });
+  if (Status s = RecordDemoSession(scene, robot_name, kSimulatedCameraName, plan.poses, demo_plan->held_out,
+                                   options.out, [&](int done, int total) { render_progress.Update(done, total); });
       !s.ok())
     return ReportError(err, kCommand, s, kExitFailure);
   // The plan and the planner's indices per iteration, as `hexcal plan --out --history` writes them.
   const SessionPaths paths(options.out);
-  if (Status s = WritePlanCsv(paths.plan, model, plan->poses); !s.ok())
+  if (Status s = WritePlanCsv(paths.plan, model, plan.poses); !s.ok())
     return ReportError(err, kCommand, s, kExitFailure);
-  if (Status s = WriteHistoryCsv((fs::path(options.out) / "plan_history.csv").string(), *plan); !s.ok())
+  if (Status s = WriteHistoryCsv((fs::path(options.out) / "plan_history.csv").string(), plan); !s.ok())
     return ReportError(err, kCommand, s, kExitFailure);
 
   steps.Step("measure the images, register the camera and target frames, calibrate, validate (calibrate --session)");
@@ -212,49 +276,12 @@ int RunDemo(const DemoOptions& options, std::ostream& out, std::ostream& err) {
   if (!html.ok()) return ReportError(err, kCommand, html.status(), kExitFailure);
   if (Status s = WriteFileAtomically(report_path, *html); !s.ok()) return ReportError(err, kCommand, s, kExitFailure);
 
-  const nlohmann::json& validation = report["validation"];
-  const auto pose_errors = [&](const char* when) {
-    return nlohmann::json{{"position_rms", validation[when]["position_rms"]},
-                          {"orientation_rms", validation[when]["orientation_rms"]}};
-  };
-  const nlohmann::json summary = {
-      {"robot", nominal->name},
-      {"length_unit", unit},
-      {"session", options.out},
-      {"poses", options.poses},
-      {"held_out", options.holdout},
-      {"usable_images", report["images"].get<int>() - report["unusable_images"].get<int>()},
-      {"plan", {{"random", IndicesJson(plan->initial)}, {"selected", IndicesJson(plan->final)}}},
-      {"parameter_error",
-       {{"mean", comparison->mean},
-        {"max", comparison->max},
-        {"nominal_mean", comparison->nominal_mean},
-        {"nominal_max", comparison->nominal_max}}},
-      {"within_3sigma", comparison->within_3sigma},
-      {"parameters", comparison->parameters},
-      {"validation", {{"before", pose_errors("before")}, {"after", pose_errors("after")}}},
-      {"report", report_path},
-      {"seconds", steps.Seconds()}};
   if (options.json) {
-    out << summary.dump(2) << "\n";
+    out << DemoSummaryJson(*nominal, options, report, plan, *comparison, report_path, steps.Seconds()).dump(2) << "\n";
     return kExitOk;
   }
-  char text[400];
-  std::snprintf(text, sizeof text,
-                "\nparameter error against the truth (%s): mean %.4g, max %.4g (nominal robot: mean %.4g, max %.4g)\n"
-                "within 3 sigma of the truth: %.1f %% of %d parameters\n",
-                unit, comparison->mean, comparison->max, comparison->nominal_mean, comparison->nominal_max,
-                100 * comparison->within_3sigma, comparison->with_sigma);
-  out << text;
-  std::snprintf(text, sizeof text,
-                "held-out pose error (RMS over %d images, FK against the camera):\n"
-                "  before calibration: position %.4g %s, orientation %.4g deg\n"
-                "  after calibration:  position %.4g %s, orientation %.4g deg\n",
-                validation["rows"].get<int>(), validation["before"]["position_rms"].get<double>(), unit,
-                validation["before"]["orientation_rms"].get<double>(),
-                validation["after"]["position_rms"].get<double>(), unit,
-                validation["after"]["orientation_rms"].get<double>());
-  out << text << "report: " << report_path << "\ndone in " << steps.Seconds() << " s\n";
+  PrintDemoSummary(*comparison, report["validation"], unit, out);
+  out << "report: " << report_path << "\ndone in " << steps.Seconds() << " s\n";
   return kExitOk;
 }
 

@@ -77,6 +77,123 @@ nlohmann::json StatsJson(const ValidationReport& report) {
           {"failed", report.failed}};
 }
 
+// The rows of legs.csv with a usable target pose: the held-out ones apart,
+// the others as the calibration's input (poses and covariances in the robot unit).
+struct SessionRows {
+  CameraCalibrationInput input;
+  std::vector<const LegsRow*> held_out;
+  int unusable = 0;  // rows without a usable target pose
+};
+
+SessionRows SplitRows(const std::vector<LegsRow>& legs, const std::map<std::string, CameraPose>& poses, double scale,
+                      const Pose& fk_start) {
+  SessionRows rows;
+  for (const LegsRow& row : legs) {
+    const CameraPose& pose = poses.at(row.image);
+    if (!pose.ok) {
+      ++rows.unusable;
+      continue;
+    }
+    if (row.holdout) {
+      rows.held_out.push_back(&row);
+      continue;
+    }
+    Pose camera_from_target = pose.camera_from_target;
+    camera_from_target.position *= scale;
+    rows.input.camera_from_target.push_back(camera_from_target);
+    Matrix6d covariance = pose.covariance;  // to the robot unit
+    covariance.topRows<3>() *= scale;
+    covariance.leftCols<3>() *= scale;
+    rows.input.camera_pose_covariance.push_back(covariance);
+    rows.input.legs.push_back(row.legs);
+    rows.input.fk_start.push_back(fk_start);
+  }
+  return rows;
+}
+
+// FK of the held-out rows with the nominal and the calibrated robot against
+// the camera pose mapped into the registered base frame; null without any.
+StatusOr<nlohmann::json> ValidateHeldOut(const Robot& nominal, const CameraCalibrationResult& result,
+                                         const std::map<std::string, CameraPose>& poses,
+                                         const std::vector<const LegsRow*>& held_out, double scale) {
+  std::vector<Measurement> validation_rows;
+  for (const LegsRow* row : held_out) {
+    Pose camera_from_target = poses.at(row->image).camera_from_target;
+    camera_from_target.position *= scale;
+    Measurement m;
+    m.pose = nominal.VectorFromPose(BaseFromPlatform(result.registration, camera_from_target));
+    m.legs = row->legs;
+    validation_rows.push_back(m);
+  }
+  if (validation_rows.empty()) return nlohmann::json(nullptr);
+  StatusOr<ValidationReport> before = Validate(nominal, validation_rows);
+  StatusOr<ValidationReport> after = Validate(result.calibration.robot, validation_rows);
+  if (!before.ok()) return before.status();
+  if (!after.ok()) return after.status();
+  nlohmann::json per_image = nlohmann::json::array();
+  for (size_t j = 0; j < held_out.size(); ++j) {
+    const ValidationRow &b = before->rows[j], &a = after->rows[j];
+    per_image.push_back({{"image", held_out[j]->image},
+                         {"position_before", b.ok ? nlohmann::json(b.position_error) : nullptr},
+                         {"position_after", a.ok ? nlohmann::json(a.position_error) : nullptr},
+                         {"orientation_before", b.ok ? nlohmann::json(b.orientation_error_deg) : nullptr},
+                         {"orientation_after", a.ok ? nlohmann::json(a.orientation_error_deg) : nullptr}});
+  }
+  return nlohmann::json{{"rows", validation_rows.size()},
+                        {"before", StatsJson(*before)},
+                        {"after", StatsJson(*after)},
+                        {"per_image", per_image}};
+}
+
+// results/report.json: the rows used, the registration, the calibrated robot
+// and parameters with their σ, each leg's fit, the held-out validation.
+nlohmann::json SessionReportJson(const std::string& dir, const Robot& nominal, size_t images, const SessionRows& rows,
+                                 const CameraCalibrationResult& result, const nlohmann::json& validation,
+                                 const std::string& calibrated_path) {
+  const Registration& reg = result.registration;
+  nlohmann::json full = {
+      {"session", dir},
+      {"images", images},
+      {"unusable_images", rows.unusable},
+      {"calibration_images", rows.input.legs.size()},
+      {"held_out_images", rows.held_out.size()},
+      {"length_unit", LengthUnitName(nominal.length_unit)},
+      {"registration",
+       {{"position_rms", reg.position_rms},
+        {"angle_rms_deg", reg.angle_rms_deg},
+        {"position_max", reg.position_max},
+        {"angle_max_deg", reg.angle_max_deg}}},
+      {"closure_after_calibration",
+       {{"position_rms", result.calibrated_position_rms}, {"angle_rms_deg", result.calibrated_angle_rms_deg}}},
+      {"validation", validation},
+      {"calibrated_robot", calibrated_path}};
+  const Vector6d x = VectorFromPose(reg.base_from_camera, EulerConvention::kXYZ);
+  const Vector6d y = VectorFromPose(reg.platform_from_target, EulerConvention::kXYZ);
+  full["registration"]["base_from_camera"] = std::vector<double>(x.data(), x.data() + 6);
+  full["registration"]["platform_from_target"] = std::vector<double>(y.data(), y.data() + 6);
+  full["robot"] = RobotJson(result.calibration.robot);
+  nlohmann::json parameters = nlohmann::json::array();
+  nlohmann::json legs_fit = nlohmann::json::array();
+  for (int i = 0; i < kNumLegs; ++i) {
+    const LegCalibration& leg = result.calibration.legs[i];
+    for (int k = 0; k < kParamsPerLeg; ++k) {
+      parameters.push_back({{"leg", i + 1},
+                            {"name", ParameterName(k)},
+                            {"nominal", leg.initial[k]},
+                            {"estimate", leg.estimate[k]},
+                            {"sigma", leg.has_uncertainty ? nlohmann::json(leg.std_dev[k]) : nullptr}});
+    }
+    legs_fit.push_back({{"leg", i + 1},
+                        {"variance_factor", leg.variance_factor},
+                        {"residual_rms", leg.residual_rms},
+                        {"iterations", leg.iterations},
+                        {"termination", leg.termination}});
+  }
+  full["parameters"] = parameters;
+  full["legs"] = legs_fit;
+  return full;
+}
+
 }  // namespace
 
 std::string ResolveSessionFile(const std::string& dir, const std::string& name) {
@@ -111,29 +228,7 @@ int RunSessionCalibrate(const std::string& dir, bool json, std::ostream& out, st
   if (!poses.ok()) return ReportError(err, kCommand, poses.status());
   const double scale = MetresPerUnit(target->length_unit) / MetresPerUnit(nominal->length_unit);
 
-  CameraCalibrationInput input;
-  std::vector<const LegsRow*> held_out;
-  int unusable = 0;
-  for (const LegsRow& row : *legs) {
-    const CameraPose& pose = poses->at(row.image);
-    if (!pose.ok) {
-      ++unusable;
-      continue;
-    }
-    if (row.holdout) {
-      held_out.push_back(&row);
-      continue;
-    }
-    Pose camera_from_target = pose.camera_from_target;
-    camera_from_target.position *= scale;
-    input.camera_from_target.push_back(camera_from_target);
-    Matrix6d covariance = pose.covariance;  // to the robot unit
-    covariance.topRows<3>() *= scale;
-    covariance.leftCols<3>() *= scale;
-    input.camera_pose_covariance.push_back(covariance);
-    input.legs.push_back(row.legs);
-    input.fk_start.push_back(fk_start);
-  }
+  const SessionRows rows = SplitRows(*legs, *poses, scale, fk_start);
   RegistrationOptions registration;
   registration.position_sigma = config->noise.PositionStdDev();
   registration.angle_sigma_deg = RadToDeg(config->noise.AngleStdDevRad());
@@ -150,39 +245,10 @@ int RunSessionCalibrate(const std::string& dir, bool json, std::ostream& out, st
     hooks.Progress(done, total);
   };
   StatusOr<CameraCalibrationResult> result =
-      CalibrateFromCameraPoses(*nominal, input, registration, calibration, bar_and_hooks);
+      CalibrateFromCameraPoses(*nominal, rows.input, registration, calibration, bar_and_hooks);
   if (!result.ok()) return ReportError(err, kCommand, result.status(), kExitFailure);
-
-  // Held-out rows: the camera pose mapped into the registered base frame.
-  std::vector<Measurement> validation_rows;
-  for (const LegsRow* row : held_out) {
-    Pose camera_from_target = poses->at(row->image).camera_from_target;
-    camera_from_target.position *= scale;
-    Measurement m;
-    m.pose = nominal->VectorFromPose(BaseFromPlatform(result->registration, camera_from_target));
-    m.legs = row->legs;
-    validation_rows.push_back(m);
-  }
-  nlohmann::json validation = nullptr;
-  if (!validation_rows.empty()) {
-    StatusOr<ValidationReport> before = Validate(*nominal, validation_rows);
-    StatusOr<ValidationReport> after = Validate(result->calibration.robot, validation_rows);
-    if (!before.ok()) return ReportError(err, kCommand, before.status(), kExitFailure);
-    if (!after.ok()) return ReportError(err, kCommand, after.status(), kExitFailure);
-    nlohmann::json per_image = nlohmann::json::array();
-    for (size_t j = 0; j < held_out.size(); ++j) {
-      const ValidationRow &b = before->rows[j], &a = after->rows[j];
-      per_image.push_back({{"image", held_out[j]->image},
-                           {"position_before", b.ok ? nlohmann::json(b.position_error) : nullptr},
-                           {"position_after", a.ok ? nlohmann::json(a.position_error) : nullptr},
-                           {"orientation_before", b.ok ? nlohmann::json(b.orientation_error_deg) : nullptr},
-                           {"orientation_after", a.ok ? nlohmann::json(a.orientation_error_deg) : nullptr}});
-    }
-    validation = {{"rows", validation_rows.size()},
-                  {"before", StatsJson(*before)},
-                  {"after", StatsJson(*after)},
-                  {"per_image", per_image}};
-  }
+  StatusOr<nlohmann::json> validation = ValidateHeldOut(*nominal, *result, *poses, rows.held_out, scale);
+  if (!validation.ok()) return ReportError(err, kCommand, validation.status(), kExitFailure);
 
   const std::string calibrated_path = (fs::path(paths.results) / "calibrated.yaml").string();
   const std::string used_measurements = (fs::path(paths.results) / "calibration_measurements.csv").string();
@@ -195,50 +261,8 @@ int RunSessionCalibrate(const std::string& dir, bool json, std::ostream& out, st
   config->platform_from_target = result->registration.platform_from_target;
   if (Status s = SaveSessionConfig(dir, *config); !s.ok()) return ReportError(err, kCommand, s, kExitFailure);
 
-  const Registration& reg = result->registration;
-  nlohmann::json full = {
-      {"session", dir},
-      {"images", legs->size()},
-      {"unusable_images", unusable},
-      {"calibration_images", input.legs.size()},
-      {"held_out_images", validation_rows.size()},
-      {"length_unit", LengthUnitName(nominal->length_unit)},
-      {"registration",
-       {{"position_rms", reg.position_rms},
-        {"angle_rms_deg", reg.angle_rms_deg},
-        {"position_max", reg.position_max},
-        {"angle_max_deg", reg.angle_max_deg}}},
-      {"closure_after_calibration",
-       {{"position_rms", result->calibrated_position_rms}, {"angle_rms_deg", result->calibrated_angle_rms_deg}}},
-      {"validation", validation},
-      {"calibrated_robot", calibrated_path}};
-  const Vector6d x = VectorFromPose(reg.base_from_camera, EulerConvention::kXYZ);
-  const Vector6d y = VectorFromPose(reg.platform_from_target, EulerConvention::kXYZ);
-  full["registration"]["base_from_camera"] = std::vector<double>(x.data(), x.data() + 6);
-  full["registration"]["platform_from_target"] = std::vector<double>(y.data(), y.data() + 6);
-  full["robot"] = RobotJson(result->calibration.robot);
-  nlohmann::json parameters = nlohmann::json::array();
-  for (int i = 0; i < kNumLegs; ++i) {
-    const LegCalibration& leg = result->calibration.legs[i];
-    for (int k = 0; k < kParamsPerLeg; ++k) {
-      parameters.push_back({{"leg", i + 1},
-                            {"name", ParameterName(k)},
-                            {"nominal", leg.initial[k]},
-                            {"estimate", leg.estimate[k]},
-                            {"sigma", leg.has_uncertainty ? nlohmann::json(leg.std_dev[k]) : nullptr}});
-    }
-  }
-  full["parameters"] = parameters;
-  nlohmann::json legs_fit = nlohmann::json::array();
-  for (int i = 0; i < kNumLegs; ++i) {
-    const LegCalibration& leg = result->calibration.legs[i];
-    legs_fit.push_back({{"leg", i + 1},
-                        {"variance_factor", leg.variance_factor},
-                        {"residual_rms", leg.residual_rms},
-                        {"iterations", leg.iterations},
-                        {"termination", leg.termination}});
-  }
-  full["legs"] = legs_fit;
+  const nlohmann::json full =
+      SessionReportJson(dir, *nominal, legs->size(), rows, *result, *validation, calibrated_path);
   const std::string report_path = (fs::path(paths.results) / "report.json").string();
   if (Status s = WriteFileAtomically(report_path, full.dump(2) + "\n"); !s.ok())
     return ReportError(err, kCommand, s, kExitFailure);
@@ -248,14 +272,15 @@ int RunSessionCalibrate(const std::string& dir, bool json, std::ostream& out, st
     return kExitOk;
   }
   const char* unit = LengthUnitName(nominal->length_unit);
-  out << "session " << dir << ": " << legs->size() << " images, " << input.legs.size() << " for calibration, "
-      << validation_rows.size() << " held out, " << unusable << " without a usable target pose\n"
+  const Registration& reg = result->registration;
+  out << "session " << dir << ": " << legs->size() << " images, " << rows.input.legs.size() << " for calibration, "
+      << rows.held_out.size() << " held out, " << rows.unusable << " without a usable target pose\n"
       << "registration (nominal robot): closure RMS " << reg.position_rms << " " << unit << ", " << reg.angle_rms_deg
       << " deg\n"
       << "after calibration: closure RMS " << result->calibrated_position_rms << " " << unit << ", "
       << result->calibrated_angle_rms_deg << " deg\n";
-  if (!validation.is_null()) {
-    const auto figure = [&](const char* when, const char* key) { return validation[when][key].get<double>(); };
+  if (!validation->is_null()) {
+    const auto figure = [&](const char* when, const char* key) { return (*validation)[when][key].get<double>(); };
     out << "held-out validation (position RMS " << unit << ", orientation RMS deg): before "
         << figure("before", "position_rms") << ", " << figure("before", "orientation_rms") << "; after "
         << figure("after", "position_rms") << ", " << figure("after", "orientation_rms") << "\n";
