@@ -3,7 +3,6 @@
 #include <Eigen/SVD>
 #include <cmath>
 #include <memory>
-#include <mutex>
 #include <sstream>
 
 #include "core/calibration_cost.h"
@@ -105,13 +104,13 @@ std::unique_ptr<ceres::LossFunction> MakeLoss(const CalibrationOptions& options,
 
 class CancelCallback final : public ceres::IterationCallback {
  public:
-  explicit CancelCallback(const std::atomic<bool>* cancel) : cancel_(cancel) {}
+  explicit CancelCallback(const JobHooks& hooks) : hooks_(hooks) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
-    return cancel_->load() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+    return hooks_.Cancelled() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
   }
 
  private:
-  const std::atomic<bool>* cancel_;
+  const JobHooks& hooks_;
 };
 
 ceres::Solver::Options SolverOptions(const CalibrationOptions& options) {
@@ -177,7 +176,7 @@ Status FillUncertainty(int leg, const LegData& data, const CalibrationOptions& o
 }
 
 StatusOr<LegCalibration> CalibrateLeg(int leg, const LegData& data, const LegParameters& nominal,
-                                      const CalibrationOptions& options, const std::atomic<bool>* cancel) {
+                                      const CalibrationOptions& options, const JobHooks& hooks) {
   LegCalibration result;
   result.initial = nominal;
   std::array<double, kParamsPerLeg> parameters;
@@ -192,12 +191,12 @@ StatusOr<LegCalibration> CalibrateLeg(int leg, const LegData& data, const LegPar
                              parameters.data());
   }
   ceres::Solver::Options solver = SolverOptions(options);
-  CancelCallback cancel_callback(cancel);
-  if (cancel != nullptr) solver.callbacks.push_back(&cancel_callback);
+  CancelCallback cancel_callback(hooks);
+  if (hooks.cancel != nullptr) solver.callbacks.push_back(&cancel_callback);
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
 
-  if (cancel != nullptr && cancel->load()) return Status::Cancelled();
+  if (hooks.Cancelled()) return Status::Cancelled();
   result.termination = ceres::TerminationTypeToString(summary.termination_type);
   result.solver_message = summary.message;
   result.iterations = static_cast<int>(summary.iterations.size()) - 1;  // entry 0 is the start
@@ -332,8 +331,7 @@ Status CheckCalibrationInput(const Robot& nominal, const std::vector<Measurement
 }
 
 StatusOr<CalibrationResult> Calibrate(const Robot& nominal, const std::vector<Measurement>& measurements,
-                                      const CalibrationOptions& options, const CalibrationProgress& progress,
-                                      const std::atomic<bool>* cancel) {
+                                      const CalibrationOptions& options, const JobHooks& hooks) {
   if (Status s = CheckCalibrationInput(nominal, measurements, options); !s.ok()) return s;
   std::vector<Pose> poses;
   poses.reserve(measurements.size());
@@ -345,18 +343,13 @@ StatusOr<CalibrationResult> Calibrate(const Robot& nominal, const std::vector<Me
     if (Status s = CheckRank(i, *leg, LegParametersOf(nominal.legs[i]), options); !s.ok()) return s;
     data.push_back(std::move(*leg));
   }
-  if (cancel != nullptr && cancel->load()) return Status::Cancelled();
+  if (hooks.Cancelled()) return Status::Cancelled();
 
   std::vector<std::optional<StatusOr<LegCalibration>>> legs(kNumLegs);
-  std::mutex progress_mutex;
-  int done = 0;
-  ParallelFor(kNumLegs, options.num_threads, [&](int i) {
-    legs[i] = CalibrateLeg(i, data[i], LegParametersOf(nominal.legs[i]), options, cancel);
-    if (progress) {
-      std::lock_guard<std::mutex> lock(progress_mutex);
-      progress(++done, kNumLegs);
-    }
-  });
+  const bool finished = ParallelFor(
+      kNumLegs, options.num_threads,
+      [&](int i, int) { legs[i] = CalibrateLeg(i, data[i], LegParametersOf(nominal.legs[i]), options, hooks); }, hooks);
+  if (!finished) return Status::Cancelled();
 
   CalibrationResult result;
   result.num_measurements = static_cast<int>(measurements.size());

@@ -33,13 +33,12 @@
 #pragma once
 
 #include <array>
-#include <atomic>
-#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/identification.h"
+#include "core/job_hooks.h"
 #include "core/measurements.h"
 #include "core/noise_model.h"
 #include "core/status.h"
@@ -127,18 +126,15 @@ struct CalibrationResult {
 // "ax", "ay", "az", "bx", "by", "bz", "l" for k = 0..6.
 const char* ParameterName(int k);
 
-// progress(legs_done, kNumLegs) as legs finish; may be empty. `cancel`, when
-// given and set, stops the solves at their next iteration.
-using CalibrationProgress = std::function<void(int done, int total)>;
-
 // The checks of the request that Calibrate makes first: valid options, finite
 // parameters and measurements, at least 7 measurements, readings near the stroke. A failure here is bad
 // input; a failure of Calibrate past it is a pose set or solve that does not work.
 Status CheckCalibrationInput(const Robot& nominal, const std::vector<Measurement>& measurements,
                              const CalibrationOptions& options);
 
+// hooks.Progress(legs_done, kNumLegs) as legs finish; hooks.cancel, when
+// raised, stops the solves at their next iteration (Status::Cancelled).
 StatusOr<CalibrationResult> Calibrate(const Robot& nominal, const std::vector<Measurement>& measurements,
-                                      const CalibrationOptions& options = {}, const CalibrationProgress& progress = {},
-                                      const std::atomic<bool>* cancel = nullptr);
+                                      const CalibrationOptions& options = {}, const JobHooks& hooks = {});
 
 }  // namespace hexcal

@@ -297,7 +297,7 @@ TEST(Calibration, CancelledBeforeOrDuringTheSolveReturnsCancelled) {
   const Robot nominal = Preset("inria-left-hand");
   const std::vector<Measurement> measurements = Measure(PerturbedRobot(nominal, 0.5), RandomFeasiblePoses(nominal, 12, 4));
   std::atomic<bool> cancel{true};
-  StatusOr<CalibrationResult> result = Calibrate(nominal, measurements, {}, {}, &cancel);
+  StatusOr<CalibrationResult> result = Calibrate(nominal, measurements, {}, {nullptr, &cancel});
   ASSERT_FALSE(result.ok());
   EXPECT_TRUE(result.status().cancelled());
   // Cancelled by the first leg to finish: the others stop at their next iteration.
@@ -305,14 +305,13 @@ TEST(Calibration, CancelledBeforeOrDuringTheSolveReturnsCancelled) {
   CalibrationOptions options;
   options.num_threads = 1;
   int calls = 0;
-  result = Calibrate(
-      nominal, measurements, options,
-      [&](int done, int total) {
-        ++calls;
-        EXPECT_EQ(total, kNumLegs);
-        cancel = done >= 1;
-      },
-      &cancel);
+  result = Calibrate(nominal, measurements, options,
+                     {[&](int done, int total) {
+                        ++calls;
+                        EXPECT_EQ(total, kNumLegs);
+                        cancel = done >= 1;
+                      },
+                      &cancel});
   EXPECT_TRUE(result.status().cancelled());
   EXPECT_GE(calls, 1);
 }
@@ -322,11 +321,11 @@ TEST(Calibration, ProgressCountsTheLegs) {
   std::vector<int> seen;
   std::mutex mutex;
   StatusOr<CalibrationResult> result =
-      Calibrate(nominal, Measure(nominal, RandomFeasiblePoses(nominal, 10, 4)), {}, [&](int done, int total) {
-        std::lock_guard<std::mutex> lock(mutex);
-        seen.push_back(done);
-        EXPECT_EQ(total, kNumLegs);
-      });
+      Calibrate(nominal, Measure(nominal, RandomFeasiblePoses(nominal, 10, 4)), {}, {[&](int done, int total) {
+                  std::lock_guard<std::mutex> lock(mutex);
+                  seen.push_back(done);
+                  EXPECT_EQ(total, kNumLegs);
+                }});
   ASSERT_TRUE(result.ok());
   EXPECT_EQ(seen, (std::vector<int>{1, 2, 3, 4, 5, 6}));
 }

@@ -30,7 +30,7 @@ Status RequireCompleteBox(const Robot& robot, CandidateKind kind) {
 // Draws points in the unit cube from `next_unit` and keeps the feasible ones.
 template <typename NextUnit>
 StatusOr<CandidateSet> SampleBox(const Robot& robot, const CandidateOptions& options, NextUnit&& next_unit,
-                                 const std::function<void(int, int)>& progress) {
+                                 const JobHooks& hooks) {
   const PoseBox box = *robot.limits.SamplingBox();
   CandidateSet set;
   const int64_t max_draws = static_cast<int64_t>(options.count) * options.max_draws_per_pose;
@@ -48,12 +48,15 @@ StatusOr<CandidateSet> SampleBox(const Robot& robot, const CandidateOptions& opt
     for (int k = 0; k < 6; ++k) v[k] = box.bounds[k]->min + unit[k] * (box.bounds[k]->max - box.bounds[k]->min);
     if (!IsFeasible(robot, robot.PoseFromVector(v))) continue;
     set.poses.push_back(v);
-    if (progress && set.poses.size() % 256 == 0) progress(static_cast<int>(set.poses.size()), options.count);
+    if (set.poses.size() % 256 == 0) {
+      if (hooks.Cancelled()) return Status::Cancelled("candidates: cancelled");
+      hooks.Progress(static_cast<int>(set.poses.size()), options.count);
+    }
   }
   return set;
 }
 
-StatusOr<CandidateSet> BoundaryCandidates(const Robot& robot, const std::function<void(int, int)>& progress) {
+StatusOr<CandidateSet> BoundaryCandidates(const Robot& robot, const JobHooks& hooks) {
   CandidateSet set;
   for (int combination = 0; combination < 64; ++combination) {
     LegReadings readings;
@@ -68,7 +71,8 @@ StatusOr<CandidateSet> BoundaryCandidates(const Robot& robot, const std::functio
     for (const Pose& pose : modes->poses) {
       if (IsFeasible(robot, pose)) set.poses.push_back(robot.VectorFromPose(pose));
     }
-    if (progress) progress(combination + 1, 64);
+    if (hooks.Cancelled()) return Status::Cancelled("candidates: cancelled");
+    hooks.Progress(combination + 1, 64);
   }
   return set;
 }
@@ -105,11 +109,10 @@ bool CandidateOptions::IsValid(std::string* error) const {
   return true;
 }
 
-StatusOr<CandidateSet> GenerateCandidates(const Robot& robot, const CandidateOptions& options,
-                                          const std::function<void(int, int)>& progress) {
+StatusOr<CandidateSet> GenerateCandidates(const Robot& robot, const CandidateOptions& options, const JobHooks& hooks) {
   std::string error;
   if (!options.IsValid(&error)) return Status::Error(error);
-  if (options.kind == CandidateKind::kBoundary) return BoundaryCandidates(robot, progress);
+  if (options.kind == CandidateKind::kBoundary) return BoundaryCandidates(robot, hooks);
   if (Status box = RequireCompleteBox(robot, options.kind); !box.ok()) return box;
 
   if (options.kind == CandidateKind::kRandom) {
@@ -122,7 +125,7 @@ StatusOr<CandidateSet> GenerateCandidates(const Robot& robot, const CandidateOpt
           for (int k = 0; k < 6; ++k) u[k] = unit(rng);
           return u;
         },
-        progress);
+        hooks);
   }
   static constexpr int kPrimes[6] = {2, 3, 5, 7, 11, 13};
   uint64_t index = 1 + options.seed * 1000003ULL % 1000000007ULL;  // skip the origin; seed shifts the sequence
@@ -134,7 +137,7 @@ StatusOr<CandidateSet> GenerateCandidates(const Robot& robot, const CandidateOpt
         ++index;
         return u;
       },
-      progress);
+      hooks);
 }
 
 }  // namespace hexcal

@@ -11,12 +11,12 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/job_hooks.h"
 #include "core/robot.h"
 #include "core/status.h"
 
@@ -43,8 +43,9 @@ struct CandidateSet {
   int real_modes = 0;           // boundary: real assembly modes found over all combinations
 };
 
-// progress(done, total) is called now and then; it may be empty.
+// hooks.Progress(done, total) now and then; hooks.cancel stops the search
+// there (Status::Cancelled).
 StatusOr<CandidateSet> GenerateCandidates(const Robot& robot, const CandidateOptions& options,
-                                          const std::function<void(int, int)>& progress = {});
+                                          const JobHooks& hooks = {});
 
 }  // namespace hexcal

@@ -172,6 +172,26 @@ TEST(OptimalDesign, SatisfiesTheEquivalenceTheorem) {
   EXPECT_LE(random_plan->d_efficiency, 1);
 }
 
+// The variance function is computed in fixed blocks of candidates spread over
+// the threads: the design is the same, bit for bit, on any number of threads.
+TEST(OptimalDesign, DoesNotDependOnTheThreadCount) {
+  const PlanningModel model{Preset("inria-left-hand"), std::nullopt, std::nullopt};
+  const std::vector<Vector6d> candidates = RandomPoses(model.robot, 2500, 5);
+  CandidateRows rows;
+  rows.Resize(static_cast<int>(candidates.size()));
+  for (size_t j = 0; j < candidates.size(); ++j) rows.Set(static_cast<int>(j), model.Rows(candidates[j]));
+  OptimalDesignOptions options;
+  options.max_iterations = 20;
+  options.threads = 1;
+  StatusOr<OptimalDesign> one = ComputeOptimalDesign(rows, options);
+  options.threads = 3;
+  StatusOr<OptimalDesign> three = ComputeOptimalDesign(rows, options);
+  ASSERT_TRUE(one.ok() && three.ok());
+  EXPECT_EQ(one->weights, three->weights);
+  EXPECT_EQ(one->log_det, three->log_det);
+  EXPECT_EQ(one->max_variance, three->max_variance);
+}
+
 }  // namespace
 }  // namespace hexcal
 

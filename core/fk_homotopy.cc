@@ -4,9 +4,9 @@
 #include <mutex>
 #include <random>
 #include <sstream>
-#include <thread>
 
 #include "core/forward_kinematics.h"
+#include "core/parallel.h"
 #include "core/path_tracker.h"
 
 namespace hexcal {
@@ -190,19 +190,12 @@ StatusOr<FkAllResult> ForwardKinematicsAll(const Robot& robot, const LegReadings
   tracker.give_up = [](const CVector8& z, double s) {
     return s < 0.02 && std::abs(Delta(z)) < 1e-8 * z.head<4>().squaredNorm();
   };
-  // The 40 paths are independent: track them on every core.
+  // The 40 paths are independent: track them on every core (at most 4).
   std::vector<PathEnd> ends(start.solutions.size());
-  const int workers = std::max(1u, std::min(std::thread::hardware_concurrency(), 4u));
-  auto track_some = [&](int first) {
-    for (size_t k = first; k < ends.size(); k += workers) {
-      ends[k] = TrackPath(homotopy, start.solutions[k], tracker);
-      if (ends[k].reached_end) RefineAt(homotopy, 0.0, &ends[k].z, 4, 1e-14);
-    }
-  };
-  std::vector<std::thread> threads;
-  for (int w = 1; w < workers; ++w) threads.emplace_back(track_some, w);
-  track_some(0);
-  for (std::thread& thread : threads) thread.join();
+  ParallelFor(static_cast<int>(ends.size()), std::min(ResolveThreadCount(0), 4), [&](int k, int) {
+    ends[k] = TrackPath(homotopy, start.solutions[k], tracker);
+    if (ends[k].reached_end) RefineAt(homotopy, 0.0, &ends[k].z, 4, 1e-14);
+  });
 
   FkAllResult result;
   result.tracked_paths = static_cast<int>(ends.size());

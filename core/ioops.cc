@@ -1,3 +1,6 @@
+// IOOPS as the paper draws it (section 4): PlanPoses is the loop of fig. 1,
+// Exchange one iteration of it, AddFindFinite fig. 2a, AddFindContinuous
+// fig. 2b, RememberAdded the Tabu list of section 4.3, RemoveFind figs 3 and 4.
 #include "core/ioops.h"
 
 #include <algorithm>
@@ -7,14 +10,17 @@
 #include <limits>
 #include <numeric>
 #include <random>
-#include <thread>
 
 #include "core/continuous_addfind.h"
+#include "core/parallel.h"
 
 namespace hexcal {
 namespace {
 
 constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
+// Candidates scored per ParallelFor item: a multiple of ScoreAdditions' own
+// 256-column chunks, large enough that the items cost far more than handing them out.
+constexpr int kScoreBlock = 1024;
 
 struct PlanEntry {
   Vector6d pose;
@@ -48,6 +54,221 @@ int SelectBest(const std::vector<double>& primary, const std::vector<double>* se
   std::nth_element(order.begin(), order.begin() + (kept - 1), order.end(), by_primary);
   return *std::max_element(order.begin(), order.begin() + kept,
                            [&](int a, int b) { return (*secondary)[a] < (*secondary)[b]; });
+}
+
+Status CheckPlanInput(const std::vector<Vector6d>& candidates, const std::vector<Vector6d>& initial,
+                      const PlannerOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) return Status::Error(error);
+  if (static_cast<int>(initial.size()) != options.num_poses) {
+    return Status::Error("the initial set has " + std::to_string(initial.size()) + " poses, the plan " +
+                         std::to_string(options.num_poses));
+  }
+  if (candidates.empty()) return Status::Error("the candidate set is empty");
+  return Status::Ok();
+}
+
+// What the exchange loop (fig. 1) carries from one iteration to the next: the
+// plan Υ^N with its information, the candidate set, the Tabu list T and the
+// random stream of the section 4.2 randomisation.
+struct Search {
+  Search(const PlanningModel& model, const std::vector<Vector6d>& candidates, const std::vector<Vector6d>& initial,
+         const PlannerOptions& options);
+
+  const PlanningModel& model;
+  const std::vector<Vector6d>& candidates;  // Ω_d (fig. 2a), or the start list of fig. 2b
+  const PlannerOptions& options;
+  std::mt19937_64 rng;
+  CandidateRows rows;           // of every candidate
+  int64_t next_new_id = -1;     // ids of the poses that are not candidates: -1, -2, ...
+  std::vector<PlanEntry> plan;  // Υ^N; Υ^{N+1} between AddFind and RemoveFind
+  DesignState state;            // the information of `plan`
+  std::vector<char> in_plan;    // per candidate
+  std::deque<int64_t> tabu;     // T: ids of the last n added poses (section 4.3)
+  int starts = 0;               // U
+  // D and O1 over every candidate: keep the quadratic forms through the
+  // exchanges instead of recomputing them (QuadraticFormCache).
+  bool cached = false;
+  QuadraticFormCache cache;
+  std::vector<double> primary_scores, secondary_scores;  // AddFind's, reused
+};
+
+std::vector<PlanEntry> InitialPlan(const PlanningModel& model, const std::vector<Vector6d>& initial,
+                                   int64_t* next_new_id) {
+  std::vector<PlanEntry> plan;
+  for (const Vector6d& pose : initial) plan.push_back({pose, model.Rows(pose), (*next_new_id)--});
+  return plan;
+}
+
+std::vector<PoseRows> RowsOf(const std::vector<PlanEntry>& plan) {
+  std::vector<PoseRows> rows;
+  for (const PlanEntry& entry : plan) rows.push_back(entry.rows);
+  return rows;
+}
+
+Search::Search(const PlanningModel& model, const std::vector<Vector6d>& candidates,
+               const std::vector<Vector6d>& initial, const PlannerOptions& options)
+    : model(model),
+      candidates(candidates),
+      options(options),
+      rng(options.seed),
+      plan(InitialPlan(model, initial, &next_new_id)),
+      state(DesignState::FromRows(RowsOf(plan))),
+      in_plan(candidates.size(), 0) {
+  const int count = static_cast<int>(candidates.size());
+  rows.Resize(count);
+  for (int j = 0; j < count; ++j) rows.Set(j, model.Rows(candidates[j]));
+  starts = options.addfind_starts > 0 ? options.addfind_starts : (options.continuous ? 40 : count);
+  cached = !options.continuous && starts >= count &&
+           (options.criterion == Criterion::kO1 || options.criterion == Criterion::kD);
+  if (cached && state.full_rank()) cache.Reset(state, rows);  // PlanPoses refuses a singular start
+}
+
+// The criteria of one AddFind: C_a is the primary criterion, or the secondary
+// with the section 4.2 switch probability; unswitched, with a secondary
+// criterion, AddFind keeps the best `keep` on C_a and picks on the secondary
+// (section 6.2).
+struct AddCriteria {
+  Criterion add;
+  bool switched = false;
+  std::optional<Criterion> secondary;  // empty when switched or when there is none
+};
+
+AddCriteria DrawAddCriteria(const PlannerOptions& options, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(0, 1);
+  AddCriteria criteria{options.criterion, false, std::nullopt};
+  criteria.switched = options.criterion_switch_probability > 0 && unit(rng) < options.criterion_switch_probability;
+  if (criteria.switched) {
+    criteria.add = *options.secondary;
+  } else {
+    criteria.secondary = options.secondary;
+  }
+  return criteria;
+}
+
+// The U candidates fig. 2a chooses in Ω_d: U drawn without replacement (a
+// partial Fisher–Yates shuffle), or, empty, every candidate.
+std::vector<int> DrawSubset(int count, int starts, std::mt19937_64& rng) {
+  std::vector<int> subset;
+  if (starts >= count) return subset;
+  subset.resize(count);
+  std::iota(subset.begin(), subset.end(), 0);
+  for (int k = 0; k < starts; ++k) std::swap(subset[k], subset[k + rng() % (count - k)]);
+  subset.resize(starts);
+  return subset;
+}
+
+// AddFind on a finite Ω_d (fig. 2a): ζ+ is the ζ_i among the U candidates that
+// maximises C_a(Υ^N + {ζ_i}); a candidate already in the plan is not a choice.
+StatusOr<PlanEntry> AddFindFinite(Search& s, const AddCriteria& criteria) {
+  const std::vector<int> subset = DrawSubset(s.rows.size(), s.starts, s.rng);
+  auto candidate_of = [&](int k) { return subset.empty() ? k : subset[k]; };
+  CandidateRows subset_rows;
+  subset_rows.Resize(static_cast<int>(subset.size()));
+  for (size_t k = 0; k < subset.size(); ++k) subset_rows.Set(static_cast<int>(k), s.rows.Rows(subset[k]));
+  const CandidateRows& scored = subset.empty() ? s.rows : subset_rows;
+
+  if (s.cached && !criteria.switched) {
+    if (s.cache.updates_since_reset() >= 50) s.cache.Reset(s.state, s.rows);
+    s.cache.Growth(&s.primary_scores);  // ranks candidates as the criterion does
+  } else {
+    ScoreInParallel(s.state, criteria.add, scored, &s.primary_scores, s.options.threads);
+  }
+  if (criteria.secondary) {
+    ScoreInParallel(s.state, *criteria.secondary, scored, &s.secondary_scores, s.options.threads);
+  }
+  for (int k = 0; k < scored.size(); ++k) {
+    if (s.in_plan[candidate_of(k)]) s.primary_scores[k] = kMinusInfinity;
+  }
+  const int pick = SelectBest(s.primary_scores, criteria.secondary ? &s.secondary_scores : nullptr, s.options.keep);
+  if (pick < 0) return Status::Error("every candidate is already in the plan: the candidate set is too small");
+  const int index = candidate_of(pick);
+  s.in_plan[index] = 1;
+  return PlanEntry{s.candidates[index], s.rows.Rows(index), index};
+}
+
+// AddFind on the bounded workspace Ω (fig. 2b): U constrained local
+// maximisations of C_a(Υ^N + {ζ}) (SLSQP, continuous_addfind.h) from starts
+// drawn in the candidate list; ζ+ is the best of their optima.
+StatusOr<PlanEntry> AddFindContinuous(Search& s, const AddCriteria& criteria) {
+  const int count = static_cast<int>(s.candidates.size());
+  std::vector<Vector6d> start_poses;
+  for (int k = 0; k < s.starts; ++k) start_poses.push_back(s.candidates[s.rng() % count]);
+  const std::vector<ContinuousResult> found = ContinuousAddFind(s.model, s.state, criteria.add, start_poses);
+  if (found.empty()) {
+    return Status::Error("continuous AddFind found no feasible pose from " + std::to_string(s.starts) + " starts");
+  }
+  s.primary_scores.clear();
+  s.secondary_scores.clear();
+  for (const ContinuousResult& r : found) {
+    s.primary_scores.push_back(r.value);
+    if (criteria.secondary) {
+      s.secondary_scores.push_back(s.state.ValueAfterAdding(*criteria.secondary, s.model.Rows(r.pose)));
+    }
+  }
+  const int pick = SelectBest(s.primary_scores, criteria.secondary ? &s.secondary_scores : nullptr, s.options.keep);
+  if (pick < 0) return Status::Error("continuous AddFind found no pose with a finite criterion");
+  return PlanEntry{found[pick].pose, s.model.Rows(found[pick].pose), s.next_new_id--};
+}
+
+// The Tabu step (section 4.3): T = {ζ+_i, ..., ζ+_j} holds the last n added
+// poses, which RemoveFind may not drop (fig. 4). n = 0 is the basic IOOPS.
+void RememberAdded(int64_t id, int length, std::deque<int64_t>* tabu) {
+  if (length == 0) return;
+  tabu->push_back(id);
+  if (static_cast<int>(tabu->size()) > length) tabu->pop_front();
+}
+
+// RemoveFind (fig. 3): ζ- is the ζ of Υ^{N+1} that maximises
+// C_r(Υ^{N+1} - {ζ}), C_r the primary criterion; with Tabu (fig. 4) the poses
+// in T are left out; with the section 4.2 randomisation, one of the r best
+// at random. Returns ζ-'s position in the plan.
+int RemoveFind(Search& s) {
+  std::vector<std::pair<double, int>> removals;
+  for (int k = 0; k < static_cast<int>(s.plan.size()); ++k) {
+    if (std::find(s.tabu.begin(), s.tabu.end(), s.plan[k].id) != s.tabu.end()) continue;
+    removals.push_back({s.state.ValueAfterRemoving(s.options.criterion, s.plan[k].rows), k});
+  }
+  std::sort(removals.begin(), removals.end(), std::greater<>());
+  const int choices = std::min<int>(s.options.removal_choices, removals.size());
+  return removals[choices > 1 ? s.rng() % choices : 0].second;
+}
+
+// One iteration of fig. 1: ζ+ = AddFind(Ω, Υ^N, C_a), Υ^{N+1} = Υ^N ∪ ζ+,
+// ζ- = RemoveFind(Υ^{N+1}, C_r), Υ^N = Υ^{N+1} - {ζ-}. True when ζ- ≠ ζ+
+// (false is the basic algorithm's termination condition, section 4.1.4).
+StatusOr<bool> Exchange(Search& s) {
+  const AddCriteria criteria = DrawAddCriteria(s.options, s.rng);
+  StatusOr<PlanEntry> added = s.options.continuous ? AddFindContinuous(s, criteria) : AddFindFinite(s, criteria);
+  if (!added.ok()) return added.status();
+  s.plan.push_back(*added);
+  std::optional<DesignState> before_add;
+  if (s.cached) before_add = s.state;
+  s.state.Add(added->rows);
+  RememberAdded(added->id, s.options.tabu, &s.tabu);
+
+  const int removed_index = RemoveFind(s);
+  const PlanEntry removed = s.plan[removed_index];
+  s.plan.erase(s.plan.begin() + removed_index);
+  const bool exchanged = removed.id != added->id;
+  if (s.cached && exchanged) s.cache.Exchanged(*before_add, added->rows, s.state, removed.rows, s.rows);
+  s.state.Remove(removed.rows);
+  if (removed.id >= 0) s.in_plan[removed.id] = 0;
+  return exchanged;
+}
+
+// The best plan's unweighted indices (paper section 2) and primary criterion.
+void SetFinal(const PlanningModel& model, const PlannerOptions& options, const std::vector<Vector6d>& best,
+              PlanResult* result) {
+  result->poses = best;
+  std::vector<PoseRows> best_rows;
+  std::vector<Pose> best_poses;
+  for (const Vector6d& pose : best) {
+    best_rows.push_back(model.Rows(pose));
+    best_poses.push_back(model.robot.PoseFromVector(pose));
+  }
+  result->final = ComputeIndices(model.robot, best_poses);
+  result->final_primary = DesignState::FromRows(best_rows).Value(options.criterion);
 }
 
 }  // namespace
@@ -88,177 +309,64 @@ int PlannerOptions::IterationBudget() const {
 
 void ScoreInParallel(const DesignState& state, Criterion criterion, const CandidateRows& candidates,
                      std::vector<double>* scores, int threads) {
-  const int count = candidates.size();
-  scores->resize(count);
-  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  threads = std::max(1, std::min(threads, count / 512));
-  const int chunk = (count + threads - 1) / threads;
-  std::vector<std::thread> workers;
-  for (int t = 1; t < threads; ++t) {
-    const int begin = t * chunk, end = std::min(count, begin + chunk);
-    workers.emplace_back([&, begin, end] { state.ScoreAdditions(criterion, candidates, begin, end, scores->data() + begin); });
-  }
-  state.ScoreAdditions(criterion, candidates, 0, std::min(count, chunk), scores->data());
-  for (std::thread& worker : workers) worker.join();
+  scores->resize(candidates.size());
+  ParallelForBlocks(candidates.size(), kScoreBlock, threads, [&](int begin, int end) {
+    state.ScoreAdditions(criterion, candidates, begin, end, scores->data() + begin);
+  });
 }
 
+// IOOPS (fig. 1): the exchange loop from the initial Υ^N until ζ+ = ζ- (basic)
+// or the iteration budget (Tabu); the best plan seen on the selection
+// criterion (the secondary if any) is the result.
 StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vector6d>& candidates,
                                const std::vector<Vector6d>& initial, const PlannerOptions& options,
-                               const PlanProgress& progress, const std::atomic<bool>* cancel,
-                               const PlanIterationObserver& on_iteration) {
+                               const JobHooks& hooks, const PlanIterationObserver& on_iteration) {
   const auto start_time = std::chrono::steady_clock::now();
-  std::string error;
-  if (!options.IsValid(&error)) return Status::Error(error);
-  if (static_cast<int>(initial.size()) != options.num_poses) {
-    return Status::Error("the initial set has " + std::to_string(initial.size()) + " poses, the plan " +
-                         std::to_string(options.num_poses));
+  if (Status s = CheckPlanInput(candidates, initial, options); !s.ok()) return s;
+  Search search(model, candidates, initial, options);
+  if (!search.state.full_rank()) {
+    return Status::Error(
+        "the initial poses do not identify all 42 parameters (a leg's information matrix is "
+        "singular): start from more varied poses");
   }
-  if (candidates.empty()) return Status::Error("the candidate set is empty");
-  std::mt19937_64 rng(options.seed);
-
-  const int count = static_cast<int>(candidates.size());
-  CandidateRows rows;
-  rows.Resize(count);
-  for (int j = 0; j < count; ++j) rows.Set(j, model.Rows(candidates[j]));
-
-  std::vector<PlanEntry> plan;
-  int64_t next_new_id = -1;
-  for (const Vector6d& pose : initial) plan.push_back({pose, model.Rows(pose), next_new_id--});
-  std::vector<PoseRows> initial_rows;
-  for (const PlanEntry& entry : plan) initial_rows.push_back(entry.rows);
-  DesignState state = DesignState::FromRows(initial_rows);
-  if (!state.full_rank()) {
-    return Status::Error("the initial poses do not identify all 42 parameters (a leg's information matrix is "
-                         "singular): start from more varied poses");
-  }
-  std::vector<char> in_plan(count, 0);
 
   const Criterion selection = options.secondary.value_or(options.criterion);
+  std::vector<Vector6d> best = PosesOf(search.plan);
+  double best_value = search.state.Value(selection);
   PlanResult result;
   auto record = [&](int iteration, bool exchanged) {
-    PlanIteration step{iteration, PaperIndices(model.robot, plan), state.Value(options.criterion),
-                       options.secondary ? state.Value(*options.secondary) : 0.0, exchanged};
+    const PlanIteration step{iteration,
+                             PaperIndices(model.robot, search.plan),
+                             search.state.Value(options.criterion),
+                             options.secondary ? search.state.Value(*options.secondary) : 0.0,
+                             exchanged,
+                             best_value};
     result.history.push_back(step);
     if (on_iteration) on_iteration(step);
   };
   record(0, false);
   result.initial = result.history.back().indices;
   result.initial_primary = result.history.back().primary;
-  std::vector<Vector6d> best = PosesOf(plan);
-  double best_value = state.Value(selection);
-  std::deque<int64_t> tabu;
 
   const int budget = options.IterationBudget();
-  const int starts = options.addfind_starts > 0 ? options.addfind_starts : (options.continuous ? 40 : count);
-  std::vector<double> primary_scores, secondary_scores;
-  // D and O1 over every candidate: keep the quadratic forms through the exchanges
-  // instead of recomputing them (QuadraticFormCache).
-  const bool cached = !options.continuous && starts >= count &&
-                      (options.criterion == Criterion::kO1 || options.criterion == Criterion::kD);
-  QuadraticFormCache cache;
-  if (cached) cache.Reset(state, rows);
   for (int iteration = 1; iteration <= budget; ++iteration) {
-    if (cancel && cancel->load()) return Status::Cancelled("planning cancelled at iteration " + std::to_string(iteration));
-    Criterion add_criterion = options.criterion;
-    std::uniform_real_distribution<double> unit(0, 1);
-    const bool switched = options.criterion_switch_probability > 0 && unit(rng) < options.criterion_switch_probability;
-    if (switched) add_criterion = *options.secondary;
-    const bool use_secondary = !switched && options.secondary.has_value();
-    const Criterion secondary = options.secondary.value_or(options.criterion);
-
-    // AddFind (figs 2a, 2b).
-    PlanEntry added;
-    if (!options.continuous) {
-      CandidateRows subset_rows;
-      std::vector<int> subset;
-      const CandidateRows* scored = &rows;
-      if (starts < count) {
-        subset.resize(count);
-        std::iota(subset.begin(), subset.end(), 0);
-        for (int k = 0; k < starts; ++k) std::swap(subset[k], subset[k + rng() % (count - k)]);
-        subset.resize(starts);
-        subset_rows.Resize(starts);
-        for (int k = 0; k < starts; ++k) subset_rows.Set(k, rows.Rows(subset[k]));
-        scored = &subset_rows;
-      }
-      if (cached && !switched) {
-        if (cache.updates_since_reset() >= 50) cache.Reset(state, rows);
-        cache.Growth(&primary_scores);  // ranks candidates as the criterion does
-      } else {
-        ScoreInParallel(state, add_criterion, *scored, &primary_scores, options.threads);
-      }
-      if (use_secondary) ScoreInParallel(state, secondary, *scored, &secondary_scores, options.threads);
-      for (int k = 0; k < scored->size(); ++k) {
-        if (in_plan[subset.empty() ? k : subset[k]]) primary_scores[k] = kMinusInfinity;
-      }
-      const int pick = SelectBest(primary_scores, use_secondary ? &secondary_scores : nullptr, options.keep);
-      if (pick < 0) return Status::Error("every candidate is already in the plan: the candidate set is too small");
-      const int index = subset.empty() ? pick : subset[pick];
-      added = {candidates[index], rows.Rows(index), index};
-      in_plan[index] = 1;
-    } else {
-      std::vector<Vector6d> start_poses;
-      for (int k = 0; k < starts; ++k) start_poses.push_back(candidates[rng() % count]);
-      const std::vector<ContinuousResult> found = ContinuousAddFind(model, state, add_criterion, start_poses);
-      if (found.empty()) return Status::Error("continuous AddFind found no feasible pose from " + std::to_string(starts) + " starts");
-      primary_scores.clear();
-      secondary_scores.clear();
-      for (const ContinuousResult& r : found) {
-        primary_scores.push_back(r.value);
-        if (use_secondary) secondary_scores.push_back(state.ValueAfterAdding(secondary, model.Rows(r.pose)));
-      }
-      const int pick = SelectBest(primary_scores, use_secondary ? &secondary_scores : nullptr, options.keep);
-      added = {found[pick].pose, model.Rows(found[pick].pose), next_new_id--};
-    }
-    plan.push_back(added);
-    std::optional<DesignState> before_add;
-    if (cached) before_add = state;
-    state.Add(added.rows);
-    if (options.tabu > 0) {
-      tabu.push_back(added.id);
-      if (static_cast<int>(tabu.size()) > options.tabu) tabu.pop_front();
-    }
-
-    // RemoveFind (figs 3, 4).
-    std::vector<std::pair<double, int>> removals;
-    for (int k = 0; k < static_cast<int>(plan.size()); ++k) {
-      if (std::find(tabu.begin(), tabu.end(), plan[k].id) != tabu.end()) continue;
-      removals.push_back({state.ValueAfterRemoving(options.criterion, plan[k].rows), k});
-    }
-    std::sort(removals.begin(), removals.end(), std::greater<>());
-    const int choices = std::min<int>(options.removal_choices, removals.size());
-    const int removed_index = removals[choices > 1 ? rng() % choices : 0].second;
-    const PlanEntry removed = plan[removed_index];
-    plan.erase(plan.begin() + removed_index);
-    if (cached && removed.id != added.id) cache.Exchanged(*before_add, added.rows, state, removed.rows, rows);
-    state.Remove(removed.rows);
-    if (removed.id >= 0) in_plan[removed.id] = 0;
-
-    const bool exchanged = removed.id != added.id;
-    record(iteration, exchanged);
+    if (hooks.Cancelled()) return Status::Cancelled("planning cancelled at iteration " + std::to_string(iteration));
+    StatusOr<bool> exchanged = Exchange(search);
+    if (!exchanged.ok()) return exchanged.status();
     result.iterations = iteration;
-    const double value = state.Value(selection);
-    if (value > best_value) {
+    if (const double value = search.state.Value(selection); value > best_value) {
       best_value = value;
-      best = PosesOf(plan);
+      best = PosesOf(search.plan);
       result.best_iteration = iteration;
     }
-    if (progress) progress(iteration, budget, best_value);
-    if (!exchanged && options.tabu == 0) {
+    record(iteration, *exchanged);
+    hooks.Progress(iteration, budget);
+    if (!*exchanged && options.tabu == 0) {
       result.converged = true;
       break;
     }
   }
-
-  result.poses = best;
-  std::vector<PoseRows> best_rows;
-  std::vector<Pose> best_poses;
-  for (const Vector6d& pose : best) {
-    best_rows.push_back(model.Rows(pose));
-    best_poses.push_back(model.robot.PoseFromVector(pose));
-  }
-  result.final = ComputeIndices(model.robot, best_poses);
-  result.final_primary = DesignState::FromRows(best_rows).Value(options.criterion);
+  SetFinal(model, options, best, &result);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return result;
 }

@@ -16,12 +16,12 @@
 //   StatusOr<PlanResult> plan = PlanPoses(model, candidates, initial, options);
 #pragma once
 
-#include <atomic>
 #include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/job_hooks.h"
 #include "core/observability.h"
 #include "core/planning_model.h"
 
@@ -50,6 +50,7 @@ struct PlanIteration {
   ObservabilityIndices indices;  // of the N-pose plan after this iteration
   double primary = 0, secondary = 0;
   bool exchanged = false;        // false when the added pose was removed again
+  double best = 0;               // best so far on the selection criterion (the secondary if set)
 };
 
 struct PlanResult {
@@ -63,19 +64,20 @@ struct PlanResult {
   double seconds = 0;
 };
 
-using PlanProgress = std::function<void(int iteration, int budget, double best)>;
 // Each history entry as it is recorded (iteration 0 first), for live plots of
-// the indices (figs 6, 10-12); called on the planning thread.
+// the indices (figs 6, 10-12) and of the best value; called on the planning thread.
 using PlanIterationObserver = std::function<void(const PlanIteration& step)>;
 
 // `candidates` is the finite search set (and the start list in continuous
-// mode); `initial` holds N poses to start from.
+// mode); `initial` holds N poses to start from. hooks.Progress(iteration,
+// budget) after each iteration; hooks.cancel stops before the next one
+// (Status::Cancelled).
 StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vector6d>& candidates,
                                const std::vector<Vector6d>& initial, const PlannerOptions& options,
-                               const PlanProgress& progress = {}, const std::atomic<bool>* cancel = nullptr,
-                               const PlanIterationObserver& on_iteration = {});
+                               const JobHooks& hooks = {}, const PlanIterationObserver& on_iteration = {});
 
-// Scores every candidate with DesignState::ScoreAdditions on `threads` threads.
+// Scores every candidate with DesignState::ScoreAdditions on `threads` threads
+// (0: every core); the scores do not depend on the thread count.
 void ScoreInParallel(const DesignState& state, Criterion criterion, const CandidateRows& candidates,
                      std::vector<double>* scores, int threads);
 

@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
+
 #include "core/candidates.h"
 #include "tests/robot_presets.h"
 #include "tests/test_support.h"
@@ -58,14 +61,25 @@ TEST_F(IoopsTest, PlainIoopsNeverDecreasesAndConverges) {
   const std::vector<Vector6d> candidates = Generate(model_.robot, CandidateKind::kRandom, 1500, 3);
   PlannerOptions options;
   std::vector<PlanIteration> observed;  // the live feed must be the history, entry for entry
-  StatusOr<PlanResult> plan = PlanPoses(model_, candidates, random18_, options, {}, nullptr,
+  std::vector<int> progress;
+  JobHooks hooks;
+  hooks.progress = [&](int iteration, int budget) {
+    EXPECT_EQ(budget, options.IterationBudget());
+    progress.push_back(iteration);
+  };
+  StatusOr<PlanResult> plan = PlanPoses(model_, candidates, random18_, options, hooks,
                                         [&](const PlanIteration& step) { observed.push_back(step); });
   ASSERT_TRUE(plan.ok()) << plan.status().message();
   ASSERT_EQ(observed.size(), plan->history.size());
+  double best = -1;
   for (size_t k = 0; k < observed.size(); ++k) {
     EXPECT_EQ(observed[k].iteration, plan->history[k].iteration);
     EXPECT_EQ(observed[k].indices.o2, plan->history[k].indices.o2);
+    best = std::max(best, plan->history[k].primary);
+    EXPECT_EQ(plan->history[k].best, best);  // without a secondary, the best primary so far
   }
+  ASSERT_EQ(progress.size(), plan->history.size() - 1);
+  for (size_t k = 0; k < progress.size(); ++k) EXPECT_EQ(progress[k], static_cast<int>(k) + 1);
   EXPECT_TRUE(plan->converged);
   for (size_t k = 1; k < plan->history.size(); ++k) {
     EXPECT_GE(plan->history[k].primary, plan->history[k - 1].primary * (1 - 1e-12)) << "iteration " << k;
@@ -112,6 +126,23 @@ TEST_F(IoopsTest, ContinuousSearchImprovesAndStaysFeasible) {
   for (const Vector6d& pose : plan->poses) EXPECT_TRUE(model_.IsFeasible(pose));
 }
 
+// Scores are computed in fixed blocks of candidates: the same on any number of threads.
+TEST_F(IoopsTest, ScoresDoNotDependOnTheThreadCount) {
+  const std::vector<Vector6d> candidates = Generate(model_.robot, CandidateKind::kRandom, 2500, 6);
+  CandidateRows rows;
+  rows.Resize(static_cast<int>(candidates.size()));
+  for (size_t j = 0; j < candidates.size(); ++j) rows.Set(static_cast<int>(j), model_.Rows(candidates[j]));
+  std::vector<PoseRows> plan;
+  for (const Vector6d& pose : random18_) plan.push_back(model_.Rows(pose));
+  const DesignState state = DesignState::FromRows(plan);
+  for (Criterion criterion : {Criterion::kO1, Criterion::kA, Criterion::kO4}) {
+    std::vector<double> one, three;
+    ScoreInParallel(state, criterion, rows, &one, 1);
+    ScoreInParallel(state, criterion, rows, &three, 3);
+    EXPECT_EQ(one, three) << CriterionName(criterion);
+  }
+}
+
 TEST_F(IoopsTest, ErrorsAndCancellation) {
   PlannerOptions options;
   options.num_poses = 6;
@@ -122,7 +153,9 @@ TEST_F(IoopsTest, ErrorsAndCancellation) {
   ASSERT_FALSE(singular.ok());
   EXPECT_NE(singular.status().message().find("singular"), std::string::npos);
   std::atomic<bool> cancel{true};
-  StatusOr<PlanResult> cancelled = PlanPoses(model_, boundary_, random18_, options, {}, &cancel);
+  JobHooks hooks;
+  hooks.cancel = &cancel;
+  StatusOr<PlanResult> cancelled = PlanPoses(model_, boundary_, random18_, options, hooks);
   ASSERT_FALSE(cancelled.ok());
   EXPECT_TRUE(cancelled.status().cancelled());
 }

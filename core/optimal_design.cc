@@ -3,7 +3,8 @@
 #include <Eigen/Cholesky>
 #include <chrono>
 #include <cmath>
-#include <thread>
+
+#include "core/parallel.h"
 
 namespace hexcal {
 namespace {
@@ -49,17 +50,10 @@ void VarianceFromCholesky(const std::array<InfoBlock, kNumLegs>& cholesky_invers
 
 void ParallelVariance(const std::array<InfoBlock, kNumLegs>& cholesky_inverses, const CandidateRows& candidates,
                       Eigen::ArrayXd* variance, int threads) {
-  const int count = candidates.size();
-  variance->resize(count);
-  threads = std::max(1, std::min(threads, count / 1024));
-  const int chunk = (count + threads - 1) / threads;
-  std::vector<std::thread> workers;
-  for (int t = 1; t < threads; ++t) {
-    const int begin = t * chunk, end = std::min(count, begin + chunk);
-    workers.emplace_back([&, begin, end] { VarianceFromCholesky(cholesky_inverses, candidates, begin, end, variance->data() + begin); });
-  }
-  VarianceFromCholesky(cholesky_inverses, candidates, 0, std::min(count, chunk), variance->data());
-  for (std::thread& worker : workers) worker.join();
+  variance->resize(candidates.size());
+  ParallelForBlocks(candidates.size(), 1024, threads, [&](int begin, int end) {
+    VarianceFromCholesky(cholesky_inverses, candidates, begin, end, variance->data() + begin);
+  });
 }
 
 // Optimal weight δ in [0, w_l] moved from candidate l to k: maximises
@@ -107,22 +101,21 @@ void VarianceFunction(const std::array<InfoBlock, kNumLegs>& inverses, const Can
 }
 
 StatusOr<OptimalDesign> ComputeOptimalDesign(const CandidateRows& candidates, const OptimalDesignOptions& options,
-                                             const std::atomic<bool>* cancel) {
+                                             const JobHooks& hooks) {
   const auto start = std::chrono::steady_clock::now();
   const int count = candidates.size();
   if (count < kParamsPerLeg) return Status::Error("the optimal design needs at least 7 candidates");
-  const int threads = options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 
   Eigen::ArrayXd w = Eigen::ArrayXd::Constant(count, 1.0 / count);
   std::array<InfoBlock, kNumLegs> blocks = Information(candidates, w), inverses, cholesky_inverses;
   OptimalDesign design;
   Eigen::ArrayXd d;
   for (design.iterations = 0; design.iterations < options.max_iterations; ++design.iterations) {
-    if (cancel && cancel->load()) return Status::Cancelled("optimal design cancelled");
+    if (hooks.Cancelled()) return Status::Cancelled("optimal design cancelled");
     if (!Invert(blocks, &inverses, &cholesky_inverses, &design.log_det)) {
       return Status::Error("the candidate set does not identify all 42 parameters (singular information)");
     }
-    ParallelVariance(cholesky_inverses, candidates, &d, threads);
+    ParallelVariance(cholesky_inverses, candidates, &d, options.threads);
     Eigen::Index best;
     design.max_variance = d.maxCoeff(&best);
     design.gap = design.max_variance / kP - 1;

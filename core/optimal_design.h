@@ -16,10 +16,10 @@
 //   (det(M_plan / N) / det M*)^(1/42) >= (det(M_plan / N) / det M(w))^(1/42) · p / max d.
 #pragma once
 
-#include <atomic>
 #include <vector>
 
 #include "core/design_criteria.h"
+#include "core/job_hooks.h"
 #include "core/planning_model.h"
 #include "core/status.h"
 
@@ -29,7 +29,7 @@ struct OptimalDesignOptions {
   double gap_tolerance = 1e-4;  // stop when max_x d(x, w) / 42 - 1 is below this
   int max_iterations = 100000;
   double max_seconds = 60;
-  int threads = 0;
+  int threads = 0;  // variance function threads; 0: every core
 };
 
 struct OptimalDesign {
@@ -44,8 +44,10 @@ struct OptimalDesign {
   double LogDetBound() const;
 };
 
+// hooks.cancel stops it (Status::Cancelled); it reports no progress, as its
+// length is set by the gap and the time limit rather than a count.
 StatusOr<OptimalDesign> ComputeOptimalDesign(const CandidateRows& candidates, const OptimalDesignOptions& options = {},
-                                             const std::atomic<bool>* cancel = nullptr);
+                                             const JobHooks& hooks = {});
 
 // d(x_j, w) for every candidate, given the per-leg inverses of M(w).
 void VarianceFunction(const std::array<InfoBlock, kNumLegs>& inverses, const CandidateRows& candidates,

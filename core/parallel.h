@@ -1,38 +1,39 @@
-// ParallelFor: runs body(0) .. body(count - 1) on up to `threads` threads
-// (0 = every core), each index exactly once, in no particular order. Results
-// must go to per-index slots so that they do not depend on the thread count.
+// ParallelFor, the one thread pool of core and vision: body(index, worker) for
+// index 0 .. count - 1, each index exactly once, in no particular order, on
+// ParallelWorkers(count, threads) threads (threads = 0: every core). `worker`
+// (0 .. workers - 1) names the calling thread, for per-thread state such as
+// one tag detector each. Results must go to per-index slots so that they do
+// not depend on the thread count or on the order in which items finish.
+//
+// hooks.Progress(done, count) is called after each item, serialised (never
+// two at once), from whichever worker finished it. hooks.Cancelled() is polled
+// before each item; once it is raised the remaining items are skipped and
+// ParallelFor returns false.
 //
 //   std::vector<double> out(n);
-//   ParallelFor(n, 0, [&](int k) { out[k] = Work(k); });
+//   ParallelFor(n, 0, [&](int k, int /*worker*/) { out[k] = Work(k); });
 #pragma once
 
-#include <algorithm>
-#include <atomic>
-#include <thread>
-#include <vector>
+#include <functional>
+
+#include "core/job_hooks.h"
 
 namespace hexcal {
 
-inline int ResolveThreadCount(int threads) {
-  if (threads > 0) return threads;
-  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-}
+// `threads` itself when positive, else the number of cores (at least 1).
+int ResolveThreadCount(int threads);
 
-template <typename Body>
-void ParallelFor(int count, int threads, Body&& body) {
-  const int workers = std::min(ResolveThreadCount(threads), count);
-  if (workers <= 1) {
-    for (int k = 0; k < count; ++k) body(k);
-    return;
-  }
-  std::atomic<int> next{0};
-  auto work = [&] {
-    for (int k = next++; k < count; k = next++) body(k);
-  };
-  std::vector<std::thread> pool;
-  for (int w = 1; w < workers; ++w) pool.emplace_back(work);
-  work();
-  for (std::thread& thread : pool) thread.join();
-}
+// The threads ParallelFor(count, threads, ...) runs on: at least 1, at most count.
+int ParallelWorkers(int count, int threads);
+
+// False when hooks.cancel was raised before every item had started (those were skipped).
+bool ParallelFor(int count, int threads, const std::function<void(int index, int worker)>& body,
+                 const JobHooks& hooks = {});
+
+// body(begin, end) for the blocks [0, block), [block, 2 block), ... of
+// [0, count), spread over the threads as ParallelFor's items: for vectorised
+// work on many small items (scoring candidates). The block bounds depend on
+// count and block only, never on the thread count.
+void ParallelForBlocks(int count, int block, int threads, const std::function<void(int begin, int end)>& body);
 
 }  // namespace hexcal

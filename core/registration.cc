@@ -251,8 +251,7 @@ Matrix6d MapCameraPoseCovariance(const Robot& nominal, const Registration& regis
 StatusOr<CameraCalibrationResult> CalibrateFromCameraPoses(const Robot& nominal, const CameraCalibrationInput& input,
                                                            const RegistrationOptions& registration_options,
                                                            const CalibrationOptions& calibration_options,
-                                                           const CalibrationProgress& progress,
-                                                           const std::atomic<bool>* cancel) {
+                                                           const JobHooks& hooks) {
   const size_t n = input.camera_from_target.size();
   if (input.legs.size() != n || input.fk_start.size() != n ||
       (!input.camera_pose_covariance.empty() && input.camera_pose_covariance.size() != n))
@@ -280,7 +279,7 @@ StatusOr<CameraCalibrationResult> CalibrateFromCameraPoses(const Robot& nominal,
     }
     result.measurements.push_back(m);
   }
-  StatusOr<CalibrationResult> calibration = Calibrate(nominal, result.measurements, calibration_options, progress, cancel);
+  StatusOr<CalibrationResult> calibration = Calibrate(nominal, result.measurements, calibration_options, hooks);
   if (!calibration.ok()) return calibration.status();
   result.calibration = *calibration;
 

@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "core/calibration.h"
+#include "core/job_hooks.h"
 #include "core/measurements.h"
 #include "core/pose.h"
 #include "core/robot.h"
@@ -112,11 +113,10 @@ Matrix6d MapCameraPoseCovariance(const Robot& nominal, const Registration& regis
                                  const Pose& camera_from_target, const Matrix6d& covariance);
 
 // Registration with the nominal robot, then Calibrate on the mapped poses.
-// `progress` and `cancel` go to Calibrate (calibration.h).
+// `hooks` go to Calibrate (calibration.h).
 StatusOr<CameraCalibrationResult> CalibrateFromCameraPoses(const Robot& nominal, const CameraCalibrationInput& input,
                                                            const RegistrationOptions& registration_options = {},
                                                            const CalibrationOptions& calibration_options = {},
-                                                           const CalibrationProgress& progress = {},
-                                                           const std::atomic<bool>* cancel = nullptr);
+                                                           const JobHooks& hooks = {});
 
 }  // namespace hexcal

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
 
 #include "core/candidates.h"
 #include "core/parallel.h"
@@ -77,7 +76,7 @@ Status RunOnce(const Robot& nominal, const Robot& true_robot, const std::vector<
       const int n = sizes[p][s];
       if (n == 0) continue;
       const std::vector<Measurement> first_n(measurements.begin(), measurements.begin() + n);
-      StatusOr<CalibrationResult> result = Calibrate(nominal, first_n, calibration, {}, cancel);
+      StatusOr<CalibrationResult> result = Calibrate(nominal, first_n, calibration, {nullptr, cancel});
       RunOutcome& outcome = (*outcomes)[p][s][run];
       if (result.ok()) {
         outcome.estimate = result->Estimates();
@@ -142,25 +141,17 @@ Status CheckSets(const std::vector<SimulationPoseSet>& sets) {
 StatusOr<std::vector<std::vector<SetError>>> RunStudy(const Robot& nominal, const Robot& true_robot,
                                                       const std::vector<SimulationPoseSet>& sets,
                                                       const StudySizes& sizes, const SimulationOptions& options,
-                                                      const SimulationProgress& progress,
-                                                      const std::atomic<bool>* cancel) {
+                                                      const JobHooks& hooks) {
   Outcomes outcomes(sizes.size(),
                     std::vector<std::vector<RunOutcome>>(sets.size(), std::vector<RunOutcome>(options.runs)));
   std::vector<Status> run_status(options.runs);
-  std::mutex progress_mutex;
-  int done = 0;
-  ParallelFor(options.runs, options.num_threads, [&](int run) {
-    if (cancel != nullptr && cancel->load()) {
-      run_status[run] = Status::Cancelled();
-      return;
-    }
-    run_status[run] = RunOnce(nominal, true_robot, sets, sizes, options, run, cancel, &outcomes);
-    if (progress) {
-      std::lock_guard<std::mutex> lock(progress_mutex);
-      progress(++done, options.runs);
-    }
-  });
-  if (cancel != nullptr && cancel->load()) return Status::Cancelled();
+  const bool finished = ParallelFor(
+      options.runs, options.num_threads,
+      [&](int run, int) {
+        run_status[run] = RunOnce(nominal, true_robot, sets, sizes, options, run, hooks.cancel, &outcomes);
+      },
+      hooks);
+  if (!finished || hooks.Cancelled()) return Status::Cancelled();
   for (const Status& status : run_status) {
     if (!status.ok()) return status;
   }
@@ -241,8 +232,7 @@ std::vector<Measurement> SimulateMeasurements(const Robot& true_robot, const std
 }
 
 StatusOr<SimulationResult> Simulate(const Robot& nominal, const std::vector<SimulationPoseSet>& sets,
-                                    const SimulationOptions& options, const SimulationProgress& progress,
-                                    const std::atomic<bool>* cancel) {
+                                    const SimulationOptions& options, const JobHooks& hooks) {
   std::string message;
   if (!options.IsValid(&message)) return Status::Error("simulation options: " + message);
   if (Status s = CheckSets(sets); !s.ok()) return s;
@@ -252,16 +242,14 @@ StatusOr<SimulationResult> Simulate(const Robot& nominal, const std::vector<Simu
   const Robot true_robot = PerturbedRobot(nominal, options.perturb, options.seed);
   result.true_parameters = ParametersOf(true_robot);
   result.before = BeforeCalibration(nominal, true_robot);
-  StatusOr<std::vector<std::vector<SetError>>> errors =
-      RunStudy(nominal, true_robot, sets, sizes, options, progress, cancel);
+  StatusOr<std::vector<std::vector<SetError>>> errors = RunStudy(nominal, true_robot, sets, sizes, options, hooks);
   if (!errors.ok()) return errors.status();
   result.sets = std::move((*errors)[0]);
   return result;
 }
 
 StatusOr<SweepResult> SimulateSweep(const Robot& nominal, const std::vector<SimulationPoseSet>& sets, int min_poses,
-                                    int max_poses, const SimulationOptions& options, const SimulationProgress& progress,
-                                    const std::atomic<bool>* cancel) {
+                                    int max_poses, const SimulationOptions& options, const JobHooks& hooks) {
   std::string message;
   if (!options.IsValid(&message)) return Status::Error("simulation options: " + message);
   if (Status s = CheckSets(sets); !s.ok()) return s;
@@ -278,8 +266,7 @@ StatusOr<SweepResult> SimulateSweep(const Robot& nominal, const std::vector<Simu
   SweepResult result;
   const Robot true_robot = PerturbedRobot(nominal, options.perturb, options.seed);
   result.before = BeforeCalibration(nominal, true_robot);
-  StatusOr<std::vector<std::vector<SetError>>> errors =
-      RunStudy(nominal, true_robot, sets, sizes, options, progress, cancel);
+  StatusOr<std::vector<std::vector<SetError>>> errors = RunStudy(nominal, true_robot, sets, sizes, options, hooks);
   if (!errors.ok()) return errors.status();
   for (size_t p = 0; p < sizes.size(); ++p) result.points.push_back({min_poses + static_cast<int>(p), (*errors)[p]});
   return result;

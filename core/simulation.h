@@ -24,9 +24,7 @@
 //   // result->sets[1].mean, result->sets[1].ratio_to_random
 #pragma once
 
-#include <atomic>
 #include <cstdint>
-#include <functional>
 #include <optional>
 #include <random>
 #include <string>
@@ -34,6 +32,7 @@
 
 #include "core/calibration.h"
 #include "core/error_stats.h"
+#include "core/job_hooks.h"
 
 namespace hexcal {
 
@@ -97,16 +96,13 @@ struct SweepResult {
   std::vector<SweepPoint> points;
 };
 
-// progress(runs_done, runs) from the worker threads, one call at a time; may be empty.
-using SimulationProgress = std::function<void(int done, int total)>;
-
+// hooks.Progress(runs_done, runs) from the worker threads, one call at a time;
+// hooks.cancel stops the study (Status::Cancelled).
 StatusOr<SimulationResult> Simulate(const Robot& nominal, const std::vector<SimulationPoseSet>& sets,
-                                    const SimulationOptions& options, const SimulationProgress& progress = {},
-                                    const std::atomic<bool>* cancel = nullptr);
+                                    const SimulationOptions& options, const JobHooks& hooks = {});
 
 StatusOr<SweepResult> SimulateSweep(const Robot& nominal, const std::vector<SimulationPoseSet>& sets, int min_poses,
-                                    int max_poses, const SimulationOptions& options,
-                                    const SimulationProgress& progress = {}, const std::atomic<bool>* cancel = nullptr);
+                                    int max_poses, const SimulationOptions& options, const JobHooks& hooks = {});
 
 // The true robot of a simulation: the nominal one perturbed as in step 1.
 Robot PerturbedRobot(const Robot& nominal, double perturb, uint64_t seed);

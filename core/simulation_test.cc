@@ -165,9 +165,9 @@ TEST(Simulation, CancelStopsTheStudy) {
   std::atomic<bool> cancel{false};
   SimulationOptions options = SmallStudy(50);
   options.num_threads = 1;
-  StatusOr<SimulationResult> result = Simulate(
-      nominal, {FixedPoseSet("uniform", CandidatePoses(nominal, CandidateKind::kUniform, 10))}, options,
-      [&](int done, int) { cancel = done >= 2; }, &cancel);
+  StatusOr<SimulationResult> result =
+      Simulate(nominal, {FixedPoseSet("uniform", CandidatePoses(nominal, CandidateKind::kUniform, 10))}, options,
+               {[&](int done, int) { cancel = done >= 2; }, &cancel});
   ASSERT_FALSE(result.ok());
   EXPECT_TRUE(result.status().cancelled());
 }

@@ -25,7 +25,7 @@ bool BackgroundJob::Start(const QString& what, JobWork work) {
   // The continuation is made on the worker and run on the GUI thread; a
   // shared_ptr hands it over without copying the result twice.
   auto continuation = std::make_shared<GuiContinuation>();
-  JobContext context{&cancel_, [this, what](int done, int total) { emit Progress(done, total, what); }};
+  JobContext context{[this, what](int done, int total) { emit Progress(done, total, what); }, &cancel_};
   thread_ = QThread::create([work = std::move(work), context, continuation] {
     try {
       *continuation = work(context);

@@ -1,7 +1,8 @@
 // One long job at a time, on a worker thread, for one panel.
 //
-// The work function runs on the worker; it gets the cancel flag (hand it to
-// the core function: PlanPoses, MeasureImages, ...) and a progress reporter.
+// The work function runs on the worker; it gets the cancel flag and a
+// progress reporter as JobHooks (hand them to the core function: PlanPoses,
+// MeasureImages, ...).
 // It must not touch widgets: it computes a value and returns a closure that
 // applies that value, and the closure runs on the GUI thread when the work is
 // done. Progress reaches the GUI thread as a queued signal.
@@ -17,14 +18,16 @@
 #include <atomic>
 #include <functional>
 
+#include "core/job_hooks.h"
+
 class QThread;
 
 namespace hexcal::ui {
 
-struct JobContext {
-  const std::atomic<bool>* cancel;
-  std::function<void(int done, int total)> progress;  // thread-safe
-};
+// The job's hooks: hand them as they are to the core and vision functions.
+// Both are always set: cancel is the Cancel button's flag, progress is
+// thread-safe (a queued signal).
+using JobContext = JobHooks;
 
 using GuiContinuation = std::function<void()>;
 using JobWork = std::function<GuiContinuation(const JobContext&)>;

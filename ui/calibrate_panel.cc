@@ -103,7 +103,7 @@ void CalibratePanel::Run() {
     // (keeping the rows already there), as `hexcal calibrate --session` does.
     context.progress(0, 0);  // a busy bar until the first report
     StatusOr<workflow::CalibrationReport> report =
-        workflow::CalibrateSession({dir}, JobHooks{context.progress, context.cancel});
+        workflow::CalibrateSession({dir}, context);
     const Status status = report.ok() ? Status::Ok() : report.status();
     const std::string text = report.ok() ? workflow::FormatCalibrationSummary(*report) : "";
     return [this, status, text] { Finish(status, QString::fromStdString(text)); };

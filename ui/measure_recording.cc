@@ -134,8 +134,7 @@ void MeasurePanel::IntrinsicsFromFolder(const QString& chosen) {
   const Target target = *session_->SessionTarget();
   const std::string out = (std::filesystem::path(session_->Dir().toStdString()) / "camera.yaml").string();
   StartJob("intrinsics", [this, files = *files, target, out](const JobContext& context) -> GuiContinuation {
-    StatusOr<IntrinsicsResult> result =
-        CalibrateIntrinsics(files, target, IntrinsicsOptions{}, context.progress, context.cancel);
+    StatusOr<IntrinsicsResult> result = CalibrateIntrinsics(files, target, IntrinsicsOptions{}, context);
     if (!result.ok())
       return [this, s = result.status()] {
         if (!s.cancelled())

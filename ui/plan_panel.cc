@@ -152,7 +152,7 @@ void PlanPanel::Run() {
           self, [self, step] { if (self) self->PlotIteration(step); }, Qt::QueuedConnection);
     };
     StatusOr<workflow::PlanOutcome> plan =
-        workflow::RunPlan(model, setup, "", JobHooks{context.progress, context.cancel}, live);
+        workflow::RunPlan(model, setup, "", context, live);
     if (!plan.ok()) return [this, s = plan.status()] { Finish(s, {}); };
     return [this, result = plan->plan] { Finish(Status::Ok(), result); };
   });

@@ -8,8 +8,7 @@ namespace hexcal::ui {
 
 Status MeasureImagesInto(const std::vector<std::string>& files, const Camera& camera, const Target& target,
                          const std::string& measurements_csv, const JobContext& context, int* usable) {
-  StatusOr<std::vector<ImageMeasurement>> measured =
-      MeasureImages(files, camera, target, MeasureOptions{}, context.progress, context.cancel);
+  StatusOr<std::vector<ImageMeasurement>> measured = MeasureImages(files, camera, target, MeasureOptions{}, context);
   if (!measured.ok()) return measured.status();
   *usable = 0;
   for (ImageMeasurement& m : *measured) {

@@ -4,13 +4,14 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <functional>
 #include <locale>
 #include <memory>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
-#include "vision/parallel.h"
+#include "core/parallel.h"
 
 namespace hexcal {
 namespace {
@@ -35,15 +36,14 @@ struct Detected {
 // Detects every image (threads workers, one detector each); false if cancelled.
 StatusOr<std::vector<Detected>> DetectAll(int count, const ImageLoader& load, const Target& target,
                                           const IntrinsicsOptions& options, std::shared_ptr<const IdealPixelMap> ideal,
-                                          const std::vector<bool>& wanted, const ProgressCallback& progress,
-                                          const std::atomic<bool>* cancel) {
-  const int workers = std::max(1, std::min(options.threads, count));
+                                          const std::vector<bool>& wanted, const JobHooks& hooks) {
+  const int workers = ParallelWorkers(count, options.threads);
   StatusOr<std::vector<std::unique_ptr<TagDetector>>> created = CreateWorkerDetectors(options.detector, ideal, workers);
   if (!created.ok()) return created.status();
   std::vector<std::unique_ptr<TagDetector>> detectors = std::move(*created);
   std::vector<Detected> detected(static_cast<size_t>(count));
   const bool finished = ParallelFor(
-      count, workers,
+      count, options.threads,
       [&](int index, int worker) {
         Detected& d = detected[static_cast<size_t>(index)];
         if (!wanted.empty() && !wanted[static_cast<size_t>(index)]) return;
@@ -56,7 +56,7 @@ StatusOr<std::vector<Detected>> DetectAll(int count, const ImageLoader& load, co
         d.size = image->size();
         d.observation = MatchToTarget(target, detectors[static_cast<size_t>(worker)]->Detect(*image));
       },
-      progress, cancel);
+      hooks);
   if (!finished) return Status::Cancelled("intrinsics: cancelled during detection");
   return detected;
 }
@@ -129,18 +129,18 @@ StatusOr<Calibration> CalibrateWithOutliers(std::vector<CalibrationView>& views,
 }
 
 StatusOr<IntrinsicsResult> Run(int count, const std::vector<std::string>& names, const ImageLoader& load,
-                               const Target& target, const IntrinsicsOptions& options, const ProgressCallback& progress,
-                               const std::atomic<bool>* cancel) {
+                               const Target& target, const IntrinsicsOptions& options, const JobHooks& hooks) {
   std::string error;
   if (!options.IsValid(&error)) return Status::Error("intrinsics options: " + error);
   if (count == 0) return Status::Error("no images");
   const int passes = 1 + options.refinement_passes;
-  auto stage_progress = [&](int pass) -> ProgressCallback {
-    if (!progress) return nullptr;
-    return [&progress, pass, count, passes](int done, int) { progress(pass * count + done, passes * count); };
+  // Detection pass `pass` of `passes` as one count over every pass.
+  auto stage_hooks = [&](int pass) -> JobHooks {
+    if (!hooks.progress) return {nullptr, hooks.cancel};
+    return {[&hooks, pass, count, passes](int done, int) { hooks.progress(pass * count + done, passes * count); },
+            hooks.cancel};
   };
-  StatusOr<std::vector<Detected>> detected =
-      DetectAll(count, load, target, options, nullptr, {}, stage_progress(0), cancel);
+  StatusOr<std::vector<Detected>> detected = DetectAll(count, load, target, options, nullptr, {}, stage_hooks(0));
   if (!detected.ok()) return detected.status();
 
   IntrinsicsResult result;
@@ -184,7 +184,7 @@ StatusOr<IntrinsicsResult> Run(int count, const std::vector<std::string>& names,
     for (const CalibrationView& view : result.views)
       wanted.push_back(view.used || view.tags >= options.min_tags_per_view);
     auto ideal = std::make_shared<const IdealPixelMap>(calibration->camera);
-    detected = DetectAll(count, load, target, options, ideal, wanted, stage_progress(pass), cancel);
+    detected = DetectAll(count, load, target, options, ideal, wanted, stage_hooks(pass));
     if (!detected.ok()) return detected.status();
     for (size_t i = 0; i < result.views.size(); ++i) {
       CalibrationView& view = result.views[i];
@@ -216,7 +216,7 @@ bool IntrinsicsOptions::IsValid(std::string* error) const {
     return false;
   };
   if (!detector.IsValid(error)) return false;
-  if (threads < 1 || threads > 64) return fail("threads: must be in 1..64");
+  if (threads < 0 || threads > 64) return fail("threads: must be in 0..64 (0: every core)");
   if (min_tags_per_view < 1) return fail("min_tags_per_view: must be at least 1");
   if (min_views < 3) return fail("min_views: must be at least 3");
   if (!(outlier_factor > 1)) return fail("outlier_factor: must be greater than 1");
@@ -226,23 +226,18 @@ bool IntrinsicsOptions::IsValid(std::string* error) const {
 }
 
 StatusOr<IntrinsicsResult> CalibrateIntrinsics(const std::vector<std::string>& files, const Target& target,
-                                               const IntrinsicsOptions& options, const ProgressCallback& progress,
-                                               const std::atomic<bool>* cancel) {
+                                               const IntrinsicsOptions& options, const JobHooks& hooks) {
   return Run(
       static_cast<int>(files.size()), files,
-      [&files](int index) { return LoadGrayImage(files[static_cast<size_t>(index)]); }, target, options, progress,
-      cancel);
+      [&files](int index) { return LoadGrayImage(files[static_cast<size_t>(index)]); }, target, options, hooks);
 }
 
 StatusOr<IntrinsicsResult> CalibrateIntrinsicsFromImages(const std::vector<cv::Mat>& images,
                                                          const std::vector<std::string>& names, const Target& target,
-                                                         const IntrinsicsOptions& options,
-                                                         const ProgressCallback& progress,
-                                                         const std::atomic<bool>* cancel) {
+                                                         const IntrinsicsOptions& options, const JobHooks& hooks) {
   return Run(
       static_cast<int>(images.size()), names,
-      [&images](int index) -> StatusOr<cv::Mat> { return images[static_cast<size_t>(index)]; }, target, options,
-      progress, cancel);
+      [&images](int index) -> StatusOr<cv::Mat> { return images[static_cast<size_t>(index)]; }, target, options, hooks);
 }
 
 CameraFileExtras ExtrasOf(const IntrinsicsResult& result) {

@@ -16,12 +16,11 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <atomic>
-#include <functional>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
 
+#include "core/job_hooks.h"
 #include "core/status.h"
 #include "vision/camera.h"
 #include "vision/detection.h"
@@ -31,7 +30,7 @@ namespace hexcal {
 
 struct IntrinsicsOptions {
   DetectorOptions detector;
-  int threads = 2;                  // images detected in parallel
+  int threads = 2;                  // images detected in parallel, 0..64; 0: every core
   int min_tags_per_view = 4;        // fewer: the view is not used
   int min_views = 8;                // fewer usable views: error
   double outlier_factor = 3.0;      // a view's RMS over this × the median RMS ...
@@ -59,19 +58,15 @@ struct IntrinsicsResult {
   std::vector<CalibrationView> views;  // in the order of the files
 };
 
-using ProgressCallback = std::function<void(int done, int total)>;
-
+// hooks.Progress(done, total) over every detection pass (images × passes);
+// hooks.cancel stops at the next image (Status::Cancelled).
 StatusOr<IntrinsicsResult> CalibrateIntrinsics(const std::vector<std::string>& files, const Target& target,
-                                               const IntrinsicsOptions& options,
-                                               const ProgressCallback& progress = nullptr,
-                                               const std::atomic<bool>* cancel = nullptr);
+                                               const IntrinsicsOptions& options, const JobHooks& hooks = {});
 
 // The same from images already in memory (tests); `names` label them.
 StatusOr<IntrinsicsResult> CalibrateIntrinsicsFromImages(const std::vector<cv::Mat>& images,
                                                          const std::vector<std::string>& names, const Target& target,
-                                                         const IntrinsicsOptions& options,
-                                                         const ProgressCallback& progress = nullptr,
-                                                         const std::atomic<bool>* cancel = nullptr);
+                                                         const IntrinsicsOptions& options, const JobHooks& hooks = {});
 
 // What to write beside the camera in its file.
 CameraFileExtras ExtrasOf(const IntrinsicsResult& result);

@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "core/csv.h"
-#include "vision/parallel.h"
+#include "core/parallel.h"
 
 namespace hexcal {
 namespace {
@@ -24,8 +24,8 @@ bool HasImageExtension(const std::filesystem::path& path) {
 
 bool MeasureOptions::IsValid(std::string* error) const {
   if (!detector.IsValid(error) || !pose.IsValid(error)) return false;
-  if (threads < 1 || threads > 64) {
-    if (error) *error = "threads: must be in 1..64";
+  if (threads < 0 || threads > 64) {
+    if (error) *error = "threads: must be in 0..64 (0: every core)";
     return false;
   }
   return true;
@@ -69,19 +69,18 @@ ImageMeasurement MeasureImage(TagDetector& detector, const cv::Mat& gray, const 
 
 StatusOr<std::vector<ImageMeasurement>> MeasureImages(const std::vector<std::string>& files, const Camera& camera,
                                                       const Target& target, const MeasureOptions& options,
-                                                      const std::function<void(int done, int total)>& progress,
-                                                      const std::atomic<bool>* cancel) {
+                                                      const JobHooks& hooks) {
   std::string error;
   if (!options.IsValid(&error)) return Status::Error("measure options: " + error);
   const int count = static_cast<int>(files.size());
-  const int workers = std::max(1, std::min(options.threads, count));
+  const int workers = ParallelWorkers(count, options.threads);
   auto ideal = std::make_shared<const IdealPixelMap>(camera);
   StatusOr<std::vector<std::unique_ptr<TagDetector>>> created = CreateWorkerDetectors(options.detector, ideal, workers);
   if (!created.ok()) return created.status();
   std::vector<std::unique_ptr<TagDetector>> detectors = std::move(*created);
   std::vector<ImageMeasurement> measurements(files.size());
   const bool finished = ParallelFor(
-      count, workers,
+      count, options.threads,
       [&](int index, int worker) {
         const std::string& file = files[static_cast<size_t>(index)];
         ImageMeasurement& measurement = measurements[static_cast<size_t>(index)];
@@ -94,7 +93,7 @@ StatusOr<std::vector<ImageMeasurement>> MeasureImages(const std::vector<std::str
         }
         measurement.file = file;
       },
-      progress, cancel);
+      hooks);
   if (!finished) return Status::Cancelled("measure: cancelled");
   return measurements;
 }

@@ -12,12 +12,11 @@
 #pragma once
 
 #include <array>
-#include <atomic>
-#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/job_hooks.h"
 #include "core/status.h"
 #include "vision/board_pose.h"
 #include "vision/camera.h"
@@ -29,7 +28,7 @@ namespace hexcal {
 struct MeasureOptions {
   DetectorOptions detector;
   BoardPoseOptions pose;
-  int threads = 2;  // images in parallel (each detector single-threaded)
+  int threads = 2;  // images in parallel (each detector single-threaded), 0..64; 0: every core
 
   bool IsValid(std::string* error) const;
 };
@@ -49,10 +48,11 @@ StatusOr<std::vector<std::string>> ListImages(const std::string& folder_or_file)
 ImageMeasurement MeasureImage(TagDetector& detector, const cv::Mat& gray, const Camera& camera, const Target& target,
                               const BoardPoseOptions& options);
 
-// Every file; Status::Cancelled if `cancel` was raised.
-StatusOr<std::vector<ImageMeasurement>> MeasureImages(
-    const std::vector<std::string>& files, const Camera& camera, const Target& target, const MeasureOptions& options,
-    const std::function<void(int done, int total)>& progress = nullptr, const std::atomic<bool>* cancel = nullptr);
+// Every file, in the order given; hooks.Progress(done, files) as images
+// finish; Status::Cancelled if hooks.cancel was raised.
+StatusOr<std::vector<ImageMeasurement>> MeasureImages(const std::vector<std::string>& files, const Camera& camera,
+                                                      const Target& target, const MeasureOptions& options,
+                                                      const JobHooks& hooks = {});
 
 // The columns of measurements.csv (docs/conventions.md): the pose, its σ,
 // rms_px, tags, status, message, then the 15 correlations corr_A_B of the

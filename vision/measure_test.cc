@@ -38,10 +38,10 @@ TEST(MeasureTest, EveryFileGetsAStatusAndTheBatchCarriesOn) {
   ASSERT_EQ(files->size(), 6u);  // notes.txt is not an image
   std::atomic<int> calls{0};
   StatusOr<std::vector<ImageMeasurement>> rows =
-      MeasureImages(*files, camera, target, MeasureOptions{}, [&](int, int total) {
+      MeasureImages(*files, camera, target, MeasureOptions{}, {[&](int, int total) {
         EXPECT_EQ(total, 6);
         ++calls;
-      });
+      }});
   ASSERT_TRUE(rows.ok()) << rows.status().message();
   EXPECT_EQ(calls.load(), 6);
   const std::vector<PoseStatus> expected = {PoseStatus::kOk,         PoseStatus::kOk,       PoseStatus::kUnreadable,

@@ -100,8 +100,7 @@ StatusOr<PlanResult> PlanDemo(const DemoRequest& request, const PlanningModel& m
   planner.secondary = Criterion::kO4;
   planner.tabu = 4;
   planner.seed = request.seed;
-  StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, *initial, planner,
-                                        [&](int done, int total, double) { hooks.Progress(done, total); });
+  StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, *initial, planner, hooks);
   if (!plan.ok()) return plan.status().AsFailure();
   return plan;
 }

@@ -8,11 +8,11 @@
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/inverse_kinematics.h"
+#include "core/parallel.h"
 #include "core/registration.h"
 #include "core/robot_io.h"
 #include "core/session.h"
 #include "core/simulation.h"
-#include "vision/parallel.h"
 #include "vision/renderer.h"
 
 namespace hexcal::workflow {
@@ -133,7 +133,7 @@ Status RecordDemoSession(const DemoScene& scene, const std::string& robot_name, 
         written[j] = WriteFileAtomically((fs::path(paths.images) / ImageName(j)).string(),
                                          std::string(png.begin(), png.end()));
       },
-      progress);
+      {progress});
   for (const Status& s : written)
     if (!s.ok()) return s;
   return WriteCsv(paths.legs, {"image", "L1", "L2", "L3", "L4", "L5", "L6", "holdout"}, legs_rows);

@@ -19,7 +19,7 @@ StatusOr<CandidateSet> Generate(const Robot& robot, CandidateKind kind, int coun
   options.kind = kind;
   options.count = count;
   options.seed = seed;
-  return GenerateCandidates(robot, options, progress);
+  return GenerateCandidates(robot, options, {progress});
 }
 
 nlohmann::json IndicesOnly(const ObservabilityIndices& o) {
@@ -192,9 +192,7 @@ StatusOr<PlanOutcome> RunPlan(const PlanningModel& model, const PlanSetup& setup
                                                     hooks.progress);
   if (!pool.ok()) return candidates_file.empty() ? pool.status().AsFailure() : pool.status();
   hooks.Stage("planning");
-  StatusOr<PlanResult> plan = PlanPoses(
-      model, pool->poses, *initial, planner, [&](int iteration, int budget, double) { hooks.Progress(iteration, budget); },
-      hooks.cancel, on_iteration);
+  StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, *initial, planner, hooks, on_iteration);
   if (!plan.ok()) return plan.status().AsFailure();
   PlanOutcome outcome{setup, std::move(*pool), std::move(*plan), std::nullopt, ""};
   if (!planner.continuous && setup.certificate) {

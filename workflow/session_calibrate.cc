@@ -84,7 +84,7 @@ StatusOr<CameraPoses> MeasureSession(const SessionPaths& paths, const SessionInp
   if (missing.empty()) return poses;
   hooks.Stage("measure (images)");
   StatusOr<std::vector<ImageMeasurement>> measured =
-      MeasureImages(missing, in.camera, in.target, MeasureOptions{}, hooks.progress, hooks.cancel);
+      MeasureImages(missing, in.camera, in.target, MeasureOptions{}, hooks);
   if (!measured.ok()) return measured.status();
   for (ImageMeasurement m : *measured) {
     m.file = fs::path(m.file).filename().string();
@@ -246,7 +246,7 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   const CalibrationOptions calibration = SessionCalibrationOptions(in->config.noise);
   hooks.Stage("register and calibrate");
   StatusOr<CameraCalibrationResult> result = CalibrateFromCameraPoses(in->nominal, split.input, registration,
-                                                                      calibration, hooks.progress, hooks.cancel);
+                                                                      calibration, hooks);
   if (!result.ok()) return result.status().AsFailure();
   StatusOr<std::optional<ValidationSummary>> validation = ValidateHeldOut(*in, *poses, split.held_out, *result, scale);
   if (!validation.ok()) return validation.status();

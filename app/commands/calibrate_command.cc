@@ -152,8 +152,8 @@ int RunCalibrate(const CalibrateCliOptions& cli, std::ostream& out, std::ostream
 
   ProgressBar progress("calibrate (legs)");
   StatusOr<CalibrationResult> result =
-      Calibrate(*robot, *measurements, options, [&](int done, int total) { progress.Update(done, total); });
-  if (!result.ok()) return ReportError(err, "calibrate", in_file(result.status()).AsFailure());
+      Calibrate(*robot, *measurements, options, {[&](int done, int total) { progress.Update(done, total); }});
+  if (!result.ok()) return ReportError(err, "calibrate", (in_file(result.status())).AsFailure());
   const CalibrationInputs inputs{cli.robot, cli.measurements, options, CurrentUtcTimestamp()};
   if (Status s = SaveCalibratedRobot(cli.out, *result, inputs); !s.ok()) {
     return ReportError(err, "calibrate", s.AsFailure());

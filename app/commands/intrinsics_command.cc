@@ -37,8 +37,8 @@ int RunIntrinsics(const IntrinsicsCliOptions& cli, std::ostream& out, std::ostre
     return ReportError(err, "intrinsics", Status::Error(cli.out + " exists; use --force to overwrite"));
   }
   ProgressBar progress("intrinsics");
-  StatusOr<IntrinsicsResult> result =
-      CalibrateIntrinsics(*files, *target, cli.calibration, [&](int done, int total) { progress.Update(done, total); });
+  StatusOr<IntrinsicsResult> result = CalibrateIntrinsics(*files, *target, cli.calibration,
+                                                          {[&](int done, int total) { progress.Update(done, total); }});
   // Unusable images (sizes, too few views) are the usual cause: bad input.
   if (!result.ok()) return ReportError(err, "intrinsics", result.status());
   if (Status s = SaveCamera(result->camera, cli.out, ExtrasOf(*result)); !s.ok()) {
@@ -102,7 +102,8 @@ void AddIntrinsicsCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   sub->add_option("--min-tags", options->calibration.min_tags_per_view, "target tags for an image to be used")
       ->capture_default_str();
-  sub->add_option("--threads", options->calibration.threads, "images detected in parallel")->capture_default_str();
+  sub->add_option("--threads", options->calibration.threads, "images detected in parallel (0 = every core)")
+      ->capture_default_str();
   sub->add_flag("--force", options->force, "overwrite an existing camera file");
   sub->add_flag("--json", options->json, "print one JSON object on stdout");
   sub->callback([=] { *exit_code = RunIntrinsics(*options, std::cout, std::cerr); });

@@ -48,9 +48,9 @@ int RunMeasure(const MeasureCliOptions& cli, std::ostream& out, std::ostream& er
     return ReportError(err, "measure", Status::Error(cli.out + " exists; use --force to overwrite"));
   }
   ProgressBar progress("measure");
-  StatusOr<std::vector<ImageMeasurement>> measurements =
-      MeasureImages(*files, *camera, *target, cli.measure, [&](int done, int total) { progress.Update(done, total); });
-  if (!measurements.ok()) return ReportError(err, "measure", measurements.status().AsFailure());
+  StatusOr<std::vector<ImageMeasurement>> measurements = MeasureImages(
+      *files, *camera, *target, cli.measure, {[&](int done, int total) { progress.Update(done, total); }});
+  if (!measurements.ok()) return ReportError(err, "measure", (measurements.status()).AsFailure());
   // Names relative to the folder, so that the table moves with the images.
   const bool folder = std::filesystem::is_directory(cli.images, fs_error);
   for (ImageMeasurement& m : *measurements) {
@@ -101,7 +101,8 @@ void AddMeasureCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   sub->add_option("--images", options->images, "an image, or a folder of PNG/JPEG/TIFF images")->required();
   sub->add_option("--out", options->out, "measurements CSV to write")->required();
-  sub->add_option("--threads", options->measure.threads, "images measured in parallel")->capture_default_str();
+  sub->add_option("--threads", options->measure.threads, "images measured in parallel (0 = every core)")
+      ->capture_default_str();
   sub->add_option("--min-tags", options->measure.pose.min_tags, "fewer target tags: too_few_tags")
       ->capture_default_str();
   sub->add_option("--max-rms", options->measure.pose.max_rms_px, "larger reprojection RMS (px): high_rms")

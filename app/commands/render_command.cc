@@ -10,7 +10,7 @@
 #include "app/commands/command_table.h"
 #include "core/atomic_file.h"
 #include "core/csv.h"
-#include "vision/parallel.h"
+#include "core/parallel.h"
 #include "vision/renderer.h"
 
 namespace hexcal::cli {
@@ -19,7 +19,7 @@ namespace {
 struct RenderCliOptions {
   std::string camera = kSimulatedCameraName, target = kDefaultTargetName, poses, out;
   RenderOptions render;
-  int threads = 2;
+  int threads = 2;  // images rendered at once; 0: every core
   bool force = false, json = false;
 };
 
@@ -53,19 +53,18 @@ int RunRender(const RenderCliOptions& cli, std::ostream& out, std::ostream& err)
   std::vector<RenderedView> views(vectors->size());
   std::vector<Status> written(vectors->size());
   ProgressBar progress("render");
-  ParallelFor(
-      static_cast<int>(vectors->size()), cli.threads,
-      [&](int index, int) {
-        const Pose pose = PoseFromVector((*vectors)[static_cast<size_t>(index)], EulerConvention::kXYZ);
-        RenderedView view = renderer.Render(pose, static_cast<uint64_t>(index));
-        std::vector<uint8_t> png;
-        cv::imencode(".png", view.image, png);
-        written[static_cast<size_t>(index)] = WriteFileAtomically(
-            (folder / ViewName(static_cast<size_t>(index))).string(), std::string(png.begin(), png.end()));
-        view.image.release();
-        views[static_cast<size_t>(index)] = std::move(view);
-      },
-      [&](int done, int total) { progress.Update(done, total); });
+  ParallelFor(static_cast<int>(vectors->size()), cli.threads,
+              [&](int index, int) {
+                const Pose pose = PoseFromVector((*vectors)[static_cast<size_t>(index)], EulerConvention::kXYZ);
+                RenderedView view = renderer.Render(pose, static_cast<uint64_t>(index));
+                std::vector<uint8_t> png;
+                cv::imencode(".png", view.image, png);
+                written[static_cast<size_t>(index)] = WriteFileAtomically(
+                    (folder / ViewName(static_cast<size_t>(index))).string(), std::string(png.begin(), png.end()));
+                view.image.release();
+                views[static_cast<size_t>(index)] = std::move(view);
+              },
+              {[&](int done, int total) { progress.Update(done, total); }});
   for (const Status& s : written) {
     if (!s.ok()) return ReportError(err, "render", s.AsFailure());
   }
@@ -123,7 +122,7 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--blur", options->render.blur_sigma_px, "optical blur sigma, pixels")->capture_default_str();
   sub->add_option("--occlusion", options->render.occlusion_probability, "chance of an occluder per image (0-1)")
       ->capture_default_str();
-  sub->add_option("--threads", options->threads, "images rendered in parallel")->capture_default_str();
+  sub->add_option("--threads", options->threads, "images rendered in parallel (0 = every core)")->capture_default_str();
   sub->add_flag("--force", options->force, "overwrite an existing ground truth in the folder");
   sub->add_flag("--json", options->json, "print one JSON object on stdout");
   sub->callback([=] { *exit_code = RunRender(*options, std::cout, std::cerr); });

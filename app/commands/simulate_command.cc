@@ -106,7 +106,7 @@ StatusOr<std::vector<SimulationPoseSet>> ResolveSets(const Robot& robot, const S
       options.kind = CandidateKind::kBoundary;
       ProgressBar progress("boundary poses");
       StatusOr<CandidateSet> boundary =
-          GenerateCandidates(robot, options, [&](int done, int total) { progress.Update(done, total); });
+          GenerateCandidates(robot, options, {[&](int done, int total) { progress.Update(done, total); }});
       if (!boundary.ok()) return boundary.status();
       std::vector<Vector6d> poses = std::move(boundary->poses);
       if (cli.poses_given && static_cast<int>(poses.size()) > cli.poses) poses.resize(cli.poses);
@@ -271,15 +271,15 @@ int RunSimulate(SimulateCliOptions cli, std::ostream& out, std::ostream& err) {
 
   StatusOr<SimulationResult> result = [&] {
     ProgressBar progress("simulate (runs)");  // ends its line before the sweep's bar starts
-    return Simulate(*robot, *sets, cli.study, [&](int done, int total) { progress.Update(done, total); });
+    return Simulate(*robot, *sets, cli.study, {[&](int done, int total) { progress.Update(done, total); }});
   }();
   if (!result.ok()) return ReportError(err, "simulate", result.status().AsFailure());
   std::optional<SweepResult> sweep;
   if (sweep_range) {
     ProgressBar progress("sweep (runs)");
     StatusOr<SweepResult> swept = SimulateSweep(*robot, *sets, sweep_range->first, sweep_range->second, cli.study,
-                                                [&](int done, int total) { progress.Update(done, total); });
-    if (!swept.ok()) return ReportError(err, "simulate", swept.status().AsFailure());
+                                                {[&](int done, int total) { progress.Update(done, total); }});
+    if (!swept.ok()) return ReportError(err, "simulate", (swept.status()).AsFailure());
     sweep = std::move(*swept);
   }
 

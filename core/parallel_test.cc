@@ -1,0 +1,87 @@
+#include "core/parallel.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <utility>
+#include <vector>
+
+namespace hexcal {
+namespace {
+
+TEST(ParallelWorkersTest, ZeroMeansEveryCoreAndNeverMoreThanTheItems) {
+  EXPECT_EQ(ResolveThreadCount(3), 3);
+  EXPECT_GE(ResolveThreadCount(0), 1);
+  EXPECT_EQ(ParallelWorkers(100, 0), std::min(100, ResolveThreadCount(0)));
+  EXPECT_EQ(ParallelWorkers(2, 8), 2);
+  EXPECT_EQ(ParallelWorkers(0, 8), 1);
+}
+
+TEST(ParallelForTest, EachIndexOnceWhateverTheThreadCount) {
+  for (int threads : {0, 1, 2, 5}) {
+    std::vector<int> runs(1000, 0);
+    const int workers = ParallelWorkers(1000, threads);
+    ASSERT_TRUE(ParallelFor(1000, threads, [&](int index, int worker) {
+      ++runs[index];
+      EXPECT_LT(worker, workers);
+    }));
+    for (int index = 0; index < 1000; ++index) EXPECT_EQ(runs[index], 1) << "threads " << threads;
+  }
+}
+
+TEST(ParallelForTest, ProgressCountsEveryItemOneCallAtATime) {
+  std::vector<int> calls;
+  int in_progress = 0, overlaps = 0;
+  JobHooks hooks;
+  hooks.progress = [&](int done, int total) {
+    if (++in_progress > 1) ++overlaps;
+    EXPECT_EQ(total, 50);
+    calls.push_back(done);
+    --in_progress;
+  };
+  ASSERT_TRUE(ParallelFor(
+      50, 4, [](int, int) {}, hooks));
+  EXPECT_EQ(overlaps, 0);
+  ASSERT_EQ(calls.size(), 50u);
+  for (int k = 0; k < 50; ++k) EXPECT_EQ(calls[k], k + 1);
+}
+
+TEST(ParallelForTest, CancelSkipsTheRemainingItems) {
+  std::atomic<bool> cancel{false};
+  std::atomic<int> ran{0};
+  JobHooks hooks;
+  hooks.cancel = &cancel;
+  const bool finished = ParallelFor(
+      1000, 2,
+      [&](int index, int) {
+        ++ran;
+        if (index == 10) cancel = true;
+      },
+      hooks);
+  EXPECT_FALSE(finished);
+  EXPECT_LT(ran.load(), 1000);
+  EXPECT_TRUE(hooks.Cancelled());
+}
+
+TEST(ParallelForBlocksTest, BlocksCoverTheRangeOnceWithBoundsIndependentOfThreads) {
+  for (int threads : {1, 3}) {
+    std::vector<int> covered(2500, 0);
+    std::vector<std::pair<int, int>> bounds(3);
+    ParallelForBlocks(2500, 1024, threads, [&](int begin, int end) {
+      bounds[begin / 1024] = {begin, end};
+      for (int k = begin; k < end; ++k) ++covered[k];
+    });
+    EXPECT_EQ(bounds, (std::vector<std::pair<int, int>>{{0, 1024}, {1024, 2048}, {2048, 2500}}));
+    for (int k = 0; k < 2500; ++k) ASSERT_EQ(covered[k], 1);
+  }
+}
+
+TEST(JobHooksTest, EmptyHooksAreSafe) {
+  const JobHooks hooks;
+  EXPECT_FALSE(hooks.Cancelled());
+  hooks.Progress(1, 2);  // no callback: nothing happens
+}
+
+}  // namespace
+}  // namespace hexcal
