@@ -1,0 +1,82 @@
+#include "workflow/measure_step.h"
+
+#include <filesystem>
+#include <sstream>
+
+namespace hexcal::workflow {
+namespace {
+
+nlohmann::json MeasurementJson(const ImageMeasurement& m) {
+  nlohmann::json j = {{"file", m.file},
+                      {"status", PoseStatusName(m.pose.status)},
+                      {"message", m.pose.message},
+                      {"tags", m.pose.num_tags}};
+  if (m.pose.has_pose) {
+    const Vector6d v = VectorFromPose(m.pose.camera_from_target, EulerConvention::kXYZ);
+    static const char* kNames[6] = {"x", "y", "z", "q1", "q2", "q3"};
+    for (int k = 0; k < 6; ++k) {
+      j["pose"][kNames[k]] = v[k];
+      j["sigma"][kNames[k]] = std::sqrt(std::max(0.0, m.pose.covariance_vector(k, k)));
+    }
+    j["rms_px"] = m.pose.rms_px;
+  }
+  return j;
+}
+
+}  // namespace
+
+int MeasureResult::ok() const {
+  auto it = counts.find("ok");
+  return it == counts.end() ? 0 : it->second;
+}
+
+StatusOr<MeasureResult> MeasureFolder(const MeasureRequest& request, const JobHooks& hooks) {
+  StatusOr<Camera> camera = LoadCamera(request.camera);
+  if (!camera.ok()) return camera.status();
+  StatusOr<Target> target = LoadTarget(request.target);
+  if (!target.ok()) return target.status();
+  std::string error;
+  if (!request.options.IsValid(&error)) return Status::Error(error);
+  StatusOr<std::vector<std::string>> files = ListImages(request.images);
+  if (!files.ok()) return files.status();
+  std::error_code fs_error;
+  if (std::filesystem::exists(request.out, fs_error) && !request.force)
+    return Status::Error(request.out + " exists; use --force to overwrite");
+  StatusOr<std::vector<ImageMeasurement>> rows = MeasureImages(*files, *camera, *target, request.options, hooks);
+  if (!rows.ok()) return rows.status().AsFailure();
+  // Names relative to the folder, so that the table moves with the images.
+  const bool folder = std::filesystem::is_directory(request.images, fs_error);
+  MeasureResult result{request.out, LengthUnitName(target->length_unit), std::move(*rows), {}};
+  for (ImageMeasurement& m : result.rows) {
+    if (folder) m.file = std::filesystem::path(m.file).filename().string();
+    ++result.counts[PoseStatusName(m.pose.status)];
+  }
+  if (Status s = WriteImageMeasurementsCsv(request.out, result.rows); !s.ok()) return s.AsFailure();
+  return result;
+}
+
+nlohmann::json ToJson(const MeasureResult& result) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const ImageMeasurement& m : result.rows) rows.push_back(MeasurementJson(m));
+  return {{"out", result.out},
+          {"images", result.rows.size()},
+          {"counts", result.counts},
+          {"length_unit", result.length_unit},
+          {"results", rows}};
+}
+
+std::string FormatMeasureSummary(const MeasureResult& result) {
+  std::ostringstream out;
+  out << result.rows.size() << " images:";
+  for (const auto& [status, count] : result.counts) {
+    if (count) out << " " << count << " " << status;
+  }
+  out << "; written to " << result.out << " (camera_from_target, " << result.length_unit << " and degrees)\n";
+  for (const ImageMeasurement& m : result.rows) {
+    if (m.pose.status != PoseStatus::kOk)
+      out << "  " << m.file << ": " << PoseStatusName(m.pose.status) << ": " << m.pose.message << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace hexcal::workflow
