@@ -19,7 +19,7 @@
 #include "ui/background_job.h"
 #include "ui/error_dialog.h"
 #include "ui/image_overlay.h"
-#include "ui/session_jobs.h"
+#include "workflow/measure_step.h"
 #include "vision/measure.h"
 
 namespace hexcal::ui {
@@ -243,8 +243,10 @@ void MeasurePanel::MeasureAll() {
   const Target target = *session_->SessionTarget();
   const std::string out = session_->Paths().measurements;
   StartJob("measuring", [this, files, camera, target, out](const JobContext& context) -> GuiContinuation {
-    int usable = 0;
-    const Status written = MeasureImagesInto(files, camera, target, out, context, &usable);
+    StatusOr<workflow::MeasureResult> measured =
+        workflow::MeasureFiles(files, camera, target, MeasureOptions{}, out, context);
+    const Status written = measured.ok() ? Status::Ok() : measured.status();
+    const int usable = measured.ok() ? measured->ok() : 0;
     return [this, written, usable, total = files.size()] {
       if (written.cancelled()) {
         status_->setText("measuring cancelled: measurements.csv is unchanged.");

@@ -19,6 +19,7 @@
 #include "ui/background_job.h"
 #include "ui/error_dialog.h"
 #include "ui/measure_panel.h"
+#include "workflow/intrinsics_step.h"
 #include "vision/intrinsics.h"
 #include "vision/measure.h"
 
@@ -134,17 +135,14 @@ void MeasurePanel::IntrinsicsFromFolder(const QString& chosen) {
   const Target target = *session_->SessionTarget();
   const std::string out = (std::filesystem::path(session_->Dir().toStdString()) / "camera.yaml").string();
   StartJob("intrinsics", [this, files = *files, target, out](const JobContext& context) -> GuiContinuation {
-    StatusOr<IntrinsicsResult> result = CalibrateIntrinsics(files, target, IntrinsicsOptions{}, context);
-    if (!result.ok())
-      return [this, s = result.status()] {
+    StatusOr<workflow::IntrinsicsOutcome> outcome =
+        workflow::CalibrateCameraFromFiles(files, target, IntrinsicsOptions{}, out, "", context);
+    if (!outcome.ok())
+      return [this, s = outcome.status()] {
         if (!s.cancelled())
           ShowError(this, "Intrinsics", Message(s) + "\nUse more views of the target, tilted and filling the image.");
       };
-    CameraFileExtras extras;
-    extras.views = result->used_views;
-    extras.rms_px = result->rms_px;
-    extras.std_dev.assign(result->std_dev.begin(), result->std_dev.end());
-    const Status saved = SaveCamera(result->camera, out, extras);
+    const IntrinsicsResult* result = &outcome->result;
     QString report = QString("%1 of %2 views used, RMS %3 px\nfx %4 fy %5 cx %6 cy %7 (σ %8 %9 %10 %11)\n")
                          .arg(result->used_views)
                          .arg(result->views.size())
@@ -162,9 +160,8 @@ void MeasurePanel::IntrinsicsFromFolder(const QString& chosen) {
                     .arg(QString::fromStdString(std::filesystem::path(view.file).filename().string()),
                          view.used ? QString("RMS %1 px").arg(view.rms_px, 0, 'f', 3)
                                    : "not used, " + QString::fromStdString(view.reason));
-    return [this, saved, report] {
+    return [this, report] {
       report_->setPlainText(report);
-      if (!saved.ok()) return ShowError(this, "Intrinsics", Message(saved));
       if (Status s = session_->SetCamera("camera.yaml"); !s.ok()) ShowError(this, "Intrinsics", Message(s));
     };
   });

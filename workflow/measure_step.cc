@@ -30,6 +30,25 @@ int MeasureResult::ok() const {
   return it == counts.end() ? 0 : it->second;
 }
 
+namespace {
+
+// `relative`: file names without their folder, so that the table moves with the images.
+StatusOr<MeasureResult> MeasureAndWrite(const std::vector<std::string>& files, const Camera& camera,
+                                        const Target& target, const MeasureOptions& options, const std::string& out,
+                                        bool relative, const JobHooks& hooks) {
+  StatusOr<std::vector<ImageMeasurement>> rows = MeasureImages(files, camera, target, options, hooks);
+  if (!rows.ok()) return rows.status().AsFailure();
+  MeasureResult result{out, LengthUnitName(target.length_unit), std::move(*rows), {}};
+  for (ImageMeasurement& m : result.rows) {
+    if (relative) m.file = std::filesystem::path(m.file).filename().string();
+    ++result.counts[PoseStatusName(m.pose.status)];
+  }
+  if (Status s = WriteImageMeasurementsCsv(out, result.rows); !s.ok()) return s.AsFailure();
+  return result;
+}
+
+}  // namespace
+
 StatusOr<MeasureResult> MeasureFolder(const MeasureRequest& request, const JobHooks& hooks) {
   StatusOr<Camera> camera = LoadCamera(request.camera);
   if (!camera.ok()) return camera.status();
@@ -42,17 +61,14 @@ StatusOr<MeasureResult> MeasureFolder(const MeasureRequest& request, const JobHo
   std::error_code fs_error;
   if (std::filesystem::exists(request.out, fs_error) && !request.force)
     return Status::Error(request.out + " exists; use --force to overwrite");
-  StatusOr<std::vector<ImageMeasurement>> rows = MeasureImages(*files, *camera, *target, request.options, hooks);
-  if (!rows.ok()) return rows.status().AsFailure();
-  // Names relative to the folder, so that the table moves with the images.
   const bool folder = std::filesystem::is_directory(request.images, fs_error);
-  MeasureResult result{request.out, LengthUnitName(target->length_unit), std::move(*rows), {}};
-  for (ImageMeasurement& m : result.rows) {
-    if (folder) m.file = std::filesystem::path(m.file).filename().string();
-    ++result.counts[PoseStatusName(m.pose.status)];
-  }
-  if (Status s = WriteImageMeasurementsCsv(request.out, result.rows); !s.ok()) return s.AsFailure();
-  return result;
+  return MeasureAndWrite(*files, *camera, *target, request.options, request.out, folder, hooks);
+}
+
+StatusOr<MeasureResult> MeasureFiles(const std::vector<std::string>& files, const Camera& camera,
+                                     const Target& target, const MeasureOptions& options, const std::string& out,
+                                     const JobHooks& hooks) {
+  return MeasureAndWrite(files, camera, target, options, out, /*relative=*/true, hooks);
 }
 
 nlohmann::json ToJson(const MeasureResult& result) {

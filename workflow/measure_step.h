@@ -33,9 +33,16 @@ struct MeasureResult {
   int ok() const;
 };
 
-// Fails (StatusKind::kFailed) when no image gives a pose; the CSV is written
-// before, so that the reasons per image can be read.
+// Loads the camera and target files, lists the images and measures them
+// (MeasureFiles). Images without a pose are rows with their reason; the
+// caller decides whether none at all is a failure (`hexcal measure` says so).
 StatusOr<MeasureResult> MeasureFolder(const MeasureRequest& request, const JobHooks& hooks = {});
+
+// The same on loaded inputs (the GUI's Measure all): `files` measured, their
+// names made relative (file name only) and the CSV written atomically to `out`.
+StatusOr<MeasureResult> MeasureFiles(const std::vector<std::string>& files, const Camera& camera,
+                                     const Target& target, const MeasureOptions& options, const std::string& out,
+                                     const JobHooks& hooks = {});
 
 nlohmann::json ToJson(const MeasureResult& result);
 std::string FormatMeasureSummary(const MeasureResult& result);

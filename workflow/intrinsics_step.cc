@@ -1,0 +1,93 @@
+#include "workflow/intrinsics_step.h"
+
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "vision/measure.h"
+
+namespace hexcal::workflow {
+namespace {
+
+// "camera.yaml" -> "camera.coverage.png"
+std::string DefaultCoveragePath(const std::string& out) {
+  std::filesystem::path path(out);
+  path.replace_extension(".coverage.png");
+  return path.string();
+}
+
+constexpr const char* kParameterNames[9] = {"fx", "fy", "cx", "cy", "k1", "k2", "p1", "p2", "k3"};
+
+std::array<double, 9> ParameterValues(const Camera& c) {
+  return {c.fx, c.fy, c.cx, c.cy, c.distortion[0], c.distortion[1], c.distortion[2], c.distortion[3], c.distortion[4]};
+}
+
+}  // namespace
+
+StatusOr<IntrinsicsOutcome> CalibrateCameraFromFiles(const std::vector<std::string>& files, const Target& target,
+                                                     const IntrinsicsOptions& options, const std::string& out,
+                                                     const std::string& coverage, const JobHooks& hooks) {
+  StatusOr<IntrinsicsResult> result = CalibrateIntrinsics(files, target, options, hooks);
+  // Unusable images (sizes, too few views) are the usual cause: bad input.
+  if (!result.ok()) return result.status();
+  if (Status s = SaveCamera(result->camera, out, ExtrasOf(*result)); !s.ok()) return s.AsFailure();
+  if (!coverage.empty()) {
+    std::vector<uint8_t> png;
+    cv::imencode(".png", CoverageImage(*result), png);
+    if (Status s = WriteFileAtomically(coverage, std::string(png.begin(), png.end())); !s.ok()) return s.AsFailure();
+  }
+  return IntrinsicsOutcome{std::move(*result), out, coverage, static_cast<int>(files.size())};
+}
+
+StatusOr<IntrinsicsOutcome> CalibrateCameraFromFolder(const IntrinsicsRequest& request, const JobHooks& hooks) {
+  StatusOr<Target> target = LoadTarget(request.target);
+  if (!target.ok()) return target.status();
+  StatusOr<std::vector<std::string>> files = ListImages(request.images);
+  if (!files.ok()) return files.status();
+  std::error_code fs_error;
+  if (std::filesystem::exists(request.out, fs_error) && !request.force)
+    return Status::Error(request.out + " exists; use --force to overwrite");
+  const std::string coverage = request.coverage.empty() ? DefaultCoveragePath(request.out) : request.coverage;
+  return CalibrateCameraFromFiles(*files, *target, request.options, request.out, coverage, hooks);
+}
+
+nlohmann::json ToJson(const IntrinsicsOutcome& outcome) {
+  const IntrinsicsResult& result = outcome.result;
+  const Camera& c = result.camera;
+  const std::array<double, 9> values = ParameterValues(c);
+  nlohmann::json parameters, views = nlohmann::json::array();
+  for (int i = 0; i < 9; ++i) parameters[kParameterNames[i]] = {{"value", values[i]}, {"std_dev", result.std_dev[i]}};
+  for (const CalibrationView& view : result.views) {
+    views.push_back(
+        {{"file", view.file}, {"used", view.used}, {"tags", view.tags}, {"rms_px", view.rms_px}, {"reason", view.reason}});
+  }
+  return {{"out", outcome.out},
+          {"coverage", outcome.coverage},
+          {"coverage_fraction", CoverageFraction(result)},
+          {"image_width", c.width},
+          {"image_height", c.height},
+          {"rms_px", result.rms_px},
+          {"used_views", result.used_views},
+          {"parameters", parameters},
+          {"views", views}};
+}
+
+std::string FormatIntrinsicsSummary(const IntrinsicsOutcome& outcome) {
+  const IntrinsicsResult& result = outcome.result;
+  const Camera& c = result.camera;
+  const std::array<double, 9> values = ParameterValues(c);
+  std::ostringstream out;
+  out << "camera " << c.width << " x " << c.height << " from " << result.used_views << " of " << outcome.images
+      << " images, RMS " << result.rms_px << " px\n";
+  for (int i = 0; i < 9; ++i) out << "  " << kParameterNames[i] << " = " << values[i] << " +- " << result.std_dev[i] << "\n";
+  for (const CalibrationView& view : result.views) {
+    if (!view.used) out << "  not used: " << view.file << ": " << view.reason << "\n";
+  }
+  out << "written to " << outcome.out;
+  if (!outcome.coverage.empty())
+    out << "; corner coverage " << 100 * CoverageFraction(result) << " % in " << outcome.coverage;
+  return out.str() + "\n";
+}
+
+}  // namespace hexcal::workflow
