@@ -10,10 +10,16 @@
 #include <atomic>
 #include <functional>
 #include <string>
+#include <utility>
 
 namespace hexcal {
 
 struct JobHooks {
+  JobHooks() = default;
+  JobHooks(std::function<void(int, int)> progress_callback,  // NOLINT: implicit, as a plain callback
+           const std::atomic<bool>* cancel_flag = nullptr)
+      : progress(std::move(progress_callback)), cancel(cancel_flag) {}
+
   std::function<void(int done, int total)> progress;  // may be empty
   const std::atomic<bool>* cancel = nullptr;          // raised by the caller to stop the job
   std::function<void(const std::string& stage)> stage;  // the job starts a new stage (may be empty)

@@ -173,7 +173,12 @@ StatusOr<DemoResult> RunDemo(const DemoRequest& request, const JobHooks& hooks) 
   DemoSceneOptions scene_options;
   scene_options.seed = request.seed;
   const DemoScene scene = MakeDemoScene(*nominal, *camera, *target, scene_options);
-  DemoResult result{nominal->name, LengthUnitName(nominal->length_unit), request.out, request.poses, request.holdout};
+  DemoResult result;
+  result.robot = nominal->name;
+  result.length_unit = LengthUnitName(nominal->length_unit);
+  result.session = request.out;
+  result.poses = request.poses;
+  result.held_out = request.holdout;
 
   steps.Step("plan " + std::to_string(request.poses) + " poses (IOOPS: O1, secondary O4, Tabu 4) among random and "
              "boundary candidates with the target in the camera's view");

@@ -34,7 +34,10 @@ int main(int argc, char** argv) {
     return 1;
   }
   fs::copy(out / "calibrated" / "images", out / "rendered", fs::copy_options::recursive);
-  SessionConfig config{"inria-left-hand", kSimulatedCameraName, kDefaultTargetName};
+  SessionConfig config;
+  config.robot = "inria-left-hand";
+  config.camera = kSimulatedCameraName;
+  config.target = kDefaultTargetName;
   config.noise.position = 0.005;
   config.noise.angle_deg = 0.02;
   config.noise.leg = 0.001;
