@@ -1,4 +1,4 @@
-// The whole GUI flow on a fresh copy of the test session (make_session.sh):
+// The whole GUI flow on a fresh copy of the test session (make_session):
 // open it, plan, delete a pose, cancel a plan, load the rendered images,
 // measure, look at one image's detection, calibrate, validate, export, and a
 // screenshot of every panel. Run under xvfb-run (ui/CMakeLists.txt).
@@ -33,7 +33,7 @@
 namespace hexcal::ui {
 namespace {
 
-QString sessions_dir;  // argv[1]: what make_session.sh wrote
+QString sessions_dir;  // argv[1]: what make_session wrote
 
 // Runs the event loop until `done` or the timeout; the workers deliver their
 // results through it.
@@ -226,7 +226,7 @@ int main(int argc, char** argv) {
   QApplication app(argc, argv);
   ::testing::InitGoogleTest(&argc, argv);
   if (argc < 2) {
-    std::fprintf(stderr, "usage: ui_flow_test SESSIONS (made by ui/tests/make_session.sh)\n");
+    std::fprintf(stderr, "usage: ui_flow_test SESSIONS (made by ui/tests/make_session)\n");
     return 2;
   }
   hexcal::ui::sessions_dir = argv[1];
