@@ -4,8 +4,9 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
-#include <QHBoxLayout>
+#include <QVBoxLayout>
 #include <QLabel>
+#include <algorithm>
 #include <cmath>
 
 #include "core/csv.h"
@@ -13,14 +14,22 @@
 namespace hexcal::ui {
 namespace {
 
+// Enough decimals to show `value` exactly and one more to edit it, at least 2.
+int DecimalsFor(double value) {
+  int needed = 0;
+  while (needed < 6 && std::abs(value * std::pow(10.0, needed) - std::round(value * std::pow(10.0, needed))) > 1e-9)
+    ++needed;
+  return std::max(2, std::min(6, needed + 1));
+}
+
 OptionRow NumberRow(OptionType type, const std::string& unit, double min, double max, const std::string& value) {
   auto* spin = new QDoubleSpinBox;
   spin->setRange(min, std::min(max, 1e12));
-  spin->setDecimals(type == OptionType::kInteger ? 0 : 4);
+  StatusOr<double> initial = ParseNumber(value);
+  spin->setDecimals(type == OptionType::kInteger ? 0 : DecimalsFor(initial.ok() ? *initial : 0));
   if (type == OptionType::kNumber) spin->setSingleStep(max - min <= 1 ? 0.05 : 1);
   if (!unit.empty()) spin->setSuffix(QString(" ") + QString::fromStdString(unit));
-  StatusOr<double> number = ParseNumber(value);
-  spin->setValue(number.ok() ? *number : min);
+  spin->setValue(initial.ok() ? *initial : min);
   return {spin, [spin] { return FormatNumber(spin->value()); },
           [spin](const std::string& text) {
             StatusOr<double> v = ParseNumber(text);
@@ -37,10 +46,11 @@ OptionRow ChoiceRow(const std::vector<std::string>& choices, bool editable, cons
           [box](const std::string& text) { box->setCurrentText(QString::fromStdString(text)); }};
 }
 
-// One check box per choice; the text is the checked ones, comma-joined.
+// One check box per choice, one under the other (a narrow form stays
+// readable); the text is the checked ones, comma-joined.
 OptionRow ChoiceListRow(const std::vector<std::string>& choices, const std::string& value) {
   auto* group = new QWidget;
-  auto* layout = new QHBoxLayout(group);
+  auto* layout = new QVBoxLayout(group);
   layout->setContentsMargins(0, 0, 0, 0);
   std::vector<std::pair<std::string, QCheckBox*>> boxes;
   for (const std::string& choice : choices) {
