@@ -64,8 +64,7 @@ std::string CalibratedRobotToYaml(const CalibrationResult& result, const Calibra
       << "}\n"
       << "  options: {loss: " << RobustLossName(options.loss) << ", loss_scale: " << Number(options.loss_scale)
       << ", weighted: " << (options.weighted ? "true" : "false")
-      << ", noise: {position: " << Number(options.noise.position) << ", angle_deg: " << Number(options.noise.angle_deg)
-      << ", leg: " << Number(options.noise.leg) << "}, max_iterations: " << options.max_iterations << "}\n"
+      << ", noise: {" << NoiseModelText(options.noise) << "}, max_iterations: " << options.max_iterations << "}\n"
       << "  # sigma: one standard deviation (length unit), covariance scaled by variance_factor = SSR/(N-7)\n"
       << "  # residual_rms: RMS of |P + R b - a| - (L + l) over the measurements (length unit)\n"
       << "  length_unit: " << LengthUnitName(result.robot.length_unit) << "\n"

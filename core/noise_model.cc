@@ -57,6 +57,13 @@ const OptionTable<NoiseModel>& NoiseModelOptions() {
   return table;
 }
 
+std::string NoiseModelText(const NoiseModel& noise, const std::string& separator) {
+  std::string text;
+  for (const OptionSpec<NoiseModel>& spec : NoiseModelOptions())
+    text += (text.empty() ? "" : separator) + spec.key + ": " + OptionText(spec, noise);
+  return text;
+}
+
 // Uniform on [-h, h] has variance h²/3.
 double NoiseModel::PositionStdDev() const { return position / std::sqrt(3.0); }
 double NoiseModel::AngleStdDevRad() const { return DegToRad(angle_deg) / std::sqrt(3.0); }

@@ -33,6 +33,9 @@ struct NoiseModel {
 // The three half-widths described once (core/option_spec.h): the `noise:`
 // sections of session.yaml and plan settings, the --noise-* flags, the GUI.
 const OptionTable<NoiseModel>& NoiseModelOptions();
+// {"position": …, "angle_deg": …, "leg": …} as text, in the table's order
+// ("position: 0.001, angle_deg: 0.01, leg: 0.001" with `separator` ", ").
+std::string NoiseModelText(const NoiseModel& noise, const std::string& separator = ", ");
 
 // dR/dq_k for the Euler angles of `convention` (q in radians).
 std::array<Eigen::Matrix3d, 3> RotationEulerPartials(const Eigen::Vector3d& q_rad, EulerConvention convention);

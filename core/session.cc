@@ -78,10 +78,8 @@ std::string ConfigText(const SessionConfig& config) {
   root["robot"] = config.robot;
   root["camera"] = config.camera;
   root["target"] = config.target;
-  YAML::Node noise;
-  noise["position"] = FormatNumber(config.noise.position);  // shortest exact form, unquoted
-  noise["angle_deg"] = FormatNumber(config.noise.angle_deg);
-  noise["leg"] = FormatNumber(config.noise.leg);
+  YAML::Node noise;  // each key of NoiseModelOptions(), shortest exact form, unquoted
+  for (const OptionSpec<NoiseModel>& spec : NoiseModelOptions()) noise[spec.key] = OptionText(spec, config.noise);
   root["noise"] = noise;
   if (config.base_from_camera && config.platform_from_target) {
     YAML::Node frames;

@@ -116,6 +116,13 @@ nlohmann::json SetJson(const SetError& set) {
           {"failed_runs", set.failed_runs}};
 }
 
+// Each key of NoiseModelOptions() with its value.
+nlohmann::json NoiseJson(const NoiseModel& noise) {
+  nlohmann::json json;
+  for (const OptionSpec<NoiseModel>& spec : NoiseModelOptions()) json[spec.key] = spec.get_number(noise);
+  return json;
+}
+
 nlohmann::json ResultJson(const Robot& robot, const SimulateRequest& cli, const SimulationResult& result,
                           const std::optional<SweepResult>& sweep) {
   nlohmann::json sets = nlohmann::json::array();
@@ -129,10 +136,7 @@ nlohmann::json ResultJson(const Robot& robot, const SimulateRequest& cli, const 
                       {"perturb", cli.study.perturb},
                       {"weighted", cli.study.calibration.weighted},
                       {"random_box", cli.random_box},
-                      {"noise",
-                       {{"position", cli.study.noise.position},
-                        {"angle_deg", cli.study.noise.angle_deg},
-                        {"leg", cli.study.noise.leg}}}};
+                      {"noise", NoiseJson(cli.study.noise)}};
   if (sweep) {
     nlohmann::json points = nlohmann::json::array();
     for (const SweepPoint& point : sweep->points) {
