@@ -189,7 +189,7 @@ StatusOr<CsvTable> ParseCsv(const std::string& text, const std::string& source) 
 }
 
 StatusOr<CsvTable> ReadCsv(const std::string& path) {
-  StatusOr<std::string> text = ReadFileToString(path);
+  StatusOr<std::string> text = ReadFileToString(path, kMaxTableBytes);
   if (!text.ok()) return text.status();
   return ParseCsv(*text, path);
 }

@@ -61,7 +61,7 @@ StatusOr<CameraPoses> ReadMeasuredPoses(const std::string& path, std::vector<std
   CameraPoses poses;
   std::error_code error;
   if (!fs::exists(path, error)) return poses;
-  StatusOr<std::string> text = ReadFileToString(path);
+  StatusOr<std::string> text = ReadFileToString(path, kMaxTableBytes);
   if (!text.ok()) return text.status();
   StatusOr<std::vector<ImageMeasurementRecord>> records = ParseImageMeasurementsCsv(*text, path);
   if (!records.ok()) return records.status();
@@ -88,12 +88,11 @@ StatusOr<CameraPoses> MeasureSession(const SessionPaths& paths, const SessionInp
   if (!measured.ok()) return measured.status();
   for (ImageMeasurement m : *measured) {
     m.file = fs::path(m.file).filename().string();
-    (*poses)[m.file] = CameraPose{m.pose.status == PoseStatus::kOk, m.pose.camera_from_target,
-                                  m.pose.covariance_vector};
+    (*poses)[m.file] =
+        CameraPose{m.pose.status == PoseStatus::kOk, m.pose.camera_from_target, m.pose.covariance_vector};
     rows.push_back(ImageMeasurementRow(m));
   }
-  if (Status s = WriteFileAtomically(paths.measurements, FormatCsv(ImageMeasurementColumns(), rows)); !s.ok())
-    return s;
+  if (Status s = WriteFileAtomically(paths.measurements, FormatCsv(ImageMeasurementColumns(), rows)); !s.ok()) return s;
   return poses;
 }
 
@@ -245,8 +244,8 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   registration.angle_sigma_deg = RadToDeg(in->config.noise.AngleStdDevRad());
   const CalibrationOptions calibration = SessionCalibrationOptions(in->config.noise);
   hooks.Stage("register and calibrate");
-  StatusOr<CameraCalibrationResult> result = CalibrateFromCameraPoses(in->nominal, split.input, registration,
-                                                                      calibration, hooks);
+  StatusOr<CameraCalibrationResult> result =
+      CalibrateFromCameraPoses(in->nominal, split.input, registration, calibration, hooks);
   if (!result.ok()) return result.status().AsFailure();
   StatusOr<std::optional<ValidationSummary>> validation = ValidateHeldOut(*in, *poses, split.held_out, *result, scale);
   if (!validation.ok()) return validation.status();
@@ -270,9 +269,9 @@ std::string FormatCalibrationSummary(const CalibrationReport& report) {
       << report.closure_angle_rms_deg << " deg\n";
   if (report.validation) {
     const ValidationSummary& v = *report.validation;
-    out << "held-out validation (position RMS " << unit << ", orientation RMS deg): before "
-        << v.before.position_rms << ", " << v.before.orientation_rms << "; after " << v.after.position_rms << ", "
-        << v.after.orientation_rms << "\n";
+    out << "held-out validation (position RMS " << unit << ", orientation RMS deg): before " << v.before.position_rms
+        << ", " << v.before.orientation_rms << "; after " << v.after.position_rms << ", " << v.after.orientation_rms
+        << "\n";
   }
   out << "wrote " << report.calibrated_robot << ", " << CalibrationReportPath(report.session) << ", frames in "
       << SessionPaths(report.session).config << "\n";
