@@ -33,9 +33,7 @@ int RunIntrinsics(const IntrinsicsCliOptions& cli, std::ostream& out, std::ostre
   StatusOr<std::vector<std::string>> files = ListImages(cli.images);
   if (!files.ok()) return ReportError(err, "intrinsics", files.status());
   std::error_code fs_error;
-  if (std::filesystem::exists(cli.out, fs_error) && !cli.force) {
-    return ReportError(err, "intrinsics", Status::Error(cli.out + " exists; use --force to overwrite"));
-  }
+  if (Status s = CheckOutputFree(cli.out, cli.force); !s.ok()) return ReportError(err, "intrinsics", s);
   ProgressBar progress("intrinsics");
   StatusOr<IntrinsicsResult> result = CalibrateIntrinsics(*files, *target, cli.calibration,
                                                           {[&](int done, int total) { progress.Update(done, total); }});
@@ -99,10 +97,12 @@ void AddIntrinsicsCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--out", options->out, "camera file to write (OpenCV YAML)")->required();
   sub->add_option("--coverage", options->coverage, "corner coverage picture (default: OUT with .coverage.png)");
   sub->add_option("--min-views", options->calibration.min_views, "fewer usable images is an error")
+      ->check(CountRange(1, 100000))
       ->capture_default_str();
   sub->add_option("--min-tags", options->calibration.min_tags_per_view, "target tags for an image to be used")
       ->capture_default_str();
   sub->add_option("--threads", options->calibration.threads, "images detected in parallel (0 = every core)")
+      ->check(CountRange(0, kMaxThreads))
       ->capture_default_str();
   sub->add_flag("--force", options->force, "overwrite an existing camera file");
   sub->add_flag("--json", options->json, "print one JSON object on stdout");

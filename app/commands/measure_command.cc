@@ -44,9 +44,7 @@ int RunMeasure(const MeasureCliOptions& cli, std::ostream& out, std::ostream& er
   StatusOr<std::vector<std::string>> files = ListImages(cli.images);
   if (!files.ok()) return ReportError(err, "measure", files.status());
   std::error_code fs_error;
-  if (std::filesystem::exists(cli.out, fs_error) && !cli.force) {
-    return ReportError(err, "measure", Status::Error(cli.out + " exists; use --force to overwrite"));
-  }
+  if (Status s = CheckOutputFree(cli.out, cli.force); !s.ok()) return ReportError(err, "measure", s);
   ProgressBar progress("measure");
   StatusOr<std::vector<ImageMeasurement>> measurements = MeasureImages(
       *files, *camera, *target, cli.measure, {[&](int done, int total) { progress.Update(done, total); }});
@@ -102,6 +100,7 @@ void AddMeasureCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--images", options->images, "an image, or a folder of PNG/JPEG/TIFF images")->required();
   sub->add_option("--out", options->out, "measurements CSV to write")->required();
   sub->add_option("--threads", options->measure.threads, "images measured in parallel (0 = every core)")
+      ->check(CountRange(0, kMaxThreads))
       ->capture_default_str();
   sub->add_option("--min-tags", options->measure.pose.min_tags, "fewer target tags: too_few_tags")
       ->capture_default_str();

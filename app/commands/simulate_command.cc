@@ -28,7 +28,8 @@ struct SimulateCliOptions {
   int poses = 18;
   bool poses_given = false;  // --poses also trims the boundary set
   bool json = false;
-  bool weighted = false;  // calibrate with residuals weighted by the study's noise model
+  bool force = false;      // replace an existing --csv table or --plots figures
+  bool weighted = false;   // calibrate with residuals weighted by the study's noise model
   std::string random_box;  // "x:-5:5,y:-5:5,..." for the random sets
   SimulationOptions study;
   std::shared_ptr<OptionEntries> noise = std::make_shared<OptionEntries>();  // --noise-* over study.noise
@@ -56,6 +57,19 @@ Status WriteFigures(const std::string& directory, const SimulationResult& result
   return Status::Ok();
 }
 
+// The files --csv and --plots would replace: refused without --force.
+Status CheckOutputsFree(const SimulateCliOptions& cli) {
+  if (Status s = CheckOutputFree(cli.csv, cli.force); !s.ok()) return s;
+  if (cli.plots.empty()) return Status::Ok();
+  for (const char* name : {"fig14", "fig15_mean", "fig15_std"}) {
+    for (const char* extension : {".svg", ".png"}) {
+      const std::string path = (std::filesystem::path(cli.plots) / (std::string(name) + extension)).string();
+      if (Status s = CheckOutputFree(path, cli.force); !s.ok()) return s;
+    }
+  }
+  return Status::Ok();
+}
+
 // "x:-5:5,q3:-20:20" -> a pose box with those bounds.
 StatusOr<PoseBox> ParseBox(const std::string& text) {
   static const char* kNames[6] = {"x", "y", "z", "q1", "q2", "q3"};
@@ -68,9 +82,11 @@ StatusOr<PoseBox> ParseBox(const std::string& text) {
     for (int k = 0; k < 6 && a != std::string::npos; ++k) {
       if (item.substr(0, a) == kNames[k]) index = k;
     }
-    if (index < 0 || a == b) return Status::Error("--random-box: '" + item + "' is not NAME:MIN:MAX (x, y, z, q1, q2, q3)");
+    if (index < 0 || a == b)
+      return Status::Error("--random-box: '" + item + "' is not NAME:MIN:MAX (x, y, z, q1, q2, q3)");
     StatusOr<double> lo = ParseNumber(item.substr(a + 1, b - a - 1)), hi = ParseNumber(item.substr(b + 1));
-    if (!lo.ok() || !hi.ok() || !(*lo < *hi)) return Status::Error("--random-box: '" + item + "' needs finite MIN < MAX");
+    if (!lo.ok() || !hi.ok() || !(*lo < *hi))
+      return Status::Error("--random-box: '" + item + "' needs finite MIN < MAX");
     box.bounds[index] = Range{*lo, *hi};
   }
   return box;
@@ -80,11 +96,14 @@ StatusOr<std::pair<int, int>> ParseSweep(const std::string& text) {
   const size_t colon = text.find(':');
   if (colon != std::string::npos) {
     StatusOr<double> lo = ParseNumber(text.substr(0, colon)), hi = ParseNumber(text.substr(colon + 1));
-    if (lo.ok() && hi.ok() && *lo == static_cast<int>(*lo) && *hi == static_cast<int>(*hi)) {
+    // Bounds checked before the casts: a double beyond int's range cannot be cast.
+    constexpr double kMaxSweepPoses = 10000;
+    if (lo.ok() && hi.ok() && *lo >= kParamsPerLeg && *hi >= *lo && *hi <= kMaxSweepPoses && *lo == std::floor(*lo) &&
+        *hi == std::floor(*hi)) {
       return std::make_pair(static_cast<int>(*lo), static_cast<int>(*hi));
     }
   }
-  return Status::Error("--sweep: '" + text + "' is not MIN:MAX, e.g. 8:41");
+  return Status::Error("--sweep: '" + text + "' is not MIN:MAX with 7 <= MIN <= MAX <= 10000, e.g. 8:41");
 }
 
 // "random" draws poses in every run, "boundary" is the boundary candidate set
@@ -259,6 +278,7 @@ int RunSimulate(SimulateCliOptions cli, std::ostream& out, std::ostream& err) {
   if (cli.poses < kParamsPerLeg) {
     return ReportError(err, "simulate", Status::Error("--poses must be at least 7, got " + std::to_string(cli.poses)));
   }
+  if (Status s = CheckOutputsFree(cli); !s.ok()) return ReportError(err, "simulate", s);
   std::optional<std::pair<int, int>> sweep_range;
   if (!cli.sweep.empty()) {
     StatusOr<std::pair<int, int>> range = ParseSweep(cli.sweep);
@@ -312,8 +332,9 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--sets", options->sets, "comma-separated: random, boundary or pose CSV files")
       ->capture_default_str();
   CLI::Option* poses = sub->add_option("--poses", options->poses, "poses of the random set (and of boundary if given)")
+                           ->check(CountRange(1, 100000))
                            ->capture_default_str();
-  sub->add_option("--runs", options->study.runs, "repetitions")->capture_default_str();
+  sub->add_option("--runs", options->study.runs, "repetitions")->check(CountRange(1, 1000000))->capture_default_str();
   sub->add_option("--seed", options->study.seed, "random seed")->capture_default_str();
   sub->add_option("--perturb", options->study.perturb, "half-width of the parameter perturbation (robot unit)")
       ->capture_default_str();
@@ -323,10 +344,13 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
                   "(intersected with the robot's pose box; the robot's constraints still apply)");
   sub->add_flag("--weighted", options->weighted,
                 "calibrate with each residual divided by its standard deviation under the noise model");
-  sub->add_option("--threads", options->study.num_threads, "runs at once (0 = every core)")->capture_default_str();
+  sub->add_option("--threads", options->study.num_threads, "runs at once (0 = every core)")
+      ->check(CountRange(0, kMaxThreads))
+      ->capture_default_str();
   sub->add_option("--sweep", options->sweep, "also the error against the number of poses, MIN:MAX (Fig. 15)");
   sub->add_option("--csv", options->csv, "write the table(s) as CSV");
   sub->add_option("--plots", options->plots, "write Fig. 14 (and 15) as SVG and PNG into this folder");
+  sub->add_flag("--force", options->force, "overwrite the --csv table and the --plots figures if they exist");
   sub->add_flag("--json", options->json, "print one JSON object on stdout");
   sub->callback([=] {
     options->poses_given = poses->count() > 0;
