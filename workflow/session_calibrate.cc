@@ -7,6 +7,7 @@
 #include "core/atomic_file.h"
 #include "core/calibration_file.h"
 #include "core/csv.h"
+#include "core/reading_units.h"
 #include "core/registration.h"
 #include "core/robot_io.h"
 #include "core/session.h"
@@ -44,6 +45,11 @@ StatusOr<SessionInputs> LoadSessionInputs(const std::string& dir) {
   const std::string robot_name = ResolveSessionFile(dir, config->robot);
   StatusOr<Robot> nominal = LoadRobot(robot_name);
   if (!nominal.ok()) return nominal.status();
+  std::vector<LegReadings> readings;
+  for (const LegsRow& row : *legs) readings.push_back(row.legs);
+  if (Status s = CheckReadingsUnit(*nominal, readings, "row"); !s.ok()) {
+    return Status::Error(SessionPaths(dir).legs + ": " + s.message());
+  }
   StatusOr<Camera> camera = LoadCamera(ResolveSessionFile(dir, config->camera));
   if (!camera.ok()) return camera.status();
   StatusOr<Target> target = LoadTarget(ResolveSessionFile(dir, config->target));
@@ -202,6 +208,10 @@ CalibrationReport MakeReport(const std::string& dir, const SessionInputs& in, co
 Status WriteCalibrationResults(const std::string& dir, SessionInputs* in, const CameraCalibrationResult& result,
                                const CalibrationOptions& calibration, const CalibrationReport& report) {
   const SessionPaths paths(dir);
+  // results/ may have been deleted since the session was made: recreate it.
+  std::error_code folder_error;
+  fs::create_directories(paths.results, folder_error);
+  if (folder_error) return Status::IoError(paths.results + ": cannot create the folder: " + folder_error.message());
   const std::string used_measurements = (fs::path(paths.results) / "calibration_measurements.csv").string();
   if (Status s = SaveMeasurements(used_measurements, result.measurements); !s.ok()) return s;
   const CalibrationInputs inputs{in->robot_name, used_measurements, calibration, CurrentUtcTimestamp()};

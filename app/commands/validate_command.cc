@@ -26,7 +26,7 @@ int RunValidate(const ValidateOptions& options, std::ostream& out, std::ostream&
   StatusOr<std::vector<Measurement>> measurements = LoadMeasurements(options.measurements);
   if (!measurements.ok()) return ReportError(err, "validate", measurements.status());
   StatusOr<ValidationReport> report = Validate(*robot, *measurements);
-  if (!report.ok()) return ReportError(err, "validate", report.status().AsFailure());
+  if (!report.ok()) return ReportError(err, "validate", report.status());  // bad input 2, no FK at all 1
   const char* unit = LengthUnitName(robot->length_unit);
 
   if (options.json) {
