@@ -40,7 +40,7 @@ StatusOr<CandidateSet> SampleBox(const Robot& robot, const CandidateOptions& opt
       message << "only " << set.poses.size() << " of " << set.draws << " poses drawn in the pose box of robot '"
               << robot.name << "' satisfy its constraints; the box or the limits are too tight for " << options.count
               << " candidates";
-      return Status::Error(message.str());
+      return Status::Failed(message.str());
     }
     const Vector6d unit = next_unit();
     ++set.draws;

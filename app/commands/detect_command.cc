@@ -98,7 +98,7 @@ void AddDetectCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--max-hamming", options->detector.max_hamming, "accept at most this many corrected bits (0-2)")
       ->capture_default_str();
   sub->add_option("--threads", options->detector.threads, "AprilTag threads")
-      ->check(CountRange(1, kMaxThreads))
+      ->check(CountRange(1, 64))
       ->capture_default_str();
   sub->add_flag("--no-refine", options->no_refine, "report AprilTag's own corners (shifted by -0.5 px)");
   sub->add_flag("--json", options->json, "print one JSON object on stdout");

@@ -293,13 +293,13 @@ int RunSimulate(SimulateCliOptions cli, std::ostream& out, std::ostream& err) {
     ProgressBar progress("simulate (runs)");  // ends its line before the sweep's bar starts
     return Simulate(*robot, *sets, cli.study, {[&](int done, int total) { progress.Update(done, total); }});
   }();
-  if (!result.ok()) return ReportError(err, "simulate", result.status().AsFailure());
+  if (!result.ok()) return ReportError(err, "simulate", result.status());
   std::optional<SweepResult> sweep;
   if (sweep_range) {
     ProgressBar progress("sweep (runs)");
     StatusOr<SweepResult> swept = SimulateSweep(*robot, *sets, sweep_range->first, sweep_range->second, cli.study,
                                                 {[&](int done, int total) { progress.Update(done, total); }});
-    if (!swept.ok()) return ReportError(err, "simulate", (swept.status()).AsFailure());
+    if (!swept.ok()) return ReportError(err, "simulate", swept.status());
     sweep = std::move(*swept);
   }
 
