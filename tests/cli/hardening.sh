@@ -90,13 +90,55 @@ count_bounds)
   expect 2 "--sweep: '8:1e300' is not MIN:MAX" simulate $R --sweep 8:1e300
   expect 2 "--threads: 100000 is outside \[0, 256\]" simulate $R --threads 100000
   expect 2 "--threads: -1 is outside \[0, 256\]" render --poses "$POSES" --out r --threads -1
-  expect 2 "--threads: 0 is outside \[1, 256\]" detect --images . --threads 0
+  expect 2 "--threads: 0 is outside \[1, 64\]" detect --images . --threads 0
   expect 2 "--threads: 9999 is outside" intrinsics --images . --out cam.yaml --threads 9999
   expect 2 "--threads: 9999 is outside" measure --camera c.yaml --images . --out m.csv --threads 9999
   expect 2 "--min-views: 0 is outside" intrinsics --images . --out cam.yaml --min-views 0
   expect 2 "--dpi: Value 1e6 not in range" target print --out t.png --dpi 1e6
-  leftovers=$(ls -A)
+  mkdir in
+  awk 'BEGIN { print "x,y,z,q1,q2,q3"; for (i = 0; i < 5001; ++i) print "0,0,50,0,0,0" }' >in/many_poses.csv
+  expect 2 "many_poses.csv: 5001 poses, more than the 5000 images render writes at once" render \
+    --poses in/many_poses.csv --out r
+  leftovers=$(ls -A | grep -v "^in$")
   [ -n "$leftovers" ] && { echo "FAIL: files left behind: $leftovers"; failures=$((failures + 1)); }
+  ;;
+no_content_leak)
+  # A file named by mistake (or on purpose) in place of a robot, a pose table,
+  # a target: the error quotes at most a short excerpt, never the file.
+  printf 'root:x:0:0:root:/root:/bin/bash\ndaemon:x:1:1:SECRET:/usr/sbin:/usr/sbin/nologin\n' >passwd
+  printf 'root:x:0:0:root:/root:/bin/bash/SECRET\nbin:x:2:2:bin:/bin\n' >shadow.csv
+  for args in "robot check ./passwd" "fk --robot ./passwd --legs 1,1,1,1,1,1" "ik $R --poses shadow.csv" \
+    "target check --target passwd" "render --camera passwd --poses $POSES --out r"; do
+    # shellcheck disable=SC2086
+    output=$(timeout 20 "$hexcal" $args 2>&1)
+    if grep -q SECRET <<<"$output"; then
+      echo "FAIL: the error quotes the file: hexcal $args"; echo "$output"; failures=$((failures + 1))
+    else
+      echo "ok: no content in: $output"
+    fi
+  done
+  expect 2 "found 'root:x:0:0:root:/root:/b\.\.\.'" robot check ./passwd
+  ;;
+exit_codes)
+  # The same fault gives the same code in every command: bad input 2, a failed
+  # computation 1 (cli_common.h ExitCodeFor). A robot without a pose box:
+  NOBOX="--robot $data/dietmaier-40-real.yaml"
+  expect 2 "need limits.pose_box" candidates $NOBOX --kind random --count 5 --out c.csv
+  expect 2 "need limits.pose_box" plan $NOBOX --out p.csv
+  expect 2 "need limits.pose_box" simulate $NOBOX --runs 1 --sets random
+  # Readings in another unit (bad input) against FK that does not converge (failure):
+  expect 2 "readings look like mm" fk $R --legs 8.95,24.83,8.90,24.94,8.89,24.94
+  expect 2 "readings look like mm" validate $R --measurements "$data/bad_inputs/measurements_wrong_unit.csv"
+  expect 2 "readings look like mm" calibrate $R --measurements "$data/bad_inputs/measurements_wrong_unit.csv" \
+    --out cal.yaml
+  expect 2 "non-positive or non-finite total length" fk $R --legs -100,0,0,0,0,0 --all
+  expect 1 "forward kinematics: the pose is at a singularity" fk $R --legs 3.5,0,3.5,0,3.5,0 --start 0,0,60,0,0,0
+  printf 'x,y,z,q1,q2,q3,L1,L2,L3,L4,L5,L6\n0,0,45,0,0,0,3.4,0,3.4,0,3.4,0\n' >far.csv
+  expect 1 "forward kinematics failed for all 1 measurements" validate $R --measurements far.csv
+  # Options out of range are bad input everywhere, also when CLI11 checks them.
+  expect 2 "--count: 0 is outside" candidates $R --count 0 --out c.csv
+  expect 2 "at least 7 poses" plan $R --poses 6 --out p.csv
+  expect 2 "--poses must be at least 7" simulate $R --poses 5
   ;;
 *)
   echo "unknown case $case"; exit 2
