@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -91,6 +93,53 @@ void RemoveStaleTempFiles(const std::string& dir, const std::string& basename) {
   }
 }
 
+const char* FileTypeName(mode_t mode) {
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a plain file";
+}
+
+std::string MiBText(size_t bytes) {
+  const double mib = static_cast<double>(bytes) / static_cast<double>(kMiB);
+  char text[32];
+  std::snprintf(text, sizeof(text), mib < 10 ? "%.1f MiB" : "%.0f MiB", mib);
+  return text;
+}
+
+Status TooLarge(const std::string& path, size_t bytes, size_t max_bytes) {
+  return Status::Error(path + ": " + MiBText(bytes) + " is over the " + MiBText(max_bytes) +
+                       " limit for this kind of file");
+}
+
+Status CheckReadableFile(const std::string& path, const struct stat& info, size_t max_bytes) {
+  if (S_ISDIR(info.st_mode)) return Status::Error(path + ": is a directory, not a file");
+  if (!S_ISREG(info.st_mode)) {
+    return Status::Error(path + ": not a regular file (" + FileTypeName(info.st_mode) + ")");
+  }
+  if (static_cast<uint64_t>(info.st_size) > max_bytes) {
+    return TooLarge(path, static_cast<size_t>(info.st_size), max_bytes);
+  }
+  return Status::Ok();
+}
+
+// Reads to the end, but never more than max_bytes: the file may grow while read.
+StatusOr<std::string> ReadAll(int fd, const std::string& path, size_t max_bytes) {
+  std::string contents;
+  char buffer[1 << 16];
+  while (true) {
+    const ssize_t n = ::read(fd, buffer, sizeof(buffer));
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return ErrnoError(path, "read failed", errno);
+    }
+    if (n == 0) return contents;
+    contents.append(buffer, static_cast<size_t>(n));
+    if (contents.size() > max_bytes) return TooLarge(path, contents.size(), max_bytes);
+  }
+}
+
 }  // namespace
 
 Status WriteFileAtomically(const std::string& path, const std::string& contents) {
@@ -125,29 +174,31 @@ Status WriteFileAtomically(const std::string& path, const std::string& contents)
   return SyncDirectory(path, dir);
 }
 
-StatusOr<std::string> ReadFileToString(const std::string& path) {
-  struct stat info;
-  if (::stat(path.c_str(), &info) != 0) {
-    if (errno == ENOENT) return Status::Error(path + ": no such file");
-    return ErrnoError(path, "cannot access", errno);
-  }
-  if (S_ISDIR(info.st_mode)) return Status::Error(path + ": is a directory, not a file");
+Status CheckOutputFree(const std::string& path, bool force) {
+  std::error_code error;
+  if (force || path.empty() || !std::filesystem::exists(path, error)) return Status::Ok();
+  return Status::Error(path + ": exists; use --force to overwrite it");
+}
 
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return ErrnoError(path, "cannot open", errno);
-  std::string contents;
-  char buffer[1 << 16];
-  while (true) {
-    const ssize_t n = ::read(fd, buffer, sizeof(buffer));
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const int read_errno = errno;
-      ::close(fd);
-      return ErrnoError(path, "read failed", read_errno);
-    }
-    if (n == 0) break;
-    contents.append(buffer, static_cast<size_t>(n));
+StatusOr<std::string> ReadFileToString(const std::string& path, size_t max_bytes) {
+  // O_NONBLOCK: opening a FIFO must not wait for a writer; fstat of the opened
+  // descriptor (not stat of the path) so that a swapped file cannot slip by.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
+  if (fd < 0) {
+    if (errno == ENOENT) return Status::Error(path + ": no such file");
+    return ErrnoError(path, "cannot open", errno);
   }
+  struct stat info;
+  if (::fstat(fd, &info) != 0) {
+    const int stat_errno = errno;
+    ::close(fd);
+    return ErrnoError(path, "cannot access", stat_errno);
+  }
+  if (Status s = CheckReadableFile(path, info, max_bytes); !s.ok()) {
+    ::close(fd);
+    return s;
+  }
+  StatusOr<std::string> contents = ReadAll(fd, path, max_bytes);
   ::close(fd);
   return contents;
 }

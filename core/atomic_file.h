@@ -28,7 +28,22 @@ namespace hexcal {
 Status WriteFileAtomically(const std::string& path, const std::string& contents);
 constexpr std::chrono::minutes kStaleTempAge{10};
 
-// The whole file as bytes. Errors: missing file, a directory, unreadable.
-StatusOr<std::string> ReadFileToString(const std::string& path);
+// Size caps of the files hexcal reads, by kind: far above any real file of
+// that kind, far below what would exhaust memory (issue 13, bounded input).
+constexpr size_t kMiB = size_t{1} << 20;
+constexpr size_t kMaxYamlBytes = 4 * kMiB;     // robot, session, target, camera, plan settings
+constexpr size_t kMaxTableBytes = 256 * kMiB;  // CSV tables (poses, legs, measurements)
+constexpr size_t kMaxJsonBytes = 64 * kMiB;    // report.json
+constexpr size_t kMaxImageBytes = 512 * kMiB;  // PNG, JPEG, TIFF
+
+// The whole file as bytes. Errors: missing file, a directory, not a regular
+// file (a FIFO, a device, a socket: refused at once, never waited on, also
+// behind a symlink), larger than `max_bytes`, unreadable.
+// Refuses to replace an existing output file unless the user gave --force:
+// "PATH: exists; use --force to overwrite it" (bad input), the same in every
+// command and workflow step. An empty path is free.
+Status CheckOutputFree(const std::string& path, bool force);
+
+StatusOr<std::string> ReadFileToString(const std::string& path, size_t max_bytes = kMaxYamlBytes);
 
 }  // namespace hexcal

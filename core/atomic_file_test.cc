@@ -84,8 +84,8 @@ TEST(AtomicFileTest, WriteRemovesStaleTempFilesOfItsTarget) {
   make(".b.txt.tmp.Ab12Cd", stale);
   make(".a.txt.tmp.toolong", stale);
   ASSERT_TRUE(WriteFileAtomically(dir.File("a.txt"), "new").ok());
-  EXPECT_EQ(FileNamesIn(dir.path()), (std::vector<std::string>{".a.txt.tmp.fresh1", ".a.txt.tmp.toolong",
-                                                                ".b.txt.tmp.Ab12Cd", "a.txt"}));
+  EXPECT_EQ(FileNamesIn(dir.path()),
+            (std::vector<std::string>{".a.txt.tmp.fresh1", ".a.txt.tmp.toolong", ".b.txt.tmp.Ab12Cd", "a.txt"}));
   EXPECT_EQ(ReadTextFile(dir.File("a.txt")), "new");
 }
 
@@ -159,6 +159,36 @@ TEST(AtomicFileTest, ReadingAnUnreadableFileSaysSo) {
   StatusOr<std::string> read = ReadFileToString(path);
   ASSERT_FALSE(read.ok());
   EXPECT_THAT(read.status().message(), HasSubstr(path + ": cannot open"));
+}
+
+// Bounded input (issue 13): a FIFO with no writer would block open(2) and
+// read(2) for ever; a link to /dev/zero would be read until memory runs out.
+TEST(AtomicFileTest, ReadingAFifoIsRefusedAtOnce) {
+  TempDir dir;
+  const std::string path = dir.File("robot.yaml");
+  ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
+  StatusOr<std::string> read = ReadFileToString(path);
+  ASSERT_FALSE(read.ok());
+  EXPECT_EQ(read.status().message(), path + ": not a regular file (a FIFO)");
+}
+
+TEST(AtomicFileTest, ReadingALinkToADeviceIsRefused) {
+  TempDir dir;
+  const std::string path = dir.File("legs.csv");
+  std::filesystem::create_symlink("/dev/zero", path);
+  StatusOr<std::string> read = ReadFileToString(path, kMaxTableBytes);
+  ASSERT_FALSE(read.ok());
+  EXPECT_EQ(read.status().message(), path + ": not a regular file (a character device)");
+}
+
+TEST(AtomicFileTest, ReadingAFileOverItsSizeCapIsRefused) {
+  TempDir dir;
+  const std::string path = dir.File("robot.yaml");
+  WriteTextFile(path, std::string(2 * kMiB, 'x'));
+  StatusOr<std::string> read = ReadFileToString(path, kMiB);
+  ASSERT_FALSE(read.ok());
+  EXPECT_EQ(read.status().message(), path + ": 2.0 MiB is over the 1.0 MiB limit for this kind of file");
+  EXPECT_TRUE(ReadFileToString(path, 2 * kMiB).ok());
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include "core/calibration_cost.h"
 #include "core/csv.h"
 #include "core/parallel.h"
+#include "core/reading_units.h"
 
 namespace hexcal {
 namespace {
@@ -30,9 +31,8 @@ StatusOr<LegData> MakeLegData(const Robot& nominal, int leg, const std::vector<M
     data.readings.push_back(m.legs[leg]);
     double weight = 1;
     if (options.weighted) {
-      weight = m.pose_covariance
-                   ? ResidualStdDev(nominal, leg, m.pose, m.legs[leg], options.noise, *m.pose_covariance)
-                   : ResidualStdDev(nominal, leg, m.pose, m.legs[leg], options.noise);
+      weight = m.pose_covariance ? ResidualStdDev(nominal, leg, m.pose, m.legs[leg], options.noise, *m.pose_covariance)
+                                 : ResidualStdDev(nominal, leg, m.pose, m.legs[leg], options.noise);
       if (!(weight > 0) || !std::isfinite(weight)) {
         return Status::Error("measurement " + std::to_string(j + 1) + ", " + LegLabel(leg) +
                              ": the noise model gives this residual no spread (standard deviation " +
@@ -293,6 +293,9 @@ namespace {
 // times too long): calibrating them would give parameters of another robot.
 // "Far" is more than one stroke length beyond either end.
 Status CheckReadingsInStroke(const Robot& nominal, const std::vector<Measurement>& measurements) {
+  std::vector<LegReadings> readings;
+  for (const Measurement& m : measurements) readings.push_back(m.legs);
+  if (Status s = CheckReadingsUnit(nominal, readings, "measurement"); !s.ok()) return s;
   for (size_t j = 0; j < measurements.size(); ++j) {
     for (int i = 0; i < kNumLegs; ++i) {
       const Leg& leg = nominal.legs[i];

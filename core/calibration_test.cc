@@ -172,8 +172,8 @@ TEST(Calibration, WeightingByTheTrueNoiseModelGivesAVarianceFactorNearOne) {
   CalibrationOptions options;
   options.weighted = true;
   options.noise = {0.002, 0.02, 0.002};
-  const std::vector<Measurement> measurements =
-      Measure(truth, RandomFeasiblePoses(nominal, 60, 4), options.noise.position, options.noise.angle_deg, options.noise.leg);
+  const std::vector<Measurement> measurements = Measure(
+      truth, RandomFeasiblePoses(nominal, 60, 4), options.noise.position, options.noise.angle_deg, options.noise.leg);
   const CalibrationResult result = CalibrateOk(nominal, measurements, options);
   double mean_factor = 0;
   for (const LegCalibration& leg : result.legs) mean_factor += leg.variance_factor / kNumLegs;
@@ -250,6 +250,7 @@ TEST(Calibration, ReadingsInAnotherUnitAreAnError) {
     m.legs *= 10;
   }
   EXPECT_THAT(CalibrateError(nominal, measurements), HasSubstr("is far outside the stroke [0, 3.5] cm"));
+  EXPECT_THAT(CalibrateError(nominal, measurements), HasSubstr("readings look like mm, the robot"));
 }
 
 TEST(Calibration, RepeatedOrTranslatedPosesAreDegenerate) {
@@ -295,7 +296,8 @@ TEST(Calibration, AnUnfinishedSolveIsAnError) {
 
 TEST(Calibration, CancelledBeforeOrDuringTheSolveReturnsCancelled) {
   const Robot nominal = Preset("inria-left-hand");
-  const std::vector<Measurement> measurements = Measure(PerturbedRobot(nominal, 0.5), RandomFeasiblePoses(nominal, 12, 4));
+  const std::vector<Measurement> measurements =
+      Measure(PerturbedRobot(nominal, 0.5), RandomFeasiblePoses(nominal, 12, 4));
   std::atomic<bool> cancel{true};
   StatusOr<CalibrationResult> result = Calibrate(nominal, measurements, {}, {nullptr, &cancel});
   ASSERT_FALSE(result.ok());

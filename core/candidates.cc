@@ -40,7 +40,7 @@ StatusOr<CandidateSet> SampleBox(const Robot& robot, const CandidateOptions& opt
       message << "only " << set.poses.size() << " of " << set.draws << " poses drawn in the pose box of robot '"
               << robot.name << "' satisfy its constraints; the box or the limits are too tight for " << options.count
               << " candidates";
-      return Status::Error(message.str());
+      return Status::Failed(message.str());
     }
     const Vector6d unit = next_unit();
     ++set.draws;
@@ -98,8 +98,9 @@ const char* CandidateKindName(CandidateKind kind) {
 }
 
 bool CandidateOptions::IsValid(std::string* error) const {
-  if (kind != CandidateKind::kBoundary && (count < 1 || count > 10000000)) {
-    *error = "candidate count must be between 1 and 10000000, got " + std::to_string(count);
+  if (kind != CandidateKind::kBoundary && (count < 1 || count > kMaxCandidateCount)) {
+    *error = "candidate count must be between 1 and " + std::to_string(kMaxCandidateCount) + ", got " +
+             std::to_string(count);
     return false;
   }
   if (max_draws_per_pose < 1) {

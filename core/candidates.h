@@ -28,6 +28,9 @@ const std::vector<std::pair<std::string, CandidateKind>>& CandidateKindNames();
 std::optional<CandidateKind> ParseCandidateKind(const std::string& text);
 const char* CandidateKindName(CandidateKind kind);
 
+// More candidates than this is a typo: a pose CSV of about 700 MB.
+constexpr int kMaxCandidateCount = 10000000;
+
 struct CandidateOptions {
   CandidateKind kind = CandidateKind::kRandom;
   int count = 1000;                // poses wanted (random, uniform); ignored for boundary

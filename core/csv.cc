@@ -4,6 +4,7 @@
 #include <cassert>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include "core/atomic_file.h"
@@ -93,10 +94,10 @@ Status CheckHeader(const CsvTable& table, int line) {
     // be reported as a duplicate or a missing column.
     if (ParseNumber(name).ok()) {
       return Status::Error(LinePrefix(table.source, line) + "no header: column " + std::to_string(i + 1) +
-                           " is the number '" + name + "', and the first line must name the columns");
+                           " is the number " + Excerpt(name) + ", and the first line must name the columns");
     }
     if (!seen.insert(name).second) {
-      return Status::Error(LinePrefix(table.source, line) + "duplicate column '" + name + "' in header");
+      return Status::Error(LinePrefix(table.source, line) + "duplicate column " + Excerpt(name) + " in header");
     }
   }
   return Status::Ok();
@@ -189,7 +190,7 @@ StatusOr<CsvTable> ParseCsv(const std::string& text, const std::string& source) 
 }
 
 StatusOr<CsvTable> ReadCsv(const std::string& path) {
-  StatusOr<std::string> text = ReadFileToString(path);
+  StatusOr<std::string> text = ReadFileToString(path, kMaxTableBytes);
   if (!text.ok()) return text.status();
   return ParseCsv(*text, path);
 }
@@ -203,7 +204,7 @@ StatusOr<double> ParseNumber(const std::string& text) {
   const char* last = text.data() + text.size();
   const auto [end, error] = std::from_chars(text.data() + begin, last, value);
   if (error != std::errc() || end != last || !std::isfinite(value)) {
-    return Status::Error("'" + text + "' is not a finite number");
+    return Status::Error(Excerpt(text) + " is not a finite number");
   }
   return value;
 }
@@ -212,7 +213,10 @@ StatusOr<int> ColumnIndex(const CsvTable& table, const std::string& name) {
   for (size_t i = 0; i < table.header.size(); ++i) {
     if (table.header[i] == name) return static_cast<int>(i);
   }
-  return Status::Error(table.source + ": missing column '" + name + "' (header: " + Join(table.header, ",") + ")");
+  // The header is the file's first line, which may be anything: quote its start only.
+  const std::string header = Excerpt(Join(table.header, ","));
+  return Status::Error(table.source + ": missing column '" + name +
+                       "' (header: " + header.substr(1, header.size() - 2) + ")");
 }
 
 StatusOr<double> NumberAt(const CsvTable& table, size_t row, int col) {
@@ -239,6 +243,22 @@ std::string FormatCsv(const std::vector<std::string>& header, const std::vector<
     AppendCsvLine(row, &text);
   }
   return text;
+}
+
+std::string Excerpt(const std::string& text, size_t max_chars) {
+  std::string quoted = "'";
+  size_t shown = 0;
+  for (; shown < text.size() && shown < max_chars; ++shown) {
+    const unsigned char c = static_cast<unsigned char>(text[shown]);
+    if (c >= 0x20 && c < 0x7f && c != '\\') {
+      quoted += static_cast<char>(c);
+    } else {
+      char escaped[8];
+      std::snprintf(escaped, sizeof(escaped), "\\x%02x", c);
+      quoted += escaped;
+    }
+  }
+  return quoted + (shown < text.size() ? "...'" : "'");
 }
 
 std::string FormatNumber(double v) {

@@ -60,6 +60,14 @@ std::string FormatCsv(const std::vector<std::string>& header, const std::vector<
 // The shortest text that ParseNumber reads back as exactly `v` ("0.1", "52.2496",
 // "1e-20"). `v` must be finite.
 std::string FormatNumber(double v);
+
+// A short, quoted, escaped excerpt of text from a file, for an error message:
+// at most `max_chars` characters (then "..."), control and non-ASCII bytes as
+// \xNN. An error quotes a file this way and never whole: the file may be
+// /etc/passwd named by mistake, or by someone who wants to read it.
+//   Excerpt("root:x:0:0:root:/root:/bin/bash\n...")  ->  'root:x:0:0:root:/root:/b...'
+constexpr size_t kExcerptChars = 24;
+std::string Excerpt(const std::string& text, size_t max_chars = kExcerptChars);
 // FormatCsv written with WriteFileAtomically.
 Status WriteCsv(const std::string& path, const std::vector<std::string>& header,
                 const std::vector<std::vector<std::string>>& rows);

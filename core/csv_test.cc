@@ -277,5 +277,23 @@ TEST(CsvTest, FormatCsvQuotesOnlyWhatNeedsIt) {
   EXPECT_EQ(FormatCsv({"x", "y"}, {{"1", "2"}, {"a,b", ""}}), "x,y\n1,2\n\"a,b\",\"\"\n");
 }
 
+// Issue 13: an error quotes a file at most as a short, escaped excerpt.
+TEST(CsvTest, ExcerptIsShortQuotedAndEscaped) {
+  EXPECT_EQ(Excerpt("nan"), "'nan'");
+  EXPECT_EQ(Excerpt("root:x:0:0:root:/root:/bin/bash\nsecret"), "'root:x:0:0:root:/root:/b...'");
+  EXPECT_EQ(Excerpt(std::string("a\tb\x01\xff\\", 6)), "'a\\x09b\\x01\\xff\\x5c'");
+}
+
+TEST(CsvTest, MissingColumnQuotesOnlyTheStartOfTheFirstLine) {
+  TempDir dir;
+  const std::string path = dir.File("passwd.csv");
+  WriteTextFile(path, "root:x:0:0:root:/root:/bin/bash:/usr/sbin/nologin:SECRET,daemon:x:1:1\n1,2\n");
+  StatusOr<std::vector<Vector6d>> poses = LoadPoses(path);
+  ASSERT_FALSE(poses.ok());
+  EXPECT_THAT(poses.status().message(),
+              HasSubstr("missing column 'x' (header: root:x:0:0:root:/root:/b...)"));
+  EXPECT_THAT(poses.status().message(), ::testing::Not(HasSubstr("SECRET")));
+}
+
 }  // namespace
 }  // namespace hexcal

@@ -122,6 +122,90 @@ Complex RandomComplex(std::mt19937_64& rng) {
   return Complex(re, u(rng));
 }
 
+// A real assembly mode found by ForwardKinematicsAll, before sorting.
+struct RealMode {
+  Pose pose;
+  bool at_singularity = false;
+  bool from_endgame = false;
+};
+
+// The pose of a path end (Study parameters, lengths divided by `scale`) and the
+// largest imaginary part of its rotation and translation.
+Pose RealPartPose(const CVector8& z, double scale, double* imaginary) {
+  CMatrix3 rotation;
+  CVector3 translation;
+  StudyToComplexPose(z, &rotation, &translation);
+  *imaginary = std::max(rotation.imag().cwiseAbs().maxCoeff(), translation.imag().cwiseAbs().maxCoeff());
+  Pose pose;
+  pose.rotation = Eigen::Quaterniond(rotation.real()).normalized().toRotationMatrix();
+  pose.position = translation.real() * scale;
+  return pose;
+}
+
+// Polishes `candidate` on the real leg equations and adds it unless it repeats
+// a mode. A path end (`endgame`) is kept only if the polish converges; a
+// tracked real solution is kept as it is when the polish fails. At a double
+// root Newton converges only linearly, so poses at a singularity are compared
+// with a looser tolerance.
+void AddRealMode(const Robot& robot, const LegReadings& readings, const Pose& candidate, bool endgame, double scale,
+                 const FkAllOptions& options, std::vector<RealMode>* modes) {
+  LocalFkOptions local;
+  local.accept_singular = true;
+  StatusOr<LocalFkResult> polished = ForwardKinematicsLocal(robot, readings, candidate, local);
+  if (endgame && !polished.ok()) return;
+  RealMode mode{polished.ok() ? polished->pose : candidate, false, endgame};
+  mode.at_singularity = polished.ok() && polished->condition_ratio < options.singular_condition_ratio;
+  for (RealMode& other : *modes) {
+    const double tolerance = (other.at_singularity || mode.at_singularity) ? 1e-5 : 1e-7;
+    if ((other.pose.position - mode.pose.position).norm() < tolerance * scale &&
+        RotationDistance(other.pose.rotation, mode.pose.rotation) < tolerance) {
+      other.at_singularity = other.at_singularity || mode.at_singularity;
+      return;
+    }
+  }
+  modes->push_back(mode);
+}
+
+// Sorts the real modes (tracked ones first when deduplicating, so that an
+// end-game pose never replaces a regular solution) by z descending.
+FkAllResult CollectRealModes(const Robot& robot, const LegReadings& readings, const std::vector<PathEnd>& ends,
+                             double scale, const FkAllOptions& options) {
+  FkAllResult result;
+  result.tracked_paths = static_cast<int>(ends.size());
+  std::vector<Pose> regular, endgame;
+  for (const PathEnd& end : ends) {
+    if (IsSpurious(end.z)) {
+      ++result.failed_paths;
+      continue;
+    }
+    double imaginary = 0;
+    const Pose pose = RealPartPose(end.z, scale, &imaginary);
+    const bool finite = pose.position.allFinite() && pose.rotation.allFinite();
+    if (!end.reached_end) ++result.failed_paths;
+    if (end.reached_end && !(imaginary < options.imaginary_tolerance)) ++result.complex_solutions;
+    if (end.reached_end && imaginary < options.imaginary_tolerance) {
+      regular.push_back(pose);
+    } else if (finite && imaginary < options.endgame_imaginary_tolerance) {
+      endgame.push_back(pose);
+    }
+  }
+  std::vector<RealMode> modes;
+  for (const Pose& pose : regular) AddRealMode(robot, readings, pose, false, scale, options, &modes);
+  for (const Pose& pose : endgame) AddRealMode(robot, readings, pose, true, scale, options, &modes);
+  std::sort(modes.begin(), modes.end(), [](const RealMode& a, const RealMode& b) {
+    const Pose &p = a.pose, &q = b.pose;
+    if (p.position.z() != q.position.z()) return p.position.z() > q.position.z();
+    if (p.position.x() != q.position.x()) return p.position.x() < q.position.x();
+    return p.position.y() < q.position.y();
+  });
+  for (const RealMode& mode : modes) {
+    result.poses.push_back(mode.pose);
+    result.at_singularity.push_back(mode.at_singularity);
+    result.endgame_poses += mode.from_endgame;
+  }
+  return result;
+}
+
 }  // namespace
 
 StartSystem SolveGenericInstance(uint64_t seed) {
@@ -163,7 +247,7 @@ StatusOr<FkAllResult> ForwardKinematicsAll(const Robot& robot, const LegReadings
     std::ostringstream message;
     message << "forward kinematics: the generic start system has " << start.solutions.size() << " solutions instead of "
             << kGenericSolutionCount;
-    return Status::Error(message.str());
+    return Status::Failed(message.str());
   }
   // Work in units of the longest leg so the target looks like the unit-size start.
   double scale = 0;
@@ -196,44 +280,7 @@ StatusOr<FkAllResult> ForwardKinematicsAll(const Robot& robot, const LegReadings
     ends[k] = TrackPath(homotopy, start.solutions[k], tracker);
     if (ends[k].reached_end) RefineAt(homotopy, 0.0, &ends[k].z, 4, 1e-14);
   });
-
-  FkAllResult result;
-  result.tracked_paths = static_cast<int>(ends.size());
-  std::vector<Pose> candidates;
-  for (const PathEnd& end : ends) {
-    if (!end.reached_end || IsSpurious(end.z)) {
-      ++result.failed_paths;
-      continue;
-    }
-    CMatrix3 rotation;
-    CVector3 translation;
-    StudyToComplexPose(end.z, &rotation, &translation);
-    const double imaginary = std::max(rotation.imag().cwiseAbs().maxCoeff(), translation.imag().cwiseAbs().maxCoeff());
-    if (!(imaginary < options.imaginary_tolerance)) {
-      ++result.complex_solutions;
-      continue;
-    }
-    Pose pose;
-    pose.rotation = Eigen::Quaterniond(rotation.real()).normalized().toRotationMatrix();
-    pose.position = translation.real() * scale;
-    candidates.push_back(pose);
-  }
-
-  for (const Pose& candidate : candidates) {
-    StatusOr<LocalFkResult> polished = ForwardKinematicsLocal(robot, readings, candidate);
-    const Pose pose = polished.ok() ? polished->pose : candidate;
-    const bool duplicate = std::any_of(result.poses.begin(), result.poses.end(), [&](const Pose& other) {
-      return (other.position - pose.position).norm() < 1e-7 * scale &&
-             RotationDistance(other.rotation, pose.rotation) < 1e-7;
-    });
-    if (!duplicate) result.poses.push_back(pose);
-  }
-  std::sort(result.poses.begin(), result.poses.end(), [](const Pose& p, const Pose& q) {
-    if (p.position.z() != q.position.z()) return p.position.z() > q.position.z();
-    if (p.position.x() != q.position.x()) return p.position.x() < q.position.x();
-    return p.position.y() < q.position.y();
-  });
-  return result;
+  return CollectRealModes(robot, readings, ends, scale, options);
 }
 
 }  // namespace hexcal

@@ -13,10 +13,18 @@
 // the leg equations. Unlike a multistart Newton, nothing can be missed except
 // singular (double) solutions at a parallel singularity.
 //
+// At a parallel singularity two modes merge into a double root, and the paths
+// to it stop short of s = 0 (or end with a small imaginary part). An end-game
+// recovers the real pose from each such path end: damped Gauss-Newton on the
+// real leg equations from the real part of its last point. Such a pose is
+// flagged (`at_singularity`): the readings do not determine the pose's motion
+// there.
+//
 //   StatusOr<FkAllResult> modes = ForwardKinematicsAll(robot, readings);
 //   for (const Pose& pose : modes->poses) ...
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "core/inverse_kinematics.h"
@@ -28,12 +36,21 @@ namespace hexcal {
 struct FkAllOptions {
   // A solution is real when the imaginary parts of R and t/scale are below this.
   double imaginary_tolerance = 1e-6;
+  // End-game: a failed path end, or a solution whose imaginary parts are below
+  // this, is polished from its real part; kept when the legs then match.
+  double endgame_imaginary_tolerance = 1e-2;
+  // A real mode whose Jacobian condition ratio (forward_kinematics.h) is below
+  // this is reported as at a singularity.
+  double singular_condition_ratio = 1e-6;
 };
 
 struct FkAllResult {
-  std::vector<Pose> poses;    // every real assembly mode, polished, sorted by z descending
-  int complex_solutions = 0;  // non-real finite solutions (conjugate pairs counted twice)
-  int failed_paths = 0;       // paths that ended singular or diverged
+  std::vector<Pose> poses;           // every real assembly mode, polished, sorted by z descending
+  std::vector<bool> at_singularity;  // per pose: at a parallel singularity (a double root)
+  int complex_solutions = 0;         // non-real finite solutions (conjugate pairs counted twice)
+  int failed_paths = 0;              // paths that ended singular or diverged (before the end-game)
+  int endgame_poses = 0;             // real poses recovered by the end-game from failed or nearly real path ends
+  int SingularCount() const { return static_cast<int>(std::count(at_singularity.begin(), at_singularity.end(), true)); }
   int tracked_paths = 0;
 };
 

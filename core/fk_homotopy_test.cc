@@ -201,6 +201,38 @@ TEST(ForwardKinematicsAll, InriaPresetFindsTruePose) {
   }
 }
 
+// Issue 13: at z = 52, q3 = 90° the INRIA robot is at a parallel singularity;
+// the true pose and a neighbouring mode merge into a double root, the paths to
+// it stop short, and the homotopy alone answered "0 real assembly modes". The
+// end-game recovers the true pose and flags it.
+TEST(ForwardKinematicsAll, SingularReadingsGiveTheRealPoseFlagged) {
+  const Robot robot = *LoadRobot("inria-left-hand");
+  Vector6d v;
+  v << 0, 0, 52, 0, 0, 90;
+  const Pose truth = robot.PoseFromVector(v);
+  const LegReadings readings = InverseKinematics(robot, truth);
+  StatusOr<FkAllResult> fk = ForwardKinematicsAll(robot, readings);
+  ASSERT_TRUE(fk.ok()) << fk.status().message();
+  ASSERT_FALSE(fk->poses.empty());
+  EXPECT_TRUE(ContainsPose(fk->poses, truth, 1e-5));
+  EXPECT_LT(WorstLegError(robot, fk->poses, readings), 1e-9);
+  ASSERT_EQ(fk->at_singularity.size(), fk->poses.size());
+  EXPECT_GE(fk->SingularCount(), 1);
+  EXPECT_GE(fk->endgame_poses, 1);
+}
+
+// Just off the singularity the modes are distinct and regular: none is flagged.
+TEST(ForwardKinematicsAll, ReadingsOffTheSingularityAreNotFlagged) {
+  const Robot robot = *LoadRobot("inria-left-hand");
+  Vector6d v;
+  v << 0, 0, 52, 0, 0, 80;
+  const Pose truth = robot.PoseFromVector(v);
+  StatusOr<FkAllResult> fk = ForwardKinematicsAll(robot, InverseKinematics(robot, truth));
+  ASSERT_TRUE(fk.ok()) << fk.status().message();
+  EXPECT_TRUE(ContainsPose(fk->poses, truth, 1e-8));
+  EXPECT_EQ(fk->SingularCount(), 0);
+}
+
 // Reflection through the base plane z = 0: for a robot whose a_i and b_i all have z = 0,
 // (D P, D R D) with D = diag(1, 1, -1) gives the same leg lengths as (P, R).
 Pose Mirrored(const Pose& pose) {

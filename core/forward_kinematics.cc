@@ -49,12 +49,13 @@ StatusOr<LocalFkResult> ForwardKinematicsLocal(const Robot& robot, const LegRead
     std::ostringstream message;
     message << "forward kinematics: the pose is at a singularity (Jacobian condition ratio " << ratio << " < "
             << options.min_condition_ratio << "): these readings do not determine the pose";
-    return Status::Error(message.str());
+    return Status::Failed(message.str());
   };
   // Converged: a pose, unless it is a singular one.
   const auto solution = [&](const Pose& pose, int iterations, double max_residual) -> StatusOr<LocalFkResult> {
     const double ratio = ConditionRatio(robot, pose);
-    if (!pose.position.allFinite() || !pose.rotation.allFinite() || !(ratio >= options.min_condition_ratio)) {
+    if (!pose.position.allFinite() || !pose.rotation.allFinite()) return singularity(ratio);
+    if (!options.accept_singular && !(ratio >= options.min_condition_ratio)) {
       return singularity(ratio);
     }
     return LocalFkResult{pose, iterations, max_residual, ratio};
@@ -96,7 +97,7 @@ StatusOr<LocalFkResult> ForwardKinematicsLocal(const Robot& robot, const LegRead
   std::ostringstream message;
   message << "forward kinematics did not converge: a leg length is still off by " << max_residual << " "
           << LengthUnitName(robot.length_unit) << " (readings out of reach, or a start pose too far from a solution)";
-  return Status::Error(message.str());
+  return Status::Failed(message.str());
 }
 
 }  // namespace hexcal

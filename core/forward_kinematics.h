@@ -20,12 +20,15 @@ struct LocalFkOptions {
   // the platform radius, so unit-free) is below this is a parallel
   // singularity: the readings do not determine the pose, an error.
   double min_condition_ratio = 1e-9;
+  // Return a converged singular pose (with its condition_ratio) instead of the
+  // error: for the end-game of ForwardKinematicsAll, which reports it as such.
+  bool accept_singular = false;
 };
 
 struct LocalFkResult {
   Pose pose;
   int iterations = 0;
-  double max_residual = 0;  // max |L_i(pose) - L_i|, robot unit
+  double max_residual = 0;     // max |L_i(pose) - L_i|, robot unit
   double condition_ratio = 0;  // σ_min/σ_max of the scaled Jacobian at the pose (see LocalFkOptions)
 };
 

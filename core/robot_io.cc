@@ -44,7 +44,7 @@ std::string Describe(const YAML::Node& node) {
   if (!node.IsDefined() || node.IsNull()) return "nothing";
   if (node.IsSequence()) return "a list";
   if (node.IsMap()) return "a mapping";
-  return "'" + node.Scalar() + "'";
+  return Excerpt(node.Scalar());
 }
 
 bool IsQuotedOrString(const YAML::Node& node) { return node.Tag() == "!" || node.Tag() == "tag:yaml.org,2002:str"; }
@@ -353,11 +353,13 @@ std::string RobotToYaml(const Robot& robot) {
   if (limits.leg_min_distance) {
     out << "  leg_min_distance: " << FormatNumber(*limits.leg_min_distance) << "\n";
   }
-  for (const auto& [key, box] : {std::pair{"pose_box", &limits.pose_box}, std::pair{"sampling_box", &limits.sampling_box}}) {
+  for (const auto& [key, box] :
+       {std::pair{"pose_box", &limits.pose_box}, std::pair{"sampling_box", &limits.sampling_box}}) {
     if (!*box) continue;
     std::vector<std::string> entries;
     for (size_t k = 0; k < kPoseBoxKeys.size(); ++k) {
-      if (const auto& range = (*box)->bounds[k]) entries.push_back(kPoseBoxKeys[k] + ": " + YamlList({range->min, range->max}));
+      if (const auto& range = (*box)->bounds[k])
+        entries.push_back(kPoseBoxKeys[k] + ": " + YamlList({range->min, range->max}));
     }
     out << "  " << key << ": {" << Join(entries, ", ") << "}\n";
   }

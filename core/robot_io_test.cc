@@ -283,5 +283,17 @@ TEST(RobotIoTest, EveryBadRobotFileFailsWithItsExpectedMessage) {
   EXPECT_GE(checked, 16) << "bad robot files found in " << folder;
 }
 
+// Issue 13: a robot path naming a text file (/etc/passwd) printed the whole
+// file in "expected a mapping ..., found '...'"; now a short excerpt.
+TEST(RobotIoTest, ATextFileIsQuotedAsAShortExcerptOnly) {
+  TempDir dir;
+  const std::string path = dir.File("passwd");
+  WriteTextFile(path, "root:x:0:0:root:/root:/bin/bash\ndaemon:x:1:1:SECRET:/usr/sbin:/usr/sbin/nologin\n");
+  StatusOr<Robot> robot = LoadRobot(path);
+  ASSERT_FALSE(robot.ok());
+  EXPECT_THAT(robot.status().message(), HasSubstr("found 'root:x:0:0:root:/root:/b...'"));
+  EXPECT_THAT(robot.status().message(), ::testing::Not(HasSubstr("SECRET")));
+}
+
 }  // namespace
 }  // namespace hexcal

@@ -51,7 +51,10 @@ StatusOr<std::vector<Vector6d>> PosesOfRun(const Robot& nominal, const Simulatio
   Robot sampler = nominal;
   if (set.box) sampler.limits.sampling_box = set.box;  // intersected with the pose box by SamplingBox()
   StatusOr<CandidateSet> drawn = GenerateCandidates(sampler, candidates);
-  if (!drawn.ok()) return Status::Error("pose set '" + set.name + "': " + drawn.status().message());
+  if (!drawn.ok()) {  // keep the kind: a robot without a pose box is bad input, a box too tight a failure
+    const std::string message = "pose set '" + set.name + "': " + drawn.status().message();
+    return drawn.status().kind() == StatusKind::kBadInput ? Status::Error(message) : Status::Failed(message);
+  }
   return std::move(drawn->poses);
 }
 
@@ -107,8 +110,8 @@ StatusOr<SetError> Summarize(const SimulationPoseSet& set, int poses, const Para
     for (int k = 0; k < kNumParams; ++k) values.push_back(std::abs((*run.estimate)[k] - truth[k]));
   }
   if (error.runs == 0) {
-    return Status::Error("pose set '" + set.name + "' with " + std::to_string(poses) +
-                         " poses: the calibration failed in every run; first: " + error.first_failure);
+    return Status::Failed("pose set '" + set.name + "' with " + std::to_string(poses) +
+                          " poses: the calibration failed in every run; first: " + error.first_failure);
   }
   const ErrorStats stats = SummarizeErrors(values);
   error.mean = stats.mean;

@@ -1,11 +1,15 @@
 #include "core/validation.h"
 
 #include "core/forward_kinematics.h"
+#include "core/reading_units.h"
 
 namespace hexcal {
 
 StatusOr<ValidationReport> Validate(const Robot& robot, const std::vector<Measurement>& measurements) {
   if (measurements.empty()) return Status::Error("validation needs at least one measurement");
+  std::vector<LegReadings> readings;
+  for (const Measurement& m : measurements) readings.push_back(m.legs);
+  if (Status s = CheckReadingsUnit(robot, readings, "measurement"); !s.ok()) return s;
   ValidationReport report;
   std::vector<double> position_errors, orientation_errors;
   for (size_t j = 0; j < measurements.size(); ++j) {
@@ -29,8 +33,8 @@ StatusOr<ValidationReport> Validate(const Robot& robot, const std::vector<Measur
     report.rows.push_back(row);
   }
   if (position_errors.empty()) {
-    return Status::Error("forward kinematics failed for all " + std::to_string(measurements.size()) +
-                         " measurements with robot '" + robot.name + "'; first: " + report.rows[0].error);
+    return Status::Failed("forward kinematics failed for all " + std::to_string(measurements.size()) +
+                          " measurements with robot '" + robot.name + "'; first: " + report.rows[0].error);
   }
   report.position = SummarizeErrors(position_errors);
   report.orientation_deg = SummarizeErrors(orientation_errors);

@@ -66,7 +66,7 @@ int Write(const std::string& path, size_t megabytes, long first, long count) {
 }
 
 int Check(const std::string& path) {
-  const hexcal::StatusOr<std::string> read = hexcal::ReadFileToString(path);
+  const hexcal::StatusOr<std::string> read = hexcal::ReadFileToString(path, 64 * hexcal::kMiB);
   if (!read.ok()) {
     std::cerr << read.status().message() << "\n";
     return 1;
@@ -80,8 +80,8 @@ int Check(const std::string& path) {
   const size_t checksum_start = text.rfind("fnv1a64 ");
   uint64_t stored = 0;
   if (checksum_start == std::string::npos ||
-      std::sscanf(text.c_str() + checksum_start, "fnv1a64 %" SCNx64, &stored) != 1 ||
-      text.back() != '\n' || text.find('\n', checksum_start) != text.size() - 1) {
+      std::sscanf(text.c_str() + checksum_start, "fnv1a64 %" SCNx64, &stored) != 1 || text.back() != '\n' ||
+      text.find('\n', checksum_start) != text.size() - 1) {
     std::cerr << path << ": no final checksum line\n";
     return 1;
   }
@@ -112,8 +112,7 @@ int main(int argc, char** argv) {
   if (mode == "write" && (argc == 5 || argc == 6)) {
     const long first = std::strtol(argv[4], nullptr, 10);
     if (first < 1) return 2;
-    return Write(argv[2], std::strtoul(argv[3], nullptr, 10), first,
-                 argc == 6 ? std::strtol(argv[5], nullptr, 10) : 0);
+    return Write(argv[2], std::strtoul(argv[3], nullptr, 10), first, argc == 6 ? std::strtol(argv[5], nullptr, 10) : 0);
   }
   if (mode == "check" && argc == 3) return Check(argv[2]);
   std::cerr << "usage: atomic_writer write FILE MEGABYTES FIRST [COUNT] | atomic_writer check FILE\n";

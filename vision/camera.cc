@@ -92,7 +92,8 @@ class CameraReader {
     const int r = static_cast<int>(rows), c = static_cast<int>(cols);
     constexpr int kMaxEntries = 64;  // a 3 x 3 matrix or a handful of coefficients
     if (r < 1 || c < 1 || r > kMaxEntries || c > kMaxEntries || r * c > kMaxEntries) {
-      return Error(key + ": " + std::to_string(r) + " x " + std::to_string(c) + " is not a camera matrix or coefficient list");
+      return Error(key + ": " + std::to_string(r) + " x " + std::to_string(c) +
+                   " is not a camera matrix or coefficient list");
     }
     if (!data.isSeq() || static_cast<int>(data.size()) != r * c) {
       return Error(key + ".data: expected " + std::to_string(r * c) + " numbers (" + std::to_string(r) + " x " +
@@ -139,7 +140,7 @@ class CameraReader {
     for (const YAML::Node& item : node) {
       StatusOr<double> value = item.IsScalar() ? ParseNumber(item.Scalar()) : Status::Error("");
       if (!value.ok())
-        return Error(key + ": expected numbers, found " + (item.IsScalar() ? "'" + item.Scalar() + "'" : "a list"));
+        return Error(key + ": expected numbers, found " + (item.IsScalar() ? Excerpt(item.Scalar()) : "a list"));
       values.push_back(*value);
     }
     return values;
@@ -150,7 +151,7 @@ class CameraReader {
     if (!node || !node.IsScalar()) return Error(key + ": missing");
     StatusOr<double> value = ParseNumber(node.Scalar());
     if (!value.ok() || *value != std::floor(*value) || std::abs(*value) > 1e6) {
-      return Error(key + ": expected a whole number, found '" + node.Scalar() + "'");
+      return Error(key + ": expected a whole number, found " + Excerpt(node.Scalar()));
     }
     return static_cast<int>(*value);
   }
@@ -255,7 +256,8 @@ Status Camera::Validate() const {
     if (!std::isfinite(f)) return Status::Error(std::string("focal length ") + name + ": not a finite number");
   }
   if (!(fx > 0) || !(fy > 0)) {
-    return Status::Error("focal lengths fx = " + FormatNumber(fx) + ", fy = " + FormatNumber(fy) + ": must be positive");
+    return Status::Error("focal lengths fx = " + FormatNumber(fx) + ", fy = " + FormatNumber(fy) +
+                         ": must be positive");
   }
   if (!std::isfinite(cx) || !std::isfinite(cy)) return Status::Error("principal point: not finite");
   for (double k : distortion) {

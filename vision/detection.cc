@@ -176,9 +176,12 @@ namespace {
 
 // PNG, JPEG (SOI and a marker), TIFF and BigTIFF, little- and big-endian.
 bool IsPngJpegOrTiff(const std::string& bytes) {
-  static const std::string kSignatures[] = {
-      std::string("\x89PNG\r\n\x1a\n", 8), std::string("\xFF\xD8\xFF", 3), std::string("II*\0", 4),
-      std::string("MM\0*", 4),              std::string("II+\0", 4),        std::string("MM\0+", 4)};
+  static const std::string kSignatures[] = {std::string("\x89PNG\r\n\x1a\n", 8),
+                                            std::string("\xFF\xD8\xFF", 3),
+                                            std::string("II*\0", 4),
+                                            std::string("MM\0*", 4),
+                                            std::string("II+\0", 4),
+                                            std::string("MM\0+", 4)};
   for (const std::string& signature : kSignatures) {
     if (bytes.compare(0, signature.size(), signature) == 0) return true;
   }
@@ -188,7 +191,7 @@ bool IsPngJpegOrTiff(const std::string& bytes) {
 }  // namespace
 
 StatusOr<cv::Mat> LoadGrayImage(const std::string& path) {
-  StatusOr<std::string> bytes = ReadFileToString(path);
+  StatusOr<std::string> bytes = ReadFileToString(path, kMaxImageBytes);
   if (!bytes.ok()) return bytes.status();
   return DecodeGrayImage(*bytes, path);
 }

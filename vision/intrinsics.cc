@@ -86,7 +86,7 @@ StatusOr<Calibration> Calibrate(const std::vector<const BoardObservation*>& view
     result.rms = cv::calibrateCamera(object, image, size, k, d, rvecs, tvecs, std_intrinsics, std_extrinsics, per_view,
                                      0, cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 200, 1e-12));
   } catch (const cv::Exception& e) {
-    return Status::Error(std::string("calibration failed: ") + e.msg);
+    return Status::Failed(std::string("calibration failed: ") + e.msg);
   }
   result.camera.width = size.width;
   result.camera.height = size.height;
@@ -98,7 +98,7 @@ StatusOr<Calibration> Calibrate(const std::vector<const BoardObservation*>& view
   for (int i = 0; i < 9; ++i) result.std_dev[static_cast<size_t>(i)] = std_intrinsics.at<double>(i);
   for (int v = 0; v < per_view.rows; ++v) result.view_rms.push_back(per_view.at<double>(v));
   if (Status s = result.camera.Validate(); !s.ok())
-    return Status::Error("calibration gave an invalid camera: " + s.message());
+    return Status::Failed("calibration gave an invalid camera: " + s.message());
   return result;
 }
 
@@ -171,9 +171,9 @@ StatusOr<IntrinsicsResult> Run(int count, const std::vector<std::string>& names,
   const int usable = static_cast<int>(
       std::count_if(result.views.begin(), result.views.end(), [](const CalibrationView& v) { return v.used; }));
   if (usable < options.min_views) {
-    return Status::Error("too few usable views: " + std::to_string(usable) + " of " + std::to_string(count) +
-                         " images show at least " + std::to_string(options.min_tags_per_view) +
-                         " target tags; at least " + std::to_string(options.min_views) + " are needed");
+    return Status::Failed("too few usable views: " + std::to_string(usable) + " of " + std::to_string(count) +
+                          " images show at least " + std::to_string(options.min_tags_per_view) +
+                          " target tags; at least " + std::to_string(options.min_views) + " are needed");
   }
   StatusOr<Calibration> calibration = CalibrateWithOutliers(result.views, *detected, size, options);
   if (!calibration.ok()) return calibration.status();

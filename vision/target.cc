@@ -116,7 +116,7 @@ class TargetReader {
     }
     if (!node.IsScalar()) return Error(name, "expected a number");
     StatusOr<double> value = ParseNumber(node.Scalar());
-    if (!value.ok()) return Error(name, "'" + node.Scalar() + "' is not a finite number");
+    if (!value.ok()) return Error(name, Excerpt(node.Scalar()) + " is not a finite number");
     return *value;
   }
 

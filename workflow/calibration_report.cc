@@ -160,7 +160,7 @@ std::string CalibrationReportPath(const std::string& session_dir) {
 }
 
 StatusOr<CalibrationReport> LoadCalibrationReport(const std::string& path) {
-  StatusOr<std::string> text = ReadFileToString(path);
+  StatusOr<std::string> text = ReadFileToString(path, kMaxJsonBytes);
   if (!text.ok()) return text.status();
   StatusOr<nlohmann::json> json = ParseJsonText(*text, path);
   if (!json.ok()) return json.status();

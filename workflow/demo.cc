@@ -121,8 +121,7 @@ Status RecordDemo(const DemoRequest& request, const DemoScene& scene, const Plan
 std::string FormatPlanLine(int candidates, const PlanResult& plan) {
   std::ostringstream line;
   line << "      " << candidates << " candidates; O1 " << plan.initial.o1 << " -> " << plan.final.o1 << ", O2 "
-       << plan.initial.o2 << " -> " << plan.final.o2 << " (random set -> plan) in " << plan.iterations
-       << " iterations";
+       << plan.initial.o2 << " -> " << plan.final.o2 << " (random set -> plan) in " << plan.iterations << " iterations";
   return line.str();
 }
 
@@ -150,8 +149,13 @@ Status CalibrateAndCompare(const DemoRequest& request, const DemoScene& scene, S
 }  // namespace
 
 Status DemoRequest::Check() const {
-  if (poses < 8) return Status::Error("--poses must be at least 8");
-  if (holdout < 1) return Status::Error("--holdout must be at least 1");
+  if (poses < kMinDemoPoses || poses > kMaxDemoPoses) {
+    return Status::Error("--poses must be between " + std::to_string(kMinDemoPoses) + " and " +
+                         std::to_string(kMaxDemoPoses) + " (each pose is a rendered image)");
+  }
+  if (holdout < 1 || holdout > kMaxDemoHoldout) {
+    return Status::Error("--holdout must be between 1 and " + std::to_string(kMaxDemoHoldout));
+  }
   return Status::Ok();
 }
 
@@ -180,7 +184,8 @@ StatusOr<DemoResult> RunDemo(const DemoRequest& request, const JobHooks& hooks) 
   result.poses = request.poses;
   result.held_out = request.holdout;
 
-  steps.Step("plan " + std::to_string(request.poses) + " poses (IOOPS: O1, secondary O4, Tabu 4) among random and "
+  steps.Step("plan " + std::to_string(request.poses) +
+             " poses (IOOPS: O1, secondary O4, Tabu 4) among random and "
              "boundary candidates with the target in the camera's view");
   const PlanningModel model{*nominal, std::nullopt, scene.view};
   StatusOr<PlanResult> plan = PlanDemo(request, model, hooks, &result.plan_candidates);
@@ -191,9 +196,8 @@ StatusOr<DemoResult> RunDemo(const DemoRequest& request, const JobHooks& hooks) 
   result.plan_iterations = plan->iterations;
 
   steps.Step("record the session in " + request.out + ": hidden true robot (every parameter ±0.5 mm), " +
-             std::to_string(request.poses + request.holdout) + " rendered images (" +
-             std::to_string(request.holdout) + " held out), leg readings ±" + FormatNumber(scene.noise.leg) + " " +
-             result.length_unit);
+             std::to_string(request.poses + request.holdout) + " rendered images (" + std::to_string(request.holdout) +
+             " held out), leg readings ±" + FormatNumber(scene.noise.leg) + " " + result.length_unit);
   if (Status s = RecordDemo(request, scene, model, *plan, robot_name, hooks); !s.ok()) return s;
   if (Status s = CalibrateAndCompare(request, scene, &steps, hooks, &result); !s.ok()) return s;
   result.seconds = steps.Seconds();
@@ -203,7 +207,9 @@ StatusOr<DemoResult> RunDemo(const DemoRequest& request, const JobHooks& hooks) 
 nlohmann::json ToJson(const DemoResult& r) {
   nlohmann::json parameters = nlohmann::json::array();
   for (const ParameterError& p : r.parameters) {
-    nlohmann::json row = {{"leg", p.leg}, {"name", p.name}, {"error", p.error},
+    nlohmann::json row = {{"leg", p.leg},
+                          {"name", p.name},
+                          {"error", p.error},
                           {"sigma", p.sigma ? nlohmann::json(*p.sigma) : nlohmann::json(nullptr)}};
     if (p.sigma) row["error_over_sigma"] = *p.sigma > 0 ? nlohmann::json(p.error / *p.sigma) : nlohmann::json(nullptr);
     parameters.push_back(row);

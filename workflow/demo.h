@@ -26,6 +26,12 @@
 
 namespace hexcal::workflow {
 
+// Each demo pose is a rendered image (~0.4 MB) and a row of every table: the
+// bounds keep a typo (--poses 100000: 38 GB) from filling the disk.
+constexpr int kMinDemoPoses = 8;
+constexpr int kMaxDemoPoses = 500;
+constexpr int kMaxDemoHoldout = 500;
+
 struct DemoRequest {
   std::string robot = "inria-left-hand";  // robot file or preset name
   std::string out = "hexcal-demo";        // the session folder to write
@@ -40,8 +46,8 @@ struct DemoRequest {
 struct ParameterError {
   int leg = 0;
   std::string name;
-  double error = 0;              // |calibrated − truth in the gauge|, robot unit
-  std::optional<double> sigma;   // the calibration's σ
+  double error = 0;             // |calibrated − truth in the gauge|, robot unit
+  std::optional<double> sigma;  // the calibration's σ
 };
 
 struct DemoResult {

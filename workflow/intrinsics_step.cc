@@ -45,9 +45,7 @@ StatusOr<IntrinsicsOutcome> CalibrateCameraFromFolder(const IntrinsicsRequest& r
   if (!target.ok()) return target.status();
   StatusOr<std::vector<std::string>> files = ListImages(request.images);
   if (!files.ok()) return files.status();
-  std::error_code fs_error;
-  if (std::filesystem::exists(request.out, fs_error) && !request.force)
-    return Status::Error(request.out + " exists; use --force to overwrite");
+  if (Status s = CheckOutputFree(request.out, request.force); !s.ok()) return s;
   const std::string coverage = request.coverage.empty() ? DefaultCoveragePath(request.out) : request.coverage;
   return CalibrateCameraFromFiles(*files, *target, request.options, request.out, coverage, hooks);
 }

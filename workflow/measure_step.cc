@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include "core/atomic_file.h"
+
 namespace hexcal::workflow {
 namespace {
 
@@ -58,9 +60,8 @@ StatusOr<MeasureResult> MeasureFolder(const MeasureRequest& request, const JobHo
   if (!request.options.IsValid(&error)) return Status::Error(error);
   StatusOr<std::vector<std::string>> files = ListImages(request.images);
   if (!files.ok()) return files.status();
+  if (Status s = CheckOutputFree(request.out, request.force); !s.ok()) return s;
   std::error_code fs_error;
-  if (std::filesystem::exists(request.out, fs_error) && !request.force)
-    return Status::Error(request.out + " exists; use --force to overwrite");
   const bool folder = std::filesystem::is_directory(request.images, fs_error);
   return MeasureAndWrite(*files, *camera, *target, request.options, request.out, folder, hooks);
 }

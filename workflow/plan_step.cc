@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <iomanip>
-#include <sstream>
 #include <random>
+#include <sstream>
 
 #include "core/candidates.h"
 #include "core/csv.h"
@@ -57,7 +57,7 @@ StatusOr<CandidatePool> BuildCandidatePool(const PlanningModel& model, const std
     return Status::Error(file + ": none of its " + std::to_string(raw.size()) +
                          " poses satisfies the robot and measurement constraints (all unreachable)");
   }
-  if (pool.poses.empty()) return Status::Error("no candidate pose satisfies the robot and measurement constraints");
+  if (pool.poses.empty()) return Status::Failed("no candidate pose satisfies the robot and measurement constraints");
   return pool;
 }
 
@@ -93,9 +93,9 @@ StatusOr<std::vector<Vector6d>> InitialPoses(const PlanningModel& model, const s
     poses.insert(poses.end(), feasible.begin(), feasible.end());
   }
   if (static_cast<int>(poses.size()) < count) {
-    return Status::Error("--init " + init + ": only " + std::to_string(poses.size()) +
-                         " poses satisfy the robot and measurement constraints, fewer than --poses " +
-                         std::to_string(count));
+    return Status::Failed("--init " + init + ": only " + std::to_string(poses.size()) +
+                          " poses satisfy the robot and measurement constraints, fewer than --poses " +
+                          std::to_string(count));
   }
   poses.resize(count);
   return poses;
@@ -155,10 +155,9 @@ std::string FormatPlanSummary(const PlanOutcome& outcome) {
   const nlohmann::json s = ToJson(outcome);
   std::ostringstream out;
   auto line = [&](const char* label, const nlohmann::json& o) {
-    out << "  " << std::left << std::setw(9) << label << std::right << std::fixed << std::setprecision(4)
-        << "O1 " << std::setw(10) << o["O1"].get<double>() << "  O2 " << std::setw(8) << o["O2"].get<double>()
-        << "  O3 " << std::setw(10) << o["O3"].get<double>() << "  O4 " << std::setw(8) << o["O4"].get<double>()
-        << "\n";
+    out << "  " << std::left << std::setw(9) << label << std::right << std::fixed << std::setprecision(4) << "O1 "
+        << std::setw(10) << o["O1"].get<double>() << "  O2 " << std::setw(8) << o["O2"].get<double>() << "  O3 "
+        << std::setw(10) << o["O3"].get<double>() << "  O4 " << std::setw(8) << o["O4"].get<double>() << "\n";
   };
   out << "plan of " << s["poses"] << " poses from " << s["candidates"] << " candidates, criterion "
       << s["criterion"].get<std::string>();
@@ -168,11 +167,11 @@ std::string FormatPlanSummary(const PlanOutcome& outcome) {
   line("final", s["final"]);
   out.unsetf(std::ios::floatfield);
   out << "  " << s["iterations"] << " iterations (best at " << s["best_iteration"] << ")"
-      << (s["converged"].get<bool>() ? ", converged" : "") << ", " << std::setprecision(3)
-      << s["seconds"].get<double>() << " s\n";
+      << (s["converged"].get<bool>() ? ", converged" : "") << ", " << std::setprecision(3) << s["seconds"].get<double>()
+      << " s\n";
   if (s.contains("d_efficiency")) {
-    out << "  D-efficiency >= " << std::setprecision(4) << s["d_efficiency"].get<double>()
-        << " (design bound gap " << s["gap"].get<double>() << ")\n";
+    out << "  D-efficiency >= " << std::setprecision(4) << s["d_efficiency"].get<double>() << " (design bound gap "
+        << s["gap"].get<double>() << ")\n";
   }
   if (!outcome.out.empty()) out << "written to " << outcome.out << "\n";
   return out.str();
@@ -182,15 +181,16 @@ StatusOr<PlanOutcome> RunPlan(const PlanningModel& model, const PlanSetup& setup
                               const JobHooks& hooks, const PlanIterationObserver& on_iteration) {
   if (Status s = setup.Check(); !s.ok()) return s;
   const PlannerOptions& planner = setup.planner;
-  // A file the user named that is wrong is bad input; a generated set that
-  // cannot be had is a failed computation.
+  // Core's statuses carry the kind: a file the user named that is wrong, or a
+  // robot without a pose box, is bad input; a generated set that cannot be had
+  // (a box too tight) is a failed computation.
   StatusOr<std::vector<Vector6d>> initial = InitialPoses(model, setup.init, planner.num_poses, planner.seed);
-  if (!initial.ok()) return ParseCandidateKind(setup.init) ? initial.status().AsFailure() : initial.status();
+  if (!initial.ok()) return initial.status();
   hooks.Stage("candidates");
-  StatusOr<CandidatePool> pool = BuildCandidatePool(model, candidates_file, setup.candidate_kinds,
-                                                    setup.candidate_count, planner.continuous, planner.seed,
-                                                    hooks.progress);
-  if (!pool.ok()) return candidates_file.empty() ? pool.status().AsFailure() : pool.status();
+  StatusOr<CandidatePool> pool =
+      BuildCandidatePool(model, candidates_file, setup.candidate_kinds, setup.candidate_count, planner.continuous,
+                         planner.seed, hooks.progress);
+  if (!pool.ok()) return pool.status();
   hooks.Stage("planning");
   StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, *initial, planner, hooks, on_iteration);
   if (!plan.ok()) return plan.status().AsFailure();

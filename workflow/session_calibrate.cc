@@ -7,6 +7,7 @@
 #include "core/atomic_file.h"
 #include "core/calibration_file.h"
 #include "core/csv.h"
+#include "core/reading_units.h"
 #include "core/registration.h"
 #include "core/robot_io.h"
 #include "core/session.h"
@@ -44,6 +45,11 @@ StatusOr<SessionInputs> LoadSessionInputs(const std::string& dir) {
   const std::string robot_name = ResolveSessionFile(dir, config->robot);
   StatusOr<Robot> nominal = LoadRobot(robot_name);
   if (!nominal.ok()) return nominal.status();
+  std::vector<LegReadings> readings;
+  for (const LegsRow& row : *legs) readings.push_back(row.legs);
+  if (Status s = CheckReadingsUnit(*nominal, readings, "row"); !s.ok()) {
+    return Status::Error(SessionPaths(dir).legs + ": " + s.message());
+  }
   StatusOr<Camera> camera = LoadCamera(ResolveSessionFile(dir, config->camera));
   if (!camera.ok()) return camera.status();
   StatusOr<Target> target = LoadTarget(ResolveSessionFile(dir, config->target));
@@ -61,7 +67,7 @@ StatusOr<CameraPoses> ReadMeasuredPoses(const std::string& path, std::vector<std
   CameraPoses poses;
   std::error_code error;
   if (!fs::exists(path, error)) return poses;
-  StatusOr<std::string> text = ReadFileToString(path);
+  StatusOr<std::string> text = ReadFileToString(path, kMaxTableBytes);
   if (!text.ok()) return text.status();
   StatusOr<std::vector<ImageMeasurementRecord>> records = ParseImageMeasurementsCsv(*text, path);
   if (!records.ok()) return records.status();
@@ -88,12 +94,11 @@ StatusOr<CameraPoses> MeasureSession(const SessionPaths& paths, const SessionInp
   if (!measured.ok()) return measured.status();
   for (ImageMeasurement m : *measured) {
     m.file = fs::path(m.file).filename().string();
-    (*poses)[m.file] = CameraPose{m.pose.status == PoseStatus::kOk, m.pose.camera_from_target,
-                                  m.pose.covariance_vector};
+    (*poses)[m.file] =
+        CameraPose{m.pose.status == PoseStatus::kOk, m.pose.camera_from_target, m.pose.covariance_vector};
     rows.push_back(ImageMeasurementRow(m));
   }
-  if (Status s = WriteFileAtomically(paths.measurements, FormatCsv(ImageMeasurementColumns(), rows)); !s.ok())
-    return s;
+  if (Status s = WriteFileAtomically(paths.measurements, FormatCsv(ImageMeasurementColumns(), rows)); !s.ok()) return s;
   return poses;
 }
 
@@ -203,6 +208,10 @@ CalibrationReport MakeReport(const std::string& dir, const SessionInputs& in, co
 Status WriteCalibrationResults(const std::string& dir, SessionInputs* in, const CameraCalibrationResult& result,
                                const CalibrationOptions& calibration, const CalibrationReport& report) {
   const SessionPaths paths(dir);
+  // results/ may have been deleted since the session was made: recreate it.
+  std::error_code folder_error;
+  fs::create_directories(paths.results, folder_error);
+  if (folder_error) return Status::IoError(paths.results + ": cannot create the folder: " + folder_error.message());
   const std::string used_measurements = (fs::path(paths.results) / "calibration_measurements.csv").string();
   if (Status s = SaveMeasurements(used_measurements, result.measurements); !s.ok()) return s;
   const CalibrationInputs inputs{in->robot_name, used_measurements, calibration, CurrentUtcTimestamp()};
@@ -245,8 +254,8 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   registration.angle_sigma_deg = RadToDeg(in->config.noise.AngleStdDevRad());
   const CalibrationOptions calibration = SessionCalibrationOptions(in->config.noise);
   hooks.Stage("register and calibrate");
-  StatusOr<CameraCalibrationResult> result = CalibrateFromCameraPoses(in->nominal, split.input, registration,
-                                                                      calibration, hooks);
+  StatusOr<CameraCalibrationResult> result =
+      CalibrateFromCameraPoses(in->nominal, split.input, registration, calibration, hooks);
   if (!result.ok()) return result.status().AsFailure();
   StatusOr<std::optional<ValidationSummary>> validation = ValidateHeldOut(*in, *poses, split.held_out, *result, scale);
   if (!validation.ok()) return validation.status();
@@ -270,9 +279,9 @@ std::string FormatCalibrationSummary(const CalibrationReport& report) {
       << report.closure_angle_rms_deg << " deg\n";
   if (report.validation) {
     const ValidationSummary& v = *report.validation;
-    out << "held-out validation (position RMS " << unit << ", orientation RMS deg): before "
-        << v.before.position_rms << ", " << v.before.orientation_rms << "; after " << v.after.position_rms << ", "
-        << v.after.orientation_rms << "\n";
+    out << "held-out validation (position RMS " << unit << ", orientation RMS deg): before " << v.before.position_rms
+        << ", " << v.before.orientation_rms << "; after " << v.after.position_rms << ", " << v.after.orientation_rms
+        << "\n";
   }
   out << "wrote " << report.calibrated_robot << ", " << CalibrationReportPath(report.session) << ", frames in "
       << SessionPaths(report.session).config << "\n";

@@ -9,6 +9,7 @@
 
 #include "charts/chart_render.h"
 #include "charts/figures.h"
+#include "core/atomic_file.h"
 #include "core/candidates.h"
 #include "core/csv.h"
 #include "core/noise_model.h"
@@ -51,9 +52,11 @@ StatusOr<PoseBox> ParseBox(const std::string& text) {
     for (int k = 0; k < 6 && a != std::string::npos; ++k) {
       if (item.substr(0, a) == kNames[k]) index = k;
     }
-    if (index < 0 || a == b) return Status::Error("--random-box: '" + item + "' is not NAME:MIN:MAX (x, y, z, q1, q2, q3)");
+    if (index < 0 || a == b)
+      return Status::Error("--random-box: '" + item + "' is not NAME:MIN:MAX (x, y, z, q1, q2, q3)");
     StatusOr<double> lo = ParseNumber(item.substr(a + 1, b - a - 1)), hi = ParseNumber(item.substr(b + 1));
-    if (!lo.ok() || !hi.ok() || !(*lo < *hi)) return Status::Error("--random-box: '" + item + "' needs finite MIN < MAX");
+    if (!lo.ok() || !hi.ok() || !(*lo < *hi))
+      return Status::Error("--random-box: '" + item + "' needs finite MIN < MAX");
     box.bounds[index] = Range{*lo, *hi};
   }
   return box;
@@ -63,11 +66,14 @@ StatusOr<std::pair<int, int>> ParseSweep(const std::string& text) {
   const size_t colon = text.find(':');
   if (colon != std::string::npos) {
     StatusOr<double> lo = ParseNumber(text.substr(0, colon)), hi = ParseNumber(text.substr(colon + 1));
-    if (lo.ok() && hi.ok() && *lo == static_cast<int>(*lo) && *hi == static_cast<int>(*hi)) {
+    // Bounds checked before the casts: a double beyond int's range cannot be cast.
+    constexpr double kMaxSweepPoses = 10000;
+    if (lo.ok() && hi.ok() && *lo >= kParamsPerLeg && *hi >= *lo && *hi <= kMaxSweepPoses && *lo == std::floor(*lo) &&
+        *hi == std::floor(*hi)) {
       return std::make_pair(static_cast<int>(*lo), static_cast<int>(*hi));
     }
   }
-  return Status::Error("--sweep: '" + text + "' is not MIN:MAX, e.g. 8:41");
+  return Status::Error("--sweep: '" + text + "' is not MIN:MAX with 7 <= MIN <= MAX <= 10000, e.g. 8:41");
 }
 
 // "random" draws poses in every run, "boundary" is the boundary candidate set
@@ -232,12 +238,25 @@ Status WriteTable(const std::string& path, const SimulationResult& result, const
   return WriteCsv(path, {"study", "name", "poses", "mean", "std", "ratio_to_random"}, rows);
 }
 
+// The files `csv` and `plots` would replace: refused without `force`.
+Status CheckOutputsFree(const SimulateRequest& request) {
+  if (Status s = CheckOutputFree(request.csv, request.force); !s.ok()) return s;
+  if (request.plots.empty()) return Status::Ok();
+  for (const char* name : {"fig14", "fig15_mean", "fig15_std"}) {
+    for (const char* extension : {".svg", ".png"}) {
+      const std::string path = (std::filesystem::path(request.plots) / (std::string(name) + extension)).string();
+      if (Status s = CheckOutputFree(path, request.force); !s.ok()) return s;
+    }
+  }
+  return Status::Ok();
+}
+
 Status CheckRequest(const SimulateRequest& request) {
   std::string error;
   if (!request.study.IsValid(&error)) return Status::Error(error);
   if (request.poses < kParamsPerLeg)
     return Status::Error("--poses must be at least 7, got " + std::to_string(request.poses));
-  return Status::Ok();
+  return CheckOutputsFree(request);
 }
 
 // The table and the figures the request asks for.
@@ -277,13 +296,13 @@ StatusOr<SimulateOutcome> RunSimulationStudy(SimulateRequest request, const JobH
   if (!sets.ok()) return sets.status();
   hooks.Stage("simulate (runs)");
   StatusOr<SimulationResult> result = Simulate(*robot, *sets, request.study, hooks);
-  if (!result.ok()) return result.status().AsFailure();
+  if (!result.ok()) return result.status();
   SimulateOutcome outcome{request, *robot, std::move(*result), std::nullopt, {}, 0};
   if (sweep_range) {
     hooks.Stage("sweep (runs)");
     StatusOr<SweepResult> swept =
         SimulateSweep(*robot, *sets, sweep_range->first, sweep_range->second, request.study, hooks);
-    if (!swept.ok()) return swept.status().AsFailure();
+    if (!swept.ok()) return swept.status();
     outcome.sweep = std::move(*swept);
   }
   if (Status s = WriteOutputs(&outcome); !s.ok()) return s;

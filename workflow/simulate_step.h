@@ -30,6 +30,7 @@ struct SimulateRequest {
   std::string sweep;                    // "MIN:MAX" poses for Fig. 15; empty: none
   std::string csv;                      // table to write; may be empty
   std::string plots;                    // folder for fig14/fig15 SVG and PNG; may be empty
+  bool force = false;                   // replace an existing `csv` table or `plots` figures
   SimulationOptions study;              // runs, seed, perturbation, noise, threads
   std::vector<std::pair<std::string, std::string>> noise_entries;  // over study.noise (NoiseModelOptions)
 };

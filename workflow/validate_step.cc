@@ -36,7 +36,7 @@ StatusOr<ValidateResult> ValidateMeasurements(const ValidateRequest& request) {
   StatusOr<std::vector<Measurement>> measurements = LoadMeasurements(request.measurements);
   if (!measurements.ok()) return measurements.status();
   StatusOr<ValidationReport> report = Validate(*robot, *measurements);
-  if (!report.ok()) return report.status().AsFailure();
+  if (!report.ok()) return report.status();  // bad input 2 (e.g. readings in another unit), no FK at all 1
   return ValidateResult{robot->name, LengthUnitName(robot->length_unit), request.measurements, *report};
 }
 

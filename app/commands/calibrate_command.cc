@@ -145,10 +145,7 @@ int RunCalibrate(const CalibrateCliOptions& cli, std::ostream& out, std::ostream
   if (Status s = CheckCalibrationInput(*robot, *measurements, options); !s.ok()) {
     return ReportError(err, "calibrate", in_file(s));
   }
-  std::error_code exists_error;
-  if (!cli.force && std::filesystem::exists(cli.out, exists_error)) {
-    return ReportError(err, "calibrate", Status::Error(cli.out + ": exists; use --force to overwrite it"));
-  }
+  if (Status s = CheckOutputFree(cli.out, cli.force); !s.ok()) return ReportError(err, "calibrate", s);
 
   ProgressBar progress("calibrate (legs)");
   StatusOr<CalibrationResult> result =

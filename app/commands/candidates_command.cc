@@ -1,4 +1,4 @@
-// hexcal candidates --robot R --kind random|uniform|boundary [--count W] [--seed S] --out C.csv [--json]
+// hexcal candidates --robot R --kind random|uniform|boundary [--count W] [--seed S] --out C.csv [--force] [--json]
 #include <iostream>
 #include <memory>
 
@@ -15,10 +15,11 @@ struct CandidatesCliOptions {
   std::string robot, kind = "random", out;
   int count = 1000;
   uint64_t seed = 1;
-  bool json = false;
+  bool force = false, json = false;
 };
 
 int RunCandidates(const CandidatesCliOptions& cli, std::ostream& out, std::ostream& err) {
+  if (Status s = CheckOutputFree(cli.out, cli.force); !s.ok()) return ReportError(err, "candidates", s);
   StatusOr<Robot> robot = LoadRobot(cli.robot);
   if (!robot.ok()) return ReportError(err, "candidates", robot.status());
   const std::optional<CandidateKind> kind = ParseCandidateKind(cli.kind);
@@ -36,7 +37,7 @@ int RunCandidates(const CandidatesCliOptions& cli, std::ostream& out, std::ostre
   ProgressBar progress(std::string("candidates (") + cli.kind + ")");
   StatusOr<CandidateSet> set =
       GenerateCandidates(*robot, options, {[&](int done, int total) { progress.Update(done, total); }});
-  if (!set.ok()) return ReportError(err, "candidates", (set.status()).AsFailure());
+  if (!set.ok()) return ReportError(err, "candidates", set.status());
 
   std::vector<std::vector<std::string>> rows;
   for (const Vector6d& v : set->poses) {
@@ -75,9 +76,12 @@ void AddCandidatesCommand(CLI::App& app, int* exit_code) {
   CLI::App* sub = app.add_subcommand("candidates", "generate candidate measurement poses");
   sub->add_option("--robot", options->robot, "robot file or preset name")->required();
   sub->add_option("--kind", options->kind, "random | uniform | boundary")->capture_default_str();
-  sub->add_option("--count", options->count, "number of poses (random, uniform)")->capture_default_str();
+  sub->add_option("--count", options->count, "number of poses (random, uniform)")
+      ->check(CountRange(1, kMaxCandidateCount, "a pose CSV of about 700 MB"))
+      ->capture_default_str();
   sub->add_option("--seed", options->seed, "random seed / sequence offset")->capture_default_str();
   sub->add_option("--out", options->out, "output pose CSV")->required();
+  sub->add_flag("--force", options->force, "overwrite --out if it exists");
   sub->add_flag("--json", options->json, "print one JSON object on stdout");
   sub->callback([=] { *exit_code = RunCandidates(*options, std::cout, std::cerr); });
 }

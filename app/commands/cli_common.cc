@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -26,6 +27,24 @@ int ExitCodeFor(const Status& status) {
 int ReportError(std::ostream& err, const std::string& command, const Status& status) {
   err << "hexcal " << command << ": " << status.message() << "\n";
   return ExitCodeFor(status);
+}
+
+CLI::Validator CountRange(long long min, long long max, const std::string& why) {
+  const std::string range = "[" + std::to_string(min) + ", " + std::to_string(max) + "]";
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        long long value = 0;
+        size_t used = 0;
+        try {
+          value = std::stoll(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == 0 || used != text.size()) return "'" + text + "' is not a whole number";
+        if (value >= min && value <= max) return "";
+        return text + " is outside " + range + (why.empty() ? "" : " (" + why + ")");
+      },
+      "INT in " + range);
 }
 
 StatusOr<std::vector<double>> ParseNumberList(const std::string& text, int count, const std::string& what) {

@@ -2,12 +2,14 @@
 // JSON forms of core types, progress on a terminal.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <iosfwd>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "core/constraints.h"
+#include "core/atomic_file.h"
 #include "core/job_hooks.h"
 #include "core/observability.h"
 #include "core/robot.h"
@@ -30,6 +32,14 @@ int ReportError(std::ostream& err, const std::string& command, const Status& sta
 using workflow::IndicesJson;
 using workflow::PoseJson;
 using workflow::RobotJson;
+
+// Bounds of the count options (issue 13, bounded input): a typo such as
+// --poses 100000 must stop at once, not start writing 38 GB of images.
+constexpr int kMaxThreads = 256;  // --threads of every command; 0 = every core
+
+// A CLI11 check for an integer option in [min, max]; `why` says what the bound
+// protects, e.g. "each pose is a rendered image".
+CLI::Validator CountRange(long long min, long long max, const std::string& why = "");
 
 // "1.5,2,3,..." -> exactly `count` finite numbers.
 StatusOr<std::vector<double>> ParseNumberList(const std::string& text, int count, const std::string& what);

@@ -34,8 +34,12 @@ void AddDemoCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--robot", request->robot, "robot file or preset name (inria-left-hand, deltalab-table)")
       ->capture_default_str();
   sub->add_option("--out", request->out, "session folder to write")->capture_default_str();
-  sub->add_option("--poses", request->poses, "planned calibration poses")->capture_default_str();
-  sub->add_option("--holdout", request->holdout, "random poses kept out to validate")->capture_default_str();
+  sub->add_option("--poses", request->poses, "planned calibration poses")
+      ->check(CountRange(workflow::kMinDemoPoses, workflow::kMaxDemoPoses, "each pose is a rendered image"))
+      ->capture_default_str();
+  sub->add_option("--holdout", request->holdout, "random poses kept out to validate")
+      ->check(CountRange(1, workflow::kMaxDemoHoldout, "each pose is a rendered image"))
+      ->capture_default_str();
   sub->add_option("--seed", request->seed, "seed of the truth, the candidates and the noise")->capture_default_str();
   sub->add_flag("--force", request->force, "replace an earlier demo in --out");
   sub->add_flag("--json", *json, "print one JSON object on stdout (progress on stderr)");

@@ -97,7 +97,9 @@ void AddDetectCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   sub->add_option("--max-hamming", options->detector.max_hamming, "accept at most this many corrected bits (0-2)")
       ->capture_default_str();
-  sub->add_option("--threads", options->detector.threads, "AprilTag threads")->capture_default_str();
+  sub->add_option("--threads", options->detector.threads, "AprilTag threads")
+      ->check(CountRange(1, 64))
+      ->capture_default_str();
   sub->add_flag("--no-refine", options->no_refine, "report AprilTag's own corners (shifted by -0.5 px)");
   sub->add_flag("--json", options->json, "print one JSON object on stdout");
   sub->callback([=] { *exit_code = RunDetect(*options, std::cout, std::cerr); });

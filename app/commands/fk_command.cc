@@ -9,6 +9,7 @@
 #include "app/commands/command_table.h"
 #include "core/fk_homotopy.h"
 #include "core/forward_kinematics.h"
+#include "core/reading_units.h"
 #include "core/robot_io.h"
 
 namespace hexcal::cli {
@@ -19,23 +20,27 @@ struct FkOptions {
   bool all = false, json = false;
 };
 
-nlohmann::json SolutionJson(const Robot& robot, const Pose& pose) {
+nlohmann::json SolutionJson(const Robot& robot, const Pose& pose, bool at_singularity) {
   const ConstraintReport report = EvaluateConstraints(robot, pose);
   nlohmann::json j = PoseJson(robot, pose);
   j["feasible"] = report.feasible;
+  j["at_singularity"] = at_singularity;
   if (!report.feasible) j["violated"] = report.worst_label;
   return j;
 }
 
-void PrintSolutions(const Robot& robot, const std::vector<Pose>& poses, std::ostream& out) {
+void PrintSolutions(const Robot& robot, const std::vector<Pose>& poses, const std::vector<bool>& singular,
+                    std::ostream& out) {
   out << "   x            y            z            q1           q2           q3           feasible\n";
-  for (const Pose& pose : poses) {
+  for (size_t k = 0; k < poses.size(); ++k) {
+    const Pose& pose = poses[k];
     const Vector6d v = robot.VectorFromPose(pose);
     char line[200];
     std::snprintf(line, sizeof line, "%-12.6g %-12.6g %-12.6g %-12.6g %-12.6g %-12.6g ", v[0], v[1], v[2], v[3], v[4],
                   v[5]);
     const ConstraintReport report = EvaluateConstraints(robot, pose);
-    out << "   " << line << (report.feasible ? "yes" : "no (" + report.worst_label + ")") << "\n";
+    out << "   " << line << (report.feasible ? "yes" : "no (" + report.worst_label + ")")
+        << (singular[k] ? "  at a singularity" : "") << "\n";
   }
 }
 
@@ -45,33 +50,39 @@ int RunFk(const FkOptions& options, std::ostream& out, std::ostream& err) {
   StatusOr<std::vector<double>> legs = ParseNumberList(options.legs, kNumLegs, "--legs");
   if (!legs.ok()) return ReportError(err, "fk", legs.status());
   const LegReadings readings = Eigen::Map<const LegReadings>(legs->data());
+  if (Status s = CheckReadingsUnit(*robot, {readings}, ""); !s.ok()) return ReportError(err, "fk", s);
 
   std::vector<Pose> poses;
+  std::vector<bool> singular;  // per pose: at a parallel singularity
   nlohmann::json summary;
   if (!options.start.empty()) {
     StatusOr<std::vector<double>> start = ParseNumberList(options.start, 6, "--start");
     if (!start.ok()) return ReportError(err, "fk", start.status());
     StatusOr<LocalFkResult> local =
         ForwardKinematicsLocal(*robot, readings, robot->PoseFromVector(Eigen::Map<const Vector6d>(start->data())));
-    if (!local.ok()) return ReportError(err, "fk", local.status().AsFailure());
+    if (!local.ok()) return ReportError(err, "fk", local.status());
     poses.push_back(local->pose);
+    singular.push_back(false);  // a singular local solution is an error
     summary = {{"method", "local"}, {"iterations", local->iterations}, {"max_residual", local->max_residual}};
   } else {
     StatusOr<FkAllResult> modes = ForwardKinematicsAll(*robot, readings);
-    if (!modes.ok()) return ReportError(err, "fk", modes.status().AsFailure());
-    for (const Pose& pose : modes->poses) {
-      if (options.all || IsFeasible(*robot, pose)) poses.push_back(pose);
+    if (!modes.ok()) return ReportError(err, "fk", modes.status());
+    for (size_t k = 0; k < modes->poses.size(); ++k) {
+      if (!options.all && !IsFeasible(*robot, modes->poses[k])) continue;
+      poses.push_back(modes->poses[k]);
+      singular.push_back(modes->at_singularity[k]);
     }
     summary = {{"method", "homotopy"},
                {"real_modes", modes->poses.size()},
                {"complex_solutions", modes->complex_solutions},
                {"failed_paths", modes->failed_paths},
-               {"tracked_paths", modes->tracked_paths}};
+               {"tracked_paths", modes->tracked_paths},
+               {"singular_modes", modes->SingularCount()}};
   }
 
   if (options.json) {
     nlohmann::json solutions = nlohmann::json::array();
-    for (const Pose& pose : poses) solutions.push_back(SolutionJson(*robot, pose));
+    for (size_t k = 0; k < poses.size(); ++k) solutions.push_back(SolutionJson(*robot, poses[k], singular[k]));
     summary["solutions"] = solutions;
     out << summary.dump(2) << "\n";
   } else {
@@ -81,7 +92,12 @@ int RunFk(const FkOptions& options, std::ostream& out, std::ostream& err) {
           << ":\n";
     }
     if (poses.empty()) out << "   (none)\n";
-    PrintSolutions(*robot, poses, out);
+    PrintSolutions(*robot, poses, singular, out);
+    if (summary.value("singular_modes", 0) > 0) {
+      out << "warning: " << summary["singular_modes"]
+          << " mode(s) at a parallel singularity (a double root of the FK equations): the readings do not "
+             "determine the platform's motion there\n";
+    }
   }
   return kExitOk;
 }

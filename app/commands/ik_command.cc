@@ -1,4 +1,4 @@
-// hexcal ik --robot R --poses P.csv [--out L.csv] [--json]
+// hexcal ik --robot R --poses P.csv [--out L.csv] [--force] [--json]
 #include <iostream>
 #include <memory>
 
@@ -13,10 +13,11 @@ namespace {
 
 struct IkOptions {
   std::string robot, poses, out;
-  bool json = false;
+  bool force = false, json = false;
 };
 
 int RunIk(const IkOptions& options, std::ostream& out, std::ostream& err) {
+  if (Status s = CheckOutputFree(options.out, options.force); !s.ok()) return ReportError(err, "ik", s);
   StatusOr<Robot> robot = LoadRobot(options.robot);
   if (!robot.ok()) return ReportError(err, "ik", robot.status());
   StatusOr<std::vector<Vector6d>> poses = LoadPoses(options.poses);
@@ -77,6 +78,7 @@ void AddIkCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--robot", options->robot, "robot file or preset name")->required();
   sub->add_option("--poses", options->poses, "pose CSV with columns x,y,z,q1,q2,q3")->required();
   sub->add_option("--out", options->out, "write poses, readings and feasibility to this CSV");
+  sub->add_flag("--force", options->force, "overwrite --out if it exists");
   sub->add_flag("--json", options->json, "print one JSON object on stdout");
   sub->callback([=] { *exit_code = RunIk(*options, std::cout, std::cerr); });
 }

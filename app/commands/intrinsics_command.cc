@@ -34,10 +34,12 @@ void AddIntrinsicsCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--out", options->request.out, "camera file to write (OpenCV YAML)")->required();
   sub->add_option("--coverage", options->request.coverage, "corner coverage picture (default: OUT with .coverage.png)");
   sub->add_option("--min-views", options->request.options.min_views, "fewer usable images is an error")
+      ->check(CountRange(1, 100000))
       ->capture_default_str();
   sub->add_option("--min-tags", options->request.options.min_tags_per_view, "target tags for an image to be used")
       ->capture_default_str();
   sub->add_option("--threads", options->request.options.threads, "images detected in parallel (0 = every core)")
+      ->check(CountRange(0, kMaxThreads))
       ->capture_default_str();
   sub->add_flag("--force", options->request.force, "overwrite an existing camera file");
   sub->add_flag("--json", options->json, "print one JSON object on stdout");

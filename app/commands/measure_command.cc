@@ -34,6 +34,7 @@ void AddMeasureCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--images", options->request.images, "an image, or a folder of PNG/JPEG/TIFF images")->required();
   sub->add_option("--out", options->request.out, "measurements CSV to write")->required();
   sub->add_option("--threads", options->request.options.threads, "images measured in parallel (0 = every core)")
+      ->check(CountRange(0, kMaxThreads))
       ->capture_default_str();
   sub->add_option("--min-tags", options->request.options.pose.min_tags, "fewer target tags: too_few_tags")
       ->capture_default_str();

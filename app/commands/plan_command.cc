@@ -20,12 +20,15 @@ struct PlanCliOptions {
   workflow::PlanRequest request;
   std::shared_ptr<OptionEntries> planner = std::make_shared<OptionEntries>();
   std::shared_ptr<OptionEntries> noise = std::make_shared<OptionEntries>();
-  bool json = false;
+  bool force = false, json = false;
 };
 
 int RunPlanCommand(PlanCliOptions cli, std::ostream& out, std::ostream& err) {
   cli.request.planner_entries = *cli.planner;
   cli.request.noise_entries = *cli.noise;
+  for (const std::string& path : {cli.request.out, cli.request.history}) {
+    if (Status s = CheckOutputFree(path, cli.force); !s.ok()) return ReportError(err, "plan", s);
+  }
   TerminalJob job;
   StatusOr<workflow::PlanOutcome> outcome = workflow::PlanFromRequest(cli.request, job.hooks());
   if (!outcome.ok()) return ReportError(err, "plan", outcome.status());
@@ -50,6 +53,7 @@ void AddPlanCommand(CLI::App& app, int* exit_code) {
                   "plan settings YAML (noise, planner, camera visibility); flags override it; docs/planner.md");
   sub->add_option("--out", o->request.out, "plan CSV: x,y,z,q1,q2,q3,L1..L6")->required();
   sub->add_option("--history", o->request.history, "indices per iteration CSV (figs 6, 10-12)");
+  sub->add_flag("--force", o->force, "overwrite --out and --history if they exist");
   sub->add_flag("--json", o->json, "print one JSON object on stdout");
   sub->get_option("--candidate-kind")->excludes(sub->get_option("--candidates"));
   sub->callback([=] { *exit_code = RunPlanCommand(*o, std::cout, std::cerr); });

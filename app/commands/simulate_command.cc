@@ -38,8 +38,9 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--sets", options->request.sets, "comma-separated: random, boundary or pose CSV files")
       ->capture_default_str();
   CLI::Option* poses = sub->add_option("--poses", options->request.poses, "poses of the random set (and of boundary if given)")
+                           ->check(CountRange(1, 100000))
                            ->capture_default_str();
-  sub->add_option("--runs", options->request.study.runs, "repetitions")->capture_default_str();
+  sub->add_option("--runs", options->request.study.runs, "repetitions")->check(CountRange(1, 1000000))->capture_default_str();
   sub->add_option("--seed", options->request.study.seed, "random seed")->capture_default_str();
   sub->add_option("--perturb", options->request.study.perturb, "half-width of the parameter perturbation (robot unit)")
       ->capture_default_str();
@@ -49,10 +50,13 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
                   "(intersected with the robot's pose box; the robot's constraints still apply)");
   sub->add_flag("--weighted", options->request.weighted,
                 "calibrate with each residual divided by its standard deviation under the noise model");
-  sub->add_option("--threads", options->request.study.num_threads, "runs at once (0 = every core)")->capture_default_str();
+  sub->add_option("--threads", options->request.study.num_threads, "runs at once (0 = every core)")
+      ->check(CountRange(0, kMaxThreads))
+      ->capture_default_str();
   sub->add_option("--sweep", options->request.sweep, "also the error against the number of poses, MIN:MAX (Fig. 15)");
   sub->add_option("--csv", options->request.csv, "write the table(s) as CSV");
   sub->add_option("--plots", options->request.plots, "write Fig. 14 (and 15) as SVG and PNG into this folder");
+  sub->add_flag("--force", options->request.force, "overwrite the --csv table and the --plots figures if they exist");
   sub->add_flag("--json", options->json, "print one JSON object on stdout");
   sub->callback([=] {
     options->request.poses_given = poses->count() > 0;

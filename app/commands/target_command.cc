@@ -1,4 +1,4 @@
-// hexcal target print --target T --out target.pdf|target.png [--dpi D] [--json]
+// hexcal target print --target T --out target.pdf|target.png [--dpi D] [--force] [--json]
 // hexcal target check --target T [--json]
 #include <iostream>
 #include <memory>
@@ -15,7 +15,7 @@ namespace {
 struct TargetOptions {
   std::string target = kDefaultTargetName, out;
   double dpi = 300;
-  bool json = false;
+  bool force = false, json = false;
 };
 
 nlohmann::json TargetJson(const Target& target) {
@@ -44,6 +44,7 @@ int RunTargetCheck(const TargetOptions& options, std::ostream& out, std::ostream
 }
 
 int RunTargetPrint(const TargetOptions& options, std::ostream& out, std::ostream& err) {
+  if (Status s = CheckOutputFree(options.out, options.force); !s.ok()) return ReportError(err, "target print", s);
   StatusOr<Target> target = LoadTarget(options.target);
   if (!target.ok()) return ReportError(err, "target print", target.status());
   if (Status s = WriteTargetPrint(*target, options.out, options.dpi); !s.ok()) {
@@ -76,7 +77,10 @@ void AddTargetCommand(CLI::App& app, int* exit_code) {
   print_sub->add_option("--target", print->target, "target YAML file or the built-in name aprilgrid-6x6")
       ->capture_default_str();
   print_sub->add_option("--out", print->out, "output file, .pdf or .png")->required();
-  print_sub->add_option("--dpi", print->dpi, "PNG resolution, dots per inch")->capture_default_str();
+  print_sub->add_option("--dpi", print->dpi, "PNG resolution, dots per inch")
+      ->check(CLI::Range(30.0, 2400.0))
+      ->capture_default_str();
+  print_sub->add_flag("--force", print->force, "overwrite --out if it exists");
   print_sub->add_flag("--json", print->json, "print one JSON object on stdout");
   print_sub->callback([=] { *exit_code = RunTargetPrint(*print, std::cout, std::cerr); });
 }

@@ -88,6 +88,11 @@ for p, q in zip(a["parameters"], b["parameters"]):
     assert abs(p["estimate"] - q["estimate"]) < 1e-4 * p["sigma"] and abs(p["sigma"] - q["sigma"]) < 1e-4 * p["sigma"], (p, q)
 PY
 
+# A session whose results/ was deleted calibrates again: results/ is recreated (issue 13).
+rm -rf "$s/results"
+"$hexcal" calibrate --session "$s" >/dev/null
+[ -s "$s/results/calibrated.yaml" ] && [ -s "$s/results/report.json" ]
+
 # Bad folders: a row for an absent image, an image without a row, a short row.
 cp "$s/legs.csv" "$dir/legs.good"
 echo "view_0099.png,1,1,1,1,1,1,0" >>"$s/legs.csv"
@@ -99,3 +104,8 @@ grep -q "images/view_0005.png: no row in" "$dir/err"
 sed 's/^view_0002.png,\([^,]*\),/view_0002.png,/' "$dir/legs.good" >"$s/legs.csv"
 if "$hexcal" calibrate --session "$s" 2>"$dir/err"; then exit 1; fi
 grep -q "legs.csv:4: 7 columns, header has 8" "$dir/err"
+# Readings in mm for the cm robot: the unit is named, bad input (issue 13).
+awk -F, 'BEGIN { OFS = "," } NR == 1 { print; next } { for (i = 2; i <= 7; i++) $i = $i * 10; print }' \
+  "$dir/legs.good" >"$s/legs.csv"
+if "$hexcal" calibrate --session "$s" 2>"$dir/err"; then exit 1; else [ $? -eq 2 ]; fi
+grep -q "legs.csv: readings look like mm, the robot '.*' is in cm: row 1: L" "$dir/err"

@@ -20,7 +20,7 @@ mkdir "$dir/few"
 cp "$dir/views/view_0000.png" "$dir/views/view_0001.png" "$dir/few/"
 code=0
 "$hexcal" intrinsics --images "$dir/few" --out "$dir/few.yaml" 2>"$dir/err" || code=$?
-[ "$code" -eq 2 ]
+[ "$code" -eq 1 ]  # too few usable views: a failed computation, like too few feasible poses
 grep -q "too few usable views: 2 of 2 images" "$dir/err"
 "$hexcal" target print --out "$dir/few/print.png" --dpi 50 >/dev/null
 code=0

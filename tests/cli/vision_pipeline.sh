@@ -15,7 +15,7 @@ for f in view_0000.png view_0001.png ground_truth.csv corners.csv; do cmp "$dir/
 "$hexcal" render --camera $cam --poses "$dir/poses.csv" --out "$dir/c" --seed 4 >/dev/null
 ! cmp -s "$dir/a/view_0000.png" "$dir/c/view_0000.png"
 if "$hexcal" render --camera $cam --poses "$dir/poses.csv" --out "$dir/a" 2>"$dir/err"; then exit 1; fi
-grep -q "ground_truth.csv exists; use --force" "$dir/err"
+grep -q "ground_truth.csv: exists; use --force" "$dir/err"
 
 "$hexcal" detect --images "$dir/a/view_0000.png" --json >"$dir/detect.json"
 grep -q '"decision_margin"' "$dir/detect.json"
@@ -26,7 +26,7 @@ grep -q '"family": "tag36h11"' "$dir/detect.json"
 paste -d, <(tail -n +2 "$dir/m.csv") <(tail -n +2 "$dir/a/ground_truth.csv") |
   awk -F, '{ d = $4 - $36; if (d < 0) d = -d; if (d > 0.05) { print "z off by " d; exit 1 } }'
 if "$hexcal" measure --camera $cam --images "$dir/a" --out "$dir/m.csv" 2>"$dir/err"; then exit 1; fi
-grep -q "m.csv exists; use --force" "$dir/err"
+grep -q "m.csv: exists; use --force" "$dir/err"
 "$hexcal" measure --camera $cam --images "$dir/a" --out "$dir/m.csv" --force >/dev/null
 
 # A folder of trouble: one good image and five bad ones.
