@@ -17,18 +17,6 @@ nlohmann::json IndicesJson(const ObservabilityIndices& o) {
           {"poses", o.num_poses}};
 }
 
-ObservabilityIndices IndicesFromJson(JsonFields fields) {
-  ObservabilityIndices o;
-  o.o1 = fields.Number("O1");
-  o.o2 = fields.Number("O2");
-  o.o3 = fields.Number("O3");
-  o.o4 = fields.Number("O4");
-  o.sigma_min = fields.Number("sigma_min");
-  o.sigma_max = fields.Number("sigma_max");
-  o.num_poses = fields.Int("poses");
-  return o;
-}
-
 nlohmann::json RobotJson(const Robot& robot) {
   nlohmann::json legs = nlohmann::json::array();
   for (const Leg& leg : robot.legs) {

@@ -16,7 +16,6 @@ namespace hexcal::workflow {
 nlohmann::json PoseJson(const Robot& robot, const Pose& pose);
 // {"O1".."O4", "sigma_min", "sigma_max", "poses"}.
 nlohmann::json IndicesJson(const ObservabilityIndices& indices);
-ObservabilityIndices IndicesFromJson(JsonFields fields);
 // {"name", "length_unit", "euler", "legs": [{"a", "b", "l", "stroke"}]}; the
 // pose limits are not part of this form (they stay in the robot file).
 nlohmann::json RobotJson(const Robot& robot);

@@ -62,6 +62,9 @@ class ProgressBar {
 class TerminalJob {
  public:
   explicit TerminalJob(std::string label = "", std::ostream* log = nullptr);
+  // The hooks' callbacks point at this object: it stays where it was made.
+  TerminalJob(const TerminalJob&) = delete;
+  TerminalJob& operator=(const TerminalJob&) = delete;
   const JobHooks& hooks() const { return hooks_; }
 
  private:
