@@ -24,6 +24,7 @@ enum class StatusKind {
   kFailed,     // the computation failed (no convergence, too few usable poses)
   kCancelled,  // a long job stopped by its caller: not a success, not a failure
   kIo,         // reading or writing the disk failed (full disk, permissions)
+  kBusy,       // the session is in use by another writer (core/session_lock.h)
 };
 
 class Status {
@@ -34,6 +35,7 @@ class Status {
   static Status Error(std::string message) { return Status(std::move(message), StatusKind::kBadInput); }
   static Status Failed(std::string message) { return Status(std::move(message), StatusKind::kFailed); }
   static Status IoError(std::string message) { return Status(std::move(message), StatusKind::kIo); }
+  static Status Busy(std::string message) { return Status(std::move(message), StatusKind::kBusy); }
   static Status Cancelled(std::string message = "cancelled") {
     return Status(std::move(message), StatusKind::kCancelled);
   }
@@ -46,7 +48,7 @@ class Status {
   // The same error as a failed computation: for a step whose input was
   // accepted but whose work did not succeed (a cancel stays a cancel).
   Status AsFailure() const {
-    if (ok() || cancelled() || kind_ == StatusKind::kIo) return *this;
+    if (ok() || cancelled() || kind_ == StatusKind::kIo || kind_ == StatusKind::kBusy) return *this;
     return Failed(message_);
   }
 

@@ -19,6 +19,7 @@
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
 #include "workflow/session_calibrate.h"
+#include "workflow/session_results.h"
 
 namespace hexcal::ui {
 namespace {
@@ -42,6 +43,7 @@ CalibratePanel::CalibratePanel(SessionState* session, QWidget* parent)
   cancel_->setEnabled(false);
   progress_ = new QProgressBar;
   status_ = new QLabel("Record images and readings (Measure), then calibrate.");
+  status_->setTextFormat(Qt::PlainText);  // file names are shown as they are, never as HTML
   status_->setWordWrap(true);
   status_->setObjectName("calibrate_status");
   summary_ = new QLabel;
@@ -132,15 +134,15 @@ void CalibratePanel::Refresh() {
   summary_->clear();
   const std::string path = workflow::CalibrationReportPath(session_->Dir().toStdString());
   std::error_code error;
-  StatusOr<workflow::CalibrationReport> loaded =
-      session_->IsOpen() && fs::exists(path, error) ? workflow::LoadCalibrationReport(path)
-                                                    : StatusOr<workflow::CalibrationReport>(Status::Error(""));
+  StatusOr<workflow::SessionResults> loaded =
+      session_->IsOpen() && fs::exists(path, error) ? workflow::LoadSessionResults(session_->Dir().toStdString())
+                                                    : StatusOr<workflow::SessionResults>(Status::Error(""));
   if (!loaded.ok()) {
     summary_->setText(QString::fromStdString(loaded.status().message()).toHtmlEscaped());
     PlotResiduals();
     return;
   }
-  const workflow::CalibrationReport& report = *loaded;
+  const workflow::CalibrationReport& report = loaded->report;
   const workflow::RegistrationSummary& reg = report.registration;
   summary_->setText(QString("%1 images: %2 for calibration, %3 held out, %4 without a usable target pose.<br>"
                             "Closure (camera vs robot) RMS: nominal robot %5 %7, %6°; calibrated %8 %7, %9°.")
@@ -152,7 +154,10 @@ void CalibratePanel::Refresh() {
                         .arg(reg.angle_rms_deg, 0, 'g', 3)
                         .arg(QString::fromStdString(report.length_unit).toHtmlEscaped())
                         .arg(report.closure_position_rms, 0, 'g', 3)
-                        .arg(report.closure_angle_rms_deg, 0, 'g', 3));
+                        .arg(report.closure_angle_rms_deg, 0, 'g', 3) +
+                    (session_->ResultsNote().isEmpty()
+                         ? QString()
+                         : "<br><b>Stale:</b> " + session_->ResultsNote().toHtmlEscaped()));
   FillParameterTable(report.parameters);
   PlotResiduals();
 }

@@ -1,27 +1,58 @@
 #include "ui/error_dialog.h"
 
 #include <QMessageBox>
+#include <QPushButton>
 #include <iostream>
 
 namespace hexcal::ui {
 namespace {
 bool interactive = true;
+
+void Show(QWidget* parent, QMessageBox::Icon icon, const QString& what, const QString& message) {
+  QMessageBox box(icon, "hexcal — " + what, message, QMessageBox::Ok, parent);
+  box.setTextFormat(Qt::PlainText);
+  box.exec();
 }
+
+}  // namespace
 
 void SetInteractive(bool value) { interactive = value; }
 bool Interactive() { return interactive; }
 
 void ShowError(QWidget* parent, const QString& what, const QString& message) {
   std::cerr << "hexcal-gui: " << what.toStdString() << ": " << message.toStdString() << "\n";
-  if (interactive) QMessageBox::warning(parent, "hexcal — " + what, message);
+  if (interactive) Show(parent, QMessageBox::Warning, what, message);
 }
 
 void ShowInfo(QWidget* parent, const QString& what, const QString& message) {
   if (interactive) {
-    QMessageBox::information(parent, "hexcal — " + what, message);
+    Show(parent, QMessageBox::Information, what, message);
   } else {
     std::cerr << "hexcal-gui: " << what.toStdString() << ": " << message.toStdString() << "\n";
   }
+}
+
+bool ApplySessionEdit(QWidget* parent, const QString& what,
+                      const std::function<workflow::EditOutcome(bool overwrite)>& edit) {
+  workflow::EditOutcome done = edit(false);
+  if (done.conflict) {
+    const QString text = QString::fromStdString(done.conflict_text);
+    std::cerr << "hexcal-gui: " << what.toStdString() << ": " << done.conflict_text << "\n";
+    if (!interactive) return false;  // keep theirs: never write over what another program wrote
+    QMessageBox box(QMessageBox::Question, "hexcal — " + what, text, QMessageBox::NoButton, parent);
+    box.setTextFormat(Qt::PlainText);
+    box.setInformativeText("Apply your change over it, or keep the file as it is on disk (your change is dropped)?");
+    QPushButton* mine = box.addButton("Use mine", QMessageBox::AcceptRole);
+    box.addButton("Keep theirs", QMessageBox::RejectRole);
+    box.exec();
+    if (box.clickedButton() != mine) return false;
+    done = edit(true);
+  }
+  if (!done.status.ok()) {
+    ShowError(parent, what, QString::fromStdString(done.status.message()));
+    return false;
+  }
+  return !done.conflict;
 }
 
 }  // namespace hexcal::ui

@@ -1,8 +1,12 @@
 // Errors the operator can act on. Interactive: a message box. In --screenshot
 // and test runs (SetInteractive(false)): one line on stderr, never blocking.
+// Message boxes show their text as plain text: it quotes file names.
 #pragma once
 
 #include <QString>
+#include <functional>
+
+#include "workflow/session_edits.h"
 
 class QWidget;
 
@@ -13,5 +17,12 @@ bool Interactive();
 // `what` is the step that failed ("Plan", "Open session"); `message` says what to fix.
 void ShowError(QWidget* parent, const QString& what, const QString& message);
 void ShowInfo(QWidget* parent, const QString& what, const QString& message);
+
+// Runs an edit of the session's files (workflow/session_edits.h). When the
+// file changed on disk under the operator's edit, asks whether to apply it
+// anyway ("Use mine") or keep the file as it is ("Keep theirs", also the
+// answer when not interactive); errors are shown. True when the edit was made.
+bool ApplySessionEdit(QWidget* parent, const QString& what,
+                      const std::function<workflow::EditOutcome(bool overwrite)>& edit);
 
 }  // namespace hexcal::ui

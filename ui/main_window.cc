@@ -65,7 +65,8 @@ void MainWindow::BuildMenus() {
   file->addAction("&Open session…", this, &MainWindow::OpenSessionDialog, QKeySequence::Open);
   file->addAction("Open &demo session", this, &MainWindow::OpenDemoSession);
   recent_menu_ = file->addMenu("&Recent sessions");
-  file->addAction("&Save session", this, &MainWindow::SaveSession, QKeySequence::Save);
+  // No Save: every change is written to the folder as it is made.
+  file->addAction("&Reload session", this, [this] { session_->Reload(); }, QKeySequence::Refresh);
   file->addSeparator();
   file->addAction("&Quit", this, &QWidget::close, QKeySequence::Quit);
   QMenu* view = menuBar()->addMenu("&View");
@@ -138,12 +139,6 @@ void MainWindow::OpenDemoSession() {
   });
 }
 
-void MainWindow::SaveSession() {
-  const Status saved = session_->Save();
-  if (!saved.ok()) return ShowError(this, "Save session", QString::fromStdString(saved.message()));
-  statusBar()->showMessage("saved " + session_->Dir(), 4000);
-}
-
 void MainWindow::RememberRecent(const QString& dir) {
   if (!Interactive()) return;  // --screenshot and tests leave the operator's list alone
   QSettings settings("hexcal", "hexcal-gui");
@@ -163,8 +158,8 @@ void MainWindow::FillRecentMenu() {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
-  // Everything recorded is already in the folder; session.yaml and plan.csv once more for good measure.
-  if (session_->IsOpen()) session_->Save();
+  // Nothing to write: every change went to the folder when it was made, and
+  // writing copies back now would undo what other programs wrote meanwhile.
   event->accept();
 }
 

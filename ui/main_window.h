@@ -1,6 +1,6 @@
 // The workstation window: a composer of one panel per step (Robot, Plan,
 // Measure, Calibrate, Validate) around one SessionState, with the step list
-// and the File menu (new, open, open demo, save, recent sessions). The panels
+// and the File menu (new, open, open demo, reload, recent sessions). The panels
 // own their work; this class only wires them together.
 #pragma once
 
@@ -42,7 +42,6 @@ class MainWindow : public QMainWindow {
   void NewSession();
   void OpenSessionDialog();
   void OpenDemoSession();
-  void SaveSession();
 
  private:
   void BuildMenus();

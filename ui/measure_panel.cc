@@ -47,10 +47,12 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
   images_ = new QListWidget;
   images_->setObjectName("image_list");
   picture_ = new QLabel("Select an image to see its detection.");
+  picture_->setTextFormat(Qt::PlainText);  // file names are shown as they are, never as HTML
   picture_->setAlignment(Qt::AlignCenter);
   picture_->setMinimumSize(320, 240);
   picture_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Ignored);
   picture_info_ = new QLabel;
+  picture_info_->setTextFormat(Qt::PlainText);  // file names are shown as they are, never as HTML
   picture_info_->setObjectName("image_status");
   legs_ = new QTableWidget(0, 8);
   legs_->setObjectName("legs_table");
@@ -61,6 +63,7 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
       "holdout 1 keeps the image out of the calibration to validate it.");
   progress_ = new QProgressBar;
   status_ = new QLabel;
+  status_->setTextFormat(Qt::PlainText);  // file names are shown as they are, never as HTML
   status_->setWordWrap(true);
   status_->setObjectName("measure_status");
   report_ = new QPlainTextEdit;
@@ -177,20 +180,21 @@ void MeasurePanel::FillLegsTable() {
 
 void MeasurePanel::OnLegEdited(int row, int column) {
   if (filling_ || column == 0) return;
-  std::vector<LegsRow> rows = session_->Legs();
+  const std::vector<LegsRow>& rows = session_->Legs();
   bool number = false;
   const double value = legs_->item(row, column)->text().toDouble(&number);
-  if (!number || (column == 7 && value != 0 && value != 1)) {
+  if (!number || (column == 7 && value != 0 && value != 1) || row >= static_cast<int>(rows.size())) {
     FillLegsTable();
     return ShowError(this, "Leg readings",
                      column == 7 ? "holdout is 0 or 1." : "A reading is a number in the robot unit.");
   }
-  if (column == 7) {
-    rows[row].holdout = value == 1;
-  } else {
-    rows[row].legs[column - 1] = value;
-  }
-  if (Status s = session_->SetLegs(rows); !s.ok()) ShowError(this, "Leg readings", Message(s));
+  // The edit goes to legs.csv as it is on disk, checked against the value shown.
+  const LegsRow& shown = rows[row];
+  const workflow::LegsEdit edit = column == 7 ? workflow::LegsEdit::SetHoldout(shown.image, shown.holdout, value == 1)
+                                              : workflow::LegsEdit::SetReading(shown.image, column - 1,
+                                                                               shown.legs[column - 1], value);
+  if (!ApplySessionEdit(this, "Leg readings", [&](bool overwrite) { return session_->EditLegs(edit, overwrite); }))
+    FillLegsTable();  // the table shows the file again
 }
 
 void MeasurePanel::StartJob(const QString& what, JobWork work) {

@@ -45,7 +45,7 @@ class MeasurePanel : public QWidget {
   void FillLegsTable();
   void OnLegEdited(int row, int column);
   bool CameraAndTargetReady(const QString& step);
-  void AskReadingsAndSave(const QString& image_name);
+  void AskReadingsAndSave(const QString& image_name, const std::string& frame_file);
   void StartJob(const QString& what, JobWork work);
 
   SessionState* session_;

@@ -1,10 +1,12 @@
 // MeasurePanel's recording actions: images from a folder or a camera, leg
 // readings from a file or typed in, camera intrinsics from target images.
 // The panel's layout, preview and batch measurement are in measure_panel.cc.
+#include <QCoreApplication>
 #include <QDialog>
 #include <QDialogButtonBox>
 #include <QDir>
 #include <QDoubleSpinBox>
+#include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QFormLayout>
@@ -53,46 +55,41 @@ void MeasurePanel::ImportLegs(const QString& chosen) {
   const QString file =
       chosen.isEmpty() ? QFileDialog::getOpenFileName(this, "Leg readings", {}, "CSV (*.csv)") : chosen;
   if (file.isEmpty()) return;
-  const QString legs = QString::fromStdString(session_->Paths().legs);
-  QFile::remove(legs + ".previous");
-  QFile::rename(legs, legs + ".previous");  // kept until the new file loads
-  if (!QFile::copy(file, legs))
-    return ShowError(this, "Import readings", "Could not copy " + file + " into the session.");
-  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(session_->Dir().toStdString());
-  if (!rows.ok()) {
-    QFile::remove(legs);
-    QFile::rename(legs + ".previous", legs);
-    return ShowError(this, "Import readings", Message(rows.status()) + "\nThe previous legs.csv is kept.");
-  }
-  QFile::remove(legs + ".previous");
+  // Replaces legs.csv under the lock; a file that does not load leaves the old one.
+  const Status imported = workflow::ImportLegsFile(session_->Dir().toStdString(), file.toStdString());
   session_->Reload();
+  if (!imported.ok()) ShowError(this, "Import readings", Message(imported) + "\nThe previous legs.csv is kept.");
 }
 
 void MeasurePanel::CaptureFromCamera() {
   if (!session_->IsOpen()) return ShowError(this, "Capture", "Open or create a session first (File menu).");
   const int device = camera_index_->value();
   const QString name = QString("capture_%1.png").arg(session_->ImageFiles().size(), 4, 10, QChar('0'));
-  const std::string path = QDir(QString::fromStdString(session_->Paths().images)).filePath(name).toStdString();
+  // The frame waits outside images/ until its readings are typed: image and
+  // row then enter the session together (workflow::RecordCapture).
+  const std::string path =
+      QDir::temp().filePath(QString("hexcal-capture-%1.png").arg(QCoreApplication::applicationPid())).toStdString();
   StartJob("capturing", [this, device, path, name](const JobContext&) -> GuiContinuation {
     cv::VideoCapture capture(device);
     cv::Mat frame;
     const bool grabbed = capture.isOpened() && capture.read(frame) && !frame.empty();
     const bool written = grabbed && cv::imwrite(path, frame);
-    return [this, device, grabbed, written, name] {
+    return [this, device, grabbed, written, name, path] {
       if (!grabbed)
         return ShowError(this, "Capture",
                          QString("No frame from camera %1: check it is connected and not "
                                  "used by another program, or choose another index.")
                              .arg(device));
-      if (!written) return ShowError(this, "Capture", "Could not write " + name + " into images/: check the folder.");
-      AskReadingsAndSave(name);
+      if (!written) return ShowError(this, "Capture", "Could not write the frame to " + QString::fromStdString(path));
+      AskReadingsAndSave(name, path);
+      QFile::remove(QString::fromStdString(path));
     };
   });
 }
 
 // The readings at the captured image, prefilled with the planned pose's leg
 // lengths (what the controller was asked for); the operator types the sensors'.
-void MeasurePanel::AskReadingsAndSave(const QString& image_name) {
+void MeasurePanel::AskReadingsAndSave(const QString& image_name, const std::string& frame_file) {
   const std::vector<Vector6d>& plan = session_->Plan();
   const size_t next = session_->Legs().size();
   LegReadings readings = LegReadings::Zero();
@@ -117,12 +114,12 @@ void MeasurePanel::AskReadingsAndSave(const QString& image_name) {
     form->addRow(ok);
     connect(ok, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
     connect(ok, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
-    if (dialog.exec() != QDialog::Accepted) return session_->Reload();
+    if (dialog.exec() != QDialog::Accepted) return;  // nothing recorded: the frame is dropped
     for (int i = 0; i < kNumLegs; ++i) row.legs[i] = boxes[i]->value();
   }
-  std::vector<LegsRow> rows = session_->Legs();
-  rows.push_back(row);
-  if (Status s = session_->SetLegs(rows); !s.ok()) ShowError(this, "Capture", Message(s));
+  // The image and its row enter the session in one locked step; legs.csv is
+  // edited as it is on disk, so rows others wrote meanwhile are kept.
+  ApplySessionEdit(this, "Capture", [&](bool overwrite) { return session_->RecordCapture(frame_file, row, overwrite); });
 }
 
 void MeasurePanel::IntrinsicsFromFolder(const QString& chosen) {
@@ -162,7 +159,8 @@ void MeasurePanel::IntrinsicsFromFolder(const QString& chosen) {
                                    : "not used, " + QString::fromStdString(view.reason));
     return [this, report] {
       report_->setPlainText(report);
-      if (Status s = session_->SetCamera("camera.yaml"); !s.ok()) ShowError(this, "Intrinsics", Message(s));
+      ApplySessionEdit(this, "Intrinsics",
+                       [this](bool overwrite) { return session_->SetCamera("camera.yaml", overwrite); });
     };
   });
 }

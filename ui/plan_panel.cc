@@ -58,6 +58,7 @@ PlanPanel::PlanPanel(SessionState* session, QWidget* parent)
   cancel_->setEnabled(false);
   progress_ = new QProgressBar;
   status_ = new QLabel("Choose the options and run the planner.");
+  status_->setTextFormat(Qt::PlainText);  // file names are shown as they are, never as HTML
   status_->setWordWrap(true);
   status_->setObjectName("plan_status");
   auto* export_button = new QPushButton("Export plan.csv…");
@@ -170,7 +171,7 @@ void PlanPanel::Finish(const Status& status, const PlanResult& result) {
   }
   if (Status s = workflow::WriteHistoryCsv(HistoryPath(*session_), result); !s.ok())
     ShowError(this, "Plan", QString::fromStdString(s.message()));
-  if (Status s = session_->SetPlan(result.poses); !s.ok()) ShowError(this, "Plan", QString::fromStdString(s.message()));
+  ApplySessionEdit(this, "Plan", [&](bool overwrite) { return session_->SetPlan(result.poses, overwrite); });
   // The bar stops where the planner converged; show it complete.
   progress_->setFormat("done");
   progress_->setValue(progress_->maximum());
@@ -221,7 +222,7 @@ void PlanPanel::OnCellEdited(int row, int column) {
   std::vector<Vector6d> plan = session_->Plan();
   const int index = table_->item(row, 0)->data(Qt::UserRole).toInt();
   plan[index][column - 1] = table_->item(row, column)->data(Qt::DisplayRole).toDouble();
-  if (Status s = session_->SetPlan(plan); !s.ok()) ShowError(this, "Plan", QString::fromStdString(s.message()));
+  ApplySessionEdit(this, "Plan", [&](bool overwrite) { return session_->SetPlan(plan, overwrite); });
 }
 
 void PlanPanel::DeleteSelectedPoses() {
@@ -232,7 +233,7 @@ void PlanPanel::DeleteSelectedPoses() {
   std::vector<Vector6d> plan;
   for (int j = 0; j < static_cast<int>(session_->Plan().size()); ++j)
     if (!doomed.count(j)) plan.push_back(session_->Plan()[j]);
-  if (Status s = session_->SetPlan(plan); !s.ok()) ShowError(this, "Plan", QString::fromStdString(s.message()));
+  ApplySessionEdit(this, "Plan", [&](bool overwrite) { return session_->SetPlan(plan, overwrite); });
 }
 
 void PlanPanel::AddPose() {
@@ -241,7 +242,7 @@ void PlanPanel::AddPose() {
     for (int k = 0; k < 6; ++k) home[k] = box->bounds[k]->Centre();
   std::vector<Vector6d> plan = session_->Plan();
   plan.push_back(home);
-  if (Status s = session_->SetPlan(plan); !s.ok()) ShowError(this, "Plan", QString::fromStdString(s.message()));
+  ApplySessionEdit(this, "Plan", [&](bool overwrite) { return session_->SetPlan(plan, overwrite); });
 }
 
 void PlanPanel::ExportPlan() {

@@ -26,6 +26,7 @@ QString Vec(const Eigen::Vector3d& v) {
 RobotPanel::RobotPanel(SessionState* session, QWidget* parent)
     : QWidget(parent), session_(session), view_(new RobotView) {
   summary_ = new QLabel;
+  summary_->setTextFormat(Qt::RichText);  // names from files are escaped where they are set
   summary_->setWordWrap(true);
   summary_->setObjectName("robot_summary");
   legs_ = new QTableWidget(kNumLegs, 5);
@@ -38,6 +39,7 @@ RobotPanel::RobotPanel(SessionState* session, QWidget* parent)
   scrub_->setObjectName("pose_scrub");
   scrub_->setToolTip("Scrub through the planned poses");
   scrub_label_ = new QLabel;
+  scrub_label_->setTextFormat(Qt::PlainText);  // file names are shown as they are, never as HTML
   ghosts_ = new QCheckBox("Planned poses as ghosts");
   ghosts_->setChecked(true);
   samples_ = new QCheckBox(QString("Workspace samples (%1 random feasible poses)").arg(kWorkspaceSamples));
@@ -76,7 +78,8 @@ void RobotPanel::Refresh() {
   const Robot& robot = session_->NominalRobot();
   summary_->setText(QString("<b>%1</b> — file <tt>%2</tt>, lengths in %3, Euler %4. Legs as in eq. 3: "
                             "|P + R b<sub>i</sub> − a<sub>i</sub>| = L<sub>i</sub> + l<sub>i</sub>.")
-                        .arg(QString::fromStdString(robot.name), QString::fromStdString(session_->Config().robot),
+                        .arg(QString::fromStdString(robot.name).toHtmlEscaped(),
+                             QString::fromStdString(session_->Config().robot).toHtmlEscaped(),
                              LengthUnitName(robot.length_unit), EulerConventionName(robot.euler)));
   for (int i = 0; i < kNumLegs; ++i) {
     const Leg& leg = robot.legs[i];

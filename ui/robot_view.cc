@@ -28,6 +28,7 @@ RobotView::RobotView(QWidget* parent) : QWidget(parent), vtk_widget_(new QVTKOpe
   auto* reset = new QPushButton("Reset view");
   auto* screenshot = new QPushButton("Save screenshot…");
   legend_ = new QLabel;
+  legend_->setTextFormat(Qt::PlainText);  // file names are shown as they are, never as HTML
   legend_->setObjectName("stroke_legend");
   connect(reset, &QPushButton::clicked, this, &RobotView::ResetView);
   connect(screenshot, &QPushButton::clicked, this, &RobotView::SaveScreenshot);

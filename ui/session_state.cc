@@ -8,6 +8,7 @@
 
 #include "workflow/plan_step.h"
 #include "workflow/session_calibrate.h"
+#include "workflow/session_results.h"
 #include "core/csv.h"
 #include "core/robot_io.h"
 #include "vision/measure.h"
@@ -38,7 +39,46 @@ const char* StepName(Step step) {
   return "";
 }
 
-SessionState::SessionState(QObject* parent) : QObject(parent) {}
+SessionState::SessionState(QObject* parent) : QObject(parent) {
+  constexpr int kSettleMs = 300;
+  reload_timer_.setSingleShot(true);
+  reload_timer_.setInterval(kSettleMs);
+  connect(&watcher_, &QFileSystemWatcher::directoryChanged, this, [this] { reload_timer_.start(); });
+  connect(&watcher_, &QFileSystemWatcher::fileChanged, this, [this] { reload_timer_.start(); });
+  connect(&reload_timer_, &QTimer::timeout, this, &SessionState::Reload);
+}
+
+// The folder itself (atomic writes and the swap of results/ are renames in
+// it), images/ and results/; re-armed after each load, since a swapped
+// results/ is a new folder.
+void SessionState::Watch() {
+  if (!watcher_.directories().isEmpty()) watcher_.removePaths(watcher_.directories());
+  if (!watcher_.files().isEmpty()) watcher_.removePaths(watcher_.files());
+  const SessionPaths paths = Paths();
+  for (const std::string& path : {paths.dir, paths.images, paths.results})
+    if (QFileInfo(QString::fromStdString(path)).isDir()) watcher_.addPath(QString::fromStdString(path));
+}
+
+// Calibrate and Validate are done when results/ is one whole unit made from
+// the inputs as they are now (workflow/session_results.h).
+void SessionState::LoadResultsState() {
+  results_state_ = StepState::kTodo;
+  results_note_.clear();
+  std::error_code error;
+  if (!fs::exists(workflow::CalibrationReportPath(dir_.toStdString()), error)) return;
+  StatusOr<workflow::SessionResults> results = workflow::LoadSessionResults(dir_.toStdString());
+  if (!results.ok()) {
+    results_note_ = QString::fromStdString(results.status().message());
+    return;
+  }
+  if (!results->changed_inputs.empty()) {
+    results_state_ = StepState::kStale;
+    results_note_ = QString::fromStdString(workflow::ListNames(results->changed_inputs)) +
+                    " changed since the results were computed: calibrate again.";
+    return;
+  }
+  results_state_ = StepState::kDone;
+}
 
 std::string SessionState::Resolve(const std::string& name) const {
   return workflow::ResolveSessionFile(dir_.toStdString(), name);
@@ -79,6 +119,8 @@ Status SessionState::LoadAll(const QString& dir) {
       legs_error_ = QString::fromStdString(legs.status().message());
     }
   }
+  LoadResultsState();
+  Watch();
   return Status::Ok();
 }
 
@@ -99,45 +141,37 @@ void SessionState::Reload() {
   emit Changed();
 }
 
-Status SessionState::Save() {
-  if (!IsOpen()) return Status::Error("no session is open");
-  if (Status s = SaveSessionConfig(dir_.toStdString(), config_); !s.ok()) return s;
-  if (!plan_.empty()) return workflow::WritePlanCsv(Paths().plan, PlanningModel{robot_, std::nullopt, std::nullopt}, plan_);
-  return Status::Ok();
-}
-
-Status SessionState::SetPlan(const std::vector<Vector6d>& poses) {
-  plan_ = poses;
-  Status written = Status::Ok();
-  if (poses.empty()) {
-    std::error_code error;
-    fs::remove(Paths().plan, error);
-  } else {
-    written = workflow::WritePlanCsv(Paths().plan, PlanningModel{robot_, std::nullopt, std::nullopt}, poses);
-  }
-  emit Changed();
-  return written;
-}
-
-Status SessionState::SetLegs(const std::vector<LegsRow>& rows) {
-  std::vector<std::vector<std::string>> cells;
-  for (const LegsRow& row : rows) {
-    std::vector<std::string> line{row.image};
-    for (int i = 0; i < kNumLegs; ++i) line.push_back(FormatNumber(row.legs[i]));
-    line.push_back(row.holdout ? "1" : "0");
-    cells.push_back(line);
-  }
-  Status written = WriteCsv(Paths().legs, {"image", "L1", "L2", "L3", "L4", "L5", "L6", "holdout"}, cells);
-  LoadAll(dir_);
-  emit Changed();
-  return written;
-}
-
-Status SessionState::SetCamera(const std::string& camera_name) {
-  config_.camera = camera_name;
-  if (Status s = SaveSessionConfig(dir_.toStdString(), config_); !s.ok()) return s;
+workflow::EditOutcome SessionState::SetPlan(const std::vector<Vector6d>& poses, bool overwrite) {
+  workflow::EditOptions options;
+  options.overwrite = overwrite;
+  const workflow::EditOutcome done = workflow::ApplyPlanEdit(dir_.toStdString(), plan_, poses, options);
   Reload();
-  return Status::Ok();
+  return done;
+}
+
+workflow::EditOutcome SessionState::EditLegs(const workflow::LegsEdit& edit, bool overwrite) {
+  workflow::EditOptions options;
+  options.overwrite = overwrite;
+  const workflow::EditOutcome done = workflow::ApplyLegsEdit(dir_.toStdString(), edit, options);
+  Reload();
+  return done;
+}
+
+workflow::EditOutcome SessionState::RecordCapture(const std::string& frame_file, const LegsRow& row, bool overwrite) {
+  workflow::EditOptions options;
+  options.overwrite = overwrite;
+  const workflow::EditOutcome done = workflow::RecordCapture(dir_.toStdString(), frame_file, row, options);
+  Reload();
+  return done;
+}
+
+workflow::EditOutcome SessionState::SetCamera(const std::string& camera_name, bool overwrite) {
+  workflow::EditOptions options;
+  options.overwrite = overwrite;
+  const workflow::EditOutcome done =
+      workflow::ApplyCameraEdit(dir_.toStdString(), config_.camera, camera_name, options);
+  Reload();
+  return done;
 }
 
 std::vector<QString> SessionState::ImageFiles() const {
@@ -151,7 +185,6 @@ std::vector<QString> SessionState::ImageFiles() const {
 StepState SessionState::State(Step step) const {
   if (!IsOpen()) return StepState::kTodo;
   const SessionPaths paths = Paths();
-  const std::string report = (fs::path(paths.results) / "report.json").string();
   switch (step) {
     case Step::kRobot:
       return StepState::kDone;
@@ -166,17 +199,11 @@ StepState SessionState::State(Step step) const {
       return StepState::kDone;
     }
     case Step::kCalibrate:
-    case Step::kValidate: {
-      if (!Exists(report)) return StepState::kTodo;
-      const QDateTime made = Modified(report);
-      if ((Exists(paths.legs) && made < Modified(paths.legs)) ||
-          (Exists(paths.measurements) && made < Modified(paths.measurements)))
-        return StepState::kStale;
-      if (step == Step::kValidate &&
+    case Step::kValidate:
+      if (step == Step::kValidate && results_state_ != StepState::kTodo &&
           std::none_of(legs_.begin(), legs_.end(), [](const LegsRow& r) { return r.holdout; }))
         return StepState::kTodo;  // nothing held out: no validation
-      return StepState::kDone;
-    }
+      return results_state_;
   }
   return StepState::kTodo;
 }

@@ -3,12 +3,18 @@
 //
 // Everything the operator records is written to the folder at once (plan.csv,
 // legs.csv, images/): the folder is the autosave, so nothing is lost if the
-// application dies. Panels change the session only through this class, which
-// then emits Changed() so that every panel and the step list refresh.
+// application dies. An edit is applied to the file as it is on disk, under the
+// session lock (workflow/session_edits.h), never by writing back a copy held
+// in memory; a conflict comes back to the caller to ask the operator. The
+// folder is watched: what other programs write is reloaded and shown. Panels
+// change the session only through this class, which then emits Changed() so
+// that every panel and the step list refresh.
 #pragma once
 
+#include <QFileSystemWatcher>
 #include <QObject>
 #include <QString>
+#include <QTimer>
 #include <optional>
 #include <vector>
 
@@ -16,6 +22,7 @@
 #include "core/session.h"
 #include "vision/camera.h"
 #include "vision/target.h"
+#include "workflow/session_edits.h"
 
 namespace hexcal::ui {
 
@@ -33,9 +40,8 @@ class SessionState : public QObject {
   // Loads DIR/session.yaml and what it names; the message says what to fix.
   Status Open(const QString& dir);
   Status Create(const QString& dir, const SessionConfig& config);
-  // Rewrites session.yaml and plan.csv (both are also written on every change).
-  Status Save();
-  // Re-reads the files after a step wrote them (measurements, results).
+  // Re-reads the files after a step wrote them (measurements, results), or
+  // another program did (the folder watch calls it).
   void Reload();
 
   bool IsOpen() const { return !dir_.isEmpty(); }
@@ -49,25 +55,33 @@ class SessionState : public QObject {
   std::string Resolve(const std::string& name) const;
 
   const std::vector<Vector6d>& Plan() const { return plan_; }
-  // Replaces the plan and writes plan.csv.
-  Status SetPlan(const std::vector<Vector6d>& poses);
+  // plan.csv becomes `poses`, unless it changed on disk since it was shown
+  // (a conflict; `overwrite` applies it anyway).
+  workflow::EditOutcome SetPlan(const std::vector<Vector6d>& poses, bool overwrite = false);
 
   // legs.csv rows; `legs_error` is why the file does not load, if it does not.
   const std::vector<LegsRow>& Legs() const { return legs_; }
   const QString& LegsError() const { return legs_error_; }
-  // Writes legs.csv (image, L1..L6, holdout) with these rows.
-  Status SetLegs(const std::vector<LegsRow>& rows);
+  // One edit of legs.csv as it is on disk: a cell, a holdout, a captured row.
+  workflow::EditOutcome EditLegs(const workflow::LegsEdit& edit, bool overwrite = false);
+  // A captured frame (a file outside the session) and its readings, added together.
+  workflow::EditOutcome RecordCapture(const std::string& frame_file, const LegsRow& row, bool overwrite = false);
   std::vector<QString> ImageFiles() const;  // full paths, sorted
 
   StepState State(Step step) const;
+  // Why the Calibrate step is stale or not done: the inputs changed since
+  // results/ was made, or results/ is not one whole unit ("" when done).
+  const QString& ResultsNote() const { return results_note_; }
   // Points the session at another camera file (intrinsics step).
-  Status SetCamera(const std::string& camera_name);
+  workflow::EditOutcome SetCamera(const std::string& camera_name, bool overwrite = false);
 
  signals:
   void Changed();
 
  private:
   Status LoadAll(const QString& dir);
+  void LoadResultsState();
+  void Watch();
 
   QString dir_;
   SessionConfig config_;
@@ -77,6 +91,10 @@ class SessionState : public QObject {
   std::vector<Vector6d> plan_;
   std::vector<LegsRow> legs_;
   QString legs_error_;
+  StepState results_state_ = StepState::kTodo;
+  QString results_note_;
+  QFileSystemWatcher watcher_;
+  QTimer reload_timer_;  // folds a burst of changes (an atomic write is several) into one reload
 };
 
 }  // namespace hexcal::ui

@@ -18,6 +18,7 @@
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
 #include "workflow/session_report.h"
+#include "workflow/session_results.h"
 
 namespace hexcal::ui {
 namespace {
@@ -31,6 +32,7 @@ double ValueOrNan(const std::optional<double>& value) { return value.value_or(st
 
 ValidatePanel::ValidatePanel(SessionState* session, QWidget* parent) : QWidget(parent), session_(session) {
   status_ = new QLabel;
+  status_->setTextFormat(Qt::PlainText);  // file names are shown as they are, never as HTML
   status_->setWordWrap(true);
   status_->setObjectName("validate_status");
   summary_ = new QTableWidget(4, 2);
@@ -66,10 +68,12 @@ void ValidatePanel::Refresh() {
     for (int c = 0; c < 2; ++c) summary_->setItem(r, c, new QTableWidgetItem("—"));
   const std::string path = workflow::CalibrationReportPath(session_->Dir().toStdString());
   std::error_code error;
-  StatusOr<workflow::CalibrationReport> report =
+  StatusOr<workflow::SessionResults> results =
       session_->IsOpen() && fs::exists(path, error)
-          ? workflow::LoadCalibrationReport(path)
-          : StatusOr<workflow::CalibrationReport>(Status::Error("No results yet: run the Calibrate step."));
+          ? workflow::LoadSessionResults(session_->Dir().toStdString())
+          : StatusOr<workflow::SessionResults>(Status::Error("No results yet: run the Calibrate step."));
+  StatusOr<workflow::CalibrationReport> report =
+      results.ok() ? StatusOr<workflow::CalibrationReport>(results->report) : results.status();
   ShowChart(position_chart_, charts::ValidationPerImageChart({}, charts::ValidationQuantity::kPosition, ""));
   ShowChart(orientation_chart_, charts::ValidationPerImageChart({}, charts::ValidationQuantity::kOrientation, ""));
   if (!report.ok()) return status_->setText(QString::fromStdString(report.status().message()));

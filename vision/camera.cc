@@ -146,6 +146,28 @@ class CameraReader {
     return values;
   }
 
+  // The numbers of `{rows, cols, data}` (OpenCV's !!opencv-matrix, ROS's
+  // camera_calibration_parsers): rows and cols, when given, must be a small
+  // matrix that `data` fills exactly.
+  StatusOr<std::vector<double>> MatrixData(const YAML::Node& node, const std::string& key) const {
+    StatusOr<std::vector<double>> data = Numbers(MapChild(node, "data"), key + ".data");
+    if (!data.ok() || !MapChild(node, "rows") || !MapChild(node, "cols")) return data;
+    const YAML::Node rows_node = node["rows"], cols_node = node["cols"];
+    StatusOr<double> rows = rows_node.IsScalar() ? ParseNumber(rows_node.Scalar()) : Status::Error("");
+    StatusOr<double> cols = cols_node.IsScalar() ? ParseNumber(cols_node.Scalar()) : Status::Error("");
+    if (!rows.ok() || !cols.ok() || *rows != std::floor(*rows) || *cols != std::floor(*cols))
+      return Error(key + ": rows, cols: missing or not whole numbers");
+    constexpr double kMaxEntries = 64;  // a 3 x 3 matrix or a handful of coefficients
+    const std::string shape = FormatNumber(*rows) + " x " + FormatNumber(*cols);
+    if (*rows < 1 || *cols < 1 || *rows * *cols > kMaxEntries)
+      return Error(key + ": " + shape + " is not a camera matrix or coefficient list");
+    if (static_cast<double>(data->size()) != *rows * *cols) {
+      return Error(key + ".data: expected " + FormatNumber(*rows * *cols) + " numbers (" + shape + "), found " +
+                   std::to_string(data->size()));
+    }
+    return data;
+  }
+
   StatusOr<int> Int(const YAML::Node& root, const std::string& key) const {
     const YAML::Node node = root[key];
     if (!node || !node.IsScalar()) return Error(key + ": missing");
@@ -178,11 +200,10 @@ class CameraReader {
       StatusOr<int> height = Int(map, message_form ? "height" : "image_height");
       if (!height.ok()) return height.status();
       StatusOr<std::vector<double>> k =
-          message_form ? Numbers(map["K"], "K") : Numbers(MapChild(map["camera_matrix"], "data"), "camera_matrix.data");
+          message_form ? Numbers(map["K"], "K") : MatrixData(map["camera_matrix"], "camera_matrix");
       if (!k.ok()) return k.status();
       StatusOr<std::vector<double>> d =
-          message_form ? Numbers(map["D"], "D")
-                       : Numbers(MapChild(map["distortion_coefficients"], "data"), "distortion_coefficients.data");
+          message_form ? Numbers(map["D"], "D") : MatrixData(map["distortion_coefficients"], "distortion_coefficients");
       if (!d.ok()) return d.status();
       return FromArrays(*width, *height, *k, *d);
     });
@@ -315,7 +336,16 @@ StatusOr<Camera> ParseCameraFile(const std::string& text, const std::string& sou
   const CameraReader reader(source);
   const size_t start = text.find_first_not_of(" \t\r\n");
   if (start == std::string::npos) return reader.Error("empty file");
-  if (text.compare(start, 7, "%YAML:1") == 0 || text.compare(start, 5, "<?xml") == 0) return reader.ReadOpenCv(text);
+  if (text.compare(start, 5, "<?xml") == 0) return reader.ReadOpenCv(text);
+  if (text.compare(start, 7, "%YAML:1") == 0) {
+    // OpenCV's YAML parser loops for ever on some broken files (OpenCV 4.6,
+    // found by fuzz/camera_fuzz), so OpenCV's YAML layout is read with
+    // yaml-cpp, like the ROS one it matches. "%YAML:1.0" is not a YAML 1.2
+    // directive: it becomes a comment, which keeps the line numbers.
+    std::string yaml = text;
+    yaml[start] = '#';
+    return reader.ReadRos(yaml);
+  }
   return reader.ReadRos(text);
 }
 

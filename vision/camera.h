@@ -91,8 +91,8 @@ struct CameraFileExtras {
 std::string CameraToOpenCvYaml(const Camera& camera, const CameraFileExtras& extras = {});
 Status SaveCamera(const Camera& camera, const std::string& path, const CameraFileExtras& extras = {});
 
-// OpenCV FileStorage YAML (or XML), recognised by its "%YAML:1." or "<?xml"
-// header, else ROS camera_info YAML. Messages read "camera file '<path>': <problem>".
+// OpenCV FileStorage YAML (read with yaml-cpp) or XML (cv::FileStorage),
+// recognised by its "%YAML:1." or "<?xml" header, else ROS camera_info YAML. Messages read "camera file '<path>': <problem>".
 StatusOr<Camera> ParseCameraFile(const std::string& text, const std::string& source);
 // A file, or the name "sim-4.2mm-1024x768" (SimulatedCamera) when no such file exists.
 StatusOr<Camera> LoadCamera(const std::string& path_or_name);

@@ -85,7 +85,7 @@ TEST(CameraTest, ErrorsAreClear) {
   EXPECT_THAT(fisheye.status().message(), HasSubstr("distortion_model: 'equidistant' is not supported"));
   EXPECT_THAT(ParseError(""), HasSubstr("camera file 'cam.yaml': empty file"));
   EXPECT_THAT(ParseError("image_width: 640\nimage_height: 480\n"), HasSubstr("camera_matrix.data: expected a list"));
-  EXPECT_THAT(ParseError("%YAML:1.0\n---\nimage_width: 640\n"), HasSubstr("camera_matrix: missing"));
+  EXPECT_THAT(ParseError("%YAML:1.0\n---\nimage_width: 640\n"), HasSubstr("image_height: missing"));
   EXPECT_THAT(ParseError("image_width: 640\nimage_height: 480\ncamera_matrix: {data: [500, 2, 320, 0, 500, 240, 0, 0, "
                          "1]}\ndistortion_coefficients: {data: [0, 0, 0, 0, 0]}\n"),
               HasSubstr("no skew"));

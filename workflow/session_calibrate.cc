@@ -11,13 +11,21 @@
 #include "core/registration.h"
 #include "core/robot_io.h"
 #include "core/session.h"
+#include "core/session_lock.h"
+#include "core/sha256.h"
+#include "core/staged_folder.h"
 #include "core/validation.h"
 #include "vision/measure.h"
+#include "workflow/session_results.h"
 
 namespace hexcal::workflow {
 namespace {
 
 namespace fs = std::filesystem;
+
+constexpr const char* kUsedMeasurements = "calibration_measurements.csv";
+constexpr const char* kCalibratedRobot = "calibrated.yaml";
+constexpr const char* kReportJson = "report.json";
 
 struct CameraPose {
   bool ok = false;
@@ -198,28 +206,52 @@ CalibrationReport MakeReport(const std::string& dir, const SessionInputs& in, co
                          VectorFromPose(reg.platform_from_target, EulerConvention::kXYZ)};
   report.closure_position_rms = result.calibrated_position_rms;
   report.closure_angle_rms_deg = result.calibrated_angle_rms_deg;
-  report.calibrated_robot = (fs::path(SessionPaths(dir).results) / "calibrated.yaml").string();
+  report.calibrated_robot = (fs::path(SessionPaths(dir).results) / kCalibratedRobot).string();
   report.robot = result.calibration.robot;
   FillParameters(result.calibration, &report);
   return report;
 }
 
-// The calibrated robot, the rows it was fitted to, the frames, report.json.
+// results/ as one unit (session_results.h): the calibrated robot, the rows it
+// was fitted to, report.json and manifest.json go into a fresh folder that is
+// swapped in whole; then the registered frames into session.yaml.
 Status WriteCalibrationResults(const std::string& dir, SessionInputs* in, const CameraCalibrationResult& result,
-                               const CalibrationOptions& calibration, const CalibrationReport& report) {
+                               const CalibrationOptions& calibration, const CalibrationReport& report,
+                               const ContentHashes& inputs) {
   const SessionPaths paths(dir);
-  // results/ may have been deleted since the session was made: recreate it.
-  std::error_code folder_error;
-  fs::create_directories(paths.results, folder_error);
-  if (folder_error) return Status::IoError(paths.results + ": cannot create the folder: " + folder_error.message());
-  const std::string used_measurements = (fs::path(paths.results) / "calibration_measurements.csv").string();
-  if (Status s = SaveMeasurements(used_measurements, result.measurements); !s.ok()) return s;
-  const CalibrationInputs inputs{in->robot_name, used_measurements, calibration, CurrentUtcTimestamp()};
-  if (Status s = SaveCalibratedRobot(report.calibrated_robot, result.calibration, inputs); !s.ok()) return s;
+  StatusOr<StagedFolder> staged = StagedFolder::Begin(paths.results);
+  if (!staged.ok()) return staged.status();
+  const std::string used_measurements = (fs::path(paths.results) / kUsedMeasurements).string();
+  if (Status s = SaveMeasurements(staged->File(kUsedMeasurements), result.measurements); !s.ok()) return s;
+  const CalibrationInputs calibration_inputs{in->robot_name, used_measurements, calibration, CurrentUtcTimestamp()};
+  if (Status s = SaveCalibratedRobot(staged->File(kCalibratedRobot), result.calibration, calibration_inputs); !s.ok())
+    return s;
+  if (Status s = SaveCalibrationReport(staged->File(kReportJson), report); !s.ok()) return s;
+  ResultsManifest manifest{calibration_inputs.date, "calibrate --session", inputs, {}};
+  for (const char* name : {kUsedMeasurements, kCalibratedRobot, kReportJson}) {
+    StatusOr<std::string> hash = Sha256OfFile(staged->File(name), kMaxTableBytes);
+    if (!hash.ok()) return hash.status();
+    manifest.outputs[name] = *hash;
+  }
+  const std::string manifest_file = staged->File(fs::path(ResultsManifestPath(dir)).filename().string());
+  if (Status s = WriteFileAtomically(manifest_file, ManifestToJsonText(manifest)); !s.ok()) return s;
+  if (Status s = staged->Publish(); !s.ok()) return s;
+  // A copy of report.json's frames, for display; results/ is the record.
   in->config.base_from_camera = result.registration.base_from_camera;
   in->config.platform_from_target = result.registration.platform_from_target;
-  if (Status s = SaveSessionConfig(dir, in->config); !s.ok()) return s;
-  return SaveCalibrationReport(CalibrationReportPath(dir), report);
+  return SaveSessionConfig(dir, in->config);
+}
+
+// What was read at the start must still be there: a run whose inputs changed
+// underneath it (a writer that ignores the lock) publishes nothing.
+Status CheckInputsUnchanged(const std::string& dir, const ContentHashes& before) {
+  StatusOr<ContentHashes> now = HashSessionInputs(dir);
+  if (!now.ok()) return now.status();
+  const std::vector<std::string> changed = DifferingNames(before, *now);
+  if (changed.empty()) return Status::Ok();
+  return Status::Failed(dir + ": " + ListNames(changed) +
+                        " changed while calibrating (another program wrote the session); results/ was left as it "
+                        "was: run again");
 }
 
 // Weighted by each image's own pose covariance and the model's reading
@@ -242,6 +274,12 @@ std::string ResolveSessionFile(const std::string& dir, const std::string& name) 
 
 StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& request, const JobHooks& hooks) {
   const std::string& dir = request.session;
+  // "DIR/session.yaml: no such file" says more than the lock could.
+  if (StatusOr<SessionConfig> config = LoadSessionConfig(dir); !config.ok()) return config.status();
+  StatusOr<SessionLock> lock = SessionLock::Acquire(dir, request.wait);
+  if (!lock.ok()) return lock.status();
+  StatusOr<ContentHashes> inputs = HashSessionInputs(dir);
+  if (!inputs.ok()) return inputs.status();
   StatusOr<SessionInputs> in = LoadSessionInputs(dir);
   if (!in.ok()) return in.status();
   StatusOr<CameraPoses> poses = MeasureSession(SessionPaths(dir), *in, hooks);
@@ -262,7 +300,9 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
 
   CalibrationReport report = MakeReport(dir, *in, split, *result);
   report.validation = *validation;
-  if (Status s = WriteCalibrationResults(dir, &*in, *result, calibration, report); !s.ok()) return s.AsFailure();
+  if (Status s = CheckInputsUnchanged(dir, *inputs); !s.ok()) return s;
+  if (Status s = WriteCalibrationResults(dir, &*in, *result, calibration, report, *inputs); !s.ok())
+    return s.AsFailure();
   return report;
 }
 

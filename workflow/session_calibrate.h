@@ -2,8 +2,9 @@
 // Calibrate step (docs/session.md): measure the images not yet in
 // measurements.csv, register the camera and target frames with the nominal
 // robot, calibrate on the rows not held out, validate on the held-out rows,
-// write results/ (calibrated.yaml, calibration_measurements.csv, report.json)
-// and the registered frames into session.yaml.
+// publish results/ whole (calibrated.yaml, calibration_measurements.csv,
+// report.json, manifest.json: session_results.h) and copy the registered
+// frames into session.yaml. Holds the session lock throughout.
 //
 //   StatusOr<CalibrationReport> report = CalibrateSession({"run1"}, hooks);
 //   if (report.ok()) std::cout << FormatCalibrationSummary(*report);
@@ -12,6 +13,7 @@
 #include <string>
 
 #include "core/job_hooks.h"
+#include "core/session_lock.h"
 #include "core/status.h"
 #include "workflow/calibration_report.h"
 
@@ -19,6 +21,9 @@ namespace hexcal::workflow {
 
 struct CalibrateSessionRequest {
   std::string session;  // the session folder
+  // Another writer holds the session (core/session_lock.h): stop at once
+  // with "session in use by PID n (command)", or wait for it.
+  LockWait wait = LockWait::kNo;
 };
 
 // Stages reported through hooks.stage: "measure (images)", then "register and

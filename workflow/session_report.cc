@@ -11,8 +11,10 @@
 #include "core/observability.h"
 #include "core/robot_io.h"
 #include "core/session.h"
+#include "core/session_lock.h"
 #include "workflow/calibration_report.h"
 #include "workflow/session_calibrate.h"
+#include "workflow/session_results.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -113,13 +115,21 @@ std::string ResidualSection(const SessionPaths& paths, const Robot& nominal) {
          ChartHtml(charts::CalibrationResidualsChart(nominal, *calibrated, *rows));
 }
 
+// Results computed from inputs that have changed since: say so at the top.
+std::string StaleWarning(const SessionResults& results) {
+  if (results.changed_inputs.empty()) return "";
+  return "<p style=\"background:#fde8e8;border:1px solid #c00;padding:6px\"><b>Stale results.</b> " +
+         Escape(ListNames(results.changed_inputs)) + " changed after these results were computed (" +
+         Escape(results.manifest.created) + "): run <code>hexcal calibrate --session</code> again.</p>\n";
+}
+
 }  // namespace
 
 StatusOr<std::string> SessionReportHtml(const std::string& dir) {
   const SessionPaths paths(dir);
-  StatusOr<CalibrationReport> loaded = LoadCalibrationReport(CalibrationReportPath(dir));
+  StatusOr<SessionResults> loaded = LoadSessionResults(dir);
   if (!loaded.ok()) return Status::Error(loaded.status().message() + " (run hexcal calibrate --session first)");
-  const CalibrationReport& report = *loaded;
+  const CalibrationReport& report = loaded->report;
   const std::string unit = report.length_unit;
   std::string html =
       "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>hexcal session report</title><style>"
@@ -130,6 +140,7 @@ StatusOr<std::string> SessionReportHtml(const std::string& dir) {
           " images: " + std::to_string(report.calibration_images) + " for calibration, " +
           std::to_string(report.held_out_images) + " held out, " +
           std::to_string(report.unusable_images) + " without a usable target pose.</p>\n";
+  html += StaleWarning(*loaded);
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   if (!config.ok()) return config.status();
   StatusOr<Robot> nominal = LoadRobot(ResolveSessionFile(dir, config->robot));
@@ -166,6 +177,10 @@ StatusOr<std::string> WriteSessionReport(const ReportRequest& request) {
   std::error_code exists_error;
   if (!request.out.empty() && !request.force && fs::exists(out, exists_error))
     return Status::Error(out + ": exists; use --force to overwrite it");
+  // Held while reading results/ and writing into it: a run publishing a new
+  // results/ meanwhile would otherwise be described by the old one's page.
+  StatusOr<SessionLock> lock = SessionLock::Acquire(request.session, LockWait::kBriefly);
+  if (!lock.ok()) return lock.status();
   StatusOr<std::string> html = SessionReportHtml(request.session);
   if (!html.ok()) return html.status();
   if (Status s = WriteFileAtomically(out, *html); !s.ok()) return s;

@@ -21,13 +21,14 @@ namespace {
 struct CalibrateCliOptions {
   std::string robot, measurements, out, session, loss = "none";
   double loss_scale = 1.0;
-  bool weighted = false, force = false, json = false;
+  bool weighted = false, force = false, json = false, wait = false;
   std::shared_ptr<OptionEntries> noise = std::make_shared<OptionEntries>();  // --noise-* over the defaults
 };
 
-int RunCalibrateSession(const std::string& dir, bool json, std::ostream& out, std::ostream& err) {
+int RunCalibrateSession(const workflow::CalibrateSessionRequest& request, bool json, std::ostream& out,
+                        std::ostream& err) {
   TerminalJob job;
-  StatusOr<workflow::CalibrationReport> report = workflow::CalibrateSession({dir}, job.hooks());
+  StatusOr<workflow::CalibrationReport> report = workflow::CalibrateSession(request, job.hooks());
   if (!report.ok()) return ReportError(err, "calibrate", report.status());
   if (json) {
     out << workflow::ToJson(*report).dump(2) << "\n";
@@ -200,9 +201,14 @@ void AddCalibrateCommand(CLI::App& app, int* exit_code) {
   for (const OptionSpec<NoiseModel>& spec : NoiseModelOptions())
     AddOneOptionFlag(sub, spec, options->noise, "noise-")->needs(weighted);
   sub->add_flag("--json", options->json, "print one JSON object on stdout");
+  sub->add_flag("--wait", options->wait,
+                "when another program writes the session, wait for it instead of stopping (exit 3)")
+      ->needs(session);
   sub->callback([=] {
     if (!options->session.empty()) {
-      *exit_code = RunCalibrateSession(options->session, options->json, std::cout, std::cerr);
+      const workflow::CalibrateSessionRequest request{options->session,
+                                                      options->wait ? LockWait::kForever : LockWait::kNo};
+      *exit_code = RunCalibrateSession(request, options->json, std::cout, std::cerr);
     } else if (options->robot.empty() || options->measurements.empty() || options->out.empty()) {
       *exit_code =
           ReportError(std::cerr, "calibrate", Status::Error("give --robot, --measurements and --out, or --session"));

@@ -20,6 +20,8 @@ int ExitCodeFor(const Status& status) {
     case StatusKind::kCancelled:
     case StatusKind::kIo:
       return kExitFailure;
+    case StatusKind::kBusy:
+      return kExitBusy;
   }
   return kExitFailure;
 }

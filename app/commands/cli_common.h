@@ -22,6 +22,7 @@ namespace hexcal::cli {
 constexpr int kExitOk = 0;
 constexpr int kExitFailure = 1;   // the computation failed (no convergence, ...), an I/O error, a cancel
 constexpr int kExitBadInput = 2;  // a file or an option is wrong
+constexpr int kExitBusy = 3;      // the session is in use by another writer: try again, or --wait
 
 // The one mapping of a status's kind to an exit code (docs/cli.md).
 int ExitCodeFor(const Status& status);

@@ -1,13 +1,18 @@
 // hexcal session init --robot R --camera C --target T DIR [--noise-position p]
 //   [--noise-angle a] [--noise-leg l] [--json]
+// hexcal session record DIR --image NAME --legs L1,...,L6 [--from FILE] [--holdout] [--replace] [--wait]
+#include <filesystem>
 #include <iostream>
 #include <memory>
+#include <vector>
 
 #include "app/commands/cli_common.h"
 #include "app/commands/command_table.h"
 #include "app/commands/option_flags.h"
+#include "core/csv.h"
 #include "core/robot_io.h"
 #include "core/session.h"
+#include "workflow/session_edits.h"
 #include "vision/camera.h"
 #include "vision/target.h"
 
@@ -42,6 +47,52 @@ int RunSessionInit(SessionInitOptions cli, std::ostream& out, std::ostream& err)
   return kExitOk;
 }
 
+struct SessionRecordOptions {
+  std::string dir, image, from;
+  std::vector<double> legs;
+  bool holdout = false, replace = false, wait = false;
+};
+
+// One row of legs.csv, written under the session lock into legs.csv as it is
+// on disk (workflow/session_edits.h): rows others wrote are kept.
+int RunSessionRecord(const SessionRecordOptions& cli, std::ostream& out, std::ostream& err) {
+  const SessionPaths paths(cli.dir);
+  std::error_code error;
+  if (cli.from.empty() && !std::filesystem::is_regular_file(std::filesystem::path(paths.images) / cli.image, error))
+    return ReportError(err, "session record", Status::Error(paths.images + "/" + Excerpt(cli.image) +
+                                                            ": no such image; put it there first, or give --from"));
+  LegsRow row;
+  row.image = cli.image;
+  for (int i = 0; i < kNumLegs; ++i) row.legs[i] = cli.legs[static_cast<size_t>(i)];
+  row.holdout = cli.holdout;
+  const workflow::EditOptions options{cli.replace, cli.wait ? LockWait::kForever : LockWait::kNo};
+  const workflow::EditOutcome done = cli.from.empty()
+                                         ? workflow::ApplyLegsEdit(cli.dir, workflow::LegsEdit::SetRow(row), options)
+                                         : workflow::RecordCapture(cli.dir, cli.from, row, options);
+  if (!done.status.ok()) return ReportError(err, "session record", done.status);
+  if (done.conflict)
+    return ReportError(err, "session record", Status::Error(done.conflict_text + "; use --replace to replace it"));
+  out << "session " << cli.dir << ": " << cli.image << " recorded in " << paths.legs << "\n";
+  return kExitOk;
+}
+
+void AddSessionRecord(CLI::App* session, int* exit_code) {
+  auto options = std::make_shared<SessionRecordOptions>();
+  CLI::App* record = session->add_subcommand("record", "write the leg readings of one image into DIR/legs.csv");
+  record->add_option("dir", options->dir, "session folder")->required()->check(CLI::ExistingDirectory);
+  record->add_option("--image", options->image, "image file name in DIR/images/")->required();
+  record->add_option("--legs", options->legs, "the six readings L1,...,L6, robot unit")
+      ->required()
+      ->delimiter(',')
+      ->expected(kNumLegs);
+  record->add_option("--from", options->from,
+                     "copy this image file into DIR/images/ as --image, with its row, in one locked step");
+  record->add_flag("--holdout", options->holdout, "keep the image out of the calibration, to validate it");
+  record->add_flag("--replace", options->replace, "replace the image's readings if legs.csv has them already");
+  record->add_flag("--wait", options->wait, "when another program writes the session, wait for it (else exit 3)");
+  record->callback([=] { *exit_code = RunSessionRecord(*options, std::cout, std::cerr); });
+}
+
 }  // namespace
 
 void AddSessionCommand(CLI::App& app, int* exit_code) {
@@ -56,6 +107,7 @@ void AddSessionCommand(CLI::App& app, int* exit_code) {
   AddOptionFlags(init, NoiseModelOptions(), options->noise, "noise-");
   init->add_flag("--json", options->json, "print one JSON object on stdout");
   init->callback([=] { *exit_code = RunSessionInit(*options, std::cout, std::cerr); });
+  AddSessionRecord(session, exit_code);
 }
 
 }  // namespace hexcal::cli

@@ -63,12 +63,13 @@ target_wrong_unit.yaml | 2 | length_unit: expected mm, cm or m | target print --
 target_nan_size.yaml | 2 | tag_size: '.nan' is not a finite number | measure --camera sim-4.2mm-1024x768 --target @IN@ --images IMAGE --out @OUT@
 camera_empty.yaml | 2 | empty file | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_garbage.yaml | 2 | expected a ROS camera_info mapping or an OpenCV FileStorage file | measure --camera @IN@ --images IMAGE --out @OUT@
-camera_truncated.yaml | 2 | cannot read as OpenCV FileStorage | measure --camera @IN@ --images IMAGE --out @OUT@
-camera_nan_focal.yaml | 2 | camera_matrix.data: entry 1 \(-?nan\) is not a finite number | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_truncated.yaml | 2 | YAML syntax error at line 9 | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_nan_focal.yaml | 2 | camera_matrix.data: expected numbers, found '.nan' | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_wrong_matrix_size.yaml | 2 | camera_matrix: expected 9 numbers \(3 x 3\), found 4 | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_ros_missing_k.yaml | 2 | camera_matrix.data: expected a list of numbers | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_huge_matrix.yaml | 2 | camera_matrix: 2147483647 x 8 is not a camera matrix | measure --camera @IN@ --images IMAGE --out @OUT@
-camera_parser_exception.yaml | 2 | cannot read as OpenCV FileStorage: malformed file | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_opencv_loop.yaml | 2 | image_width: missing | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_parser_exception.yaml | 2 | YAML syntax error at line 9 | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_zero_size.yaml | 2 | image size 0 x 768: must be positive | render --camera @IN@ --poses POSES --out @OUT@
 image_empty.png | 1 | empty file | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
 image_header_only.png | 1 | truncated PNG \(no IEND chunk\) | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable

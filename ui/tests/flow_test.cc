@@ -18,6 +18,8 @@
 #include <functional>
 
 #include "core/csv.h"
+#include "core/session.h"
+#include "workflow/plan_step.h"
 #include "ui/background_job.h"
 #include "ui/calibrate_panel.h"
 #include "ui/error_dialog.h"
@@ -56,6 +58,16 @@ bool CopyFolder(const QString& from, const QString& to) {
     if (entry.isDir() ? !CopyFolder(entry.filePath(), target) : !QFile::copy(entry.filePath(), target)) return false;
   }
   return true;
+}
+
+std::string ReadTextFile(const std::string& path) {
+  QFile file(QString::fromStdString(path));
+  return file.open(QIODevice::ReadOnly) ? file.readAll().toStdString() : std::string();
+}
+
+void WriteTextFile(const std::string& path, const std::string& text) {
+  QFile file(QString::fromStdString(path));
+  if (file.open(QIODevice::WriteOnly | QIODevice::Truncate)) file.write(text.data(), static_cast<qint64>(text.size()));
 }
 
 int CsvRows(const QString& path) {
@@ -208,6 +220,65 @@ TEST(UiFlow, IntrinsicsFromTargetImages) {
   const auto* report = measure->findChild<QPlainTextEdit*>("intrinsics_report");
   ASSERT_NE(report, nullptr);
   EXPECT_TRUE(report->toPlainText().contains("views used")) << report->toPlainText().toStdString();
+}
+
+// Another program writes the session while the window is open (issue 13): the
+// window shows it, an operator's edit is applied to the file as it is on
+// disk, a clash on the same cell keeps the other program's value (no one to
+// ask in a test), and quitting writes nothing: every byte of theirs survives.
+TEST(UiFlow, ExternalChangesSurviveEditsAndQuit) {
+  QTemporaryDir temp;
+  const QString dir = temp.filePath("session");
+  ASSERT_TRUE(CopyFolder(sessions_dir + "/calibrated", dir));
+  const std::string s = dir.toStdString();
+  auto window = std::make_unique<MainWindow>();
+  ASSERT_TRUE(window->OpenSession(dir));
+  const std::vector<LegsRow> shown = window->Session()->Legs();
+  ASSERT_GE(shown.size(), 2u);
+
+  // The other program: a new plan, a new image with its row, another noise model.
+  const std::vector<Vector6d> their_plan(3, window->Session()->Plan().front());
+  ASSERT_TRUE(workflow::WritePlanCsv(s + "/plan.csv", PlanningModel{window->Session()->NominalRobot(), {}, {}},
+                                     their_plan).ok());
+  QFile::copy(dir + "/images/" + QString::fromStdString(shown[0].image), dir + "/images/theirs.png");
+  QFile legs(dir + "/legs.csv");
+  ASSERT_TRUE(legs.open(QIODevice::Append));
+  legs.write(("theirs.png," + ReadCsv(s + "/legs.csv")->rows[0][1] + ",1,2,3,4,5,0\n").c_str());
+  legs.close();
+  const std::string legs_theirs = ReadTextFile(s + "/legs.csv");
+  SessionConfig config = *LoadSessionConfig(s);
+  config.noise.leg *= 2;
+  ASSERT_TRUE(SaveSessionConfig(s, config).ok());
+  const std::string config_theirs = ReadTextFile(s + "/session.yaml");
+
+  // The folder watch reloads: the new row is on screen.
+  auto* table = window->Measure()->findChild<QTableWidget*>("legs_table");
+  ASSERT_NE(table, nullptr);
+  ASSERT_TRUE(WaitFor([&] { return table->rowCount() == static_cast<int>(shown.size()) + 1; }, 10000));
+  EXPECT_EQ(window->Session()->Plan().size(), 3u);
+
+  // The operator types L1 of the first image: applied to the file on disk.
+  table->item(0, 1)->setText(QString::number(shown[0].legs[0] + 0.25, 'g', 12));
+  StatusOr<CsvTable> after_edit = ReadCsv(s + "/legs.csv");
+  ASSERT_TRUE(after_edit.ok());
+  EXPECT_EQ(after_edit->rows.size(), shown.size() + 1);
+  EXPECT_EQ(after_edit->rows.back()[0], "theirs.png");
+  EXPECT_NEAR(*ParseNumber(after_edit->rows[0][1]), shown[0].legs[0] + 0.25, 1e-9);
+
+  // The same cell changed on disk under the operator's next edit: theirs stays.
+  const std::string legs_before_clash = ReadTextFile(s + "/legs.csv");
+  std::string clashed = legs_before_clash;
+  const std::string old_cell = after_edit->rows[1][2];
+  clashed.replace(clashed.find("," + old_cell + ","), old_cell.size() + 2, ",99.5,");
+  WriteTextFile(s + "/legs.csv", clashed);
+  table->item(1, 2)->setText("42");
+  EXPECT_EQ(ReadTextFile(s + "/legs.csv"), clashed);
+
+  window.reset();  // quit: nothing is written back
+  EXPECT_EQ(ReadTextFile(s + "/legs.csv"), clashed);
+  EXPECT_EQ(ReadTextFile(s + "/session.yaml"), config_theirs);
+  EXPECT_EQ(LoadPoses(s + "/plan.csv")->size(), 3u);
+  (void)legs_theirs;
 }
 
 TEST(UiFlow, BadSessionIsAnErrorNotACrash) {

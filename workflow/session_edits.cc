@@ -1,0 +1,210 @@
+#include "workflow/session_edits.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "core/atomic_file.h"
+#include "core/csv.h"
+#include "core/robot_io.h"
+#include "workflow/plan_step.h"
+#include "workflow/session_calibrate.h"
+
+namespace hexcal::workflow {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kLegsHeader{"image", "L1", "L2", "L3", "L4", "L5", "L6", "holdout"};
+
+EditOutcome Failed(Status status) { return EditOutcome{std::move(status), false, ""}; }
+EditOutcome Conflict(std::string text) { return EditOutcome{Status::Ok(), true, std::move(text)}; }
+EditOutcome Done() { return EditOutcome{}; }
+
+// A file name inside images/: never a path that leads out of the session.
+Status CheckImageName(const std::string& name) {
+  if (name.empty() || name == "." || name == ".." || name.find_first_of(std::string("/\0", 2)) != std::string::npos)
+    return Status::Error("'" + Excerpt(name) + "': not an image file name (a name inside images/, no folders)");
+  return Status::Ok();
+}
+
+// legs.csv as it is on disk; a missing file is an empty table with the usual
+// header. A file that does not parse is never rewritten: its rows would be lost.
+StatusOr<CsvTable> ReadLegsTable(const std::string& path) {
+  std::error_code error;
+  if (!fs::exists(fs::symlink_status(path, error))) return CsvTable{path, kLegsHeader, {}, {}};
+  StatusOr<CsvTable> table = ReadCsv(path);
+  if (!table.ok()) return Status::Error(table.status().message() + " (fix legs.csv before recording more readings)");
+  for (const char* column : {"image", "L1", "L2", "L3", "L4", "L5", "L6"})
+    if (!ColumnIndex(*table, column).ok()) return ColumnIndex(*table, column).status();
+  return table;
+}
+
+int ColumnOf(CsvTable* table, const std::string& name) {
+  const auto found = std::find(table->header.begin(), table->header.end(), name);
+  if (found != table->header.end()) return static_cast<int>(found - table->header.begin());
+  table->header.push_back(name);  // a holdout column added to a file without one
+  for (auto& row : table->rows) row.push_back("0");
+  return static_cast<int>(table->header.size()) - 1;
+}
+
+int RowOf(const CsvTable& table, const std::string& image) {
+  const int column = static_cast<int>(std::find(table.header.begin(), table.header.end(), "image") - table.header.begin());
+  for (size_t r = 0; r < table.rows.size(); ++r)
+    if (table.rows[r][column] == image) return static_cast<int>(r);
+  return -1;
+}
+
+std::vector<std::string> RowCells(CsvTable* table, const LegsRow& row) {
+  std::vector<std::string> cells(table->header.size(), "");
+  cells[ColumnOf(table, "image")] = row.image;
+  for (int i = 0; i < kNumLegs; ++i) cells[ColumnOf(table, "L" + std::to_string(i + 1))] = FormatNumber(row.legs[i]);
+  cells[ColumnOf(table, "holdout")] = row.holdout ? "1" : "0";
+  return cells;
+}
+
+// The edit on the table in memory; a conflict text when the value the
+// operator saw is no longer there, "" when the edit applied.
+StatusOr<std::string> EditTable(CsvTable* table, const LegsEdit& edit, bool overwrite) {
+  const int row = RowOf(*table, edit.image);
+  if (edit.kind == LegsEdit::Kind::kSetRow) {
+    if (row >= 0 && !overwrite) return "legs.csv already has readings for " + edit.image + " (written by another program)";
+    const std::vector<std::string> cells = RowCells(table, edit.row);
+    if (row >= 0) {
+      table->rows[row] = cells;
+    } else {
+      table->rows.push_back(cells);
+    }
+    return std::string();
+  }
+  if (row < 0) return Status::Error("legs.csv: no row for " + edit.image + " (removed by another program?)");
+  const bool reading = edit.kind == LegsEdit::Kind::kSetReading;
+  const std::string name = reading ? "L" + std::to_string(edit.leg + 1) : "holdout";
+  std::string& cell = table->rows[row][ColumnOf(table, name)];
+  StatusOr<double> on_disk = cell.empty() && !reading ? StatusOr<double>(0.0) : ParseNumber(cell);
+  if (!overwrite && (!on_disk.ok() || *on_disk != edit.seen)) {
+    return "legs.csv: " + name + " of " + edit.image + " is " + cell + " on disk, not " + FormatNumber(edit.seen) +
+           " as shown (another program changed it)";
+  }
+  cell = reading ? FormatNumber(edit.value) : (edit.value != 0 ? "1" : "0");
+  return std::string();
+}
+
+}  // namespace
+
+LegsEdit LegsEdit::SetReading(const std::string& image, int leg, double seen, double value) {
+  LegsEdit edit;
+  edit.kind = Kind::kSetReading;
+  edit.image = image;
+  edit.leg = leg;
+  edit.seen = seen;
+  edit.value = value;
+  return edit;
+}
+
+LegsEdit LegsEdit::SetHoldout(const std::string& image, bool seen, bool value) {
+  LegsEdit edit;
+  edit.kind = Kind::kSetHoldout;
+  edit.image = image;
+  edit.seen = seen ? 1 : 0;
+  edit.value = value ? 1 : 0;
+  return edit;
+}
+
+LegsEdit LegsEdit::SetRow(const LegsRow& row) {
+  LegsEdit edit;
+  edit.kind = Kind::kSetRow;
+  edit.image = row.image;
+  edit.row = row;
+  return edit;
+}
+
+EditOutcome ApplyLegsEdit(const std::string& dir, const LegsEdit& edit, const EditOptions& options) {
+  if (edit.kind == LegsEdit::Kind::kSetReading && (edit.leg < 0 || edit.leg >= kNumLegs))
+    return Failed(Status::Error("leg " + std::to_string(edit.leg + 1) + ": legs are 1 to 6"));
+  if (Status s = CheckImageName(edit.image); !s.ok()) return Failed(s);
+  StatusOr<SessionLock> lock = SessionLock::Acquire(dir, options.wait);
+  if (!lock.ok()) return Failed(lock.status());
+  const std::string path = SessionPaths(dir).legs;
+  StatusOr<CsvTable> table = ReadLegsTable(path);
+  if (!table.ok()) return Failed(table.status());
+  StatusOr<std::string> conflict = EditTable(&*table, edit, options.overwrite);
+  if (!conflict.ok()) return Failed(conflict.status());
+  if (!conflict->empty()) return Conflict(*conflict);
+  return Failed(WriteFileAtomically(path, FormatCsv(table->header, table->rows)));
+}
+
+EditOutcome RecordCapture(const std::string& dir, const std::string& image_file, const LegsRow& row,
+                          const EditOptions& options) {
+  if (Status s = CheckImageName(row.image); !s.ok()) return Failed(s);
+  StatusOr<SessionLock> lock = SessionLock::Acquire(dir, options.wait);
+  if (!lock.ok()) return Failed(lock.status());
+  const std::string target = (fs::path(SessionPaths(dir).images) / row.image).string();
+  std::error_code error;
+  if (fs::exists(fs::symlink_status(target, error)) && !options.overwrite)
+    return Conflict(target + " exists already (recorded by another program?)");
+  StatusOr<std::string> bytes = ReadFileToString(image_file, kMaxImageBytes);
+  if (!bytes.ok()) return Failed(bytes.status());
+  if (Status s = WriteFileAtomically(target, *bytes); !s.ok()) return Failed(s);
+  return ApplyLegsEdit(dir, LegsEdit::SetRow(row), options);
+}
+
+Status ImportLegsFile(const std::string& dir, const std::string& legs_file) {
+  StatusOr<SessionLock> lock = SessionLock::Acquire(dir, LockWait::kBriefly);
+  if (!lock.ok()) return lock.status();
+  StatusOr<std::string> text = ReadFileToString(legs_file, kMaxTableBytes);
+  if (!text.ok()) return text.status();
+  const std::string path = SessionPaths(dir).legs;
+  std::error_code error;
+  const bool had_one = fs::exists(fs::symlink_status(path, error));
+  StatusOr<std::string> previous = had_one ? ReadFileToString(path, kMaxTableBytes) : StatusOr<std::string>("");
+  if (!previous.ok()) return previous.status();
+  if (Status s = WriteFileAtomically(path, *text); !s.ok()) return s;
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(dir);
+  if (rows.ok()) return Status::Ok();
+  const Status restored = had_one ? WriteFileAtomically(path, *previous) : Status::Ok();
+  if (!had_one) fs::remove(path, error);
+  return restored.ok() ? rows.status() : restored;
+}
+
+EditOutcome ApplyPlanEdit(const std::string& dir, const std::vector<Vector6d>& seen,
+                          const std::vector<Vector6d>& wanted, const EditOptions& options) {
+  StatusOr<SessionLock> lock = SessionLock::Acquire(dir, options.wait);
+  if (!lock.ok()) return Failed(lock.status());
+  const std::string path = SessionPaths(dir).plan;
+  std::error_code error;
+  std::vector<Vector6d> on_disk;
+  if (fs::exists(fs::symlink_status(path, error))) {
+    StatusOr<std::vector<Vector6d>> loaded = LoadPoses(path);
+    if (!loaded.ok() && !options.overwrite) return Conflict(loaded.status().message());
+    if (loaded.ok()) on_disk = *loaded;
+  }
+  if (on_disk != seen && !options.overwrite) {
+    return Conflict("plan.csv changed on disk since it was shown (" + std::to_string(on_disk.size()) + " poses there, " +
+                    std::to_string(seen.size()) + " shown): another program wrote it");
+  }
+  if (wanted.empty()) {
+    fs::remove(path, error);
+    return error ? Failed(Status::IoError(path + ": cannot remove: " + error.message())) : Done();
+  }
+  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
+  if (!config.ok()) return Failed(config.status());
+  StatusOr<Robot> robot = LoadRobot(ResolveSessionFile(dir, config->robot));
+  if (!robot.ok()) return Failed(robot.status());
+  return Failed(WritePlanCsv(path, PlanningModel{*robot, std::nullopt, std::nullopt}, wanted));
+}
+
+EditOutcome ApplyCameraEdit(const std::string& dir, const std::string& seen, const std::string& wanted,
+                            const EditOptions& options) {
+  StatusOr<SessionLock> lock = SessionLock::Acquire(dir, options.wait);
+  if (!lock.ok()) return Failed(lock.status());
+  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
+  if (!config.ok()) return Failed(config.status());
+  if (config->camera != seen && !options.overwrite) {
+    return Conflict("session.yaml: the camera is " + Excerpt(config->camera) + " on disk, not " + Excerpt(seen) +
+                    " as shown (another program changed it)");
+  }
+  config->camera = wanted;
+  return Failed(SaveSessionConfig(dir, *config));
+}
+
+}  // namespace hexcal::workflow

@@ -1,0 +1,184 @@
+// The operator's edits applied to the files as they are on disk, and results/
+// as one unit (workflow/session_edits.h, workflow/session_results.h).
+#include "workflow/session_edits.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "core/csv.h"
+#include "core/session.h"
+#include "tests/test_support.h"
+#include "vision/camera.h"
+#include "vision/target.h"
+#include "workflow/demo.h"
+#include "workflow/session_calibrate.h"
+#include "workflow/session_results.h"
+
+namespace hexcal::workflow {
+namespace {
+
+using ::hexcal::testing::ReadTextFile;
+using ::hexcal::testing::TempDir;
+using ::hexcal::testing::WriteTextFile;
+
+namespace fs = std::filesystem;
+
+// A session with one image (any bytes: edits and hashes never decode them).
+std::string MakeSession(const TempDir& dir) {
+  const std::string session = dir.File("s");
+  SessionConfig config;
+  config.robot = "inria-left-hand";
+  config.camera = kSimulatedCameraName;
+  config.target = kDefaultTargetName;
+  EXPECT_TRUE(InitSession(session, config).ok());
+  WriteTextFile(session + "/images/a.png", "image a");
+  WriteTextFile(session + "/legs.csv", "image,L1,L2,L3,L4,L5,L6,holdout\na.png,50,51,52,53,54,55,0\n");
+  return session;
+}
+
+TEST(SessionEdits, AnEditKeepsTheRowsAnotherProgramAppended) {
+  TempDir dir;
+  const std::string s = MakeSession(dir);
+  // Another program appends b.png while the GUI shows only a.png.
+  WriteTextFile(s + "/images/b.png", "image b");
+  WriteTextFile(s + "/legs.csv", ReadTextFile(s + "/legs.csv") + "b.png,60,61,62,63,64,65,1\n");
+  const EditOutcome done = ApplyLegsEdit(s, LegsEdit::SetReading("a.png", 2, 52, 52.5));
+  ASSERT_TRUE(done.status.ok()) << done.status.message();
+  ASSERT_FALSE(done.conflict);
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s);
+  ASSERT_TRUE(rows.ok()) << rows.status().message();
+  ASSERT_EQ(rows->size(), 2u);
+  EXPECT_EQ((*rows)[0].legs[2], 52.5);
+  EXPECT_EQ((*rows)[1].image, "b.png");
+  EXPECT_EQ((*rows)[1].legs[5], 65);
+  EXPECT_TRUE((*rows)[1].holdout);
+}
+
+TEST(SessionEdits, TheSameCellChangedOnDiskIsAConflictAndNothingIsWritten) {
+  TempDir dir;
+  const std::string s = MakeSession(dir);
+  WriteTextFile(s + "/legs.csv", "image,L1,L2,L3,L4,L5,L6,holdout\na.png,50,51,52.2,53,54,55,0\n");
+  const std::string on_disk = ReadTextFile(s + "/legs.csv");
+  const EditOutcome clash = ApplyLegsEdit(s, LegsEdit::SetReading("a.png", 2, 52, 52.5));
+  ASSERT_TRUE(clash.status.ok());
+  ASSERT_TRUE(clash.conflict);
+  EXPECT_NE(clash.conflict_text.find("L3 of a.png is 52.2 on disk"), std::string::npos) << clash.conflict_text;
+  EXPECT_EQ(ReadTextFile(s + "/legs.csv"), on_disk);
+  EditOptions overwrite;
+  overwrite.overwrite = true;
+  EXPECT_FALSE(ApplyLegsEdit(s, LegsEdit::SetReading("a.png", 2, 52, 52.5), overwrite).conflict);
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s);
+  ASSERT_TRUE(rows.ok()) << rows.status().message();
+  EXPECT_EQ((*rows)[0].legs[2], 52.5);
+}
+
+TEST(SessionEdits, ACaptureNeverReplacesRowsNorWritesOverAFileThatDoesNotParse) {
+  TempDir dir;
+  const std::string s = MakeSession(dir);
+  LegsRow row;
+  row.image = "a.png";
+  EXPECT_TRUE(ApplyLegsEdit(s, LegsEdit::SetRow(row)).conflict);  // a.png has readings already
+  row.image = "b.png";
+  row.legs << 1, 2, 3, 4, 5, 6;
+  WriteTextFile(s + "/images/b.png", "image b");
+  ASSERT_TRUE(ApplyLegsEdit(s, LegsEdit::SetRow(row)).status.ok());
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s);
+  ASSERT_TRUE(rows.ok()) << rows.status().message();
+  EXPECT_EQ(rows->size(), 2u);
+  // A legs.csv that does not load is refused, never replaced by one holding only the new row.
+  WriteTextFile(s + "/legs.csv", "image,L1,L2\nbroken");
+  row.image = "c.png";
+  const EditOutcome refused = ApplyLegsEdit(s, LegsEdit::SetRow(row));
+  EXPECT_FALSE(refused.status.ok());
+  EXPECT_EQ(ReadTextFile(s + "/legs.csv"), "image,L1,L2\nbroken");
+}
+
+TEST(SessionEdits, ACaptureBringsItsImageAndRowTogetherAndStaysInsideImages) {
+  TempDir dir;
+  const std::string s = MakeSession(dir);
+  WriteTextFile(dir.File("frame.png"), "a captured frame");
+  LegsRow row;
+  row.image = "b.png";
+  row.legs << 1, 2, 3, 4, 5, 6;
+  ASSERT_TRUE(RecordCapture(s, dir.File("frame.png"), row).status.ok());
+  EXPECT_EQ(ReadTextFile(s + "/images/b.png"), "a captured frame");
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s);
+  ASSERT_TRUE(rows.ok()) << rows.status().message();
+  EXPECT_EQ(rows->size(), 2u);
+  EXPECT_TRUE(RecordCapture(s, dir.File("frame.png"), row).conflict);  // b.png is there already
+  row.image = "../escape.png";
+  EXPECT_FALSE(RecordCapture(s, dir.File("frame.png"), row).status.ok());
+  EXPECT_FALSE(fs::exists(dir.File("escape.png")));
+}
+
+TEST(SessionEdits, AnImportThatDoesNotLoadKeepsTheOldReadings) {
+  TempDir dir;
+  const std::string s = MakeSession(dir);
+  const std::string before = ReadTextFile(s + "/legs.csv");
+  WriteTextFile(dir.File("bad.csv"), "image,L1,L2,L3,L4,L5,L6\nmissing.png,1,2,3,4,5,6\n");
+  const Status refused = ImportLegsFile(s, dir.File("bad.csv"));
+  EXPECT_NE(refused.message().find("missing.png"), std::string::npos) << refused.message();
+  EXPECT_EQ(ReadTextFile(s + "/legs.csv"), before);
+  WriteTextFile(dir.File("good.csv"), "image,L1,L2,L3,L4,L5,L6\na.png,1,2,3,4,5,6\n");
+  EXPECT_TRUE(ImportLegsFile(s, dir.File("good.csv")).ok());
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s);
+  ASSERT_TRUE(rows.ok()) << rows.status().message();
+  EXPECT_EQ((*rows)[0].legs[0], 1);
+}
+
+TEST(SessionEdits, APlanOrCameraChangedOnDiskIsAConflict) {
+  TempDir dir;
+  const std::string s = MakeSession(dir);
+  const std::vector<Vector6d> theirs{Vector6d::Constant(1.0)};
+  ASSERT_TRUE(ApplyPlanEdit(s, {}, theirs).status.ok());  // another program's plan
+  const EditOutcome clash = ApplyPlanEdit(s, {}, {Vector6d::Zero(), Vector6d::Zero()});
+  EXPECT_TRUE(clash.conflict) << clash.conflict_text;
+  StatusOr<std::vector<Vector6d>> plan = LoadPoses(s + "/plan.csv");
+  ASSERT_TRUE(plan.ok()) << plan.status().message();
+  EXPECT_EQ(plan->size(), 1u);
+  EXPECT_FALSE(ApplyPlanEdit(s, theirs, {}).conflict);  // the operator deletes the plan they saw
+  EXPECT_FALSE(fs::exists(s + "/plan.csv"));
+
+  EXPECT_TRUE(ApplyCameraEdit(s, "other.yaml", "mine.yaml").conflict);
+  EXPECT_FALSE(ApplyCameraEdit(s, kSimulatedCameraName, "mine.yaml").conflict);
+  StatusOr<SessionConfig> config = LoadSessionConfig(s);
+  ASSERT_TRUE(config.ok()) << config.status().message();
+  EXPECT_EQ(config->camera, "mine.yaml");
+}
+
+TEST(SessionResults, ACalibrationWhoseInputsChangeUnderneathPublishesNothing) {
+  TempDir dir;
+  DemoRequest demo;
+  demo.out = dir.File("demo");
+  demo.poses = 8;
+  demo.holdout = 2;
+  ASSERT_TRUE(RunDemo(demo).ok());
+  const std::string s = demo.out;
+  StatusOr<SessionResults> before = LoadSessionResults(s);
+  ASSERT_TRUE(before.ok()) << before.status().message();
+  EXPECT_TRUE(before->changed_inputs.empty());
+  const std::string report = ReadTextFile(CalibrationReportPath(s));
+  // Another program rewrites legs.csv, without the lock, while the legs are fitted.
+  JobHooks hooks;
+  hooks.stage = [&](const std::string& stage) {
+    if (stage == "register and calibrate") WriteTextFile(s + "/legs.csv", ReadTextFile(s + "/legs.csv") + "\n");
+  };
+  StatusOr<CalibrationReport> run = CalibrateSession({s}, hooks);
+  ASSERT_FALSE(run.ok());
+  EXPECT_NE(run.status().message().find("legs.csv changed while calibrating"), std::string::npos)
+      << run.status().message();
+  EXPECT_EQ(ReadTextFile(CalibrationReportPath(s)), report);
+  // The results are whole but stale now, and say so.
+  StatusOr<SessionResults> after = LoadSessionResults(s);
+  ASSERT_TRUE(after.ok());
+  EXPECT_EQ(after->changed_inputs, std::vector<std::string>{"legs.csv"});
+  // A results/ mixed from two runs is refused by name.
+  WriteTextFile(CalibrationReportPath(s), report + " ");
+  StatusOr<SessionResults> mixed = LoadSessionResults(s);
+  ASSERT_FALSE(mixed.ok());
+  EXPECT_NE(mixed.status().message().find("report.json: does not match"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace hexcal::workflow

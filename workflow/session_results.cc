@@ -1,0 +1,166 @@
+#include "workflow/session_results.h"
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "core/noise_model.h"
+#include "core/session.h"
+#include "core/sha256.h"
+#include "workflow/json_fields.h"
+#include "workflow/session_calibrate.h"
+
+namespace hexcal::workflow {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kManifestFormat = 1;
+constexpr const char* kConfigInputs = "session.yaml (robot, camera, target, noise)";
+
+// A name in session.yaml: the file's bytes when it names a file, the name
+// itself when it names a preset compiled into hexcal.
+StatusOr<std::string> HashNamedInput(const std::string& dir, const std::string& name, size_t max_bytes) {
+  const std::string resolved = ResolveSessionFile(dir, name);
+  std::error_code error;
+  if (!fs::exists(resolved, error)) return Sha256Hex("preset " + name);
+  return Sha256OfFile(resolved, max_bytes);
+}
+
+StatusOr<std::string> HashConfigInputs(const std::string& dir, const SessionConfig& config, ContentHashes* hashes) {
+  const std::pair<const char*, const std::string*> named[] = {
+      {"robot ", &config.robot}, {"camera ", &config.camera}, {"target ", &config.target}};
+  for (const auto& [kind, name] : named) {
+    StatusOr<std::string> hash = HashNamedInput(dir, *name, kMaxYamlBytes);
+    if (!hash.ok()) return hash.status();
+    (*hashes)[kind + *name] = *hash;
+  }
+  // The frames in session.yaml are outputs of the run, not inputs: left out.
+  return Sha256Hex("robot: " + config.robot + "\ncamera: " + config.camera + "\ntarget: " + config.target +
+                   "\nnoise: " + NoiseModelText(config.noise) + "\n");
+}
+
+Status ReadHashes(const nlohmann::json& json, const char* key, const std::string& source, ContentHashes* out) {
+  const auto found = json.find(key);
+  if (found == json.end() || !found->is_object()) return Status::Error(source + ": " + key + ": missing or not an object");
+  for (const auto& [name, hash] : found->items()) {
+    if (!hash.is_string() || hash.get<std::string>().size() != 64) {
+      return Status::Error(source + ": " + key + "." + name + ": not a SHA-256 hex digest");
+    }
+    (*out)[name] = hash.get<std::string>();
+  }
+  return Status::Ok();
+}
+
+// Every output of the manifest has the hash it had when the run published it.
+Status CheckOutputs(const std::string& dir, const ResultsManifest& manifest) {
+  const std::string results = SessionPaths(dir).results;
+  if (manifest.outputs.count("report.json") == 0) return Status::Error(ResultsManifestPath(dir) + ": lists no report.json");
+  for (const auto& [name, expected] : manifest.outputs) {
+    const std::string path = (fs::path(results) / name).string();
+    StatusOr<std::string> hash = Sha256OfFile(path, kMaxTableBytes);
+    if (!hash.ok() || *hash != expected) {
+      return Status::Error(path + ": does not match " + ResultsManifestPath(dir) +
+                           " (changed or replaced after the run that wrote results/); run `hexcal calibrate --session " +
+                           dir + "` again");
+    }
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+std::string ResultsManifestPath(const std::string& session_dir) {
+  return (fs::path(SessionPaths(session_dir).results) / "manifest.json").string();
+}
+
+std::string ManifestToJsonText(const ResultsManifest& manifest) {
+  const nlohmann::json json{{"format", kManifestFormat},
+                            {"created", manifest.created},
+                            {"command", manifest.command},
+                            {"inputs", manifest.inputs},
+                            {"outputs", manifest.outputs}};
+  return json.dump(2) + "\n";
+}
+
+StatusOr<ResultsManifest> ParseResultsManifest(const std::string& text, const std::string& source) {
+  StatusOr<nlohmann::json> json = ParseJsonText(text, source);
+  if (!json.ok()) return json.status();
+  if (!json->is_object()) return Status::Error(source + ": not a JSON object");
+  JsonFields fields(*json, source);
+  ResultsManifest manifest;
+  const int format = fields.Int("format");
+  manifest.created = fields.String("created");
+  manifest.command = fields.String("command");
+  if (!fields.status().ok()) return fields.status();
+  if (format != kManifestFormat) return Status::Error(source + ": format " + std::to_string(format) + " is not 1");
+  if (Status s = ReadHashes(*json, "inputs", source, &manifest.inputs); !s.ok()) return s;
+  if (Status s = ReadHashes(*json, "outputs", source, &manifest.outputs); !s.ok()) return s;
+  return manifest;
+}
+
+StatusOr<ContentHashes> HashSessionInputs(const std::string& dir) {
+  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
+  if (!config.ok()) return config.status();
+  ContentHashes hashes;
+  StatusOr<std::string> config_hash = HashConfigInputs(dir, *config, &hashes);
+  if (!config_hash.ok()) return config_hash.status();
+  hashes[kConfigInputs] = *config_hash;
+  const SessionPaths paths(dir);
+  StatusOr<std::string> legs = Sha256OfFile(paths.legs, kMaxTableBytes);
+  if (!legs.ok()) return legs.status();
+  hashes["legs.csv"] = *legs;
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(dir);
+  if (!rows.ok()) return rows.status();
+  for (const LegsRow& row : *rows) {
+    StatusOr<std::string> image = Sha256OfFile((fs::path(paths.images) / row.image).string(), kMaxImageBytes);
+    if (!image.ok()) return image.status();
+    hashes["images/" + row.image] = *image;
+  }
+  return hashes;
+}
+
+std::vector<std::string> DifferingNames(const ContentHashes& a, const ContentHashes& b) {
+  std::vector<std::string> names;
+  for (const auto& [name, hash] : a) {
+    const auto found = b.find(name);
+    if (found == b.end() || found->second != hash) names.push_back(name);
+  }
+  for (const auto& [name, hash] : b)
+    if (a.count(name) == 0) names.push_back(name);
+  return names;
+}
+
+StatusOr<SessionResults> LoadSessionResults(const std::string& dir) {
+  const std::string manifest_path = ResultsManifestPath(dir);
+  std::error_code error;
+  if (!fs::exists(manifest_path, error)) {
+    return Status::Error(manifest_path + ": missing: results/ was not written whole by `hexcal calibrate --session` "
+                         "(an older hexcal, or files put there by hand); run it again");
+  }
+  StatusOr<std::string> text = ReadFileToString(manifest_path, kMaxJsonBytes);
+  if (!text.ok()) return text.status();
+  SessionResults results;
+  StatusOr<ResultsManifest> manifest = ParseResultsManifest(*text, manifest_path);
+  if (!manifest.ok()) return manifest.status();
+  results.manifest = *manifest;
+  if (Status s = CheckOutputs(dir, results.manifest); !s.ok()) return s;
+  StatusOr<CalibrationReport> report = LoadCalibrationReport(CalibrationReportPath(dir));
+  if (!report.ok()) return report.status();
+  results.report = *report;
+  StatusOr<ContentHashes> now = HashSessionInputs(dir);
+  results.changed_inputs = now.ok() ? DifferingNames(results.manifest.inputs, *now) : std::vector<std::string>{"session"};
+  return results;
+}
+
+std::string ListNames(const std::vector<std::string>& names) {
+  constexpr size_t kShown = 3;
+  std::string text;
+  for (size_t i = 0; i < names.size() && i < kShown; ++i) {
+    text += (i == 0 ? "" : (i + 1 == names.size() ? " and " : ", ")) + names[i];
+  }
+  if (names.size() > kShown) text += " and " + std::to_string(names.size() - kShown) + " more";
+  return text;
+}
+
+}  // namespace hexcal::workflow
