@@ -16,6 +16,9 @@
 // Weighted, the r_ij have unit variance if the noise model is right, so s_i² is
 // the variance factor: ≈ 1 when the model matches the data, and the scaling
 // makes σ follow the observed scatter rather than the assumed noise.
+// Outliers (options.outliers, outlier_screening.h): a robust refit names the
+// rows whose residual is far beyond the noise model and, by default, leaves
+// them out of their leg's final least-squares fit.
 // Identifiability: the singular values of J_i, the directions with
 // σ_k / σ_max < weak_direction_ratio, and the parameter pairs of a leg whose
 // correlation |ρ| exceeds correlation_threshold.
@@ -41,6 +44,7 @@
 #include "core/job_hooks.h"
 #include "core/measurements.h"
 #include "core/noise_model.h"
+#include "core/outlier_screening.h"
 #include "core/status.h"
 
 namespace hexcal {
@@ -77,6 +81,7 @@ struct CalibrationOptions {
   bool compute_uncertainty = true;      // covariance and identifiability report
   UncertaintyScale uncertainty_scale = UncertaintyScale::kAPosteriori;
   int num_threads = 0;                  // legs solved at once; 0 = every core
+  OutlierScreening outliers;            // off by default; needs weighted and loss none
 
   bool IsValid(std::string* error) const;
 };
@@ -102,7 +107,8 @@ struct LegCalibration {
   InfoBlock covariance = InfoBlock::Zero();
   LegParameters std_dev = LegParameters::Zero();
   double variance_factor = 0;  // s² = Σ r² / (N - 7): F units² unweighted, unit-free weighted
-  double residual_rms = 0;     // RMS over the poses of |v| - (L + l) at the estimate, robot unit
+  double residual_rms = 0;     // RMS over the rows fitted of |v| - (L + l) at the estimate, robot unit
+  int rows_used = 0;           // measurements in the fit: all but the excluded outliers
   double initial_cost = 0;     // Ceres cost ½ Σ ρ(r²) at the start and at the end
   double final_cost = 0;
   int iterations = 0;
@@ -112,6 +118,8 @@ struct LegCalibration {
   LegParameters singular_values = LegParameters::Zero();
   std::vector<WeakDirection> unidentifiable;
   std::vector<CorrelatedPair> correlated;
+  // With options.outliers.enabled: the rows that failed the screening, by measurement.
+  std::vector<RowOutlier> outliers;
 };
 
 struct CalibrationResult {

@@ -35,8 +35,12 @@ std::string LegEntry(const LegCalibration& leg) {
     out << "sigma_a: null, sigma_b: null, sigma_l: null";
   }
   out << ", residual_rms: " << Number(leg.residual_rms) << ", iterations: " << leg.iterations
-      << ", termination: " << Quoted(leg.termination) << ", unidentifiable_directions: " << leg.unidentifiable.size()
-      << "}";
+      << ", termination: " << Quoted(leg.termination) << ", unidentifiable_directions: " << leg.unidentifiable.size();
+  std::string excluded;
+  for (const RowOutlier& o : leg.outliers)
+    if (o.excluded) excluded += (excluded.empty() ? "" : ", ") + std::to_string(o.measurement + 1);
+  if (!excluded.empty()) out << ", excluded_measurements: [" << excluded << "]";
+  out << "}";
   return out.str();
 }
 
@@ -63,10 +67,16 @@ std::string CalibratedRobotToYaml(const CalibrationResult& result, const Calibra
       << "  measurements: {path: " << Quoted(inputs.measurements_path) << ", count: " << result.num_measurements
       << "}\n"
       << "  options: {loss: " << RobustLossName(options.loss) << ", loss_scale: " << Number(options.loss_scale)
-      << ", weighted: " << (options.weighted ? "true" : "false")
-      << ", noise: {" << NoiseModelText(options.noise) << "}, max_iterations: " << options.max_iterations << "}\n"
+      << ", weighted: " << (options.weighted ? "true" : "false") << ", noise: {" << NoiseModelText(options.noise)
+      << "}, max_iterations: " << options.max_iterations;
+  if (options.outliers.enabled) {
+    out << ", outliers: {threshold: " << Number(options.outliers.threshold)
+        << ", keep: " << (options.outliers.keep ? "true" : "false") << "}";
+  }
+  out << "}\n"
       << "  # sigma: one standard deviation (length unit), covariance scaled by variance_factor = SSR/(N-7)\n"
-      << "  # residual_rms: RMS of |P + R b - a| - (L + l) over the measurements (length unit)\n"
+      << "  # residual_rms: RMS of |P + R b - a| - (L + l) over the measurements fitted (length unit)\n"
+      << "  # excluded_measurements: rows left out of that leg as outliers (docs/calibration.md)\n"
       << "  length_unit: " << LengthUnitName(result.robot.length_unit) << "\n"
       << "  legs:\n";
   for (const LegCalibration& leg : result.legs) out << "    - " << LegEntry(leg) << "\n";

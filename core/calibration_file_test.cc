@@ -73,6 +73,21 @@ TEST(CalibrationFile, LoadsBackAsTheCalibratedRobot) {
   }
 }
 
+// The screening's options and each leg's excluded rows (1-based) are in the file.
+TEST(CalibrationFile, NamesTheExcludedOutliers) {
+  CalibrationResult result = CalibrateSample(12);
+  result.legs[2].outliers = {{7, 1.0, 480, true}};
+  CalibrationOptions options;
+  options.outliers.enabled = true;
+  const std::string text = CalibratedRobotToYaml(result, {"inria-left-hand", "m.csv", options, CurrentUtcTimestamp()});
+  const YAML::Node calibration = YAML::Load(text)["calibration"];
+  EXPECT_EQ(calibration["options"]["outliers"]["threshold"].as<double>(), 5);
+  EXPECT_FALSE(calibration["options"]["outliers"]["keep"].as<bool>());
+  EXPECT_EQ(calibration["legs"][2]["excluded_measurements"][0].as<int>(), 8);
+  EXPECT_FALSE(calibration["legs"][1]["excluded_measurements"]);
+  EXPECT_TRUE(ParseRobotYaml(text, "calibrated.yaml").ok());
+}
+
 TEST(CalibrationFile, SevenMeasurementsWriteNoSigma) {
   const CalibrationResult result = CalibrateSample(7);
   const std::string text = CalibratedRobotToYaml(result, {"inria-left-hand", "m.csv", {}, CurrentUtcTimestamp()});

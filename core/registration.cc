@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -248,6 +249,108 @@ Matrix6d MapCameraPoseCovariance(const Robot& nominal, const Registration& regis
   return jacobian * covariance * jacobian.transpose();
 }
 
+namespace {
+
+// Local FK of the nominal robot from each image's readings.
+StatusOr<std::vector<Pose>> NominalPoses(const Robot& nominal, const CameraCalibrationInput& input) {
+  std::vector<Pose> poses;
+  for (size_t j = 0; j < input.legs.size(); ++j) {
+    StatusOr<LocalFkResult> fk = ForwardKinematicsLocal(nominal, input.legs[j], input.fk_start[j]);
+    if (!fk.ok()) return Status::Error("pose " + std::to_string(j + 1) + ": " + fk.status().message());
+    poses.push_back(fk->pose);
+  }
+  return poses;
+}
+
+// Registration on the images not in `left_out` (ascending).
+StatusOr<Registration> RegisterWithout(const std::vector<Pose>& nominal_poses, const CameraCalibrationInput& input,
+                                       const std::vector<int>& left_out, const RegistrationOptions& options) {
+  std::vector<Pose> base_from_platform, camera_from_target;
+  for (size_t j = 0, next = 0; j < nominal_poses.size(); ++j) {
+    if (next < left_out.size() && left_out[next] == static_cast<int>(j)) {
+      ++next;
+      continue;
+    }
+    base_from_platform.push_back(nominal_poses[j]);
+    camera_from_target.push_back(input.camera_from_target[j]);
+  }
+  return EstimateRegistration(base_from_platform, camera_from_target, options);
+}
+
+// The camera poses in the registered base frame, with the readings and covariances.
+StatusOr<std::vector<Measurement>> MapToBase(const Robot& nominal, const Registration& reg,
+                                             const CameraCalibrationInput& input) {
+  std::vector<Measurement> measurements;
+  for (size_t j = 0; j < input.camera_from_target.size(); ++j) {
+    Measurement m;
+    m.pose = nominal.VectorFromPose(BaseFromPlatform(reg, input.camera_from_target[j]));
+    m.legs = input.legs[j];
+    if (!input.camera_pose_covariance.empty()) {
+      const Matrix6d& covariance = input.camera_pose_covariance[j];
+      if (!covariance.allFinite())
+        return Status::Error("pose " + std::to_string(j + 1) + ": the camera pose covariance is not finite");
+      m.pose_covariance = MapCameraPoseCovariance(nominal, reg, input.camera_from_target[j], covariance);
+    }
+    measurements.push_back(m);
+  }
+  return measurements;
+}
+
+// The images holding a reading excluded as an outlier, ascending.
+std::vector<int> ImagesWithExcludedOutliers(const CalibrationResult& calibration) {
+  std::vector<int> images;
+  for (const LegCalibration& leg : calibration.legs)
+    for (const RowOutlier& o : leg.outliers)
+      if (o.excluded) images.push_back(o.measurement);
+  std::sort(images.begin(), images.end());
+  images.erase(std::unique(images.begin(), images.end()), images.end());
+  return images;
+}
+
+// Registration, mapping and calibration on every image but `left_out`'s registration.
+Status RegisterAndCalibrate(const Robot& nominal, const CameraCalibrationInput& input,
+                            const std::vector<Pose>& nominal_poses, const std::vector<int>& left_out,
+                            const RegistrationOptions& registration_options,
+                            const CalibrationOptions& calibration_options, const JobHooks& hooks,
+                            CameraCalibrationResult* result) {
+  StatusOr<Registration> reg = RegisterWithout(nominal_poses, input, left_out, registration_options);
+  if (!reg.ok()) return reg.status();
+  result->registration = *reg;
+  StatusOr<std::vector<Measurement>> measurements = MapToBase(nominal, *reg, input);
+  if (!measurements.ok()) return measurements.status();
+  result->measurements = std::move(*measurements);
+  StatusOr<CalibrationResult> calibration = Calibrate(nominal, result->measurements, calibration_options, hooks);
+  if (!calibration.ok()) return calibration.status();
+  result->calibration = std::move(*calibration);
+  result->registration_left_out = left_out;
+  return Status::Ok();
+}
+
+// FK of the calibrated robot against X B_j Y⁻¹, over the images without an
+// excluded outlier (a reading known to be wrong sends FK anywhere).
+Status CalibratedClosure(const CameraCalibrationInput& input, CameraCalibrationResult* result) {
+  const Robot& robot = result->calibration.robot;
+  const std::vector<int>& skip = result->registration_left_out;
+  double position_sum = 0, angle_sum = 0;
+  int count = 0;
+  for (size_t j = 0; j < input.legs.size(); ++j) {
+    if (std::binary_search(skip.begin(), skip.end(), static_cast<int>(j))) continue;
+    const Pose mapped = robot.PoseFromVector(result->measurements[j].pose);
+    StatusOr<LocalFkResult> fk = ForwardKinematicsLocal(robot, input.legs[j], mapped);
+    if (!fk.ok())
+      return Status::Error("pose " + std::to_string(j + 1) + " with the calibrated robot: " + fk.status().message());
+    position_sum += (fk->pose.position - mapped.position).squaredNorm();
+    const double angle = RadToDeg(RotationDistance(fk->pose.rotation, mapped.rotation));
+    angle_sum += angle * angle;
+    ++count;
+  }
+  result->calibrated_position_rms = std::sqrt(position_sum / count);
+  result->calibrated_angle_rms_deg = std::sqrt(angle_sum / count);
+  return Status::Ok();
+}
+
+}  // namespace
+
 StatusOr<CameraCalibrationResult> CalibrateFromCameraPoses(const Robot& nominal, const CameraCalibrationInput& input,
                                                            const RegistrationOptions& registration_options,
                                                            const CalibrationOptions& calibration_options,
@@ -257,44 +360,23 @@ StatusOr<CameraCalibrationResult> CalibrateFromCameraPoses(const Robot& nominal,
       (!input.camera_pose_covariance.empty() && input.camera_pose_covariance.size() != n))
     return Status::Error(
         "calibration from camera poses: camera poses, readings, FK starts and covariances differ in number");
-  std::vector<Pose> nominal_poses;
-  for (size_t j = 0; j < n; ++j) {
-    StatusOr<LocalFkResult> fk = ForwardKinematicsLocal(nominal, input.legs[j], input.fk_start[j]);
-    if (!fk.ok()) return Status::Error("pose " + std::to_string(j + 1) + ": " + fk.status().message());
-    nominal_poses.push_back(fk->pose);
-  }
+  StatusOr<std::vector<Pose>> nominal_poses = NominalPoses(nominal, input);
+  if (!nominal_poses.ok()) return nominal_poses.status();
   CameraCalibrationResult result;
-  StatusOr<Registration> reg = EstimateRegistration(nominal_poses, input.camera_from_target, registration_options);
-  if (!reg.ok()) return reg.status();
-  result.registration = *reg;
-  for (size_t j = 0; j < n; ++j) {
-    Measurement m;
-    m.pose = nominal.VectorFromPose(BaseFromPlatform(*reg, input.camera_from_target[j]));
-    m.legs = input.legs[j];
-    if (!input.camera_pose_covariance.empty()) {
-      const Matrix6d& covariance = input.camera_pose_covariance[j];
-      if (!covariance.allFinite())
-        return Status::Error("pose " + std::to_string(j + 1) + ": the camera pose covariance is not finite");
-      m.pose_covariance = MapCameraPoseCovariance(nominal, *reg, input.camera_from_target[j], covariance);
-    }
-    result.measurements.push_back(m);
+  if (Status s = RegisterAndCalibrate(nominal, input, *nominal_poses, {}, registration_options, calibration_options,
+                                      hooks, &result);
+      !s.ok())
+    return s;
+  // A wrong reading also moved its image's FK pose, and with it the frames:
+  // register again without those images, then calibrate in that gauge.
+  const std::vector<int> left_out = ImagesWithExcludedOutliers(result.calibration);
+  if (!left_out.empty()) {
+    if (Status s = RegisterAndCalibrate(nominal, input, *nominal_poses, left_out, registration_options,
+                                        calibration_options, hooks, &result);
+        !s.ok())
+      return s;
   }
-  StatusOr<CalibrationResult> calibration = Calibrate(nominal, result.measurements, calibration_options, hooks);
-  if (!calibration.ok()) return calibration.status();
-  result.calibration = *calibration;
-
-  double position_sum = 0, angle_sum = 0;
-  for (size_t j = 0; j < n; ++j) {
-    const Pose mapped = nominal.PoseFromVector(result.measurements[j].pose);
-    StatusOr<LocalFkResult> fk = ForwardKinematicsLocal(calibration->robot, input.legs[j], mapped);
-    if (!fk.ok())
-      return Status::Error("pose " + std::to_string(j + 1) + " with the calibrated robot: " + fk.status().message());
-    position_sum += (fk->pose.position - mapped.position).squaredNorm();
-    const double angle = RadToDeg(RotationDistance(fk->pose.rotation, mapped.rotation));
-    angle_sum += angle * angle;
-  }
-  result.calibrated_position_rms = std::sqrt(position_sum / n);
-  result.calibrated_angle_rms_deg = std::sqrt(angle_sum / n);
+  if (Status s = CalibratedClosure(input, &result); !s.ok()) return s;
   return result;
 }
 

@@ -103,6 +103,9 @@ struct CameraCalibrationResult {
   Registration registration;              // with the nominal robot: fixes the gauge
   std::vector<Measurement> measurements;  // X B_j Y⁻¹ with the readings
   CalibrationResult calibration;
+  // Images left out of the registration and the closure below: those holding
+  // a reading excluded as an outlier (calibration_options.outliers), indices.
+  std::vector<int> registration_left_out;
   // Closure errors with the calibrated robot (its FK against X B_j Y⁻¹).
   double calibrated_position_rms = 0, calibrated_angle_rms_deg = 0;
 };
@@ -113,6 +116,9 @@ Matrix6d MapCameraPoseCovariance(const Robot& nominal, const Registration& regis
                                  const Pose& camera_from_target, const Matrix6d& covariance);
 
 // Registration with the nominal robot, then Calibrate on the mapped poses.
+// With outlier screening (calibration_options.outliers, not kept), images
+// holding an excluded reading are then left out of a second registration,
+// since their FK pose is wrong too, and the calibration redone in its frames.
 // `hooks` go to Calibrate (calibration.h).
 StatusOr<CameraCalibrationResult> CalibrateFromCameraPoses(const Robot& nominal, const CameraCalibrationInput& input,
                                                            const RegistrationOptions& registration_options = {},

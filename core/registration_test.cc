@@ -288,6 +288,40 @@ TEST(CalibrateFromCameraPoses, PerImageCovariancesGiveTrustworthySigmas) {
   EXPECT_LT(mean_variance_factor, 1.6);
 }
 
+// A reading 1 cm off (outlier_screening.h) is named and left out of its leg's
+// fit; its image's FK pose is wrong too, so it is left out of the registration:
+// frames, closure and parameters as with clean data.
+TEST(CalibrateFromCameraPoses, AWrongReadingIsLeftOutOfTheFitAndOfTheRegistration) {
+  const Robot nominal = Preset("inria-left-hand");
+  const Robot truth = PerturbedRobot(nominal, 0.5);
+  const Scene clean = MakeScene(truth, nominal, RandomFeasiblePoses(nominal, 24, 31), 0.002, 0.02, 0.002);
+  Scene bad = clean;
+  bad.input.legs[5][1] += 1.0;
+  RegistrationOptions registration;
+  registration.position_sigma = 0.002;
+  registration.angle_sigma_deg = 0.02;
+  CalibrationOptions calibration;
+  calibration.weighted = true;
+  calibration.noise = {0.002, 0.02, 0.002};
+  calibration.outliers.enabled = true;
+  StatusOr<CameraCalibrationResult> reference =
+      CalibrateFromCameraPoses(nominal, clean.input, registration, calibration);
+  StatusOr<CameraCalibrationResult> screened = CalibrateFromCameraPoses(nominal, bad.input, registration, calibration);
+  ASSERT_TRUE(reference.ok()) << reference.status().message();
+  ASSERT_TRUE(screened.ok()) << screened.status().message();
+  EXPECT_TRUE(reference->registration_left_out.empty());
+  EXPECT_EQ(screened->registration_left_out, std::vector<int>{5});
+  for (int i = 0; i < kNumLegs; ++i) {
+    EXPECT_TRUE(reference->calibration.legs[i].outliers.empty()) << "leg " << i + 1;
+    EXPECT_EQ(screened->calibration.legs[i].outliers.size(), i == 1 ? 1u : 0u) << "leg " << i + 1;
+  }
+  EXPECT_EQ(screened->calibration.legs[1].outliers[0].measurement, 5);
+  EXPECT_TRUE(PoseNear(screened->registration.base_from_camera, reference->registration.base_from_camera, 0.05, 0.05));
+  EXPECT_LT(screened->registration.position_rms, 1.2 * reference->registration.position_rms);
+  EXPECT_LT(screened->calibrated_position_rms, 1.2 * reference->calibrated_position_rms);
+  EXPECT_GE(CountWithinThreeSigma(truth, *screened), 40);
+}
+
 TEST(CalibrateFromCameraPoses, RejectsCovariancesOfAnotherCountOrNotFinite) {
   const Robot nominal = Preset("inria-left-hand");
   Scene scene = MakeScene(nominal, nominal, RandomFeasiblePoses(nominal, 12, 5));

@@ -106,6 +106,33 @@ nlohmann::json LegsJson(const std::vector<LegFit>& legs) {
   return rows;
 }
 
+nlohmann::json OutliersJson(const std::vector<OutlierReading>& outliers) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const OutlierReading& o : outliers) {
+    rows.push_back({{"image", o.image},
+                    {"legs_line", o.legs_line ? nlohmann::json(*o.legs_line) : nlohmann::json(nullptr)},
+                    {"leg", o.leg},
+                    {"residual", o.residual},
+                    {"z", o.z},
+                    {"excluded", o.excluded}});
+  }
+  return rows;
+}
+
+// Reports written before the screening have neither key: read as none.
+void OutliersFromJson(JsonFields& fields, CalibrationReport* report) {
+  if (fields.Has("outlier_screening")) {
+    JsonFields s = fields.Object("outlier_screening");
+    report->screening = OutlierScreeningSummary{s.Number("threshold"), s.Bool("keep"), s.Bool("screened")};
+  }
+  if (!fields.Has("outliers")) return;
+  for (JsonFields o : fields.Array("outliers")) {
+    const std::optional<int> line = o.Has("legs_line") ? std::optional<int>(o.Int("legs_line")) : std::nullopt;
+    report->outliers.push_back(
+        {o.String("image"), line, o.Int("leg"), o.Number("residual"), o.Number("z"), o.Bool("excluded")});
+  }
+}
+
 }  // namespace
 
 nlohmann::json ToJson(const CalibrationReport& report) {
@@ -122,7 +149,12 @@ nlohmann::json ToJson(const CalibrationReport& report) {
           {"calibrated_robot", report.calibrated_robot},
           {"robot", RobotJson(report.robot)},
           {"parameters", ParametersJson(report.parameters)},
-          {"legs", LegsJson(report.legs)}};
+          {"legs", LegsJson(report.legs)},
+          {"outlier_screening", report.screening ? nlohmann::json{{"threshold", report.screening->threshold},
+                                                                  {"keep", report.screening->keep},
+                                                                  {"screened", report.screening->screened}}
+                                                 : nlohmann::json(nullptr)},
+          {"outliers", OutliersJson(report.outliers)}};
 }
 
 StatusOr<CalibrationReport> CalibrationReportFromJson(const nlohmann::json& json, const std::string& source) {
@@ -151,6 +183,7 @@ StatusOr<CalibrationReport> CalibrationReportFromJson(const nlohmann::json& json
     report.legs.push_back({leg.Int("leg"), leg.Number("variance_factor"), leg.Number("residual_rms"),
                            leg.Int("iterations"), leg.String("termination")});
   }
+  OutliersFromJson(fields, &report);
   if (!fields.status().ok()) return fields.status();
   return report;
 }

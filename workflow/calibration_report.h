@@ -58,6 +58,23 @@ struct LegFit {
   std::string termination;
 };
 
+// A leg reading that failed the outlier screening (core/outlier_screening.h).
+struct OutlierReading {
+  std::string image;             // legs.csv's image name
+  std::optional<int> legs_line;  // its line in legs.csv, when known
+  int leg = 0;                   // 1..6
+  double residual = 0;           // reading − what the camera pose implies, robot unit
+  double z = 0;                  // the same in standard deviations of the noise model
+  bool excluded = false;         // left out of that leg's fit (false with --keep-outliers)
+};
+
+// How the readings were screened; absent from reports older than the screening.
+struct OutlierScreeningSummary {
+  double threshold = 0;   // |z| bound
+  bool keep = false;      // --keep-outliers
+  bool screened = false;  // false: too few calibration images (kMinRowsToScreen)
+};
+
 struct CalibrationReport {
   std::string session;
   int images = 0, unusable_images = 0, calibration_images = 0, held_out_images = 0;
@@ -69,6 +86,8 @@ struct CalibrationReport {
   Robot robot;                                                 // the calibrated robot (legs only)
   std::vector<ParameterEstimate> parameters;                   // 42, leg by leg
   std::vector<LegFit> legs;                                    // 6
+  std::optional<OutlierScreeningSummary> screening;            // none in reports that predate it
+  std::vector<OutlierReading> outliers;                        // by image, then leg
 
   int usable_images() const { return images - unusable_images; }
 };

@@ -3,11 +3,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/presets.h"
 #include "core/calibration.h"
+#include "core/presets.h"
 #include "core/robot_io.h"
-#include "workflow/json_fields.h"
 #include "tests/test_support.h"
+#include "workflow/json_fields.h"
+#include "workflow/session_calibrate.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -65,6 +66,52 @@ TEST(CalibrationReport, WithoutValidationRoundTrips) {
   EXPECT_FALSE(read->validation.has_value());
 }
 
+CalibrationReport ReportWithOutliers(bool keep) {
+  CalibrationReport report = SampleReport();
+  report.screening = OutlierScreeningSummary{5, keep, true};
+  report.outliers = {{"img_007.png", 9, 3, 1.0024, 48.12, !keep},
+                     {"img_011.png", std::nullopt, 6, -0.25, -12.5, !keep}};
+  return report;
+}
+
+TEST(CalibrationReport, OutliersRoundTrip) {
+  const nlohmann::json json = ToJson(ReportWithOutliers(false));
+  StatusOr<CalibrationReport> read = CalibrationReportFromJson(json, "report.json");
+  ASSERT_TRUE(read.ok()) << read.status().message();
+  EXPECT_EQ(ToJson(*read), json);
+  ASSERT_EQ(read->outliers.size(), 2u);
+  EXPECT_EQ(read->outliers[0].legs_line, 9);
+  EXPECT_EQ(read->outliers[1].legs_line, std::nullopt);
+  EXPECT_TRUE(read->outliers[0].excluded);
+  ASSERT_TRUE(read->screening.has_value());
+  EXPECT_EQ(read->screening->threshold, 5);
+}
+
+// Reports written before the screening have neither key and still load.
+TEST(CalibrationReport, ReportsWithoutOutlierKeysLoad) {
+  nlohmann::json json = ToJson(SampleReport());
+  json.erase("outliers");
+  json.erase("outlier_screening");
+  StatusOr<CalibrationReport> read = CalibrationReportFromJson(json, "report.json");
+  ASSERT_TRUE(read.ok()) << read.status().message();
+  EXPECT_TRUE(read->outliers.empty());
+  EXPECT_FALSE(read->screening.has_value());
+}
+
+TEST(CalibrationReport, SummaryNamesEachOutlier) {
+  const std::string excluded = FormatCalibrationSummary(ReportWithOutliers(false));
+  EXPECT_THAT(excluded, HasSubstr("outlier: img_007.png (legs.csv line 9) leg 3: residual 1.002 cm = 48.12 sigma; "
+                                  "excluded from leg 3's fit (--keep-outliers keeps it)\n"));
+  EXPECT_THAT(excluded, HasSubstr("outlier: img_011.png leg 6: residual -0.25 cm = -12.5 sigma; excluded"));
+  EXPECT_THAT(excluded, HasSubstr("registration (nominal robot, without the 2 images holding an outlier)"));
+  const std::string kept = FormatCalibrationSummary(ReportWithOutliers(true));
+  EXPECT_THAT(kept, HasSubstr("leg 3: residual 1.002 cm = 48.12 sigma; kept in leg 3's fit (--keep-outliers)\n"));
+  EXPECT_THAT(kept, HasSubstr("registration (nominal robot): closure"));
+  CalibrationReport few = SampleReport();
+  few.screening = OutlierScreeningSummary{5, false, false};
+  EXPECT_THAT(FormatCalibrationSummary(few), HasSubstr("note: 7 calibration images are too few to screen"));
+}
+
 std::string ErrorOf(const std::string& text) {
   StatusOr<nlohmann::json> json = ParseJsonText(text, "r.json");
   if (!json.ok()) return json.status().message();
@@ -94,6 +141,9 @@ TEST(CalibrationReport, WrongDocumentsNameTheKey) {
   json = ToJson(SampleReport());
   json["validation"]["per_image"] = 5;
   EXPECT_THAT(ErrorOf(json.dump()), HasSubstr("key 'validation.per_image': expected a list"));
+  json = ToJson(ReportWithOutliers(false));
+  json["outliers"][1]["excluded"] = "yes";
+  EXPECT_THAT(ErrorOf(json.dump()), HasSubstr("key 'outliers[1].excluded': expected true or false"));
 }
 
 TEST(CalibrationReport, SaveAndLoad) {

@@ -74,6 +74,16 @@ int JsonFields::Int(const std::string& key) {
   return field->get<int>();
 }
 
+bool JsonFields::Bool(const std::string& key) {
+  const nlohmann::json* field = Field(key, "true or false");
+  if (field == nullptr) return false;
+  if (!field->is_boolean()) {
+    Fail(key, "expected true or false");
+    return false;
+  }
+  return field->get<bool>();
+}
+
 std::string JsonFields::String(const std::string& key) {
   const nlohmann::json* field = Field(key, "a string");
   if (field == nullptr) return "";

@@ -26,6 +26,7 @@ class JsonFields {
   double Number(const std::string& key);
   std::optional<double> OptionalNumber(const std::string& key);  // null or missing: nullopt
   int Int(const std::string& key);
+  bool Bool(const std::string& key);
   std::string String(const std::string& key);
   std::vector<double> Numbers(const std::string& key, size_t count);  // exactly `count`
   bool Has(const std::string& key) const;  // present and not null

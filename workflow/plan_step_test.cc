@@ -7,6 +7,7 @@
 
 #include "core/csv.h"
 #include "core/noise_model.h"
+#include "core/outlier_screening.h"
 #include "tests/test_support.h"
 
 namespace hexcal::workflow {
@@ -68,8 +69,10 @@ TEST(PlanSetupOptions, DocsListEveryOption) {
   const std::string docs = ReadTextFile((SourceDir() / "docs" / "cli.md").string());
   const std::string planner = OptionsMarkdownTable(PlanSetupOptions());
   const std::string noise = OptionsMarkdownTable(NoiseModelOptions(), "noise-");
+  const std::string outliers = OptionsMarkdownTable(OutlierScreeningOptions());
   EXPECT_NE(docs.find(planner), std::string::npos) << "docs/cli.md needs this table:\n" << planner;
   EXPECT_NE(docs.find(noise), std::string::npos) << "docs/cli.md needs this table:\n" << noise;
+  EXPECT_NE(docs.find(outliers), std::string::npos) << "docs/cli.md needs this table:\n" << outliers;
 }
 
 TEST(PlanFromRequest, WritesThePlanAndHistory) {

@@ -1,7 +1,9 @@
 #include "workflow/session_calibrate.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "core/atomic_file.h"
@@ -113,6 +115,7 @@ StatusOr<CameraPoses> MeasureSession(const SessionPaths& paths, const SessionInp
 // The calibration rows (usable, not held out) and the held-out rows.
 struct SplitRows {
   CameraCalibrationInput input;
+  std::vector<const LegsRow*> calibration_rows;  // the row of each input pose
   std::vector<const LegsRow*> held_out;
   int unusable = 0;
 };
@@ -138,6 +141,7 @@ SplitRows SplitSessionRows(const SessionInputs& in, const CameraPoses& poses, do
     split.input.camera_pose_covariance.push_back(covariance);
     split.input.legs.push_back(row.legs);
     split.input.fk_start.push_back(in.fk_start);
+    split.calibration_rows.push_back(&row);
   }
   return split;
 }
@@ -188,6 +192,22 @@ void FillParameters(const CalibrationResult& calibration, CalibrationReport* rep
   }
 }
 
+// The screened-out readings by image (legs.csv order), then leg.
+std::vector<OutlierReading> OutlierReadings(const CalibrationResult& calibration, const SplitRows& split) {
+  std::vector<OutlierReading> outliers;
+  for (int i = 0; i < kNumLegs; ++i) {
+    for (const RowOutlier& o : calibration.legs[i].outliers) {
+      const LegsRow& row = *split.calibration_rows[o.measurement];
+      const std::optional<int> line = row.line > 0 ? std::optional<int>(row.line) : std::nullopt;
+      outliers.push_back({row.image, line, i + 1, o.residual, o.z, o.excluded});
+    }
+  }
+  std::stable_sort(outliers.begin(), outliers.end(), [](const OutlierReading& a, const OutlierReading& b) {
+    return a.legs_line.value_or(0) < b.legs_line.value_or(0);
+  });
+  return outliers;
+}
+
 CalibrationReport MakeReport(const std::string& dir, const SessionInputs& in, const SplitRows& split,
                              const CameraCalibrationResult& result) {
   CalibrationReport report;
@@ -209,6 +229,7 @@ CalibrationReport MakeReport(const std::string& dir, const SessionInputs& in, co
   report.calibrated_robot = (fs::path(SessionPaths(dir).results) / kCalibratedRobot).string();
   report.robot = result.calibration.robot;
   FillParameters(result.calibration, &report);
+  report.outliers = OutlierReadings(result.calibration, split);
   return report;
 }
 
@@ -255,12 +276,14 @@ Status CheckInputsUnchanged(const std::string& dir, const ContentHashes& before)
 }
 
 // Weighted by each image's own pose covariance and the model's reading
-// noise; σ at least the a priori one (calibration.h, UncertaintyScale).
-CalibrationOptions SessionCalibrationOptions(const NoiseModel& noise) {
+// noise; σ at least the a priori one (calibration.h, UncertaintyScale);
+// readings screened for outliers against that noise (outlier_screening.h).
+CalibrationOptions SessionCalibrationOptions(const NoiseModel& noise, const OutlierScreening& outliers) {
   CalibrationOptions calibration;
   calibration.weighted = true;
   calibration.noise = noise;
   calibration.uncertainty_scale = UncertaintyScale::kAtLeastAPriori;
+  calibration.outliers = outliers;
   return calibration;
 }
 
@@ -290,7 +313,9 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   RegistrationOptions registration;
   registration.position_sigma = in->config.noise.PositionStdDev();
   registration.angle_sigma_deg = RadToDeg(in->config.noise.AngleStdDevRad());
-  const CalibrationOptions calibration = SessionCalibrationOptions(in->config.noise);
+  const CalibrationOptions calibration = SessionCalibrationOptions(in->config.noise, request.outliers);
+  std::string options_error;
+  if (!calibration.IsValid(&options_error)) return Status::Error(options_error);
   hooks.Stage("register and calibrate");
   StatusOr<CameraCalibrationResult> result =
       CalibrateFromCameraPoses(in->nominal, split.input, registration, calibration, hooks);
@@ -300,11 +325,52 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
 
   CalibrationReport report = MakeReport(dir, *in, split, *result);
   report.validation = *validation;
+  if (request.outliers.enabled) {
+    report.screening = OutlierScreeningSummary{request.outliers.threshold, request.outliers.keep,
+                                               report.calibration_images >= kMinRowsToScreen};
+  }
   if (Status s = CheckInputsUnchanged(dir, *inputs); !s.ok()) return s;
   if (Status s = WriteCalibrationResults(dir, &*in, *result, calibration, report, *inputs); !s.ok())
     return s.AsFailure();
   return report;
 }
+
+namespace {
+
+// One warning per screened-out reading (docs/session.md, "Outliers").
+std::string OutlierLines(const CalibrationReport& report) {
+  std::ostringstream out;
+  out.precision(4);
+  if (report.screening && !report.screening->screened) {
+    out << "note: " << report.calibration_images << " calibration images are too few to screen the readings for "
+        << "outliers (" << kMinRowsToScreen << " needed)\n";
+  }
+  for (const OutlierReading& o : report.outliers) {
+    const std::string leg = "leg " + std::to_string(o.leg);
+    out << "outlier: " << o.image;
+    if (o.legs_line) out << " (legs.csv line " << *o.legs_line << ")";
+    out << " " << leg << ": residual " << o.residual << " " << report.length_unit << " = " << o.z << " sigma; ";
+    if (o.excluded) {
+      out << "excluded from " << leg << "'s fit (--keep-outliers keeps it)\n";
+    } else {
+      out << "kept in " << leg << "'s fit (--keep-outliers)\n";
+    }
+  }
+  return out.str();
+}
+
+// The images holding an excluded outlier were left out of the registration
+// (core/registration.h, CalibrateFromCameraPoses).
+std::string RegistrationNote(const CalibrationReport& report) {
+  std::set<std::string> images;
+  for (const OutlierReading& o : report.outliers)
+    if (o.excluded) images.insert(o.image);
+  if (images.empty()) return "";
+  return ", without the " + std::to_string(images.size()) + (images.size() == 1 ? " image" : " images") +
+         " holding an outlier";
+}
+
+}  // namespace
 
 std::string FormatCalibrationSummary(const CalibrationReport& report) {
   const std::string& unit = report.length_unit;
@@ -313,8 +379,8 @@ std::string FormatCalibrationSummary(const CalibrationReport& report) {
   out << "session " << report.session << ": " << report.images << " images, " << report.calibration_images
       << " for calibration, " << report.held_out_images << " held out, " << report.unusable_images
       << " without a usable target pose\n"
-      << "registration (nominal robot): closure RMS " << reg.position_rms << " " << unit << ", " << reg.angle_rms_deg
-      << " deg\n"
+      << "registration (nominal robot" << RegistrationNote(report) << "): closure RMS " << reg.position_rms << " "
+      << unit << ", " << reg.angle_rms_deg << " deg\n"
       << "after calibration: closure RMS " << report.closure_position_rms << " " << unit << ", "
       << report.closure_angle_rms_deg << " deg\n";
   if (report.validation) {
@@ -323,6 +389,7 @@ std::string FormatCalibrationSummary(const CalibrationReport& report) {
         << ", " << v.before.orientation_rms << "; after " << v.after.position_rms << ", " << v.after.orientation_rms
         << "\n";
   }
+  out << OutlierLines(report);
   out << "wrote " << report.calibrated_robot << ", " << CalibrationReportPath(report.session) << ", frames in "
       << SessionPaths(report.session).config << "\n";
   return out.str();

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "core/job_hooks.h"
+#include "core/outlier_screening.h"
 #include "core/session_lock.h"
 #include "core/status.h"
 #include "workflow/calibration_report.h"
@@ -24,6 +25,9 @@ struct CalibrateSessionRequest {
   // Another writer holds the session (core/session_lock.h): stop at once
   // with "session in use by PID n (command)", or wait for it.
   LockWait wait = LockWait::kNo;
+  // Every leg reading is screened against the noise model (core/outlier_screening.h);
+  // outliers are left out of their leg's fit unless `keep`.
+  OutlierScreening outliers = {/*enabled=*/true};
 };
 
 // Stages reported through hooks.stage: "measure (images)", then "register and
@@ -36,7 +40,7 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
 std::string ResolveSessionFile(const std::string& dir, const std::string& name);
 
 // The lines `hexcal calibrate --session` prints: counts, closure before and
-// after, held-out validation, files written.
+// after, held-out validation, one warning per outlier reading, files written.
 std::string FormatCalibrationSummary(const CalibrationReport& report);
 
 }  // namespace hexcal::workflow

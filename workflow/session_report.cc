@@ -123,6 +123,22 @@ std::string StaleWarning(const SessionResults& results) {
          Escape(results.manifest.created) + "): run <code>hexcal calibrate --session</code> again.</p>\n";
 }
 
+// The readings that failed the outlier screening (docs/calibration.md, "Outliers").
+std::string OutlierSection(const CalibrationReport& report) {
+  if (report.outliers.empty()) return "";
+  std::string html = "<h2>Outliers</h2><p>Leg readings far beyond the noise model (|z| above " +
+                     (report.screening ? Figure(report.screening->threshold) : std::string("the threshold")) +
+                     "): residual = reading &minus; the length the camera pose implies.</p>\n<table><tr><th>image</th>"
+                     "<th>legs.csv line</th><th>leg</th><th>residual (" +
+                     Escape(report.length_unit) + ")</th><th>z (&sigma;)</th><th>in the fit</th></tr>\n";
+  for (const OutlierReading& o : report.outliers) {
+    html += "<tr><td>" + Escape(o.image) + "</td><td>" + (o.legs_line ? std::to_string(*o.legs_line) : "–") +
+            "</td><td>" + std::to_string(o.leg) + "</td><td>" + Figure(o.residual) + "</td><td>" + Figure(o.z) +
+            "</td><td>" + (o.excluded ? "excluded" : "kept") + "</td></tr>\n";
+  }
+  return html + "</table>\n";
+}
+
 }  // namespace
 
 StatusOr<std::string> SessionReportHtml(const std::string& dir) {
@@ -162,6 +178,7 @@ StatusOr<std::string> SessionReportHtml(const std::string& dir) {
     html += "<h2>Validation</h2>\n" + ChartHtml(charts::ValidationSummaryChart(errors, unit));
   }
 
+  html += OutlierSection(report);
   html += ResidualSection(paths, *nominal);
   std::vector<charts::ParameterChange> changes;
   for (const ParameterEstimate& p : report.parameters)

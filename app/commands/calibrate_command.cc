@@ -1,7 +1,8 @@
 // hexcal calibrate --robot R --measurements M.csv --out calibrated.yaml [--force]
 //   [--loss none|huber|cauchy] [--loss-scale s]
 //   [--weighted [--noise-position p] [--noise-angle a] [--noise-leg l]] [--json]
-// hexcal calibrate --session DIR [--json]   (workflow/session_calibrate.h)
+// hexcal calibrate --session DIR [--keep-outliers] [--outlier-threshold Z] [--json]
+//   (workflow/session_calibrate.h)
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -23,14 +24,19 @@ struct CalibrateCliOptions {
   double loss_scale = 1.0;
   bool weighted = false, force = false, json = false, wait = false;
   std::shared_ptr<OptionEntries> noise = std::make_shared<OptionEntries>();  // --noise-* over the defaults
+  std::shared_ptr<OptionEntries> outliers = std::make_shared<OptionEntries>();  // --keep-outliers, --outlier-threshold
 };
 
-int RunCalibrateSession(const workflow::CalibrateSessionRequest& request, bool json, std::ostream& out,
-                        std::ostream& err) {
+int RunCalibrateSession(const CalibrateCliOptions& cli, std::ostream& out, std::ostream& err) {
+  workflow::CalibrateSessionRequest request;
+  request.session = cli.session;
+  request.wait = cli.wait ? LockWait::kForever : LockWait::kNo;
+  if (Status s = ApplyOptionEntries(OutlierScreeningOptions(), *cli.outliers, &request.outliers, "outliers"); !s.ok())
+    return ReportError(err, "calibrate", s);
   TerminalJob job;
   StatusOr<workflow::CalibrationReport> report = workflow::CalibrateSession(request, job.hooks());
   if (!report.ok()) return ReportError(err, "calibrate", report.status());
-  if (json) {
+  if (cli.json) {
     out << workflow::ToJson(*report).dump(2) << "\n";
   } else {
     out << workflow::FormatCalibrationSummary(*report);
@@ -200,15 +206,16 @@ void AddCalibrateCommand(CLI::App& app, int* exit_code) {
                               ->excludes(session);
   for (const OptionSpec<NoiseModel>& spec : NoiseModelOptions())
     AddOneOptionFlag(sub, spec, options->noise, "noise-")->needs(weighted);
+  // Outlier screening of the session's readings (docs/calibration.md, "Outliers").
+  for (const OptionSpec<OutlierScreening>& spec : OutlierScreeningOptions())
+    AddOneOptionFlag(sub, spec, options->outliers, "")->needs(session);
   sub->add_flag("--json", options->json, "print one JSON object on stdout");
   sub->add_flag("--wait", options->wait,
                 "when another program writes the session, wait for it instead of stopping (exit 3)")
       ->needs(session);
   sub->callback([=] {
     if (!options->session.empty()) {
-      const workflow::CalibrateSessionRequest request{options->session,
-                                                      options->wait ? LockWait::kForever : LockWait::kNo};
-      *exit_code = RunCalibrateSession(request, options->json, std::cout, std::cerr);
+      *exit_code = RunCalibrateSession(*options, std::cout, std::cerr);
     } else if (options->robot.empty() || options->measurements.empty() || options->out.empty()) {
       *exit_code =
           ReportError(std::cerr, "calibrate", Status::Error("give --robot, --measurements and --out, or --session"));
