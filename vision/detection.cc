@@ -9,6 +9,7 @@
 
 #include "core/atomic_file.h"
 #include "vision/edge_refine.h"
+#include "vision/image_header.h"
 #include "vision/tag_family.h"
 
 namespace hexcal {
@@ -174,18 +175,29 @@ BoardObservation MatchToTarget(const Target& target, const Detections& detection
 
 namespace {
 
-// PNG, JPEG (SOI and a marker), TIFF and BigTIFF, little- and big-endian.
-bool IsPngJpegOrTiff(const std::string& bytes) {
-  static const std::string kSignatures[] = {std::string("\x89PNG\r\n\x1a\n", 8),
-                                            std::string("\xFF\xD8\xFF", 3),
-                                            std::string("II*\0", 4),
-                                            std::string("MM\0*", 4),
-                                            std::string("II+\0", 4),
-                                            std::string("MM\0+", 4)};
-  for (const std::string& signature : kSignatures) {
-    if (bytes.compare(0, signature.size(), signature) == 0) return true;
+// The checks made on the header before decoding; OK when the decoder may run.
+Status CheckImageHeader(const ImageHeader& header, const std::string& source) {
+  // imdecode tries every decoder OpenCV was built with (on Debian also DICOM,
+  // JPEG 2000, OpenEXR, WebP ...), and some abort the process on a bad file
+  // (GDCM's reader asserts: found by fuzz/image_fuzz). hexcal reads only
+  // PNG, JPEG and TIFF, so nothing else reaches imdecode.
+  if (header.format == ImageFormat::kOther) {
+    return Status::Error(source + ": cannot decode: not a PNG, JPEG or TIFF file");
   }
-  return false;
+  // Truncated files are caught here, before the decoders print their own
+  // complaints on stderr.
+  if (header.truncated && header.format == ImageFormat::kPng) {
+    return Status::Error(source + ": truncated PNG (no IEND chunk)");
+  }
+  if (header.truncated) return Status::Error(source + ": truncated JPEG (no end-of-image marker)");
+  if (!header.corrupt.empty()) return Status::Error(source + ": cannot decode: corrupt JPEG (" + header.corrupt + ")");
+  // The decoder allocates what the header claims, however small the file.
+  if (header.size && header.size->Pixels() > kMaxImagePixels) {
+    return Status::Error(source + ": " + std::to_string(header.size->width) + " x " +
+                         std::to_string(header.size->height) + " pixels is over the " +
+                         std::to_string(kMaxImagePixels / 1'000'000) + "-megapixel limit");
+  }
+  return Status::Ok();
 }
 
 }  // namespace
@@ -198,21 +210,8 @@ StatusOr<cv::Mat> LoadGrayImage(const std::string& path) {
 
 StatusOr<cv::Mat> DecodeGrayImage(const std::string& bytes, const std::string& source) {
   if (bytes.empty()) return Status::Error(source + ": empty file");
-  // imdecode tries every decoder OpenCV was built with (on Debian also DICOM,
-  // JPEG 2000, OpenEXR, WebP ...), and some abort the process on a bad file
-  // (GDCM's reader asserts: found by fuzz/image_fuzz). hexcal reads only
-  // PNG, JPEG and TIFF, so nothing else reaches imdecode.
-  if (!IsPngJpegOrTiff(bytes)) return Status::Error(source + ": cannot decode: not a PNG, JPEG or TIFF file");
-  // Truncated files are caught here, before the decoders print their own
-  // complaints on stderr.
-  const std::string& b = bytes;
-  if (b.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0 &&
-      b.find("IEND", b.size() > 64 ? b.size() - 64 : 0) == std::string::npos) {
-    return Status::Error(source + ": truncated PNG (no IEND chunk)");
-  }
-  if (b.compare(0, 2, "\xFF\xD8") == 0 && b.find("\xFF\xD9", b.size() > 64 ? b.size() - 64 : 0) == std::string::npos) {
-    return Status::Error(source + ": truncated JPEG (no end-of-image marker)");
-  }
+  const Status header = CheckImageHeader(ReadImageHeader(bytes), source);
+  if (!header.ok()) return header;
   cv::Mat image;
   try {
     // imdecode only reads the buffer; the const_cast is what cv::Mat's constructor needs.

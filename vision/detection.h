@@ -109,8 +109,9 @@ struct BoardObservation {
 };
 BoardObservation MatchToTarget(const Target& target, const Detections& detections);
 
-// An image file as 8-bit grey. Errors name the file: missing, empty, or not a
-// readable PNG / JPEG / TIFF ("cannot decode: corrupt or not an image").
+// An image file as 8-bit grey. Errors name the file: missing, empty, truncated,
+// over kMaxImagePixels by its header (vision/image_header.h, checked before
+// decoding), or not a readable PNG / JPEG / TIFF ("cannot decode: ...").
 StatusOr<cv::Mat> LoadGrayImage(const std::string& path);
 // The same for the file's bytes already in memory; `source` names it in messages.
 StatusOr<cv::Mat> DecodeGrayImage(const std::string& bytes, const std::string& source);

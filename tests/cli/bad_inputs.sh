@@ -74,6 +74,8 @@ camera_zero_size.yaml | 2 | image size 0 x 768: must be positive | render --came
 image_empty.png | 1 | empty file | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
 image_header_only.png | 1 | truncated PNG \(no IEND chunk\) | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
 image_truncated.png | 1 | truncated PNG \(no IEND chunk\) | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
+image_huge_header.png | 1 | 30000 x 30000 pixels is over the 150-megapixel limit | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
+image_truncated.jpg | 1 | truncated JPEG \(no end-of-image marker\) | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
 image_bad_crc.png | 1 | cannot decode: corrupt, truncated or not an image | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
 image_garbage.png | 1 | cannot decode: not a PNG, JPEG or TIFF file | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
 image_dicom_assert.png | 1 | cannot decode: not a PNG, JPEG or TIFF file | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
