@@ -193,3 +193,23 @@ TEST(AtomicFileTest, ReadingAFileOverItsSizeCapIsRefused) {
 
 }  // namespace
 }  // namespace hexcal
+
+namespace hexcal {
+namespace {
+
+// A session file that is a symbolic link (issue 13, confinement): the write
+// replaces the link with a file; the link's target is never written.
+TEST(AtomicFileTest, ReplacesASymlinkAndLeavesItsTargetAlone) {
+  ::hexcal::testing::TempDir dir, outside;
+  const std::string target = outside.File("passwd");
+  ::hexcal::testing::WriteTextFile(target, "precious");
+  const std::string link = dir.File("legs.csv");
+  std::filesystem::create_symlink(target, link);
+  ASSERT_TRUE(WriteFileAtomically(link, "image,L1\n").ok());
+  EXPECT_FALSE(std::filesystem::is_symlink(link));
+  EXPECT_EQ(::hexcal::testing::ReadTextFile(link), "image,L1\n");
+  EXPECT_EQ(::hexcal::testing::ReadTextFile(target), "precious");
+}
+
+}  // namespace
+}  // namespace hexcal

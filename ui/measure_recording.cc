@@ -38,6 +38,8 @@ void MeasurePanel::LoadImageFolder(const QString& chosen) {
   if (folder.isEmpty()) return;
   StatusOr<std::vector<std::string>> files = ListImages(folder.toStdString());
   if (!files.ok()) return ShowError(this, "Load images", Message(files.status()));
+  if (Status inside = workflow::CheckWritableInside(session_->Dir().toStdString(), "images"); !inside.ok())
+    return ShowError(this, "Load images", Message(inside));
   int copied = 0;
   for (const std::string& file : *files) {
     const QString target = QDir(QString::fromStdString(session_->Paths().images))

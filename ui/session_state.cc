@@ -141,37 +141,38 @@ void SessionState::Reload() {
   emit Changed();
 }
 
-workflow::EditOutcome SessionState::SetPlan(const std::vector<Vector6d>& poses, bool overwrite) {
+// Every edit: applied to the files on disk, then everything reloaded from them.
+workflow::EditOutcome SessionState::ApplyEdit(
+    bool overwrite, const std::function<workflow::EditOutcome(const workflow::EditOptions&)>& edit) {
   workflow::EditOptions options;
   options.overwrite = overwrite;
-  const workflow::EditOutcome done = workflow::ApplyPlanEdit(dir_.toStdString(), plan_, poses, options);
+  const workflow::EditOutcome done = edit(options);
   Reload();
   return done;
+}
+
+workflow::EditOutcome SessionState::SetPlan(const std::vector<Vector6d>& poses, bool overwrite) {
+  return ApplyEdit(overwrite, [&](const workflow::EditOptions& options) {
+    return workflow::ApplyPlanEdit(dir_.toStdString(), plan_, poses, options);
+  });
 }
 
 workflow::EditOutcome SessionState::EditLegs(const workflow::LegsEdit& edit, bool overwrite) {
-  workflow::EditOptions options;
-  options.overwrite = overwrite;
-  const workflow::EditOutcome done = workflow::ApplyLegsEdit(dir_.toStdString(), edit, options);
-  Reload();
-  return done;
+  return ApplyEdit(overwrite, [&](const workflow::EditOptions& options) {
+    return workflow::ApplyLegsEdit(dir_.toStdString(), edit, options);
+  });
 }
 
 workflow::EditOutcome SessionState::RecordCapture(const std::string& frame_file, const LegsRow& row, bool overwrite) {
-  workflow::EditOptions options;
-  options.overwrite = overwrite;
-  const workflow::EditOutcome done = workflow::RecordCapture(dir_.toStdString(), frame_file, row, options);
-  Reload();
-  return done;
+  return ApplyEdit(overwrite, [&](const workflow::EditOptions& options) {
+    return workflow::RecordCapture(dir_.toStdString(), frame_file, row, options);
+  });
 }
 
 workflow::EditOutcome SessionState::SetCamera(const std::string& camera_name, bool overwrite) {
-  workflow::EditOptions options;
-  options.overwrite = overwrite;
-  const workflow::EditOutcome done =
-      workflow::ApplyCameraEdit(dir_.toStdString(), config_.camera, camera_name, options);
-  Reload();
-  return done;
+  return ApplyEdit(overwrite, [&](const workflow::EditOptions& options) {
+    return workflow::ApplyCameraEdit(dir_.toStdString(), config_.camera, camera_name, options);
+  });
 }
 
 std::vector<QString> SessionState::ImageFiles() const {

@@ -15,6 +15,7 @@
 #include <QObject>
 #include <QString>
 #include <QTimer>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -80,6 +81,8 @@ class SessionState : public QObject {
 
  private:
   Status LoadAll(const QString& dir);
+  workflow::EditOutcome ApplyEdit(bool overwrite,
+                                  const std::function<workflow::EditOutcome(const workflow::EditOptions&)>& edit);
   void LoadResultsState();
   void Watch();
 

@@ -133,9 +133,21 @@ EditOutcome ApplyLegsEdit(const std::string& dir, const LegsEdit& edit, const Ed
   return Failed(WriteFileAtomically(path, FormatCsv(table->header, table->rows)));
 }
 
+Status CheckWritableInside(const std::string& dir, const std::string& folder) {
+  std::error_code error;
+  const fs::path session = fs::weakly_canonical(dir, error);
+  const fs::path target = fs::weakly_canonical(fs::path(dir) / folder, error);
+  const auto [end, unused] = std::mismatch(session.begin(), session.end(), target.begin(), target.end());
+  if (error || end != session.end())
+    return Status::Error((fs::path(dir) / folder).string() + ": leads out of the session folder (a symbolic link); " +
+                         "hexcal writes only inside it: make " + folder + "/ a real folder");
+  return Status::Ok();
+}
+
 EditOutcome RecordCapture(const std::string& dir, const std::string& image_file, const LegsRow& row,
                           const EditOptions& options) {
   if (Status s = CheckImageName(row.image); !s.ok()) return Failed(s);
+  if (Status s = CheckWritableInside(dir, "images"); !s.ok()) return Failed(s);
   StatusOr<SessionLock> lock = SessionLock::Acquire(dir, options.wait);
   if (!lock.ok()) return Failed(lock.status());
   const std::string target = (fs::path(SessionPaths(dir).images) / row.image).string();

@@ -54,6 +54,11 @@ struct EditOutcome {
 
 EditOutcome ApplyLegsEdit(const std::string& session_dir, const LegsEdit& edit, const EditOptions& options = {});
 
+// Refuses a folder of the session (e.g. "images") that leads out of it
+// through a symbolic link: hexcal writes only inside the session folder.
+// Reading through such a link is fine (images kept on another disk).
+Status CheckWritableInside(const std::string& session_dir, const std::string& folder);
+
 // A capture: the image file copied into images/ and its row added to
 // legs.csv, both under one hold of the lock, so that no other step sees the
 // image without its readings. An image of that name already there is a

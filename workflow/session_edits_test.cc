@@ -112,6 +112,20 @@ TEST(SessionEdits, ACaptureBringsItsImageAndRowTogetherAndStaysInsideImages) {
   EXPECT_FALSE(fs::exists(dir.File("escape.png")));
 }
 
+TEST(SessionEdits, ACaptureIsNeverWrittenThroughALinkOutOfTheSession) {
+  TempDir dir, elsewhere;
+  const std::string s = MakeSession(dir);
+  fs::rename(s + "/images", dir.File("moved"));
+  fs::create_directory_symlink(elsewhere.path(), s + "/images");
+  WriteTextFile(dir.File("frame.png"), "frame");
+  LegsRow row;
+  row.image = "b.png";
+  const EditOutcome refused = RecordCapture(s, dir.File("frame.png"), row);
+  EXPECT_NE(refused.status.message().find("leads out of the session folder"), std::string::npos)
+      << refused.status.message();
+  EXPECT_FALSE(fs::exists(elsewhere.File("b.png")));
+}
+
 TEST(SessionEdits, AnImportThatDoesNotLoadKeepsTheOldReadings) {
   TempDir dir;
   const std::string s = MakeSession(dir);

@@ -9,6 +9,7 @@
 #include <QDir>
 #include <QElapsedTimer>
 #include <QFile>
+#include <QLabel>
 #include <QListWidget>
 #include <QPlainTextEdit>
 #include <QSurfaceFormat>
@@ -279,6 +280,24 @@ TEST(UiFlow, ExternalChangesSurviveEditsAndQuit) {
   EXPECT_EQ(ReadTextFile(s + "/session.yaml"), config_theirs);
   EXPECT_EQ(LoadPoses(s + "/plan.csv")->size(), 3u);
   (void)legs_theirs;
+}
+
+// A file name is shown as it is, never as HTML (issue 13): legs.csv naming an
+// image "<b>bold</b>.png" that is not in images/ gives an error quoting it.
+TEST(UiFlow, FileNamesAreShownAsPlainText) {
+  QTemporaryDir temp;
+  const QString dir = temp.filePath("session");
+  ASSERT_TRUE(CopyFolder(sessions_dir + "/calibrated", dir));
+  QFile legs(dir + "/legs.csv");
+  ASSERT_TRUE(legs.open(QIODevice::Append));
+  legs.write("<b>bold</b>.png,1,2,3,4,5,6,0\n");
+  legs.close();
+  MainWindow window;
+  ASSERT_TRUE(window.OpenSession(dir));
+  auto* status = window.Measure()->findChild<QLabel*>("measure_status");
+  ASSERT_NE(status, nullptr);
+  EXPECT_TRUE(status->text().contains("<b>bold</b>.png")) << status->text().toStdString();
+  EXPECT_EQ(status->textFormat(), Qt::PlainText);
 }
 
 TEST(UiFlow, BadSessionIsAnErrorNotACrash) {
