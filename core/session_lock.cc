@@ -66,7 +66,10 @@ std::string ReadHolderLine(int fd) {
 
 StatusOr<int> OpenLockFile(const std::string& path) {
   // O_NOFOLLOW: a lock file that is a symlink is refused, never followed.
-  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0666);
+  int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0666);
+  // A lock file someone else made, or a read-only folder: flock works on a
+  // read-only descriptor too (the PID line is then not written).
+  if (fd < 0 && (errno == EACCES || errno == EROFS)) fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
   if (fd < 0) return Status::IoError(path + ": cannot open the session lock: " + std::strerror(errno));
   struct stat info;
   if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
@@ -78,7 +81,7 @@ StatusOr<int> OpenLockFile(const std::string& path) {
 
 Status BusyError(const std::string& dir, const std::string& holder) {
   return Status::Busy(dir + ": session in use by " + (holder.empty() ? "another program" : holder) +
-                      "; wait for it to finish (or use --wait)");
+                      "; try again when it has finished (the command line's --wait waits for it)");
 }
 
 }  // namespace
@@ -150,10 +153,7 @@ StatusOr<SessionLock> SessionLock::Acquire(const std::string& session_dir, LockW
     if (!held.ok()) return held.status();
     if (!busy) return SessionLock(*held);
     const bool give_up = wait == LockWait::kNo || (wait == LockWait::kBriefly && std::chrono::steady_clock::now() > deadline);
-    if (give_up) {
-      const std::string holder = SessionLockHolder(session_dir);
-      return BusyError(session_dir, holder.empty() ? "PID " + std::to_string(::getpid()) + " (this program)" : holder);
-    }
+    if (give_up) return BusyError(session_dir, SessionLockHolder(session_dir));
     std::this_thread::sleep_for(kPollInterval);
   }
 }

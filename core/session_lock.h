@@ -2,7 +2,7 @@
 // DIR/.hexcal.lock, taken by every command and by the GUI while it writes.
 //
 //   StatusOr<SessionLock> lock = SessionLock::Acquire("run1", LockWait::kNo);
-//   if (!lock.ok()) return lock.status();  // "run1: session in use by PID 4242 (hexcal calibrate --session run1)"
+//   if (!lock.ok()) return lock.status();  // "run1: session in use by PID 4242 (hexcal calibrate --session run1); ..."
 //   ... read, compute, write ...            // released when `lock` goes out of scope
 //
 // The kernel drops a flock when its holder dies, however it dies (kill -9, a
@@ -10,6 +10,8 @@
 // at once; its PID line is overwritten by the next holder. Within a process
 // the lock is re-entrant on the thread that holds it (a step calling another
 // step); another thread of the same process waits like another process.
+// Sessions live on a local file system: on NFS flock is emulated with POSIX
+// locks, which closing any descriptor of the file drops.
 // docs/session.md, "One writer at a time".
 #pragma once
 

@@ -50,7 +50,8 @@ StatusOr<StagedFolder> StagedFolder::Begin(const std::string& final_path) {
   if (::mkdtemp(pattern.data()) == nullptr) {
     return Status::IoError(parent.string() + ": cannot create a folder: " + std::strerror(errno));
   }
-  // mkdtemp makes 0700; results are as readable as the files beside them.
+  // mkdtemp makes 0700; results are readable by all, as a folder made under
+  // the usual umask 022 would be.
   ::chmod(pattern.c_str(), 0755);
   return StagedFolder((parent / target.filename()).string(), pattern);
 }

@@ -4,10 +4,12 @@
  *   HEXCAL_KILL_AT=N   die before the Nth such call (1-based); unset or 0: count only
  *   HEXCAL_KILL_LOG=F  append one line per call ("N name path") to F
  *
- * The calls are the ones a crash-safe write is made of: open with O_CREAT,
- * write to a file, fsync, rename/renameat2, unlink/unlinkat, mkdir, mkdtemp,
- * rmdir. Killing before each one in turn, run after run, puts a kill -9 at
- * every step of every write a command makes. */
+ * The calls are the steps a crash-safe write is made of: mkstemp (the temp
+ * file), fsync, rename/renameat/renameat2, unlink/unlinkat/remove, mkdir,
+ * mkdtemp, rmdir, ftruncate. The write(2) calls into a temp file are not
+ * counted: a kill among them leaves only the unpublished temp file, the same
+ * state as a kill before its fsync. Killing before each counted call in turn,
+ * run after run, puts a kill -9 at every step of every write a command makes. */
 #define _GNU_SOURCE
 #include <dlfcn.h>
 #include <fcntl.h>
@@ -43,7 +45,14 @@ static void Step(const char* name, const char* path) {
   if (kill_at > 0 && n == kill_at) raise(SIGKILL);
 }
 
-#define REAL(name) static __typeof__(name)* real_##name; if (!real_##name) real_##name = dlsym(RTLD_NEXT, #name)
+/* dlsym returns a void*; ISO C has no cast from it to a function pointer, so
+ * the pointer's bytes are copied (what POSIX guarantees to work). */
+#define REAL(name)                                      \
+  static __typeof__(name)* real_##name;                 \
+  if (!real_##name) {                                   \
+    void* symbol = dlsym(RTLD_NEXT, #name);             \
+    memcpy(&real_##name, &symbol, sizeof symbol);       \
+  }
 
 int rename(const char* from, const char* to) { REAL(rename); Step("rename", to); return real_rename(from, to); }
 int renameat(int a, const char* from, int b, const char* to) {
@@ -56,6 +65,7 @@ int unlink(const char* path) { REAL(unlink); Step("unlink", path); return real_u
 int unlinkat(int dir, const char* path, int flags) {
   REAL(unlinkat); Step("unlinkat", path); return real_unlinkat(dir, path, flags);
 }
+int remove(const char* path) { REAL(remove); Step("remove", path); return real_remove(path); }
 int rmdir(const char* path) { REAL(rmdir); Step("rmdir", path); return real_rmdir(path); }
 int mkdir(const char* path, mode_t mode) { REAL(mkdir); Step("mkdir", path); return real_mkdir(path, mode); }
 char* mkdtemp(char* pattern) { REAL(mkdtemp); Step("mkdtemp", pattern); return real_mkdtemp(pattern); }

@@ -132,13 +132,9 @@ void CalibratePanel::Refresh() {
   parameters_->setSortingEnabled(false);
   parameters_->setRowCount(0);
   summary_->clear();
-  const std::string path = workflow::CalibrationReportPath(session_->Dir().toStdString());
-  std::error_code error;
-  StatusOr<workflow::SessionResults> loaded =
-      session_->IsOpen() && fs::exists(path, error) ? workflow::LoadSessionResults(session_->Dir().toStdString())
-                                                    : StatusOr<workflow::SessionResults>(Status::Error(""));
-  if (!loaded.ok()) {
-    summary_->setText(QString::fromStdString(loaded.status().message()).toHtmlEscaped());
+  const StatusOr<workflow::SessionResults>& loaded = session_->Results();
+  if (!session_->IsOpen() || !loaded.ok()) {
+    summary_->setText(session_->IsOpen() ? QString::fromStdString(loaded.status().message()).toHtmlEscaped() : "");
     PlotResiduals();
     return;
   }

@@ -20,6 +20,7 @@
 #include "ui/error_dialog.h"
 #include "ui/image_overlay.h"
 #include "workflow/measure_step.h"
+#include "workflow/session_measure.h"
 #include "vision/measure.h"
 
 namespace hexcal::ui {
@@ -46,24 +47,24 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
     : QWidget(parent), session_(session), job_(new BackgroundJob(this)), preview_(new BackgroundJob(this)) {
   images_ = new QListWidget;
   images_->setObjectName("image_list");
+  // File names are shown as they are, never as HTML.
   picture_ = new QLabel("Select an image to see its detection.");
-  picture_->setTextFormat(Qt::PlainText);  // file names are shown as they are, never as HTML
+  picture_->setTextFormat(Qt::PlainText);
   picture_->setAlignment(Qt::AlignCenter);
   picture_->setMinimumSize(320, 240);
   picture_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Ignored);
   picture_info_ = new QLabel;
-  picture_info_->setTextFormat(Qt::PlainText);  // file names are shown as they are, never as HTML
+  picture_info_->setTextFormat(Qt::PlainText);
   picture_info_->setObjectName("image_status");
   legs_ = new QTableWidget(0, 8);
   legs_->setObjectName("legs_table");
   legs_->setHorizontalHeaderLabels({"image", "L1", "L2", "L3", "L4", "L5", "L6", "holdout (0/1)"});
   legs_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
-  legs_->setToolTip(
-      "Leg readings at each image (robot unit). Edit a cell: legs.csv is saved at once. "
-      "holdout 1 keeps the image out of the calibration to validate it.");
+  legs_->setToolTip("Leg readings at each image (robot unit). Edit a cell: legs.csv is saved at once. "
+                    "holdout 1 keeps the image out of the calibration to validate it.");
   progress_ = new QProgressBar;
   status_ = new QLabel;
-  status_->setTextFormat(Qt::PlainText);  // file names are shown as they are, never as HTML
+  status_->setTextFormat(Qt::PlainText);
   status_->setWordWrap(true);
   status_->setObjectName("measure_status");
   report_ = new QPlainTextEdit;
@@ -243,14 +244,15 @@ void MeasurePanel::MeasureAll() {
   std::vector<std::string> files;
   for (const QString& file : session_->ImageFiles()) files.push_back(file.toStdString());
   if (files.empty()) return ShowError(this, "Measure", "images/ is empty: load an image folder or capture images.");
-  const Camera camera = *session_->SessionCamera();
-  const Target target = *session_->SessionTarget();
-  const std::string out = session_->Paths().measurements;
-  StartJob("measuring", [this, files, camera, target, out](const JobContext& context) -> GuiContinuation {
-    StatusOr<workflow::MeasureResult> measured =
-        workflow::MeasureFiles(files, camera, target, MeasureOptions{}, out, context);
+  // Every image again, under the session lock, with a record of the camera
+  // and target it was measured with (workflow/session_measure.h).
+  const workflow::MeasureFolderRequest request{session_->Dir().toStdString(), /*all=*/true, LockWait::kBriefly};
+  StartJob("measuring", [this, files, request](const JobContext& context) -> GuiContinuation {
+    StatusOr<workflow::SessionMeasurements> measured = workflow::MeasureSessionFolder(request, context);
     const Status written = measured.ok() ? Status::Ok() : measured.status();
-    const int usable = measured.ok() ? measured->ok() : 0;
+    int usable = 0;
+    if (measured.ok())
+      for (const auto& [image, pose] : measured->poses) usable += pose.ok;
     return [this, written, usable, total = files.size()] {
       if (written.cancelled()) {
         status_->setText("measuring cancelled: measurements.csv is unchanged.");

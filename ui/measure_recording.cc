@@ -1,7 +1,6 @@
 // MeasurePanel's recording actions: images from a folder or a camera, leg
 // readings from a file or typed in, camera intrinsics from target images.
 // The panel's layout, preview and batch measurement are in measure_panel.cc.
-#include <QCoreApplication>
 #include <QDialog>
 #include <QDialogButtonBox>
 #include <QDir>
@@ -13,11 +12,13 @@
 #include <QLabel>
 #include <QPlainTextEdit>
 #include <QSpinBox>
+#include <QTemporaryFile>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
 #include "core/inverse_kinematics.h"
+#include "core/session_lock.h"
 #include "ui/background_job.h"
 #include "ui/error_dialog.h"
 #include "ui/measure_panel.h"
@@ -40,6 +41,8 @@ void MeasurePanel::LoadImageFolder(const QString& chosen) {
   if (!files.ok()) return ShowError(this, "Load images", Message(files.status()));
   if (Status inside = workflow::CheckWritableInside(session_->Dir().toStdString(), "images"); !inside.ok())
     return ShowError(this, "Load images", Message(inside));
+  StatusOr<SessionLock> lock = SessionLock::Acquire(session_->Dir().toStdString(), LockWait::kBriefly);
+  if (!lock.ok()) return ShowError(this, "Load images", Message(lock.status()));
   int copied = 0;
   for (const std::string& file : *files) {
     const QString target = QDir(QString::fromStdString(session_->Paths().images))
@@ -66,11 +69,19 @@ void MeasurePanel::ImportLegs(const QString& chosen) {
 void MeasurePanel::CaptureFromCamera() {
   if (!session_->IsOpen()) return ShowError(this, "Capture", "Open or create a session first (File menu).");
   const int device = camera_index_->value();
-  const QString name = QString("capture_%1.png").arg(session_->ImageFiles().size(), 4, 10, QChar('0'));
+  // The first free name: recorded images are never replaced.
+  const QDir images(QString::fromStdString(session_->Paths().images));
+  int index = static_cast<int>(session_->ImageFiles().size());
+  while (images.exists(QString("capture_%1.png").arg(index, 4, 10, QChar('0')))) ++index;
+  const QString name = QString("capture_%1.png").arg(index, 4, 10, QChar('0'));
   // The frame waits outside images/ until its readings are typed: image and
-  // row then enter the session together (workflow::RecordCapture).
-  const std::string path =
-      QDir::temp().filePath(QString("hexcal-capture-%1.png").arg(QCoreApplication::applicationPid())).toStdString();
+  // row then enter the session together (workflow::RecordCapture). The temp
+  // file is made exclusively, so imwrite never follows a planted link.
+  QTemporaryFile frame(QDir::temp().filePath("hexcal-capture-XXXXXX.png"));
+  frame.setAutoRemove(false);
+  if (!frame.open()) return ShowError(this, "Capture", "Could not make a temporary file for the frame.");
+  const std::string path = frame.fileName().toStdString();
+  frame.close();
   StartJob("capturing", [this, device, path, name](const JobContext&) -> GuiContinuation {
     cv::VideoCapture capture(device);
     cv::Mat frame;
@@ -133,9 +144,13 @@ void MeasurePanel::IntrinsicsFromFolder(const QString& chosen) {
   if (!files.ok()) return ShowError(this, "Intrinsics", Message(files.status()));
   const Target target = *session_->SessionTarget();
   const std::string out = (std::filesystem::path(session_->Dir().toStdString()) / "camera.yaml").string();
-  StartJob("intrinsics", [this, files = *files, target, out](const JobContext& context) -> GuiContinuation {
+  const std::string dir = session_->Dir().toStdString();
+  StartJob("intrinsics", [this, files = *files, target, out, dir](const JobContext& context) -> GuiContinuation {
+    // camera.yaml is a session file: written under the session lock.
+    StatusOr<SessionLock> lock = SessionLock::Acquire(dir, LockWait::kBriefly);
     StatusOr<workflow::IntrinsicsOutcome> outcome =
-        workflow::CalibrateCameraFromFiles(files, target, IntrinsicsOptions{}, out, "", context);
+        lock.ok() ? workflow::CalibrateCameraFromFiles(files, target, IntrinsicsOptions{}, out, "", context)
+                  : StatusOr<workflow::IntrinsicsOutcome>(lock.status());
     if (!outcome.ok())
       return [this, s = outcome.status()] {
         if (!s.cancelled())

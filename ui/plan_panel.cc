@@ -22,6 +22,7 @@
 #include "core/inverse_kinematics.h"
 #include "ui/background_job.h"
 #include "ui/charts.h"
+#include "core/session_lock.h"
 #include "ui/error_dialog.h"
 #include "ui/plan_options.h"
 #include "workflow/plan_step.h"
@@ -144,6 +145,7 @@ void PlanPanel::Run() {
   run_->setEnabled(false);
   cancel_->setEnabled(true);
   SetOutcome("planning…");
+  plan_at_start_ = session_->Plan();
   QPointer<PlanPanel> self(this);
   job_->Start("planning", [this, self, model, setup = *options](const JobContext& context) -> GuiContinuation {
     // O1..O4 of every iteration as it is recorded. A queued call: the chart
@@ -169,9 +171,13 @@ void PlanPanel::Finish(const Status& status, const PlanResult& result) {
         this, "Plan",
         QString::fromStdString(status.message()) + "\nTry more candidates, another candidate kind, or fewer poses.");
   }
-  if (Status s = workflow::WriteHistoryCsv(HistoryPath(*session_), result); !s.ok())
-    ShowError(this, "Plan", QString::fromStdString(s.message()));
-  ApplySessionEdit(this, "Plan", [&](bool overwrite) { return session_->SetPlan(result.poses, overwrite); });
+  if (!ApplySessionEdit(this, "Plan", [&](bool overwrite) {
+        return session_->SetPlan(result.poses, overwrite, &plan_at_start_);
+      }))
+    return SetOutcome("not saved: plan.csv was kept as another program wrote it.");
+  StatusOr<SessionLock> lock = SessionLock::Acquire(session_->Dir().toStdString(), LockWait::kBriefly);
+  const Status history = lock.ok() ? workflow::WriteHistoryCsv(HistoryPath(*session_), result) : lock.status();
+  if (!history.ok()) ShowError(this, "Plan", QString::fromStdString(history.message()));
   // The bar stops where the planner converged; show it complete.
   progress_->setFormat("done");
   progress_->setValue(progress_->maximum());

@@ -66,6 +66,9 @@ class PlanPanel : public QWidget {
   QtCharts::QChartView *indices_chart_, *legs_chart_;
   charts::ChartSpec indices_;  // what indices_chart_ shows; the live plot appends to it
   QString outcome_;
+  // The plan when the planner started: the plan its result replaces, so that
+  // a plan.csv another program wrote meanwhile is a conflict, not overwritten.
+  std::vector<Vector6d> plan_at_start_;
   bool filling_ = false;
 };
 

@@ -8,6 +8,7 @@
 
 #include "workflow/plan_step.h"
 #include "workflow/session_calibrate.h"
+#include "workflow/session_measure.h"
 #include "workflow/session_results.h"
 #include "core/csv.h"
 #include "core/robot_io.h"
@@ -57,6 +58,30 @@ void SessionState::Watch() {
   const SessionPaths paths = Paths();
   for (const std::string& path : {paths.dir, paths.images, paths.results})
     if (QFileInfo(QString::fromStdString(path)).isDir()) watcher_.addPath(QString::fromStdString(path));
+  // Files written in place (`>>`, an editor) change no folder entry.
+  for (const std::string& path : {paths.legs, paths.plan, paths.config, paths.measurements})
+    if (QFileInfo(QString::fromStdString(path)).isFile()) watcher_.addPath(QString::fromStdString(path));
+}
+
+// Measure is done when every image with readings has a row measured with the
+// camera, target and image file as they are now (workflow/session_measure.h).
+void SessionState::LoadMeasureState() {
+  measure_state_ = StepState::kTodo;
+  measure_note_.clear();
+  if (legs_.empty()) return;
+  std::vector<std::string> images;
+  for (const LegsRow& row : legs_) images.push_back(row.image);
+  StatusOr<workflow::MeasureState> state = workflow::SessionMeasureState(dir_.toStdString(), images);
+  if (!state.ok()) {
+    measure_note_ = QString::fromStdString(state.status().message());
+    return;
+  }
+  if (state->to_measure.empty()) {
+    measure_state_ = StepState::kDone;
+  } else if (!state->reason.empty()) {
+    measure_state_ = StepState::kStale;
+    measure_note_ = QString::fromStdString(state->reason);
+  }
 }
 
 // Calibrate and Validate are done when results/ is one whole unit made from
@@ -64,16 +89,17 @@ void SessionState::Watch() {
 void SessionState::LoadResultsState() {
   results_state_ = StepState::kTodo;
   results_note_.clear();
+  results_ = Status::Error("No results yet: run the Calibrate step.");
   std::error_code error;
   if (!fs::exists(workflow::CalibrationReportPath(dir_.toStdString()), error)) return;
-  StatusOr<workflow::SessionResults> results = workflow::LoadSessionResults(dir_.toStdString());
-  if (!results.ok()) {
-    results_note_ = QString::fromStdString(results.status().message());
+  results_ = workflow::LoadSessionResults(dir_.toStdString());
+  if (!results_.ok()) {
+    results_note_ = QString::fromStdString(results_.status().message());
     return;
   }
-  if (!results->changed_inputs.empty()) {
+  if (!results_->changed_inputs.empty()) {
     results_state_ = StepState::kStale;
-    results_note_ = QString::fromStdString(workflow::ListNames(results->changed_inputs)) +
+    results_note_ = QString::fromStdString(workflow::ListNames(results_->changed_inputs)) +
                     " changed since the results were computed: calibrate again.";
     return;
   }
@@ -119,6 +145,7 @@ Status SessionState::LoadAll(const QString& dir) {
       legs_error_ = QString::fromStdString(legs.status().message());
     }
   }
+  LoadMeasureState();
   LoadResultsState();
   Watch();
   return Status::Ok();
@@ -151,9 +178,10 @@ workflow::EditOutcome SessionState::ApplyEdit(
   return done;
 }
 
-workflow::EditOutcome SessionState::SetPlan(const std::vector<Vector6d>& poses, bool overwrite) {
+workflow::EditOutcome SessionState::SetPlan(const std::vector<Vector6d>& poses, bool overwrite,
+                                            const std::vector<Vector6d>* seen) {
   return ApplyEdit(overwrite, [&](const workflow::EditOptions& options) {
-    return workflow::ApplyPlanEdit(dir_.toStdString(), plan_, poses, options);
+    return workflow::ApplyPlanEdit(dir_.toStdString(), seen ? *seen : plan_, poses, options);
   });
 }
 
@@ -193,12 +221,8 @@ StepState SessionState::State(Step step) const {
       if (!Exists(paths.plan)) return StepState::kTodo;
       // A plan made for another robot file is stale.
       return Modified(paths.plan) < Modified(Resolve(config_.robot)) ? StepState::kStale : StepState::kDone;
-    case Step::kMeasure: {
-      if (!Exists(paths.measurements) || legs_.empty()) return StepState::kTodo;
-      for (const QString& image : ImageFiles())
-        if (Modified(paths.measurements) < QFileInfo(image).lastModified()) return StepState::kStale;
-      return StepState::kDone;
-    }
+    case Step::kMeasure:
+      return measure_state_;
     case Step::kCalibrate:
     case Step::kValidate:
       if (step == Step::kValidate && results_state_ != StepState::kTodo &&

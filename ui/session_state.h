@@ -24,6 +24,7 @@
 #include "vision/camera.h"
 #include "vision/target.h"
 #include "workflow/session_edits.h"
+#include "workflow/session_results.h"
 
 namespace hexcal::ui {
 
@@ -58,7 +59,9 @@ class SessionState : public QObject {
   const std::vector<Vector6d>& Plan() const { return plan_; }
   // plan.csv becomes `poses`, unless it changed on disk since it was shown
   // (a conflict; `overwrite` applies it anyway).
-  workflow::EditOutcome SetPlan(const std::vector<Vector6d>& poses, bool overwrite = false);
+  // `seen` is the plan the change started from (the one shown, by default).
+  workflow::EditOutcome SetPlan(const std::vector<Vector6d>& poses, bool overwrite = false,
+                                const std::vector<Vector6d>* seen = nullptr);
 
   // legs.csv rows; `legs_error` is why the file does not load, if it does not.
   const std::vector<LegsRow>& Legs() const { return legs_; }
@@ -73,6 +76,11 @@ class SessionState : public QObject {
   // Why the Calibrate step is stale or not done: the inputs changed since
   // results/ was made, or results/ is not one whole unit ("" when done).
   const QString& ResultsNote() const { return results_note_; }
+  // results/ as loaded at the last reload (workflow/session_results.h), read
+  // once per reload for every panel: hashing the images is not free.
+  const StatusOr<workflow::SessionResults>& Results() const { return results_; }
+  // Why Measure is stale ("the camera changed since the images were measured").
+  const QString& MeasureNote() const { return measure_note_; }
   // Points the session at another camera file (intrinsics step).
   workflow::EditOutcome SetCamera(const std::string& camera_name, bool overwrite = false);
 
@@ -83,6 +91,7 @@ class SessionState : public QObject {
   Status LoadAll(const QString& dir);
   workflow::EditOutcome ApplyEdit(bool overwrite,
                                   const std::function<workflow::EditOutcome(const workflow::EditOptions&)>& edit);
+  void LoadMeasureState();
   void LoadResultsState();
   void Watch();
 
@@ -94,7 +103,10 @@ class SessionState : public QObject {
   std::vector<Vector6d> plan_;
   std::vector<LegsRow> legs_;
   QString legs_error_;
+  StepState measure_state_ = StepState::kTodo;
+  QString measure_note_;
   StepState results_state_ = StepState::kTodo;
+  StatusOr<workflow::SessionResults> results_ = Status::Error("No results yet: run the Calibrate step.");
   QString results_note_;
   QFileSystemWatcher watcher_;
   QTimer reload_timer_;  // folds a burst of changes (an atomic write is several) into one reload

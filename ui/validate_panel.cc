@@ -66,12 +66,7 @@ ValidatePanel::ValidatePanel(SessionState* session, QWidget* parent) : QWidget(p
 void ValidatePanel::Refresh() {
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 2; ++c) summary_->setItem(r, c, new QTableWidgetItem("—"));
-  const std::string path = workflow::CalibrationReportPath(session_->Dir().toStdString());
-  std::error_code error;
-  StatusOr<workflow::SessionResults> results =
-      session_->IsOpen() && fs::exists(path, error)
-          ? workflow::LoadSessionResults(session_->Dir().toStdString())
-          : StatusOr<workflow::SessionResults>(Status::Error("No results yet: run the Calibrate step."));
+  const StatusOr<workflow::SessionResults>& results = session_->Results();
   StatusOr<workflow::CalibrationReport> report =
       results.ok() ? StatusOr<workflow::CalibrationReport>(results->report) : results.status();
   ShowChart(position_chart_, charts::ValidationPerImageChart({}, charts::ValidationQuantity::kPosition, ""));

@@ -192,7 +192,7 @@ class CameraReader {
       if (model_node && model_node.IsScalar()) {
         const std::string model = model_node.Scalar();
         if (model != "plumb_bob" && model != "rational_polynomial") {
-          return Error("distortion_model: '" + model + "' is not supported; expected plumb_bob");
+          return Error("distortion_model: " + Excerpt(model) + " is not supported; expected plumb_bob");
         }
       }
       StatusOr<int> width = Int(map, message_form ? "width" : "image_width");

@@ -201,7 +201,9 @@ StatusOr<CalibrationReport> LoadCalibrationReport(const std::string& path) {
 }
 
 Status SaveCalibrationReport(const std::string& path, const CalibrationReport& report) {
-  return WriteFileAtomically(path, ToJson(report).dump(2) + "\n");
+  // A file name that is not UTF-8 is written with U+FFFD, never thrown on.
+  const std::string text = ToJson(report).dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
+  return WriteFileAtomically(path, text + "\n");
 }
 
 }  // namespace hexcal::workflow

@@ -18,6 +18,7 @@
 #include "core/staged_folder.h"
 #include "core/validation.h"
 #include "vision/measure.h"
+#include "workflow/session_measure.h"
 #include "workflow/session_results.h"
 
 namespace hexcal::workflow {
@@ -29,12 +30,8 @@ constexpr const char* kUsedMeasurements = "calibration_measurements.csv";
 constexpr const char* kCalibratedRobot = "calibrated.yaml";
 constexpr const char* kReportJson = "report.json";
 
-struct CameraPose {
-  bool ok = false;
-  Pose camera_from_target;                 // target unit
-  Matrix6d covariance = Matrix6d::Zero();  // of the pose vector (Euler xyz): target unit², degrees²
-};
-using CameraPoses = std::map<std::string, CameraPose>;
+using CameraPose = SessionImagePose;
+using CameraPoses = std::map<std::string, SessionImagePose>;
 
 // What session.yaml names, loaded.
 struct SessionInputs {
@@ -72,44 +69,14 @@ StatusOr<SessionInputs> LoadSessionInputs(const std::string& dir) {
   return SessionInputs{*config, *legs, robot_name, *nominal, *camera, *target, fk_start};
 }
 
-// Rows of an existing measurements.csv, by image; `rows` receives their cells.
-StatusOr<CameraPoses> ReadMeasuredPoses(const std::string& path, std::vector<std::vector<std::string>>* rows) {
-  CameraPoses poses;
-  std::error_code error;
-  if (!fs::exists(path, error)) return poses;
-  StatusOr<std::string> text = ReadFileToString(path, kMaxTableBytes);
-  if (!text.ok()) return text.status();
-  StatusOr<std::vector<ImageMeasurementRecord>> records = ParseImageMeasurementsCsv(*text, path);
-  if (!records.ok()) return records.status();
-  for (ImageMeasurementRecord& record : *records) {
-    poses[record.file] = CameraPose{record.ok, record.camera_from_target, record.covariance};
-    rows->push_back(std::move(record.cells));
-  }
-  return poses;
-}
-
-// measurements.csv rows by image; measures the images missing from it and
-// rewrites it with every row (old rows kept as they were).
-StatusOr<CameraPoses> MeasureSession(const SessionPaths& paths, const SessionInputs& in, const JobHooks& hooks) {
-  std::vector<std::vector<std::string>> rows;
-  StatusOr<CameraPoses> poses = ReadMeasuredPoses(paths.measurements, &rows);
-  if (!poses.ok()) return poses.status();
-  std::vector<std::string> missing;
-  for (const LegsRow& row : in.legs)
-    if (poses->count(row.image) == 0) missing.push_back((fs::path(paths.images) / row.image).string());
-  if (missing.empty()) return poses;
-  hooks.Stage("measure (images)");
-  StatusOr<std::vector<ImageMeasurement>> measured =
-      MeasureImages(missing, in.camera, in.target, MeasureOptions{}, hooks);
+// The camera pose of every image with readings, measured where
+// measurements.csv has no valid row (session_measure.h).
+StatusOr<CameraPoses> MeasureSession(const std::string& dir, const SessionInputs& in, const JobHooks& hooks) {
+  std::vector<std::string> images;
+  for (const LegsRow& row : in.legs) images.push_back(row.image);
+  StatusOr<SessionMeasurements> measured = MeasureSessionImages(dir, images, in.camera, in.target, {}, hooks);
   if (!measured.ok()) return measured.status();
-  for (ImageMeasurement m : *measured) {
-    m.file = fs::path(m.file).filename().string();
-    (*poses)[m.file] =
-        CameraPose{m.pose.status == PoseStatus::kOk, m.pose.camera_from_target, m.pose.covariance_vector};
-    rows.push_back(ImageMeasurementRow(m));
-  }
-  if (Status s = WriteFileAtomically(paths.measurements, FormatCsv(ImageMeasurementColumns(), rows)); !s.ok()) return s;
-  return poses;
+  return measured->poses;
 }
 
 // The calibration rows (usable, not held out) and the held-out rows.
@@ -305,7 +272,7 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   if (!inputs.ok()) return inputs.status();
   StatusOr<SessionInputs> in = LoadSessionInputs(dir);
   if (!in.ok()) return in.status();
-  StatusOr<CameraPoses> poses = MeasureSession(SessionPaths(dir), *in, hooks);
+  StatusOr<CameraPoses> poses = MeasureSession(dir, *in, hooks);
   if (!poses.ok()) return poses.status();
   const double scale = MetresPerUnit(in->target.length_unit) / MetresPerUnit(in->nominal.length_unit);
   const SplitRows split = SplitSessionRows(*in, *poses, scale);

@@ -1,6 +1,8 @@
 #include "workflow/session_edits.h"
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <filesystem>
 
 #include "core/atomic_file.h"
@@ -20,11 +22,23 @@ EditOutcome Failed(Status status) { return EditOutcome{std::move(status), false,
 EditOutcome Conflict(std::string text) { return EditOutcome{Status::Ok(), true, std::move(text)}; }
 EditOutcome Done() { return EditOutcome{}; }
 
-// A file name inside images/: never a path that leads out of the session.
+// A file name inside images/ that the session lists (PNG, JPEG, TIFF): never
+// a path that leads out of the session.
 Status CheckImageName(const std::string& name) {
   if (name.empty() || name == "." || name == ".." || name.find_first_of(std::string("/\0", 2)) != std::string::npos)
     return Status::Error("'" + Excerpt(name) + "': not an image file name (a name inside images/, no folders)");
-  return Status::Ok();
+  std::string extension = fs::path(name).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* known : {".png", ".jpg", ".jpeg", ".tif", ".tiff"})
+    if (extension == known) return Status::Ok();
+  return Status::Error("'" + Excerpt(name) + "': not a .png, .jpg or .tif name");
+}
+
+// Readings are finite numbers: a NaN written into legs.csv would make every
+// later command refuse the file.
+Status CheckReadings(const LegsEdit& edit) {
+  const bool finite = edit.kind == LegsEdit::Kind::kSetRow ? edit.row.legs.allFinite() : std::isfinite(edit.value);
+  return finite ? Status::Ok() : Status::Error(edit.image + ": a reading is not a finite number");
 }
 
 // legs.csv as it is on disk; a missing file is an empty table with the usual
@@ -55,10 +69,14 @@ int RowOf(const CsvTable& table, const std::string& image) {
 }
 
 std::vector<std::string> RowCells(CsvTable* table, const LegsRow& row) {
+  // Every column first (a holdout column may be added), then the row's size.
+  const int image = ColumnOf(table, "image"), holdout = ColumnOf(table, "holdout");
+  int legs[kNumLegs];
+  for (int i = 0; i < kNumLegs; ++i) legs[i] = ColumnOf(table, "L" + std::to_string(i + 1));
   std::vector<std::string> cells(table->header.size(), "");
-  cells[ColumnOf(table, "image")] = row.image;
-  for (int i = 0; i < kNumLegs; ++i) cells[ColumnOf(table, "L" + std::to_string(i + 1))] = FormatNumber(row.legs[i]);
-  cells[ColumnOf(table, "holdout")] = row.holdout ? "1" : "0";
+  cells[image] = row.image;
+  for (int i = 0; i < kNumLegs; ++i) cells[legs[i]] = FormatNumber(row.legs[i]);
+  cells[holdout] = row.holdout ? "1" : "0";
   return cells;
 }
 
@@ -82,7 +100,7 @@ StatusOr<std::string> EditTable(CsvTable* table, const LegsEdit& edit, bool over
   std::string& cell = table->rows[row][ColumnOf(table, name)];
   StatusOr<double> on_disk = cell.empty() && !reading ? StatusOr<double>(0.0) : ParseNumber(cell);
   if (!overwrite && (!on_disk.ok() || *on_disk != edit.seen)) {
-    return "legs.csv: " + name + " of " + edit.image + " is " + cell + " on disk, not " + FormatNumber(edit.seen) +
+    return "legs.csv: " + name + " of " + edit.image + " is " + Excerpt(cell) + " on disk, not " + FormatNumber(edit.seen) +
            " as shown (another program changed it)";
   }
   cell = reading ? FormatNumber(edit.value) : (edit.value != 0 ? "1" : "0");
@@ -118,19 +136,36 @@ LegsEdit LegsEdit::SetRow(const LegsRow& row) {
   return edit;
 }
 
-EditOutcome ApplyLegsEdit(const std::string& dir, const LegsEdit& edit, const EditOptions& options) {
+namespace {
+
+// legs.csv as it is on disk with the edit applied, not yet written; the
+// outcome says why not (an error, a conflict) when it cannot be applied.
+StatusOr<CsvTable> EditedLegs(const std::string& dir, const LegsEdit& edit, bool overwrite, EditOutcome* outcome) {
   if (edit.kind == LegsEdit::Kind::kSetReading && (edit.leg < 0 || edit.leg >= kNumLegs))
-    return Failed(Status::Error("leg " + std::to_string(edit.leg + 1) + ": legs are 1 to 6"));
-  if (Status s = CheckImageName(edit.image); !s.ok()) return Failed(s);
+    return Status::Error("leg " + std::to_string(edit.leg + 1) + ": legs are 1 to 6");
+  if (Status s = CheckImageName(edit.image); !s.ok()) return s;
+  if (Status s = CheckReadings(edit); !s.ok()) return s;
+  StatusOr<CsvTable> table = ReadLegsTable(SessionPaths(dir).legs);
+  if (!table.ok()) return table.status();
+  StatusOr<std::string> conflict = EditTable(&*table, edit, overwrite);
+  if (!conflict.ok()) return conflict.status();
+  if (!conflict->empty()) {
+    *outcome = Conflict(*conflict);
+    return Status::Error(*conflict);
+  }
+  return table;
+}
+
+}  // namespace
+
+EditOutcome ApplyLegsEdit(const std::string& dir, const LegsEdit& edit, const EditOptions& options) {
   StatusOr<SessionLock> lock = SessionLock::Acquire(dir, options.wait);
   if (!lock.ok()) return Failed(lock.status());
-  const std::string path = SessionPaths(dir).legs;
-  StatusOr<CsvTable> table = ReadLegsTable(path);
+  EditOutcome outcome;
+  StatusOr<CsvTable> table = EditedLegs(dir, edit, options.overwrite, &outcome);
+  if (outcome.conflict) return outcome;
   if (!table.ok()) return Failed(table.status());
-  StatusOr<std::string> conflict = EditTable(&*table, edit, options.overwrite);
-  if (!conflict.ok()) return Failed(conflict.status());
-  if (!conflict->empty()) return Conflict(*conflict);
-  return Failed(WriteFileAtomically(path, FormatCsv(table->header, table->rows)));
+  return Failed(WriteFileAtomically(SessionPaths(dir).legs, FormatCsv(table->header, table->rows)));
 }
 
 Status CheckWritableInside(const std::string& dir, const std::string& folder) {
@@ -146,18 +181,23 @@ Status CheckWritableInside(const std::string& dir, const std::string& folder) {
 
 EditOutcome RecordCapture(const std::string& dir, const std::string& image_file, const LegsRow& row,
                           const EditOptions& options) {
-  if (Status s = CheckImageName(row.image); !s.ok()) return Failed(s);
   if (Status s = CheckWritableInside(dir, "images"); !s.ok()) return Failed(s);
   StatusOr<SessionLock> lock = SessionLock::Acquire(dir, options.wait);
   if (!lock.ok()) return Failed(lock.status());
+  // The row is checked before the image is written: a refused row leaves no
+  // image without readings behind.
+  EditOutcome outcome;
+  StatusOr<CsvTable> table = EditedLegs(dir, LegsEdit::SetRow(row), options.overwrite, &outcome);
+  if (outcome.conflict) return outcome;
+  if (!table.ok()) return Failed(table.status());
   const std::string target = (fs::path(SessionPaths(dir).images) / row.image).string();
   std::error_code error;
-  if (fs::exists(fs::symlink_status(target, error)) && !options.overwrite)
-    return Conflict(target + " exists already (recorded by another program?)");
+  if (fs::exists(fs::symlink_status(target, error)))  // recorded images are never replaced
+    return Failed(Status::Error(target + ": exists already; record the capture under another name"));
   StatusOr<std::string> bytes = ReadFileToString(image_file, kMaxImageBytes);
   if (!bytes.ok()) return Failed(bytes.status());
   if (Status s = WriteFileAtomically(target, *bytes); !s.ok()) return Failed(s);
-  return ApplyLegsEdit(dir, LegsEdit::SetRow(row), options);
+  return Failed(WriteFileAtomically(SessionPaths(dir).legs, FormatCsv(table->header, table->rows)));
 }
 
 Status ImportLegsFile(const std::string& dir, const std::string& legs_file) {

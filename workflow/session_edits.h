@@ -49,7 +49,7 @@ struct EditOptions {
 struct EditOutcome {
   Status status;  // the edit could not be made: the file does not parse, the session is busy, a write failed
   bool conflict = false;
-  std::string conflict_text;  // "legs.csv: L3 of img_004.png is 45.1 on disk, not 45 as shown"
+  std::string conflict_text;  // "legs.csv: L3 of img_004.png is '45.1' on disk, not 45 as shown ..."
 };
 
 EditOutcome ApplyLegsEdit(const std::string& session_dir, const LegsEdit& edit, const EditOptions& options = {});
@@ -61,14 +61,17 @@ Status CheckWritableInside(const std::string& session_dir, const std::string& fo
 
 // A capture: the image file copied into images/ and its row added to
 // legs.csv, both under one hold of the lock, so that no other step sees the
-// image without its readings. An image of that name already there is a
-// conflict. A writer killed between the two leaves the image without a row,
-// which LoadSessionLegs names ("images/x.png: no row in legs.csv").
+// image without its readings. The row is checked first; an image of that name
+// already there is refused (recorded images are never replaced). A writer
+// killed between the two writes leaves the image without a row, which
+// LoadSessionLegs names ("images/x.png: no row in legs.csv").
 EditOutcome RecordCapture(const std::string& session_dir, const std::string& image_file, const LegsRow& row,
                           const EditOptions& options = {});
 
 // legs.csv replaced by `legs_file` (the GUI's "Import readings"), under the
-// lock; if the session's rows do not load with it, the old legs.csv is put back.
+// lock; if the session's rows do not load with it, the old legs.csv is put
+// back (a kill in between leaves the imported file, which then fails to load
+// with its error named).
 Status ImportLegsFile(const std::string& session_dir, const std::string& legs_file);
 
 // plan.csv becomes `wanted` (no file when empty); `seen` is the plan the
@@ -76,7 +79,8 @@ Status ImportLegsFile(const std::string& session_dir, const std::string& legs_fi
 EditOutcome ApplyPlanEdit(const std::string& session_dir, const std::vector<Vector6d>& seen,
                           const std::vector<Vector6d>& wanted, const EditOptions& options = {});
 
-// session.yaml's camera becomes `wanted`; the other keys stay as on disk.
+// session.yaml's camera becomes `wanted`; the other values stay as on disk
+// (the file is written anew: comments and unknown keys are not kept).
 EditOutcome ApplyCameraEdit(const std::string& session_dir, const std::string& seen, const std::string& wanted,
                             const EditOptions& options = {});
 

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
 #include "core/csv.h"
@@ -63,7 +64,7 @@ TEST(SessionEdits, TheSameCellChangedOnDiskIsAConflictAndNothingIsWritten) {
   const EditOutcome clash = ApplyLegsEdit(s, LegsEdit::SetReading("a.png", 2, 52, 52.5));
   ASSERT_TRUE(clash.status.ok());
   ASSERT_TRUE(clash.conflict);
-  EXPECT_NE(clash.conflict_text.find("L3 of a.png is 52.2 on disk"), std::string::npos) << clash.conflict_text;
+  EXPECT_NE(clash.conflict_text.find("L3 of a.png is '52.2' on disk"), std::string::npos) << clash.conflict_text;
   EXPECT_EQ(ReadTextFile(s + "/legs.csv"), on_disk);
   EditOptions overwrite;
   overwrite.overwrite = true;
@@ -124,6 +125,26 @@ TEST(SessionEdits, ACaptureIsNeverWrittenThroughALinkOutOfTheSession) {
   EXPECT_NE(refused.status.message().find("leads out of the session folder"), std::string::npos)
       << refused.status.message();
   EXPECT_FALSE(fs::exists(elsewhere.File("b.png")));
+}
+
+TEST(SessionEdits, ARowAddedToAFileWithoutHoldoutGetsTheColumnAndNaNIsRefused) {
+  TempDir dir;
+  const std::string s = MakeSession(dir);
+  WriteTextFile(s + "/legs.csv", "image,L1,L2,L3,L4,L5,L6\na.png,50,51,52,53,54,55\n");
+  WriteTextFile(s + "/images/b.png", "image b");
+  LegsRow row;
+  row.image = "b.png";
+  row.legs << 1, 2, 3, 4, 5, 6;
+  row.holdout = true;
+  ASSERT_TRUE(ApplyLegsEdit(s, LegsEdit::SetRow(row)).status.ok());
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s);
+  ASSERT_TRUE(rows.ok()) << rows.status().message();
+  ASSERT_EQ(rows->size(), 2u);
+  EXPECT_FALSE((*rows)[0].holdout);
+  EXPECT_TRUE((*rows)[1].holdout);
+  const std::string before = ReadTextFile(s + "/legs.csv");
+  EXPECT_FALSE(ApplyLegsEdit(s, LegsEdit::SetReading("a.png", 0, 50, std::nan(""))).status.ok());
+  EXPECT_EQ(ReadTextFile(s + "/legs.csv"), before);
 }
 
 TEST(SessionEdits, AnImportThatDoesNotLoadKeepsTheOldReadings) {

@@ -1,6 +1,7 @@
 #include "workflow/session_report.h"
 
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 #include "charts/chart_render.h"
@@ -194,10 +195,15 @@ StatusOr<std::string> WriteSessionReport(const ReportRequest& request) {
   std::error_code exists_error;
   if (!request.out.empty() && !request.force && fs::exists(out, exists_error))
     return Status::Error(out + ": exists; use --force to overwrite it");
-  // Held while reading results/ and writing into it: a run publishing a new
-  // results/ meanwhile would otherwise be described by the old one's page.
-  StatusOr<SessionLock> lock = SessionLock::Acquire(request.session, LockWait::kBriefly);
-  if (!lock.ok()) return lock.status();
+  // Writing into results/: held while reading it and writing, or a run
+  // publishing a new results/ meanwhile would be described by the old page.
+  // A page written elsewhere only reads (LoadSessionResults checks the unit).
+  std::optional<SessionLock> lock;
+  if (request.out.empty()) {
+    StatusOr<SessionLock> acquired = SessionLock::Acquire(request.session, LockWait::kBriefly);
+    if (!acquired.ok()) return acquired.status();
+    lock.emplace(std::move(*acquired));
+  }
   StatusOr<std::string> html = SessionReportHtml(request.session);
   if (!html.ok()) return html.status();
   if (Status s = WriteFileAtomically(out, *html); !s.ok()) return s;

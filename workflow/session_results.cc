@@ -18,20 +18,11 @@ namespace fs = std::filesystem;
 constexpr int kManifestFormat = 1;
 constexpr const char* kConfigInputs = "session.yaml (robot, camera, target, noise)";
 
-// A name in session.yaml: the file's bytes when it names a file, the name
-// itself when it names a preset compiled into hexcal.
-StatusOr<std::string> HashNamedInput(const std::string& dir, const std::string& name, size_t max_bytes) {
-  const std::string resolved = ResolveSessionFile(dir, name);
-  std::error_code error;
-  if (!fs::exists(resolved, error)) return Sha256Hex("preset " + name);
-  return Sha256OfFile(resolved, max_bytes);
-}
-
 StatusOr<std::string> HashConfigInputs(const std::string& dir, const SessionConfig& config, ContentHashes* hashes) {
   const std::pair<const char*, const std::string*> named[] = {
       {"robot ", &config.robot}, {"camera ", &config.camera}, {"target ", &config.target}};
   for (const auto& [kind, name] : named) {
-    StatusOr<std::string> hash = HashNamedInput(dir, *name, kMaxYamlBytes);
+    StatusOr<std::string> hash = HashSessionFile(dir, *name);
     if (!hash.ok()) return hash.status();
     (*hashes)[kind + *name] = *hash;
   }
@@ -55,7 +46,9 @@ Status ReadHashes(const nlohmann::json& json, const char* key, const std::string
 // Every output of the manifest has the hash it had when the run published it.
 Status CheckOutputs(const std::string& dir, const ResultsManifest& manifest) {
   const std::string results = SessionPaths(dir).results;
-  if (manifest.outputs.count("report.json") == 0) return Status::Error(ResultsManifestPath(dir) + ": lists no report.json");
+  for (const char* name : {"report.json", "calibrated.yaml", "calibration_measurements.csv"})
+    if (manifest.outputs.count(name) == 0) return Status::Error(ResultsManifestPath(dir) + ": lists no " + name);
+  if (manifest.outputs.size() != 3) return Status::Error(ResultsManifestPath(dir) + ": lists other outputs");
   for (const auto& [name, expected] : manifest.outputs) {
     const std::string path = (fs::path(results) / name).string();
     StatusOr<std::string> hash = Sha256OfFile(path, kMaxTableBytes);
@@ -70,6 +63,13 @@ Status CheckOutputs(const std::string& dir, const ResultsManifest& manifest) {
 
 }  // namespace
 
+StatusOr<std::string> HashSessionFile(const std::string& dir, const std::string& name) {
+  const std::string resolved = ResolveSessionFile(dir, name);
+  std::error_code error;
+  if (!fs::exists(resolved, error)) return Sha256Hex("preset " + name);
+  return Sha256OfFile(resolved, kMaxYamlBytes);
+}
+
 std::string ResultsManifestPath(const std::string& session_dir) {
   return (fs::path(SessionPaths(session_dir).results) / "manifest.json").string();
 }
@@ -80,7 +80,8 @@ std::string ManifestToJsonText(const ResultsManifest& manifest) {
                             {"command", manifest.command},
                             {"inputs", manifest.inputs},
                             {"outputs", manifest.outputs}};
-  return json.dump(2) + "\n";
+  // A file name that is not UTF-8 (a Latin-1 share) is written with U+FFFD, never thrown on.
+  return json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 StatusOr<ResultsManifest> ParseResultsManifest(const std::string& text, const std::string& source) {

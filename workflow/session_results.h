@@ -35,6 +35,10 @@ std::string ResultsManifestPath(const std::string& session_dir);  // DIR/results
 std::string ManifestToJsonText(const ResultsManifest& manifest);
 StatusOr<ResultsManifest> ParseResultsManifest(const std::string& text, const std::string& source);
 
+// The hash of a file session.yaml names (robot, camera, target): its bytes, or
+// the name itself when it names a preset compiled into hexcal.
+StatusOr<std::string> HashSessionFile(const std::string& session_dir, const std::string& name);
+
 // The hashes of everything a calibration of the session reads.
 StatusOr<ContentHashes> HashSessionInputs(const std::string& session_dir);
 // The names whose hash differs between two sets, or that only one set has.

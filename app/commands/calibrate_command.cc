@@ -33,11 +33,11 @@ int RunCalibrateSession(const CalibrateCliOptions& cli, std::ostream& out, std::
   request.wait = cli.wait ? LockWait::kForever : LockWait::kNo;
   if (Status s = ApplyOptionEntries(OutlierScreeningOptions(), *cli.outliers, &request.outliers, "outliers"); !s.ok())
     return ReportError(err, "calibrate", s);
-  TerminalJob job;
+  TerminalJob job("", &err);  // notes ("measuring 32 images: the camera changed ...") on stderr
   StatusOr<workflow::CalibrationReport> report = workflow::CalibrateSession(request, job.hooks());
   if (!report.ok()) return ReportError(err, "calibrate", report.status());
   if (cli.json) {
-    out << workflow::ToJson(*report).dump(2) << "\n";
+    out << workflow::ToJson(*report).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   } else {
     out << workflow::FormatCalibrationSummary(*report);
   }

@@ -1,5 +1,6 @@
 // hexcal session init --robot R --camera C --target T DIR [--noise-position p]
 //   [--noise-angle a] [--noise-leg l] [--json]
+// hexcal session status DIR [--json]
 // hexcal session record DIR --image NAME --legs L1,...,L6 [--from FILE] [--holdout] [--replace] [--wait]
 #include <filesystem>
 #include <iostream>
@@ -13,6 +14,7 @@
 #include "core/robot_io.h"
 #include "core/session.h"
 #include "workflow/session_edits.h"
+#include "workflow/session_status.h"
 #include "vision/camera.h"
 #include "vision/target.h"
 
@@ -93,10 +95,29 @@ void AddSessionRecord(CLI::App* session, int* exit_code) {
   record->callback([=] { *exit_code = RunSessionRecord(*options, std::cout, std::cerr); });
 }
 
+void AddSessionStatus(CLI::App* session, int* exit_code) {
+  auto dir = std::make_shared<std::string>();
+  auto json = std::make_shared<bool>(false);
+  CLI::App* status = session->add_subcommand("status", "where each step of DIR stands, from the files' contents");
+  status->add_option("dir", *dir, "session folder")->required();
+  status->add_flag("--json", *json, "print one JSON object on stdout");
+  status->callback([=] {
+    StatusOr<workflow::SessionStatus> read = workflow::ReadSessionStatus(*dir);
+    if (!read.ok()) {
+      *exit_code = ReportError(std::cerr, "session status", read.status());
+      return;
+    }
+    std::cout << (*json ? workflow::ToJson(*read).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n"
+                        : workflow::FormatSessionStatus(*read));
+    *exit_code = kExitOk;
+  });
+}
+
 }  // namespace
 
 void AddSessionCommand(CLI::App& app, int* exit_code) {
-  CLI::App* session = app.add_subcommand("session", "create a session folder (docs/session.md)");
+  CLI::App* session =
+      app.add_subcommand("session", "create a session folder, record readings, show its status (docs/session.md)");
   session->require_subcommand(1);
   auto options = std::make_shared<SessionInitOptions>();
   CLI::App* init = session->add_subcommand("init", "create DIR with session.yaml, images/ and results/");
@@ -108,6 +129,7 @@ void AddSessionCommand(CLI::App& app, int* exit_code) {
   init->add_flag("--json", options->json, "print one JSON object on stdout");
   init->callback([=] { *exit_code = RunSessionInit(*options, std::cout, std::cerr); });
   AddSessionRecord(session, exit_code);
+  AddSessionStatus(session, exit_code);
 }
 
 }  // namespace hexcal::cli

@@ -32,6 +32,16 @@ PY
     grep -q "<h2>$section" "$report"
   done
   [ -s "$out/truth/robot.yaml" ] && [ -s "$out/plan.csv" ] && [ "$(ls "$out/images" | wc -l)" -eq 18 ]
+  # Every step done, by content; a replaced image makes measure, calibrate and validate stale.
+  "$hexcal" session status "$out" --json | python3 -c '
+import json, sys
+steps = {s["step"]: s["status"] for s in json.load(sys.stdin)["steps"]}
+assert set(steps.values()) == {"done"}, steps'
+  first=$(ls "$out/images" | head -1) second=$(ls "$out/images" | sed -n 2p)
+  cp "$out/images/$second" "$out/images/$first"
+  "$hexcal" session status "$out" >"$dir/status"
+  grep -q "measure   stale   1 of 18 to measure again: 1 image(s) changed" "$dir/status"
+  grep -q "calibrate stale   images/$first changed since the results" "$dir/status"
 done
 
 # Text output: the figures a person reads.

@@ -47,17 +47,21 @@ for n in $(seq 1 200); do
   "$hexcal" calibrate --session "$work/s" >"$work/again.log" 2>&1 || fail "rerun after a kill at change $n: $(cat "$work/again.log")"
   check_session "$work/s" "rerun after a kill at change $n"
   [ -z "$(find "$work/s" -maxdepth 1 -name '.results.new-*')" ] || fail "rerun after a kill at change $n left a staging folder"
+  [ $n -lt 200 ] || fail "calibrate --session was still killed at change 200"
 done
 [ $kills -ge 10 ] || fail "calibrate --session made only $kills file-system changes: is the shim loaded?"
 echo "calibrate --session: killed before each of its $kills file-system changes; results/ always whole"
 
-# session record: legs.csv keeps every old row, and has the new one or not.
-cp "$base/images/$(ls "$base/images" | head -1)" "$base/images/extra.png"
+# session record --from (the GUI's capture: the image and its row together):
+# legs.csv keeps every old row and has the new one or not; an image without
+# its row is named by the next command, never silently used.
+frame=$work/frame.png
+cp "$base/images/$(ls "$base/images" | head -1)" "$frame"
 record_kills=0
 for n in $(seq 1 50); do
   rm -rf "$work/s" && cp -a "$base" "$work/s"
-  HEXCAL_KILL_AT=$n LD_PRELOAD=$shim "$hexcal" session record "$work/s" --image extra.png --legs 1,2,3,4,5,6 \
-    >/dev/null 2>&1
+  HEXCAL_KILL_AT=$n LD_PRELOAD=$shim "$hexcal" session record "$work/s" --image extra.png --from "$frame" \
+    --legs 1,2,3,4,5,6 >/dev/null 2>&1
   code=$?
   if [ $code -eq 0 ]; then break; fi
   [ $code -eq 137 ] || fail "session record with a kill at change $n: exit $code"
@@ -69,8 +73,16 @@ new = open(sys.argv[2]).read().splitlines()[1:]
 rows = [r for r in new if not r.startswith('extra.png,')]
 sys.exit(0 if len(new) - len(rows) <= 1 and sorted(r.split(',')[0] for r in rows) == sorted(r.split(',')[0] for r in old) else 1)
 PY
-  "$hexcal" session record "$work/s" --image extra.png --legs 1,2,3,4,5,6 --replace >/dev/null 2>&1 ||
-    fail "record after a kill at change $n refused"
+  if [ -e "$work/s/images/extra.png" ] && ! grep -q '^extra.png,' "$work/s/legs.csv"; then
+    "$hexcal" session status "$work/s" | grep -q "images/extra.png: no row in" ||
+      fail "an image left without its row by a kill at change $n is not named"
+    rm "$work/s/images/extra.png"
+  fi
+  if ! grep -q '^extra.png,' "$work/s/legs.csv"; then
+    "$hexcal" session record "$work/s" --image extra.png --from "$frame" --legs 1,2,3,4,5,6 >/dev/null 2>&1 ||
+      fail "record after a kill at change $n refused"
+  fi
+  [ $n -lt 50 ] || fail "session record was still killed at change 50"
 done
 [ $record_kills -ge 3 ] || fail "session record made only $record_kills changes"
 grep -q '^extra.png,1,2,3,4,5,6' "$work/s/legs.csv" || fail "the finished record did not write its row"

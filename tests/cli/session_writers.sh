@@ -15,7 +15,7 @@ fail() { echo "FAIL: $*"; exit 1; }
 "$hexcal" demo --out "$work/s" --poses 12 --holdout 2 --seed 4 >/dev/null 2>&1 || fail "demo"
 s=$work/s
 wait_for_lock() {  # the lock file names a holder
-  for _ in $(seq 200); do grep -q '^PID' "$s/.hexcal.lock" 2>/dev/null && return 0; sleep 0.02; done
+  for _ in $(seq 1500); do grep -q '^PID' "$s/.hexcal.lock" 2>/dev/null && return 0; sleep 0.02; done
   fail "no writer took the lock"
 }
 

@@ -1,0 +1,141 @@
+#include "workflow/session_status.h"
+
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+#include "core/csv.h"
+#include "core/robot_io.h"
+#include "core/session.h"
+#include "workflow/session_calibrate.h"
+#include "workflow/session_measure.h"
+#include "workflow/session_results.h"
+
+namespace hexcal::workflow {
+namespace {
+
+namespace fs = std::filesystem;
+
+StepReport PlanStep(const std::string& dir) {
+  const std::string path = SessionPaths(dir).plan;
+  std::error_code error;
+  if (!fs::exists(path, error)) return {"plan", StepStatus::kTodo, "no plan.csv: hexcal plan --out " + path};
+  StatusOr<std::vector<Vector6d>> plan = LoadPoses(path);
+  if (!plan.ok()) return {"plan", StepStatus::kBroken, plan.status().message()};
+  return {"plan", StepStatus::kDone, std::to_string(plan->size()) + " poses"};
+}
+
+StepReport ReadingsStep(const std::string& dir, std::vector<LegsRow>* rows) {
+  const SessionPaths paths(dir);
+  std::error_code error;
+  if (!fs::exists(paths.legs, error))
+    return {"readings", StepStatus::kTodo, "no legs.csv: record the readings of each image (hexcal session record)"};
+  StatusOr<std::vector<LegsRow>> legs = LoadSessionLegs(dir);
+  if (!legs.ok()) return {"readings", StepStatus::kBroken, legs.status().message()};
+  *rows = *legs;
+  int held_out = 0;
+  for (const LegsRow& row : *rows) held_out += row.holdout;
+  return {"readings", StepStatus::kDone,
+          std::to_string(rows->size()) + " images with readings, " + std::to_string(held_out) + " held out"};
+}
+
+StepReport MeasureStep(const std::string& dir, const std::vector<LegsRow>& rows) {
+  if (rows.empty()) return {"measure", StepStatus::kTodo, "no images with readings yet"};
+  std::vector<std::string> images;
+  for (const LegsRow& row : rows) images.push_back(row.image);
+  StatusOr<MeasureState> state = SessionMeasureState(dir, images);
+  if (!state.ok()) return {"measure", StepStatus::kBroken, state.status().message()};
+  if (state->to_measure.empty()) return {"measure", StepStatus::kDone, std::to_string(images.size()) + " images measured"};
+  const std::string count = std::to_string(state->to_measure.size()) + " of " + std::to_string(images.size());
+  if (!state->reason.empty())
+    return {"measure", StepStatus::kStale, count + " to measure again: " + state->reason};
+  return {"measure", StepStatus::kTodo, count + " images not measured yet (calibrate --session measures them)"};
+}
+
+std::string Figure(double value) {
+  std::ostringstream out;
+  out << std::setprecision(3) << value;
+  return out.str();
+}
+
+void ResultSteps(const std::string& dir, SessionStatus* status) {
+  std::error_code error;
+  if (!fs::exists(CalibrationReportPath(dir), error)) {
+    status->steps.push_back({"calibrate", StepStatus::kTodo, "no results: hexcal calibrate --session " + dir});
+    status->steps.push_back({"validate", StepStatus::kTodo, "after calibrate"});
+    return;
+  }
+  StatusOr<SessionResults> results = LoadSessionResults(dir);
+  if (!results.ok()) {
+    status->steps.push_back({"calibrate", StepStatus::kBroken, results.status().message()});
+    status->steps.push_back({"validate", StepStatus::kTodo, "after calibrate"});
+    return;
+  }
+  const CalibrationReport& report = results->report;
+  const bool stale = !results->changed_inputs.empty();
+  const std::string since = " (results of " + results->manifest.created + ")";
+  status->steps.push_back(
+      {"calibrate", stale ? StepStatus::kStale : StepStatus::kDone,
+       stale ? ListNames(results->changed_inputs) + " changed since the results" + since + ": calibrate again"
+             : std::to_string(report.calibration_images) + " images, closure RMS " +
+                   Figure(report.closure_position_rms) + " " + report.length_unit + since});
+  if (!report.validation) {
+    status->steps.push_back({"validate", StepStatus::kTodo, "no image held out (holdout column of legs.csv)"});
+    return;
+  }
+  const ValidationSummary& v = *report.validation;
+  status->steps.push_back({"validate", stale ? StepStatus::kStale : StepStatus::kDone,
+                           std::to_string(report.held_out_images) + " held out: position RMS " +
+                               Figure(v.before.position_rms) + " -> " + Figure(v.after.position_rms) + " " +
+                               report.length_unit});
+}
+
+}  // namespace
+
+const char* StepStatusName(StepStatus status) {
+  switch (status) {
+    case StepStatus::kDone:
+      return "done";
+    case StepStatus::kStale:
+      return "stale";
+    case StepStatus::kTodo:
+      return "todo";
+    case StepStatus::kBroken:
+      return "broken";
+  }
+  return "";
+}
+
+StatusOr<SessionStatus> ReadSessionStatus(const std::string& dir) {
+  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
+  if (!config.ok()) return config.status();
+  SessionStatus status;
+  status.session = dir;
+  StatusOr<Robot> robot = LoadRobot(ResolveSessionFile(dir, config->robot));
+  status.steps.push_back(robot.ok() ? StepReport{"robot", StepStatus::kDone, robot->name}
+                                    : StepReport{"robot", StepStatus::kBroken, robot.status().message()});
+  status.steps.push_back(PlanStep(dir));
+  std::vector<LegsRow> rows;
+  status.steps.push_back(ReadingsStep(dir, &rows));
+  status.steps.push_back(MeasureStep(dir, rows));
+  ResultSteps(dir, &status);
+  return status;
+}
+
+nlohmann::json ToJson(const SessionStatus& status) {
+  nlohmann::json steps = nlohmann::json::array();
+  for (const StepReport& step : status.steps)
+    steps.push_back({{"step", step.step}, {"status", StepStatusName(step.status)}, {"detail", step.detail}});
+  return {{"session", status.session}, {"steps", steps}};
+}
+
+std::string FormatSessionStatus(const SessionStatus& status) {
+  std::ostringstream out;
+  out << "session " << status.session << "\n";
+  for (const StepReport& step : status.steps)
+    out << "  " << std::left << std::setw(10) << step.step << std::setw(7) << StepStatusName(step.status) << " "
+        << step.detail << "\n";
+  return out.str();
+}
+
+}  // namespace hexcal::workflow

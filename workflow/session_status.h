@@ -1,0 +1,37 @@
+// Where a session stands, step by step, from the files' contents (`hexcal
+// session status DIR`; docs/session.md, "Status"): each step done, stale (an
+// input changed since it ran: by SHA-256, not file times), to do, or broken
+// (a file that does not load), with a sentence saying what and what next.
+//
+//   StatusOr<SessionStatus> status = ReadSessionStatus("run1");
+//   std::cout << FormatSessionStatus(*status);
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "core/status.h"
+
+namespace hexcal::workflow {
+
+enum class StepStatus { kDone, kStale, kTodo, kBroken };
+const char* StepStatusName(StepStatus status);  // "done", "stale", "todo", "broken"
+
+struct StepReport {
+  std::string step;  // "robot", "plan", "readings", "measure", "calibrate", "validate"
+  StepStatus status = StepStatus::kTodo;
+  std::string detail;  // "24 poses", "legs.csv changed since the results (2026-12-01T04:12:09Z)"
+};
+
+struct SessionStatus {
+  std::string session;
+  std::vector<StepReport> steps;
+};
+
+// Reads only; a session whose session.yaml does not load is an error.
+StatusOr<SessionStatus> ReadSessionStatus(const std::string& session_dir);
+nlohmann::json ToJson(const SessionStatus& status);
+std::string FormatSessionStatus(const SessionStatus& status);
+
+}  // namespace hexcal::workflow
