@@ -71,10 +71,13 @@ StatusOr<SessionInputs> LoadSessionInputs(const std::string& dir) {
 
 // The camera pose of every image with readings, measured where
 // measurements.csv has no valid row (session_measure.h).
-StatusOr<CameraPoses> MeasureSession(const std::string& dir, const SessionInputs& in, const JobHooks& hooks) {
+StatusOr<CameraPoses> MeasureSession(const std::string& dir, const SessionInputs& in, const ContentHashes& inputs,
+                                     const JobHooks& hooks) {
   std::vector<std::string> images;
   for (const LegsRow& row : in.legs) images.push_back(row.image);
-  StatusOr<SessionMeasurements> measured = MeasureSessionImages(dir, images, in.camera, in.target, {}, hooks);
+  MeasureSessionOptions options;
+  options.known_hashes = &inputs;
+  StatusOr<SessionMeasurements> measured = MeasureSessionImages(dir, images, in.camera, in.target, options, hooks);
   if (!measured.ok()) return measured.status();
   return measured->poses;
 }
@@ -272,7 +275,7 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   if (!inputs.ok()) return inputs.status();
   StatusOr<SessionInputs> in = LoadSessionInputs(dir);
   if (!in.ok()) return in.status();
-  StatusOr<CameraPoses> poses = MeasureSession(dir, *in, hooks);
+  StatusOr<CameraPoses> poses = MeasureSession(dir, *in, *inputs, hooks);
   if (!poses.ok()) return poses.status();
   const double scale = MetresPerUnit(in->target.length_unit) / MetresPerUnit(in->nominal.length_unit);
   const SplitRows split = SplitSessionRows(*in, *poses, scale);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -52,18 +53,32 @@ Status WriteRecord(const std::string& dir, const MeasuredWith& record) {
   return WriteFileAtomically(RecordPath(dir), text + "\n");
 }
 
-StatusOr<MeasuredWith> CurrentInputs(const std::string& dir, const std::vector<std::string>& images) {
+// The hash under `key` in `known` (named as HashSessionInputs names them),
+// else computed: a calibration has just hashed every input once already.
+StatusOr<std::string> KnownOr(const ContentHashes* known, const std::string& key,
+                              const std::function<StatusOr<std::string>()>& compute) {
+  if (known != nullptr)
+    if (const auto found = known->find(key); found != known->end()) return found->second;
+  return compute();
+}
+
+StatusOr<MeasuredWith> CurrentInputs(const std::string& dir, const std::vector<std::string>& images,
+                                     const ContentHashes* known) {
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   if (!config.ok()) return config.status();
   MeasuredWith now;
-  StatusOr<std::string> camera = HashSessionFile(dir, config->camera);
+  StatusOr<std::string> camera =
+      KnownOr(known, "camera " + config->camera, [&] { return HashSessionFile(dir, config->camera); });
   if (!camera.ok()) return camera.status();
-  StatusOr<std::string> target = HashSessionFile(dir, config->target);
+  StatusOr<std::string> target =
+      KnownOr(known, "target " + config->target, [&] { return HashSessionFile(dir, config->target); });
   if (!target.ok()) return target.status();
   now.camera = *camera;
   now.target = *target;
   for (const std::string& image : images) {
-    StatusOr<std::string> hash = Sha256OfFile((fs::path(SessionPaths(dir).images) / image).string(), kMaxImageBytes);
+    StatusOr<std::string> hash = KnownOr(known, "images/" + image, [&] {
+      return Sha256OfFile((fs::path(SessionPaths(dir).images) / image).string(), kMaxImageBytes);
+    });
     if (!hash.ok()) return hash.status();
     now.images[image] = *hash;
   }
@@ -122,7 +137,7 @@ std::set<std::string> RowImages(const std::vector<ImageMeasurementRecord>& rows)
 StatusOr<MeasureState> SessionMeasureState(const std::string& dir, const std::vector<std::string>& images) {
   StatusOr<std::vector<ImageMeasurementRecord>> rows = ReadMeasurementRows(SessionPaths(dir).measurements);
   if (!rows.ok()) return rows.status();
-  StatusOr<MeasuredWith> now = CurrentInputs(dir, images);
+  StatusOr<MeasuredWith> now = CurrentInputs(dir, images, nullptr);
   if (!now.ok()) return now.status();
   return PlanMeasuring(ReadRecord(dir), *now, RowImages(*rows), images, false);
 }
@@ -133,7 +148,7 @@ StatusOr<SessionMeasurements> MeasureSessionImages(const std::string& dir, const
   const SessionPaths paths(dir);
   StatusOr<std::vector<ImageMeasurementRecord>> rows = ReadMeasurementRows(paths.measurements);
   if (!rows.ok()) return rows.status();
-  StatusOr<MeasuredWith> now = CurrentInputs(dir, images);
+  StatusOr<MeasuredWith> now = CurrentInputs(dir, images, options.known_hashes);
   if (!now.ok()) return now.status();
   MeasuredWith record = ReadRecord(dir);
   const MeasureState plan = PlanMeasuring(record, *now, RowImages(*rows), images, options.all);

@@ -40,6 +40,9 @@ struct SessionMeasurements {
 
 struct MeasureSessionOptions {
   bool all = false;  // measure every image again (the GUI's "Measure all")
+  // Hashes of the inputs already computed (HashSessionInputs, session_results.h):
+  // used instead of reading the camera, target and images again.
+  const std::map<std::string, std::string>* known_hashes = nullptr;
 };
 
 // Measures the images (file names in DIR/images/) that have no valid row and
