@@ -15,7 +15,7 @@ OverlayResult DetectAndDraw(const QString& file, const Camera& camera, const Tar
     return result;
   }
   StatusOr<std::unique_ptr<TagDetector>> detector =
-      TagDetector::Create(DetectorOptions{}, std::make_shared<const IdealPixelMap>(camera));
+      TagDetector::Create(ForTarget(DetectorOptions{}, target), std::make_shared<const IdealPixelMap>(camera));
   if (!detector.ok()) {
     result.status = QString::fromStdString(detector.status().message());
     return result;

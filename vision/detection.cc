@@ -4,20 +4,16 @@
 
 #include <algorithm>
 #include <map>
-#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
-#include "core/atomic_file.h"
 #include "vision/edge_refine.h"
-#include "vision/image_header.h"
+#include "vision/quad_finder.h"
+#include "vision/tag_decoder.h"
 #include "vision/tag_family.h"
 
 namespace hexcal {
 namespace {
 
-// AprilTag measures pixels from the top-left corner of the top-left pixel
-// (its bilinear sampler reads pixel i at i + ½); OpenCV from that pixel's centre.
-constexpr double kAprilTagToOpenCv = -0.5;
 // Corners closer than this to the image's edge (pixels) are not trusted.
 constexpr double kBorderPx = 1.0;
 
@@ -37,10 +33,12 @@ std::string FormatMargin(double margin) {
 }  // namespace
 
 struct TagDetector::Impl {
+  std::unique_ptr<QuadFinder> quads;
+  TagCodebook codebook;
+  std::shared_ptr<const IdealPixelMap> ideal;
+  // The library's own detector, for DetectWithLibraryOnly (benchmarks) only.
   AprilTagFamilyPtr family;
   apriltag_detector_t* detector = nullptr;
-  std::shared_ptr<const IdealPixelMap> ideal;
-  int width_at_border = 0;
 
   ~Impl() {
     if (detector) {
@@ -49,7 +47,7 @@ struct TagDetector::Impl {
     }
   }
 
-  DetectionsPtr Run(const cv::Mat& gray) {
+  DetectionsPtr RunLibrary(const cv::Mat& gray) {
     CV_Assert(gray.type() == CV_8UC1);
     // The library reads rows through `stride`; a cv::Mat row step is one.
     image_u8_t image{gray.cols, gray.rows, static_cast<int32_t>(gray.step[0]), const_cast<uint8_t*>(gray.data)};
@@ -63,6 +61,7 @@ bool DetectorOptions::IsValid(std::string* error) const {
     return false;
   };
   if (!FindTagFamily(family)) return fail("family: '" + family + "' is not supported");
+  if (border_bits != 1 && border_bits != 2) return fail("border_bits: must be 1 or 2");
   if (threads < 1 || threads > 64) return fail("threads: must be in 1..64");
   if (!(min_decision_margin >= 0)) return fail("min_decision_margin: must be >= 0");
   if (max_hamming < 0 || max_hamming > 2) return fail("max_hamming: must be 0, 1 or 2");
@@ -74,13 +73,17 @@ StatusOr<std::unique_ptr<TagDetector>> TagDetector::Create(const DetectorOptions
                                                            std::shared_ptr<const IdealPixelMap> ideal) {
   std::string error;
   if (!options.IsValid(&error)) return Status::Error("detector options: " + error);
+  StatusOr<TagCodebook> codebook = TagCodebook::Create(options.family, options.border_bits);
+  if (!codebook.ok()) return Status::Error("detector options: " + codebook.status().message());
+  StatusOr<std::unique_ptr<QuadFinder>> quads =
+      QuadFinder::Create(options.threads, options.quad_sigma, codebook->width_at_border());
+  if (!quads.ok()) return quads.status();
   auto impl = std::make_unique<Impl>();
-  impl->family = CreateAprilTagFamily(options.family);
-  impl->width_at_border = impl->family->width_at_border;
+  impl->quads = std::move(*quads);
+  impl->codebook = std::move(*codebook);
   impl->ideal = std::move(ideal);
+  impl->family = CreateAprilTagFamily(options.family);
   impl->detector = apriltag_detector_create();
-  // One corrected bit more than accepted, so that near misses are reported
-  // as rejected rather than silently missing.
   apriltag_detector_add_family_bits(impl->detector, impl->family.get(), std::max(1, options.max_hamming));
   impl->detector->quad_decimate = 1;
   impl->detector->quad_sigma = static_cast<float>(options.quad_sigma);
@@ -94,49 +97,84 @@ TagDetector::TagDetector(const DetectorOptions& options, std::unique_ptr<Impl> i
 
 TagDetector::~TagDetector() = default;
 
-int TagDetector::DetectWithLibraryOnly(const cv::Mat& gray) { return zarray_size(impl_->Run(gray).get()); }
+int TagDetector::DetectWithLibraryOnly(const cv::Mat& gray) { return zarray_size(impl_->RunLibrary(gray).get()); }
+
+namespace {
+
+bool CornersInside(const std::array<Eigen::Vector2d, 4>& corners, const cv::Mat& gray) {
+  for (const Eigen::Vector2d& c : corners) {
+    if (!(c.x() >= kBorderPx && c.y() >= kBorderPx && c.x() <= gray.cols - 1 - kBorderPx &&
+          c.y() <= gray.rows - 1 - kBorderPx)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Why a decode is not accepted, or "" when it is.
+std::string RejectionReason(const DecodedTag& tag, const DetectorOptions& options, const cv::Mat& gray) {
+  if (tag.hamming > options.max_hamming) {
+    return std::to_string(tag.hamming) + " corrected bits > " + std::to_string(options.max_hamming);
+  }
+  if (tag.decision_margin < options.min_decision_margin) {
+    return "decision margin " + FormatMargin(tag.decision_margin) + " < " + FormatMargin(options.min_decision_margin);
+  }
+  // A tag cut by the image border can still decode from its inner cells, but
+  // its outer corners are extrapolated: keep only tags whose corners are inside.
+  if (!CornersInside(tag.corners, gray)) return "a corner is outside the image";
+  return "";
+}
+
+Eigen::Vector2d Centre(const std::array<Eigen::Vector2d, 4>& corners) {
+  return 0.25 * (corners[0] + corners[1] + corners[2] + corners[3]);
+}
+
+// The same tag decoded from two quads (its outer edge and a ring just
+// inside it): keep the decode with the fewer corrected bits, then the larger margin.
+std::vector<DecodedTag> DropRepeatedDecodes(std::vector<DecodedTag> decoded) {
+  std::sort(decoded.begin(), decoded.end(), [](const DecodedTag& a, const DecodedTag& b) {
+    if (a.hamming != b.hamming) return a.hamming < b.hamming;
+    return a.decision_margin > b.decision_margin;
+  });
+  std::vector<DecodedTag> kept;
+  for (const DecodedTag& tag : decoded) {
+    const double side = (tag.corners[1] - tag.corners[0]).norm();
+    const bool repeated = std::any_of(kept.begin(), kept.end(), [&](const DecodedTag& other) {
+      return other.id == tag.id && (Centre(other.corners) - Centre(tag.corners)).norm() < 0.25 * side;
+    });
+    if (!repeated) kept.push_back(tag);
+  }
+  return kept;
+}
+
+}  // namespace
 
 Detections TagDetector::Detect(const cv::Mat& gray) {
-  DetectionsPtr found = impl_->Run(gray);
+  CV_Assert(gray.type() == CV_8UC1);
   const IdealPixelMap* ideal = impl_->ideal.get();
   if (ideal && (ideal->width() != gray.cols || ideal->height() != gray.rows)) ideal = nullptr;
+  // One corrected bit more than accepted, so that near misses are reported
+  // as rejected rather than silently missing.
+  const int report_hamming = std::max(1, options_.max_hamming);
+  std::vector<DecodedTag> decoded;
+  for (const Quad& quad : impl_->quads->Find(gray)) {
+    if (std::optional<DecodedTag> tag = impl_->codebook.Decode(gray, quad, report_hamming)) decoded.push_back(*tag);
+  }
   Detections result;
-  for (int i = 0; i < zarray_size(found.get()); ++i) {
-    apriltag_detection_t* detection = nullptr;
-    zarray_get(found.get(), i, &detection);
-    if (detection->hamming > options_.max_hamming || detection->decision_margin < options_.min_decision_margin) {
-      RejectedTag rejected{detection->id, detection->decision_margin, detection->hamming, ""};
-      rejected.reason =
-          detection->hamming > options_.max_hamming
-              ? std::to_string(detection->hamming) + " corrected bits > " + std::to_string(options_.max_hamming)
-              : "decision margin " + FormatMargin(detection->decision_margin) + " < " +
-                    FormatMargin(options_.min_decision_margin);
-      result.rejected.push_back(rejected);
-      continue;
-    }
-    // A tag cut by the image border decodes, but the library extrapolates its
-    // outer corners: keep only tags whose corners lie inside the image.
-    bool inside = true;
-    for (int k = 0; k < 4; ++k) {
-      const double u = detection->p[k][0] + kAprilTagToOpenCv, v = detection->p[k][1] + kAprilTagToOpenCv;
-      inside = inside && u >= kBorderPx && v >= kBorderPx && u <= gray.cols - 1 - kBorderPx &&
-               v <= gray.rows - 1 - kBorderPx;
-    }
-    if (!inside) {
-      result.rejected.push_back(
-          {detection->id, detection->decision_margin, detection->hamming, "a corner is outside the image"});
+  for (const DecodedTag& decode : DropRepeatedDecodes(std::move(decoded))) {
+    const std::string reason = RejectionReason(decode, options_, gray);
+    if (!reason.empty()) {
+      result.rejected.push_back({decode.id, decode.decision_margin, decode.hamming, reason});
       continue;
     }
     TagDetection tag;
-    tag.id = detection->id;
-    tag.decision_margin = detection->decision_margin;
-    tag.hamming = detection->hamming;
-    for (int k = 0; k < 4; ++k) {
-      tag.corners[static_cast<size_t>(k)] =
-          Eigen::Vector2d(detection->p[k][0] + kAprilTagToOpenCv, detection->p[k][1] + kAprilTagToOpenCv);
-    }
+    tag.id = decode.id;
+    tag.decision_margin = decode.decision_margin;
+    tag.hamming = decode.hamming;
+    tag.corners = decode.corners;
     if (options_.refine_edges) {
-      if (std::optional<RefinedTag> refined = RefineTagCorners(gray, ideal, impl_->width_at_border, tag.corners)) {
+      if (std::optional<RefinedTag> refined =
+              RefineTagCorners(gray, ideal, impl_->codebook.width_at_border(), tag.corners)) {
         tag.corners = refined->corners;
         tag.covariance = refined->covariance;
         tag.refined = true;
@@ -173,57 +211,10 @@ BoardObservation MatchToTarget(const Target& target, const Detections& detection
   return observation;
 }
 
-namespace {
-
-// The checks made on the header before decoding; OK when the decoder may run.
-Status CheckImageHeader(const ImageHeader& header, const std::string& source) {
-  // imdecode tries every decoder OpenCV was built with (on Debian also DICOM,
-  // JPEG 2000, OpenEXR, WebP ...), and some abort the process on a bad file
-  // (GDCM's reader asserts: found by fuzz/image_fuzz). hexcal reads only
-  // PNG, JPEG and TIFF, so nothing else reaches imdecode.
-  if (header.format == ImageFormat::kOther) {
-    return Status::Error(source + ": cannot decode: not a PNG, JPEG or TIFF file");
-  }
-  // Truncated files are caught here, before the decoders print their own
-  // complaints on stderr.
-  if (header.truncated && header.format == ImageFormat::kPng) {
-    return Status::Error(source + ": truncated PNG (no IEND chunk)");
-  }
-  if (header.truncated) return Status::Error(source + ": truncated JPEG (no end-of-image marker)");
-  if (!header.corrupt.empty()) return Status::Error(source + ": cannot decode: corrupt JPEG (" + header.corrupt + ")");
-  // The decoder allocates what the header claims, however small the file.
-  if (header.size && header.size->Pixels() > kMaxImagePixels) {
-    return Status::Error(source + ": " + std::to_string(header.size->width) + " x " +
-                         std::to_string(header.size->height) + " pixels is over the " +
-                         std::to_string(kMaxImagePixels / 1'000'000) + "-megapixel limit");
-  }
-  return Status::Ok();
-}
-
-}  // namespace
-
-StatusOr<cv::Mat> LoadGrayImage(const std::string& path) {
-  StatusOr<std::string> bytes = ReadFileToString(path, kMaxImageBytes);
-  if (!bytes.ok()) return bytes.status();
-  return DecodeGrayImage(*bytes, path);
-}
-
-StatusOr<cv::Mat> DecodeGrayImage(const std::string& bytes, const std::string& source) {
-  if (bytes.empty()) return Status::Error(source + ": empty file");
-  const Status header = CheckImageHeader(ReadImageHeader(bytes), source);
-  if (!header.ok()) return header;
-  cv::Mat image;
-  try {
-    // imdecode only reads the buffer; the const_cast is what cv::Mat's constructor needs.
-    const cv::Mat buffer(1, static_cast<int>(bytes.size()), CV_8U, const_cast<char*>(bytes.data()));
-    image = cv::imdecode(buffer, cv::IMREAD_GRAYSCALE);
-  } catch (const cv::Exception& e) {
-    return Status::Error(source + ": cannot decode: " + e.msg);
-  } catch (const std::exception& e) {  // e.g. std::bad_alloc for a header claiming a huge image
-    return Status::Error(source + ": cannot decode: " + e.what());
-  }
-  if (image.empty()) return Status::Error(source + ": cannot decode: corrupt, truncated or not an image");
-  return image;
+DetectorOptions ForTarget(DetectorOptions options, const Target& target) {
+  options.family = target.family;
+  options.border_bits = target.border_bits;
+  return options;
 }
 
 StatusOr<std::vector<std::unique_ptr<TagDetector>>> CreateWorkerDetectors(const DetectorOptions& options,

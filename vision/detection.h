@@ -26,12 +26,14 @@
 
 #include "core/status.h"
 #include "vision/camera.h"
+#include "vision/image_file.h"
 #include "vision/target.h"
 
 namespace hexcal {
 
 struct DetectorOptions {
   std::string family = "tag36h11";
+  int border_bits = 1;               // black border cells: 1 (AprilTag), 2 (Kalibr's aprilgrid)
   int threads = 2;                  // AprilTag worker threads for one image
   double min_decision_margin = 20;  // grey levels; weaker decodes are rejected
   int max_hamming = 0;              // corrected bits accepted, 0..2
@@ -91,6 +93,10 @@ class TagDetector {
   std::unique_ptr<Impl> impl_;
 };
 
+// `options` with the target's family and border (every detector of a job
+// that measures a target is made through this).
+DetectorOptions ForTarget(DetectorOptions options, const Target& target);
+
 // One detector per worker of a batch job, each single-threaded (the workers
 // already use the cores), sharing `ideal`.
 StatusOr<std::vector<std::unique_ptr<TagDetector>>> CreateWorkerDetectors(const DetectorOptions& options,
@@ -108,12 +114,5 @@ struct BoardObservation {
   int NumTags() const { return static_cast<int>(tag_ids.size()); }
 };
 BoardObservation MatchToTarget(const Target& target, const Detections& detections);
-
-// An image file as 8-bit grey. Errors name the file: missing, empty, truncated,
-// over kMaxImagePixels by its header (vision/image_header.h, checked before
-// decoding), or not a readable PNG / JPEG / TIFF ("cannot decode: ...").
-StatusOr<cv::Mat> LoadGrayImage(const std::string& path);
-// The same for the file's bytes already in memory; `source` names it in messages.
-StatusOr<cv::Mat> DecodeGrayImage(const std::string& bytes, const std::string& source);
 
 }  // namespace hexcal

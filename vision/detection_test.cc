@@ -62,9 +62,11 @@ TEST_F(DetectionTest, LibraryCornersAreShiftedToOpenCvPixelCentres) {
     const Detections found = detector->Detect(view.image);
     ASSERT_EQ(found.tags.size(), 36u);
     const CornerErrors errors = Compare(found, view);
-    // Unshifted, the library's corners would be 0.5 px off in both axes.
+    // Unshifted, the library's corners would be 0.5 px off in both axes, and
+    // without UndoWhiteGrowth about 0.7 px inwards. The quad fit on the grown
+    // image scatters by 0.3 px: the edge fit starts from there.
     EXPECT_LT(errors.mean.cwiseAbs().maxCoeff(), 0.05);
-    EXPECT_LT(errors.rms, 0.2);
+    EXPECT_LT(errors.rms, 0.35);
     for (const TagDetection& tag : found.tags) EXPECT_FALSE(tag.refined);
   }
 }

@@ -1,7 +1,10 @@
 #include "vision/image_header.h"
 
+#include <algorithm>
 #include <cstring>
+#include <initializer_list>
 #include <limits>
+#include <map>
 
 namespace hexcal {
 namespace {
@@ -115,6 +118,9 @@ bool ReadJpegSegment(std::string_view bytes, uint8_t code, uint64_t pos, uint64_
     if (length < 8) layout->corrupt = where() + " is a frame header of " + std::to_string(length) + " bytes";
     if (!layout->corrupt.empty()) return false;
     layout->size = PixelSize{*ReadUint(bytes, pos + 5, 2, true), *ReadUint(bytes, pos + 3, 2, true)};
+  } else if (code == 0xE1 && length >= 8 && bytes.substr(pos + 2, 6) == std::string_view("Exif\0\0", 6)) {
+    // APP1 EXIF: a TIFF structure whose IFD0 may hold the orientation.
+    layout->orientation = ReadTiffOrientation(bytes.substr(pos + 8, length - 8));
   } else if (code == 0xDA) {
     if (!layout->size) {
       layout->corrupt = where() + " starts a scan before the frame header";
@@ -155,24 +161,42 @@ std::optional<PixelSize> ReadPngSize(std::string_view bytes) {
   return PixelSize{*width, *height};
 }
 
-std::optional<PixelSize> ReadTiffSize(std::string_view bytes) {
+namespace {
+
+// The numbers of `tags` in the first IFD, where present.
+std::map<uint64_t, uint64_t> ReadTiffFirstIfd(std::string_view bytes, std::initializer_list<uint64_t> tags) {
+  std::map<uint64_t, uint64_t> found;
   const std::optional<TiffLayout> layout = ReadTiffLayout(bytes);
-  if (!layout) return std::nullopt;
+  if (!layout) return found;
   const std::optional<uint64_t> count = ReadUint(bytes, layout->first_ifd, layout->count_bytes, layout->big_endian);
-  if (!count) return std::nullopt;
+  if (!count) return found;
   const uint64_t first_entry = layout->first_ifd + static_cast<uint64_t>(layout->count_bytes);
   const uint64_t entry_bytes = static_cast<uint64_t>(layout->EntryBytes());
-  std::optional<uint64_t> width, height;
   // The count is the file's word: stop at the end of the file, whatever it says.
   for (uint64_t i = 0; i < *count; ++i) {
     const uint64_t entry = first_entry + i * entry_bytes;
     if (entry > bytes.size() || bytes.size() - entry < entry_bytes) break;
     const uint64_t tag = *ReadUint(bytes, entry, 2, layout->big_endian);
-    if (tag == 256) width = ReadTiffEntryNumber(bytes, entry, *layout);
-    if (tag == 257) height = ReadTiffEntryNumber(bytes, entry, *layout);
+    if (std::find(tags.begin(), tags.end(), tag) == tags.end()) continue;
+    if (const std::optional<uint64_t> value = ReadTiffEntryNumber(bytes, entry, *layout)) found[tag] = *value;
   }
-  if (!width || !height) return std::nullopt;
-  return PixelSize{*width, *height};
+  return found;
+}
+
+constexpr uint64_t kTiffWidth = 256, kTiffHeight = 257, kTiffOrientation = 274;
+
+}  // namespace
+
+std::optional<PixelSize> ReadTiffSize(std::string_view bytes) {
+  const std::map<uint64_t, uint64_t> numbers = ReadTiffFirstIfd(bytes, {kTiffWidth, kTiffHeight});
+  if (numbers.size() != 2) return std::nullopt;
+  return PixelSize{numbers.at(kTiffWidth), numbers.at(kTiffHeight)};
+}
+
+int ReadTiffOrientation(std::string_view bytes) {
+  const std::map<uint64_t, uint64_t> numbers = ReadTiffFirstIfd(bytes, {kTiffOrientation});
+  const auto it = numbers.find(kTiffOrientation);
+  return it != numbers.end() && it->second >= 1 && it->second <= 8 ? static_cast<int>(it->second) : 1;
 }
 
 JpegLayout WalkJpeg(std::string_view bytes) {
@@ -220,6 +244,7 @@ ImageHeader ReadImageHeader(std::string_view bytes) {
       header.size = layout.size;
       header.truncated = !layout.complete && layout.corrupt.empty();
       header.corrupt = std::move(layout.corrupt);
+      header.orientation = layout.orientation;
       break;
     }
     case ImageFormat::kTiff:
@@ -227,6 +252,7 @@ ImageHeader ReadImageHeader(std::string_view bytes) {
       // decoder then decides (libtiff refuses such a file; OpenCV's own
       // limit, 2^30 pixels, bounds the rest).
       header.size = ReadTiffSize(bytes);
+      header.orientation = ReadTiffOrientation(bytes);
       break;
     case ImageFormat::kOther:
       break;

@@ -46,6 +46,7 @@ struct ImageHeader {
   std::optional<PixelSize> size;  // none when the header cannot be read
   bool truncated = false;         // the file ends before the image does (PNG, JPEG)
   std::string corrupt;            // why the structure cannot be decoded (JPEG), or empty
+  int orientation = 1;            // EXIF / TIFF Orientation, 1-8 (1: as stored); never applied
 };
 
 // By its signature: PNG, JPEG (SOI and a marker), TIFF or BigTIFF.
@@ -59,12 +60,17 @@ std::optional<PixelSize> ReadPngSize(std::string_view bytes);
 // LONG8 values.
 std::optional<PixelSize> ReadTiffSize(std::string_view bytes);
 
+// The Orientation tag (274) of the first IFD of a TIFF structure (a TIFF file,
+// or a JPEG's EXIF block): 1-8, and 1 when absent or out of range.
+int ReadTiffOrientation(std::string_view bytes);
+
 // The marker walk described above.
 struct JpegLayout {
   std::optional<PixelSize> size;  // from the SOFn frame header
   bool complete = false;          // the primary image's EOI was reached
   uint64_t end = 0;               // offset just past that EOI
   std::string corrupt;            // a structure no decoder accepts, or empty
+  int orientation = 1;            // from an EXIF APP1 segment, 1-8
 };
 JpegLayout WalkJpeg(std::string_view bytes);
 

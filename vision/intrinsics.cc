@@ -38,7 +38,7 @@ StatusOr<std::vector<Detected>> DetectAll(int count, const ImageLoader& load, co
                                           const IntrinsicsOptions& options, std::shared_ptr<const IdealPixelMap> ideal,
                                           const std::vector<bool>& wanted, const JobHooks& hooks) {
   const int workers = ParallelWorkers(count, options.threads);
-  StatusOr<std::vector<std::unique_ptr<TagDetector>>> created = CreateWorkerDetectors(options.detector, ideal, workers);
+  StatusOr<std::vector<std::unique_ptr<TagDetector>>> created = CreateWorkerDetectors(ForTarget(options.detector, target), ideal, workers);
   if (!created.ok()) return created.status();
   std::vector<std::unique_ptr<TagDetector>> detectors = std::move(*created);
   std::vector<Detected> detected(static_cast<size_t>(count));

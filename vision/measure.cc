@@ -75,7 +75,7 @@ StatusOr<std::vector<ImageMeasurement>> MeasureImages(const std::vector<std::str
   const int count = static_cast<int>(files.size());
   const int workers = ParallelWorkers(count, options.threads);
   auto ideal = std::make_shared<const IdealPixelMap>(camera);
-  StatusOr<std::vector<std::unique_ptr<TagDetector>>> created = CreateWorkerDetectors(options.detector, ideal, workers);
+  StatusOr<std::vector<std::unique_ptr<TagDetector>>> created = CreateWorkerDetectors(ForTarget(options.detector, target), ideal, workers);
   if (!created.ok()) return created.status();
   std::vector<std::unique_ptr<TagDetector>> detectors = std::move(*created);
   std::vector<ImageMeasurement> measurements(files.size());

@@ -5,6 +5,7 @@
 #include <apriltag/tag25h9.h>
 #include <apriltag/tag36h11.h>
 
+#include <algorithm>
 #include <cassert>
 #include <cstdlib>
 
@@ -50,9 +51,33 @@ std::optional<TagFamilyInfo> FindTagFamily(const std::string& name) {
   return info;
 }
 
-std::vector<TagCells> TagCellsOf(const std::string& family_name, int first_id, int count) {
+namespace {
+
+// The same tag with its black border `extra` cells thicker: the data grows
+// apart from the white ring, the new cells black.
+TagCells ThickenBorder(const TagCells& tag, int extra) {
+  TagCells thick;
+  thick.id = tag.id;
+  thick.total_width = tag.total_width + 2 * extra;
+  thick.black.assign(static_cast<size_t>(thick.total_width * thick.total_width), 0);
+  const int last = thick.total_width - 1;
+  for (int row = 0; row < thick.total_width; ++row) {
+    for (int col = 0; col < thick.total_width; ++col) {
+      const int ring = std::min(std::min(row, col), std::min(last - row, last - col));
+      bool black = ring >= 1 && ring <= extra + 1;  // the border, old and new cells
+      if (ring > extra + 1) black = tag.IsBlack(row - extra, col - extra);
+      thick.black[static_cast<size_t>(row * thick.total_width + col)] = black ? 1 : 0;
+    }
+  }
+  return thick;
+}
+
+}  // namespace
+
+std::vector<TagCells> TagCellsOf(const std::string& family_name, int first_id, int count, int border_bits) {
   AprilTagFamilyPtr family = CreateAprilTagFamily(family_name);
   assert(family && first_id >= 0 && first_id + count <= static_cast<int>(family->ncodes));
+  assert(border_bits >= 1);
   std::vector<TagCells> tags;
   tags.reserve(static_cast<size_t>(count));
   for (int id = first_id; id < first_id + count; ++id) {
@@ -71,7 +96,7 @@ std::vector<TagCells> TagCellsOf(const std::string& family_name, int first_id, i
     // the image and its buffer come from calloc, as that function assumes.
     free(image->buf);
     free(image);
-    tags.push_back(std::move(cells));
+    tags.push_back(border_bits > 1 ? ThickenBorder(cells, border_bits - 1) : std::move(cells));
   }
   return tags;
 }

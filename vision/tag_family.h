@@ -44,8 +44,10 @@ struct TagCells {
 };
 
 // Cells of tags first_id .. first_id + count - 1. The family must be supported
-// and the ids in range (asserted).
-std::vector<TagCells> TagCellsOf(const std::string& family, int first_id, int count);
+// and the ids in range (asserted). `border_bits` 2 thickens the black border
+// to two cells (Kalibr's aprilgrid): total_width grows by 2, the white ring
+// stays one cell.
+std::vector<TagCells> TagCellsOf(const std::string& family, int first_id, int count, int border_bits = 1);
 
 // Owner of an AprilTag library family object; a detector needs its own one
 // (the library keeps per-detector decode tables in it).

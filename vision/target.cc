@@ -25,6 +25,7 @@ struct KeyPair {
 constexpr KeyPair kKeys[] = {
     {"family", ""},   {"rows", "tagRows"}, {"cols", "tagCols"}, {"tag_size", "tagSize"}, {"tag_spacing", "tagSpacing"},
     {"first_id", ""}, {"length_unit", ""}, {"margin", ""},      {"target_type", ""},
+    {"border_bits", ""},
 };
 
 std::string KnownKeys() {
@@ -95,11 +96,14 @@ class TargetReader {
     } else {
       return Error("length_unit", "missing (mm, cm or m)");
     }
-    const std::optional<TagFamilyInfo> info = FindTagFamily(target.family);
+    target.border_bits = kalibr_names ? 2 : 1;  // Kalibr prints its aprilgrid with a two-cell border
+    if (root["border_bits"]) {
+      if (Status s = ReadInt(root, "border_bits", "", &target.border_bits); !s.ok()) return s;
+    }
     if (root["margin"]) {
       if (Status s = ReadNumber(root, "margin", "", &target.margin); !s.ok()) return s;
-    } else if (info) {
-      target.margin = std::max(target.Gap(), 2.0 * target.tag_size / info->width_at_border);
+    } else if (target.WidthAtBorder() > 0) {
+      target.margin = std::max(target.Gap(), 2.0 * target.tag_size / target.WidthAtBorder());
     }
     if (Status s = target.Validate(); !s.ok()) return Status::Error(label_ + ": " + s.message());
     return target;
@@ -182,10 +186,14 @@ Status Target::Validate() const {
   }
   // AprilTag needs white around each black square to find it: at least one
   // bit cell between neighbours and at the edge of the sheet.
-  const double cell_ratio = 1.0 / info->width_at_border;
+  if (border_bits != 1 && border_bits != 2) {
+    return Status::Error("border_bits: must be 1 (AprilTag's tags) or 2 (Kalibr's aprilgrid), found " +
+                         std::to_string(border_bits));
+  }
+  const double cell_ratio = 1.0 / WidthAtBorder();
   if (!(tag_spacing >= cell_ratio) || !std::isfinite(tag_spacing)) {
     return Status::Error("tag_spacing: " + FormatNumber(tag_spacing) + " leaves less than one bit cell (tag_size/" +
-                         std::to_string(info->width_at_border) + ") of white between tags; use at least " +
+                         std::to_string(WidthAtBorder()) + ") of white between tags; use at least " +
                          FormatNumber(cell_ratio) + " (Kalibr's default is 0.3)");
   }
   if (!(margin >= tag_size * cell_ratio) || !std::isfinite(margin)) {
@@ -193,6 +201,11 @@ Status Target::Validate() const {
                          FormatNumber(tag_size * cell_ratio) + ") of white around the outer tags");
   }
   return Status::Ok();
+}
+
+int Target::WidthAtBorder() const {
+  const std::optional<TagFamilyInfo> info = FindTagFamily(family);
+  return info ? info->width_at_border - 2 + 2 * border_bits : 0;  // the library's families have one border cell
 }
 
 Target DefaultTarget() { return Target(); }
@@ -225,7 +238,8 @@ std::string TargetToYaml(const Target& target) {
       << "tag_spacing: " << FormatNumber(target.tag_spacing) << "   # gap between tags / tag_size (Kalibr)\n"
       << "first_id: " << target.first_id << "\n"
       << "length_unit: " << LengthUnitName(target.length_unit) << "\n"
-      << "margin: " << FormatNumber(target.margin) << "        # white sheet beyond the outer tags\n";
+      << "margin: " << FormatNumber(target.margin) << "        # white sheet beyond the outer tags\n"
+      << "border_bits: " << target.border_bits << "      # black border of each tag, bit cells\n";
   return out.str();
 }
 
@@ -237,6 +251,7 @@ std::string DescribeTarget(const Target& target) {
   out << target.rows << " x " << target.cols << " " << target.family << ", tag " << target.tag_size << " " << unit
       << ", gap " << target.Gap() << " " << unit << " (spacing " << target.tag_spacing << "), ids " << target.first_id
       << "-" << target.first_id + target.NumTags() - 1;
+  if (target.border_bits != 1) out << ", " << target.border_bits << "-cell tag border";
   return out.str();
 }
 

@@ -10,6 +10,8 @@
 //   first_id: 0           # id of the bottom-left tag; ids grow along a row, then upwards
 //   length_unit: mm       # mm | cm | m; Kalibr files (tagSize ...) default to m
 //   margin: 9             # optional: white sheet beyond the outer tags, length unit
+//   border_bits: 1        # black border of each tag, in bit cells: 1 (AprilTag) or 2 (Kalibr);
+//                         # files with Kalibr's key names default to 2, as Kalibr prints them
 //
 // Target frame (docs/conventions.md): origin at the outer bottom-left corner of
 // the black square of tag `first_id`, x along a row (to the right as printed),
@@ -39,8 +41,12 @@ struct Target {
   int first_id = 0;
   LengthUnit length_unit = LengthUnit::kMillimetre;
   double margin = 9;  // white sheet beyond the outer black edges, length_unit
+  int border_bits = 1;  // black border cells around the data bits: 1 (AprilTag), 2 (Kalibr's aprilgrid)
 
   int NumTags() const { return rows * cols; }
+  // Bit cells across a tag's black square: the family's data width + 2 × border_bits
+  // (8 for tag36h11 with one border cell, 10 with two); 0 for an unknown family.
+  int WidthAtBorder() const;
   double Gap() const { return tag_size * tag_spacing; }
   double Pitch() const { return tag_size + Gap(); }                      // tag origin to next tag origin
   double Width() const { return cols * tag_size + (cols - 1) * Gap(); }  // black edge to black edge

@@ -43,10 +43,10 @@ double ClippedArea(const Eigen::Vector2d* polygon, int count, const Eigen::Vecto
 }
 
 TargetPattern::TargetPattern(const Target& target)
-    : target_(target), cells_(TagCellsOf(target.family, target.first_id, target.NumTags())) {
-  const std::optional<TagFamilyInfo> info = FindTagFamily(target.family);
-  cell_ = target.tag_size / info->width_at_border;
-  ring_ = (info->total_width - info->width_at_border) / 2;
+    : target_(target),
+      cells_(TagCellsOf(target.family, target.first_id, target.NumTags(), target.border_bits)) {
+  cell_ = target.tag_size / target.WidthAtBorder();
+  ring_ = 1;  // the white ring of TagCells around the black square
   sheet_min_ = Eigen::Vector2d(-target.margin, -target.margin);
   sheet_max_ = Eigen::Vector2d(target.Width() + target.margin, target.Height() + target.margin);
 }

@@ -56,11 +56,10 @@ std::pair<double, double> ContentSize(const Target& target) {
 // Draws the target with its sheet's bottom-left at (x0, y0 + kCaptionMm).
 void DrawTarget(const Target& target, double x0, double y0, Canvas& canvas) {
   const double mm = MmPerUnit(target);
-  const std::optional<TagFamilyInfo> info = FindTagFamily(target.family);
-  const double cell = target.tag_size / info->width_at_border * mm;
-  const int ring = (info->total_width - info->width_at_border) / 2;
+  const double cell = target.tag_size / target.WidthAtBorder() * mm;
+  const int ring = 1;  // the white ring of TagCells around the black square
   const double origin_x = x0 + target.margin * mm, origin_y = y0 + kCaptionMm + target.margin * mm;
-  const std::vector<TagCells> tags = TagCellsOf(target.family, target.first_id, target.NumTags());
+  const std::vector<TagCells> tags = TagCellsOf(target.family, target.first_id, target.NumTags(), target.border_bits);
   for (int index = 0; index < target.NumTags(); ++index) {
     const Eigen::Vector2d o = target.TagOrigin(index) * mm;
     const TagCells& tag = tags[static_cast<size_t>(index)];

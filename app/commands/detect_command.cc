@@ -1,4 +1,4 @@
-// hexcal detect --images DIR|FILE [--family tag36h11] [--camera C] [--no-refine] [--json]
+// hexcal detect --images DIR|FILE [--target T | --family tag36h11 --border-bits 1] [--camera C] [--no-refine] [--json]
 #include <iostream>
 #include <memory>
 
@@ -11,7 +11,7 @@ namespace hexcal::cli {
 namespace {
 
 struct DetectCliOptions {
-  std::string images, camera;
+  std::string images, camera, target;
   DetectorOptions detector;
   bool no_refine = false;
   bool json = false;
@@ -28,6 +28,11 @@ nlohmann::json DetectionJson(const std::string& family, const TagDetection& tag)
 int RunDetect(const DetectCliOptions& cli, std::ostream& out, std::ostream& err) {
   DetectorOptions options = cli.detector;
   options.refine_edges = !cli.no_refine;
+  if (!cli.target.empty()) {
+    StatusOr<Target> target = LoadTarget(cli.target);
+    if (!target.ok()) return ReportError(err, "detect", target.status());
+    options = ForTarget(options, *target);
+  }
   std::shared_ptr<const IdealPixelMap> ideal;
   if (!cli.camera.empty()) {
     StatusOr<Camera> camera = LoadCamera(cli.camera);
@@ -91,6 +96,13 @@ void AddDetectCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--images", options->images, "an image, or a folder of PNG/JPEG/TIFF images")->required();
   sub->add_option("--family", options->detector.family, "tag family: tag36h11, tag25h9, tag16h5")
       ->capture_default_str();
+  sub->add_option("--border-bits", options->detector.border_bits,
+                  "black border of the tags in bit cells: 1 (AprilTag) or 2 (Kalibr's aprilgrid)")
+      ->check(CLI::Range(1, 2))
+      ->capture_default_str();
+  CLI::Option* target = sub->add_option("--target", options->target,
+                                        "target file or name: take the family and border from it");
+  target->excludes(sub->get_option("--family"))->excludes(sub->get_option("--border-bits"));
   sub->add_option("--camera", options->camera, "camera file: fit tag edges in the undistorted image");
   sub->add_option("--min-margin", options->detector.min_decision_margin,
                   "reject decodes with a smaller decision margin (grey levels)")

@@ -1,0 +1,133 @@
+#include "vision/image_file.h"
+
+#include <locale>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+#include <vector>
+
+#include "core/atomic_file.h"
+#include "vision/image_header.h"
+
+namespace hexcal {
+namespace {
+
+// The checks made on the header before decoding; OK when the decoder may run.
+Status CheckImageHeader(const ImageHeader& header, const std::string& source) {
+  // imdecode tries every decoder OpenCV was built with (on Debian also DICOM,
+  // JPEG 2000, OpenEXR, WebP ...), and some abort the process on a bad file
+  // (GDCM's reader asserts: found by fuzz/image_fuzz). hexcal reads only
+  // PNG, JPEG and TIFF, so nothing else reaches imdecode.
+  if (header.format == ImageFormat::kOther) {
+    return Status::Error(source + ": cannot decode: not a PNG, JPEG or TIFF file");
+  }
+  // Truncated files are caught here, before the decoders print their own
+  // complaints on stderr.
+  if (header.truncated && header.format == ImageFormat::kPng) {
+    return Status::Error(source + ": truncated PNG (no IEND chunk)");
+  }
+  if (header.truncated) return Status::Error(source + ": truncated JPEG (no end-of-image marker)");
+  if (!header.corrupt.empty()) return Status::Error(source + ": cannot decode: corrupt JPEG (" + header.corrupt + ")");
+  // The decoder allocates what the header claims, however small the file.
+  if (header.size && header.size->Pixels() > kMaxImagePixels) {
+    return Status::Error(source + ": " + std::to_string(header.size->width) + " x " +
+                         std::to_string(header.size->height) + " pixels is over the " +
+                         std::to_string(kMaxImagePixels / 1'000'000) + "-megapixel limit");
+  }
+  return Status::Ok();
+}
+
+
+// Grey in the file's own depth: colour weighted, alpha over white.
+cv::Mat ToGrey(const cv::Mat& decoded) {
+  const double white = decoded.depth() == CV_8U ? 255 : decoded.depth() == CV_16U ? 65535 : 1;
+  std::vector<cv::Mat> planes;
+  cv::split(decoded, planes);
+  cv::Mat grey;
+  if (decoded.channels() >= 3) {
+    cv::Mat colour;
+    cv::merge(std::vector<cv::Mat>(planes.begin(), planes.begin() + 3), colour);
+    cv::cvtColor(colour, grey, cv::COLOR_BGR2GRAY);
+  } else {
+    grey = planes[0];
+  }
+  if (decoded.channels() == 2 || decoded.channels() == 4) {
+    cv::Mat g, alpha;
+    grey.convertTo(g, CV_64F);
+    planes.back().convertTo(alpha, CV_64F, 1.0 / white);
+    // grey · α + white · (1 − α)
+    cv::Mat composite = g.mul(alpha) + white * (1.0 - alpha);
+    composite.convertTo(grey, decoded.depth());
+  }
+  return grey;
+}
+
+// 8-bit grey; deeper images scaled so that their range fills 0-255.
+cv::Mat ToEightBit(const cv::Mat& grey, ImageNotes* notes) {
+  if (grey.depth() == CV_8U) return grey;
+  double low = 0, high = 0;
+  cv::minMaxLoc(grey, &low, &high);
+  notes->range_low = low;
+  notes->range_high = high;
+  cv::Mat eight;
+  const double scale = high > low ? 255.0 / (high - low) : 0;
+  grey.convertTo(eight, CV_8U, scale, -low * scale);
+  return eight;
+}
+
+int BitsOf(int depth) {
+  switch (depth) {
+    case CV_8U: return 8;
+    case CV_16U: return 16;
+    default: return 32;
+  }
+}
+
+}  // namespace
+
+StatusOr<cv::Mat> LoadGrayImage(const std::string& path, ImageNotes* notes) {
+  StatusOr<std::string> bytes = ReadFileToString(path, kMaxImageBytes);
+  if (!bytes.ok()) return bytes.status();
+  return DecodeGrayImage(*bytes, path, notes);
+}
+
+StatusOr<cv::Mat> DecodeGrayImage(const std::string& bytes, const std::string& source, ImageNotes* notes) {
+  if (bytes.empty()) return Status::Error(source + ": empty file");
+  const ImageHeader header = ReadImageHeader(bytes);
+  if (const Status checked = CheckImageHeader(header, source); !checked.ok()) return checked;
+  cv::Mat decoded;
+  try {
+    // imdecode only reads the buffer; the const_cast is what cv::Mat's constructor needs.
+    // IMREAD_UNCHANGED: every channel and bit as stored, orientation not applied.
+    const cv::Mat buffer(1, static_cast<int>(bytes.size()), CV_8U, const_cast<char*>(bytes.data()));
+    decoded = cv::imdecode(buffer, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    return Status::Error(source + ": cannot decode: " + e.msg);
+  } catch (const std::exception& e) {  // e.g. std::bad_alloc for a header claiming a huge image
+    return Status::Error(source + ": cannot decode: " + e.what());
+  }
+  if (decoded.empty()) return Status::Error(source + ": cannot decode: corrupt, truncated or not an image");
+  if (decoded.channels() > 4 || (decoded.depth() != CV_8U && decoded.depth() != CV_16U && decoded.depth() != CV_32F)) {
+    return Status::Error(source + ": cannot decode: " + std::to_string(decoded.channels()) +
+                         " channels of an unsupported sample type (8-bit, 16-bit or float grey or colour are read)");
+  }
+  ImageNotes local;
+  ImageNotes* out = notes ? notes : &local;
+  *out = ImageNotes{BitsOf(decoded.depth()), decoded.channels(), header.orientation, 0, 255};
+  return ToEightBit(ToGrey(decoded), out);
+}
+
+std::string DescribeImageNotes(const ImageNotes& notes) {
+  std::ostringstream out;
+  out.imbue(std::locale::classic());
+  if (notes.bits > 8) {
+    out << notes.bits << "-bit, grey " << notes.range_low << "-" << notes.range_high << " scaled to 0-255";
+  }
+  if (notes.orientation != 1) {
+    out << (out.tellp() > 0 ? "; " : "") << "EXIF orientation " << notes.orientation
+        << " not applied (pixels as stored)";
+  }
+  return out.str();
+}
+
+}  // namespace hexcal
