@@ -174,7 +174,8 @@ Detections TagDetector::Detect(const cv::Mat& gray) {
     tag.corners = decode.corners;
     if (options_.refine_edges) {
       if (std::optional<RefinedTag> refined =
-              RefineTagCorners(gray, ideal, impl_->codebook.width_at_border(), tag.corners)) {
+              RefineTagCorners(gray, ideal, impl_->codebook.width_at_border(), impl_->codebook.border_bits(),
+                               tag.corners, &tag.refine_failure)) {
         tag.corners = refined->corners;
         tag.covariance = refined->covariance;
         tag.refined = true;

@@ -50,7 +50,8 @@ struct TagDetection {
   // ^ OpenCV pixel convention, AprilTag order
   double decision_margin = 0;
   int hamming = 0;
-  bool refined = false;  // corners from the edge fit; else the library's, shifted
+  bool refined = false;  // corners from the edge fit; else the quad's (vision/quad_finder.h)
+  std::string refine_failure;  // why the edge fit was not used ("edge 2: ..."), when it was asked for
   // Covariance of the corners (u0, v0, ..., u3, v3) from the edge fit, px²;
   // zero when not refined.
   Eigen::Matrix<double, 8, 8> covariance = Eigen::Matrix<double, 8, 8>::Zero();

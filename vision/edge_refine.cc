@@ -4,6 +4,9 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <locale>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "core/pose.h"
@@ -28,6 +31,14 @@ struct BandPixel {
 using EdgeParams = Eigen::Matrix<double, 8, 1>;
 using EdgeMatrix = Eigen::Matrix<double, 8, 8>;
 enum { kAngle, kOffset, kBlack, kContrast, kBlur, kBlackSlope, kContrastSlope, kShading };
+
+std::string FormatPx(double value) {
+  std::ostringstream out;
+  out.imbue(std::locale::classic());
+  out.precision(2);
+  out << std::fixed << value;
+  return out.str();
+}
 
 double NormalCdf(double z) { return 0.5 * std::erfc(-z * 0.7071067811865476); }
 double NormalPdf(double z) { return 0.3989422804014327 * std::exp(-0.5 * z * z); }
@@ -148,8 +159,9 @@ void NormalEquationsFixedShading(const std::vector<BandPixel>& band, const EdgeP
 // Levenberg–Marquardt from x over every parameter but the shading c, which
 // the tag as a whole determines (RefineTagCorners); false when the fit is not
 // a clean edge.
-bool FitEdge(const std::vector<BandPixel>& band, double half_width, EdgeParams& x, EdgeFit* fit) {
-  if (band.size() < 16) return false;
+// Returns why the fit is not used, or "" when it is.
+std::string FitEdge(const std::vector<BandPixel>& band, double half_width, EdgeParams& x, EdgeFit* fit) {
+  if (band.size() < 16) return "only " + std::to_string(band.size()) + " pixels in its band";
   const double initial_angle = x[kAngle];
   double cost = Cost(band, x), lambda = 1e-3;
   EdgeMatrix jtj;
@@ -190,8 +202,14 @@ bool FitEdge(const std::vector<BandPixel>& band, double half_width, EdgeParams& 
   fit->blur = x[kBlur];
   fit->rms = std::sqrt(cost / band.size());
   fit->pixels = static_cast<int>(band.size());
-  return x[kContrast] > kMinContrast && x[kBlur] > 0.1 && x[kBlur] < half_width &&
-         std::cos(x[kAngle] - initial_angle) > std::cos(DegToRad(10)) && fit->covariance.allFinite();
+  if (!(x[kContrast] > kMinContrast)) return "contrast " + FormatPx(x[kContrast]) + " grey levels";
+  if (!(x[kBlur] > 0.1)) return "no blur left to fit (" + FormatPx(x[kBlur]) + " px)";
+  if (!(x[kBlur] < half_width)) {
+    return "blur " + FormatPx(x[kBlur]) + " px wider than its band (" + FormatPx(half_width) + " px)";
+  }
+  if (!(std::cos(x[kAngle] - initial_angle) > std::cos(DegToRad(10)))) return "turned more than 10 degrees";
+  if (!fit->covariance.allFinite()) return "no covariance";
+  return "";
 }
 
 // One edge's fit and the pixels it used.
@@ -207,17 +225,22 @@ struct EdgeState {
 // symmetric about the edge whatever the approximate corners' error, and
 // narrowed to keep the blurred edges of the neighbouring cells (one `cell`
 // away) out: the transition of a blurred step spans about ±3 s.
-bool FitEdgeTwice(const cv::Mat& gray, const IdealPixelMap* ideal, const Eigen::Vector2d& raw_a,
+// Returns why the edge cannot be fitted, or "" when it is.
+std::string FitEdgeTwice(const cv::Mat& gray, const IdealPixelMap* ideal, const Eigen::Vector2d& raw_a,
                   const Eigen::Vector2d& raw_b, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                  const Eigen::Vector2d& n0, double cell, EdgeState* edge) {
+                  const Eigen::Vector2d& n0, double border, EdgeState* edge) {
   EdgeParams& x = edge->x;
   edge->fit.midpoint = 0.5 * (a + b);
   x[kAngle] = std::atan2(n0.y(), n0.x());
   x[kBlur] = 0.8;
-  edge->half_width = std::min(kMaxHalfWidthPx, cell - 2.0);
+  edge->half_width = std::min(kMaxHalfWidthPx, border - 2.0);
   for (int pass = 0; pass < 2; ++pass) {
-    if (pass == 1) edge->half_width = std::min(edge->half_width, cell - 3 * x[kBlur]);
-    if (edge->half_width < kMinHalfWidthPx) return false;
+    // The second band follows the blur the first fit measured: wide enough to
+    // hold the step (±2 s), clear of the next edge's step (2 s from it).
+    if (pass == 1) edge->half_width = std::min(std::max(kMaxHalfWidthPx, 2 * x[kBlur]), border - 2 * x[kBlur]);
+    if (edge->half_width < kMinHalfWidthPx) {
+      return "blur " + FormatPx(x[kBlur]) + " px too wide for a " + FormatPx(border) + " px border";
+    }
     const Eigen::Vector2d n(std::cos(x[kAngle]), std::sin(x[kAngle]));
     edge->band = CollectBand(gray, ideal, raw_a, raw_b, a, b, edge->fit.midpoint, n, x[kOffset], edge->half_width);
     if (pass == 0) {  // start from the mean grey on either side
@@ -228,14 +251,16 @@ bool FitEdgeTwice(const cv::Mat& gray, const IdealPixelMap* ideal, const Eigen::
         if (d < -0.5 * edge->half_width) dark += p.value, ++dark_count;
         if (d > 0.5 * edge->half_width) bright += p.value, ++bright_count;
       }
-      if (dark_count == 0 || bright_count == 0) return false;
+      if (dark_count == 0 || bright_count == 0) return "no dark or no bright side";
       x[kBlack] = dark / dark_count;
       x[kContrast] = bright / bright_count - x[kBlack];
     }
-    if (!FitEdge(edge->band, edge->half_width, x, &edge->fit)) return false;
-    if (std::abs(x[kOffset]) > edge->half_width) return false;
+    if (std::string why = FitEdge(edge->band, edge->half_width, x, &edge->fit); !why.empty()) return why;
+    if (std::abs(x[kOffset]) > edge->half_width) {
+      return "moved " + FormatPx(std::abs(x[kOffset])) + " px, out of its band";
+    }
   }
-  return true;
+  return "";
 }
 
 // The relative brightness gradient over the tag (per ideal pixel), from the
@@ -275,11 +300,37 @@ std::optional<std::array<Eigen::Vector2d, 4>> Intersections(const std::array<Edg
   return corners;
 }
 
+// Covariance of the corners: J diag(Σ_edge) Jᵀ, J = d corners / d lines by
+// central differences.
+std::optional<Eigen::Matrix<double, 8, 8>> CornerCovariance(const std::array<EdgeFit, 4>& edges,
+                                                            const Eigen::Matrix<double, 8, 1>& lines,
+                                                            const IdealPixelMap* ideal) {
+  Eigen::Matrix<double, 8, 8> jacobian, line_covariance = Eigen::Matrix<double, 8, 8>::Zero();
+  for (int p = 0; p < 8; ++p) {
+    const double h = p % 2 == 0 ? 1e-6 : 1e-4;  // radians, pixels
+    Eigen::Matrix<double, 8, 1> plus = lines, minus = lines;
+    plus[p] += h;
+    minus[p] -= h;
+    const std::optional<std::array<Eigen::Vector2d, 4>> a = Intersections(edges, plus, ideal);
+    const std::optional<std::array<Eigen::Vector2d, 4>> b = Intersections(edges, minus, ideal);
+    if (!a || !b) return std::nullopt;
+    for (int k = 0; k < 4; ++k)
+      jacobian.block<2, 1>(2 * k, p) = ((*a)[static_cast<size_t>(k)] - (*b)[static_cast<size_t>(k)]) / (2 * h);
+  }
+  for (int k = 0; k < 4; ++k) line_covariance.block<2, 2>(2 * k, 2 * k) = edges[static_cast<size_t>(k)].covariance;
+  return jacobian * line_covariance * jacobian.transpose();
+}
+
 }  // namespace
 
 std::optional<RefinedTag> RefineTagCorners(const cv::Mat& gray, const IdealPixelMap* ideal, int width_at_border,
-                                           const std::array<Eigen::Vector2d, 4>& corners) {
+                                           int border_bits, const std::array<Eigen::Vector2d, 4>& corners,
+                                           std::string* failure) {
   CV_Assert(gray.type() == CV_8UC1);
+  auto fail = [&](const std::string& why) -> std::optional<RefinedTag> {
+    if (failure) *failure = why;
+    return std::nullopt;
+  };
   std::array<Eigen::Vector2d, 4> ideal_corners;
   for (size_t k = 0; k < 4; ++k) {
     if (!ideal) {
@@ -287,7 +338,7 @@ std::optional<RefinedTag> RefineTagCorners(const cv::Mat& gray, const IdealPixel
       continue;
     }
     const std::optional<Eigen::Vector2d> q = ideal->camera().IdealPixel(corners[k]);
-    if (!q) return std::nullopt;
+    if (!q) return fail("corner " + std::to_string(k) + " is outside the camera model");
     ideal_corners[k] = *q;
   }
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();
@@ -296,9 +347,12 @@ std::optional<RefinedTag> RefineTagCorners(const cv::Mat& gray, const IdealPixel
     centre += 0.25 * ideal_corners[k];
     perimeter += (ideal_corners[(k + 1) % 4] - ideal_corners[k]).norm();
   }
-  // Inside, the black border is one cell wide and a white data bit may follow it.
-  const double cell = perimeter / 4 / width_at_border;
-  if (cell < kMinCellPx) return std::nullopt;
+  // Inside, the black border is border_bits cells deep and a white data bit
+  // may follow it; outside, the white gap is at least as wide (Target::Validate).
+  const double border = border_bits * perimeter / 4 / width_at_border;
+  if (border < kMinCellPx) {
+    return fail("black border of " + FormatPx(border) + " px (under " + FormatPx(kMinCellPx) + ")");
+  }
 
   std::array<EdgeState, 4> edges;
   for (size_t k = 0; k < 4; ++k) {
@@ -307,10 +361,9 @@ std::optional<RefinedTag> RefineTagCorners(const cv::Mat& gray, const IdealPixel
     Eigen::Vector2d n(-along.y(), along.x());
     n.normalize();
     if (n.dot(0.5 * (ideal_corners[k] + ideal_corners[next]) - centre) < 0) n = -n;  // outward
-    if (!FitEdgeTwice(gray, ideal, corners[k], corners[next], ideal_corners[k], ideal_corners[next], n, cell,
-                      &edges[k])) {
-      return std::nullopt;
-    }
+    const std::string why =
+        FitEdgeTwice(gray, ideal, corners[k], corners[next], ideal_corners[k], ideal_corners[next], n, border, &edges[k]);
+    if (!why.empty()) return fail("edge " + std::to_string(k) + ": " + why);
   }
   // The lighting across each edge, from the tag's four contrasts, and a last
   // fit of each edge with it (EdgeModel: it moves an edge by c s²).
@@ -320,31 +373,25 @@ std::optional<RefinedTag> RefineTagCorners(const cv::Mat& gray, const IdealPixel
   for (size_t k = 0; k < 4; ++k) {
     EdgeState& edge = edges[k];
     edge.x[kShading] = gradient.dot(Eigen::Vector2d(std::cos(edge.x[kAngle]), std::sin(edge.x[kAngle])));
-    if (!FitEdge(edge.band, edge.half_width, edge.x, &edge.fit)) return std::nullopt;
+    if (std::string why = FitEdge(edge.band, edge.half_width, edge.x, &edge.fit); !why.empty()) {
+      return fail("edge " + std::to_string(k) + " with lighting: " + why);
+    }
     tag.edges[k] = edge.fit;
     lines.segment<2>(static_cast<Eigen::Index>(2 * k)) << edge.fit.angle, edge.fit.offset;
   }
   const std::optional<std::array<Eigen::Vector2d, 4>> refined = Intersections(tag.edges, lines, ideal);
-  if (!refined) return std::nullopt;
+  if (!refined) return fail("edges meet at under 10 degrees");
   for (size_t k = 0; k < 4; ++k) {
-    if (((*refined)[k] - corners[k]).norm() > kMaxCornerShiftPx) return std::nullopt;
+    const double shift = ((*refined)[k] - corners[k]).norm();
+    if (shift > kMaxCornerShiftPx) {
+      return fail("corner " + std::to_string(k) + " would move " + FormatPx(shift) + " px (over " +
+                  FormatPx(kMaxCornerShiftPx) + ")");
+    }
   }
   tag.corners = *refined;
-  // Covariance: J diag(Σ_edge) Jᵀ, J = d corners / d lines by central differences.
-  Eigen::Matrix<double, 8, 8> jacobian, line_covariance = Eigen::Matrix<double, 8, 8>::Zero();
-  for (int p = 0; p < 8; ++p) {
-    const double h = p % 2 == 0 ? 1e-6 : 1e-4;  // radians, pixels
-    Eigen::Matrix<double, 8, 1> plus = lines, minus = lines;
-    plus[p] += h;
-    minus[p] -= h;
-    const std::optional<std::array<Eigen::Vector2d, 4>> a = Intersections(tag.edges, plus, ideal);
-    const std::optional<std::array<Eigen::Vector2d, 4>> b = Intersections(tag.edges, minus, ideal);
-    if (!a || !b) return std::nullopt;
-    for (int k = 0; k < 4; ++k)
-      jacobian.block<2, 1>(2 * k, p) = ((*a)[static_cast<size_t>(k)] - (*b)[static_cast<size_t>(k)]) / (2 * h);
-  }
-  for (int k = 0; k < 4; ++k) line_covariance.block<2, 2>(2 * k, 2 * k) = tag.edges[static_cast<size_t>(k)].covariance;
-  tag.covariance = jacobian * line_covariance * jacobian.transpose();
+  const std::optional<Eigen::Matrix<double, 8, 8>> covariance = CornerCovariance(tag.edges, lines, ideal);
+  if (!covariance) return fail("edges meet at under 10 degrees");
+  tag.covariance = *covariance;
   return tag;
 }
 

@@ -13,11 +13,11 @@
 // that varies slowly along the edge only rescales it. Adjacent lines meet at
 // the corners, which are mapped back into the distorted image.
 //
-// The band keeps inside the black border (one bit cell wide) and clear of the
+// The band keeps inside the black border (one or two bit cells deep) and clear of the
 // corners, so the tag's data bits and the neighbouring edges stay out of it.
 //
 //   std::array<Eigen::Vector2d, 4> corners = ...;  // AprilTag order, OpenCV pixels
-//   std::optional<RefinedTag> refined = RefineTagCorners(gray, &ideal_map, /*width_at_border=*/8, corners);
+//   std::optional<RefinedTag> refined = RefineTagCorners(gray, &ideal_map, /*width_at_border=*/8, /*border_bits=*/1, corners);
 #pragma once
 
 #include <Eigen/Core>
@@ -25,6 +25,7 @@
 #include <cmath>
 #include <opencv2/core.hpp>
 #include <optional>
+#include <string>
 
 #include "vision/camera.h"
 
@@ -53,11 +54,15 @@ struct RefinedTag {
 };
 
 // The refined corners of a tag whose approximate corners (OpenCV convention,
-// AprilTag order) are `corners`; nullopt when the tag is too small (bit cells
-// under 3.5 px), an edge has too few pixels, a fit fails, or a corner would
-// move more than 2 px. `ideal` may be null: the image is then taken as
-// undistorted.
+// AprilTag order) are `corners`; nullopt when the tag is too small (black border
+// under 3.5 px deep), an edge has too few pixels, a fit fails, or a corner would
+// move more than 2 px; `failure` (may be null) then says which, for a person
+// ("edge 2: blur 3.10 px too wide for its 5.20 px cell"). `ideal` may be null:
+// the image is then taken as undistorted.
+// `border_bits`: the black border's depth in cells (2 on Kalibr's aprilgrid),
+// which bounds the band across each edge.
 std::optional<RefinedTag> RefineTagCorners(const cv::Mat& gray, const IdealPixelMap* ideal, int width_at_border,
-                                           const std::array<Eigen::Vector2d, 4>& corners);
+                                           int border_bits, const std::array<Eigen::Vector2d, 4>& corners,
+                                           std::string* failure = nullptr);
 
 }  // namespace hexcal

@@ -190,14 +190,15 @@ Status Target::Validate() const {
     return Status::Error("border_bits: must be 1 (AprilTag's tags) or 2 (Kalibr's aprilgrid), found " +
                          std::to_string(border_bits));
   }
-  const double cell_ratio = 1.0 / WidthAtBorder();
+  // With a two-cell border the edge fit reaches two cells out: keep that white.
+  const double cell_ratio = static_cast<double>(border_bits) / WidthAtBorder();
   if (!(tag_spacing >= cell_ratio) || !std::isfinite(tag_spacing)) {
-    return Status::Error("tag_spacing: " + FormatNumber(tag_spacing) + " leaves less than one bit cell (tag_size/" +
-                         std::to_string(WidthAtBorder()) + ") of white between tags; use at least " +
+    return Status::Error("tag_spacing: " + FormatNumber(tag_spacing) + " leaves less than " + std::to_string(border_bits) +
+                         " bit cell(s) (tag_size/" + std::to_string(WidthAtBorder()) + " each) of white between tags; use at least " +
                          FormatNumber(cell_ratio) + " (Kalibr's default is 0.3)");
   }
   if (!(margin >= tag_size * cell_ratio) || !std::isfinite(margin)) {
-    return Status::Error("margin: " + FormatNumber(margin) + " is less than one bit cell (" +
+    return Status::Error("margin: " + FormatNumber(margin) + " is less than " + std::to_string(border_bits) + " bit cell(s) (" +
                          FormatNumber(tag_size * cell_ratio) + ") of white around the outer tags");
   }
   return Status::Ok();

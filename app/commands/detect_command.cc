@@ -20,9 +20,38 @@ struct DetectCliOptions {
 nlohmann::json DetectionJson(const std::string& family, const TagDetection& tag) {
   nlohmann::json corners = nlohmann::json::array();
   for (const Eigen::Vector2d& c : tag.corners) corners.push_back({c.x(), c.y()});
-  return {{"family", family},       {"id", tag.id},
-          {"corners", corners},     {"decision_margin", tag.decision_margin},
-          {"hamming", tag.hamming}, {"refined", tag.refined}};
+  nlohmann::json json = {{"family", family},       {"id", tag.id},
+                         {"corners", corners},     {"decision_margin", tag.decision_margin},
+                         {"hamming", tag.hamming}, {"refined", tag.refined}};
+  if (!tag.refine_failure.empty()) json["refine_failure"] = tag.refine_failure;
+  return json;
+}
+
+// With few tags found, the count the other border width gives, when it is
+// more: the usual reason for an empty Kalibr aprilgrid is border_bits 1.
+std::optional<int> OtherBorderCount(const cv::Mat& gray, const DetectorOptions& options, size_t found) {
+  if (found >= 4) return std::nullopt;
+  DetectorOptions other = options;
+  other.border_bits = 3 - options.border_bits;
+  other.refine_edges = false;
+  StatusOr<std::unique_ptr<TagDetector>> detector = TagDetector::Create(other);
+  if (!detector.ok()) return std::nullopt;
+  const size_t count = (*detector)->Detect(gray).tags.size();
+  if (count <= found) return std::nullopt;
+  return static_cast<int>(count);
+}
+
+// One line per image: the tags, why any kept their quad corners, what the file needed.
+void PrintImageLine(const std::string& file, const Detections& found, const ImageNotes& notes, std::ostream& out) {
+  out << file << ": " << found.tags.size() << " tags";
+  if (!found.rejected.empty()) out << ", " << found.rejected.size() << " rejected";
+  out << (found.tags.empty() ? "" : ", ids");
+  for (const TagDetection& tag : found.tags) out << " " << tag.id;
+  out << "\n";
+  for (const TagDetection& tag : found.tags) {
+    if (!tag.refine_failure.empty()) out << "  tag " << tag.id << ": quad corners kept: " << tag.refine_failure << "\n";
+  }
+  if (const std::string note = DescribeImageNotes(notes); !note.empty()) out << "  " << note << "\n";
 }
 
 int RunDetect(const DetectCliOptions& cli, std::ostream& out, std::ostream& err) {
@@ -50,11 +79,12 @@ int RunDetect(const DetectCliOptions& cli, std::ostream& out, std::ostream& err)
   for (size_t i = 0; i < files->size(); ++i) {
     const std::string& file = (*files)[i];
     nlohmann::json image = {{"file", file}, {"detections", nlohmann::json::array()}};
-    StatusOr<cv::Mat> gray = LoadGrayImage(file);
+    ImageNotes notes;
+    StatusOr<cv::Mat> gray = LoadGrayImage(file, &notes);
     if (!gray.ok()) {
       ++unreadable;
       image["error"] = gray.status().message();
-      if (!cli.json) out << file << ": " << gray.status().message() << "\n";
+      if (!cli.json) out << gray.status().message() << "\n";  // the message names the file
     } else {
       if (ideal && (gray->cols != ideal->width() || gray->rows != ideal->height())) {
         err << "hexcal detect: warning: " << file << " is not the camera's size; edges fitted without distortion\n";
@@ -66,13 +96,14 @@ int RunDetect(const DetectCliOptions& cli, std::ostream& out, std::ostream& err)
         rejected.push_back({{"id", tag.id}, {"decision_margin", tag.decision_margin}, {"reason", tag.reason}});
       }
       image["rejected"] = rejected;
+      if (const std::string note = DescribeImageNotes(notes); !note.empty()) image["note"] = note;
       total_tags += static_cast<int>(found.tags.size());
-      if (!cli.json) {
-        out << file << ": " << found.tags.size() << " tags";
-        if (!found.rejected.empty()) out << ", " << found.rejected.size() << " rejected";
-        out << (found.tags.empty() ? "" : ", ids");
-        for (const TagDetection& tag : found.tags) out << " " << tag.id;
-        out << "\n";
+      if (!cli.json) PrintImageLine(file, found, notes, out);
+      if (std::optional<int> other = OtherBorderCount(*gray, options, found.tags.size())) {
+        const std::string hint = std::to_string(*other) + " tags with border_bits " +
+                                 std::to_string(3 - options.border_bits) + " (--border-bits, or the target's key)";
+        image["hint"] = hint;
+        err << "hexcal detect: " << file << ": " << hint << "\n";
       }
     }
     images.push_back(image);

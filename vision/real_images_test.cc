@@ -1,0 +1,104 @@
+// Detection on photographs no hexcal code made (tests/data/real/README.md):
+// the tag counts the peers' own test suites expect, and corners that a
+// published calibration confirms.
+#include <gtest/gtest.h>
+
+#include <iostream>
+#include <set>
+
+#include "tests/test_support.h"
+#include "vision/board_pose.h"
+#include "vision/detection.h"
+
+namespace hexcal {
+namespace {
+
+using ::hexcal::testing::SourceDir;
+
+std::string RealImage(const std::string& name) { return (SourceDir() / "tests/data/real" / name).string(); }
+
+Target KalibrGrid() {
+  return LoadTarget((SourceDir() / "resources/targets/kalibr-aprilgrid-6x6-88mm.yaml").string()).value();
+}
+
+struct PeerCount {
+  const char* file;
+  int border_bits;
+  size_t tags;  // powei-lin/aprilgrid-rs tests/test_detector.rs, powei-lin/aprilgrid tests/test_detection.py
+};
+
+class PeerCountTest : public ::testing::TestWithParam<PeerCount> {};
+
+TEST_P(PeerCountTest, FindsEveryTagThePeersFind) {
+  const PeerCount& expected = GetParam();
+  ImageNotes notes;
+  const cv::Mat gray = LoadGrayImage(RealImage(expected.file), &notes).value();
+  DetectorOptions options;
+  options.border_bits = expected.border_bits;
+  const Detections found = TagDetector::Create(options).value()->Detect(gray);
+  std::set<int> ids;
+  int refined = 0;
+  for (const TagDetection& tag : found.tags) {
+    ids.insert(tag.id);
+    refined += tag.refined ? 1 : 0;
+  }
+  std::cout << expected.file << ": " << found.tags.size() << " tags (" << refined << " edge-fitted), "
+            << found.rejected.size() << " rejected; " << DescribeImageNotes(notes) << "\n";
+  EXPECT_EQ(found.tags.size(), expected.tags);
+  EXPECT_EQ(ids.size(), found.tags.size()) << "an id found twice";
+}
+
+INSTANTIATE_TEST_SUITE_P(RealPhotos, PeerCountTest,
+                         ::testing::Values(PeerCount{"EuRoC.png", 2, 36}, PeerCount{"TUM_VI.png", 2, 36},
+                                           PeerCount{"r45.png", 2, 36}, PeerCount{"iphone.png", 2, 66},
+                                           PeerCount{"t36h11_2bit_margin.jpg", 2, 36},
+                                           PeerCount{"t36h11_1bit_margin.png", 1, 154}));
+
+TEST(RealImageFilesTest, DeepColourAndAlphaImagesAreRead) {
+  ImageNotes notes;
+  const cv::Mat tum = LoadGrayImage(RealImage("TUM_VI.png"), &notes).value();
+  EXPECT_EQ(notes.bits, 16);
+  EXPECT_LT(notes.range_low, notes.range_high);
+  double low = 0, high = 0;
+  cv::minMaxLoc(tum, &low, &high);
+  EXPECT_EQ(low, 0);  // the range is stretched, not clipped to the high byte
+  EXPECT_EQ(high, 255);
+  LoadGrayImage(RealImage("iphone.png"), &notes).value();
+  EXPECT_EQ(notes.channels, 3);
+  LoadGrayImage(RealImage("t36h11_1bit_margin.png"), &notes).value();
+  EXPECT_EQ(notes.channels, 4);
+}
+
+// EuRoC cam0 has a published calibration (pinhole-radtan, tests/data/real/README.md):
+// the board pose from the detected corners must fit it to a fraction of a
+// pixel, which only corners in the right order and place can do. The edge
+// fit must do at least as well as the quad corners it starts from.
+TEST(RealImagePoseTest, EuRoCCornersFitThePublishedCalibration) {
+  Camera euroc;
+  euroc.width = 752;
+  euroc.height = 480;
+  euroc.fx = 458.654;
+  euroc.fy = 457.296;
+  euroc.cx = 367.215;
+  euroc.cy = 248.375;
+  euroc.distortion = {-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05, 0};
+  const Target grid = KalibrGrid();
+  const cv::Mat gray = LoadGrayImage(RealImage("EuRoC.png")).value();
+  auto ideal = std::make_shared<const IdealPixelMap>(euroc);
+  DetectorOptions options = ForTarget(DetectorOptions{}, grid);
+  const BoardObservation fitted = MatchToTarget(grid, TagDetector::Create(options, ideal).value()->Detect(gray));
+  options.refine_edges = false;
+  const BoardObservation quads = MatchToTarget(grid, TagDetector::Create(options, ideal).value()->Detect(gray));
+  const BoardPose with_fit = EstimateBoardPose(euroc, fitted, BoardPoseOptions{});
+  const BoardPose without = EstimateBoardPose(euroc, quads, BoardPoseOptions{});
+  std::cout << "EuRoC board pose RMS: edge fit " << with_fit.rms_px << " px (" << fitted.NumTags()
+            << " tags), quad corners " << without.rms_px << " px, distance "
+            << with_fit.camera_from_target.position.norm() << " m\n";
+  ASSERT_TRUE(with_fit.has_pose);
+  EXPECT_EQ(fitted.NumTags(), 36);
+  EXPECT_LT(with_fit.rms_px, 0.5);
+  EXPECT_LE(with_fit.rms_px, without.rms_px);
+}
+
+}  // namespace
+}  // namespace hexcal
