@@ -192,13 +192,14 @@ Status Target::Validate() const {
   }
   // With a two-cell border the edge fit reaches two cells out: keep that white.
   const double cell_ratio = static_cast<double>(border_bits) / WidthAtBorder();
+  const std::string cells = border_bits == 1 ? "one bit cell" : "two bit cells";
   if (!(tag_spacing >= cell_ratio) || !std::isfinite(tag_spacing)) {
-    return Status::Error("tag_spacing: " + FormatNumber(tag_spacing) + " leaves less than " + std::to_string(border_bits) +
-                         " bit cell(s) (tag_size/" + std::to_string(WidthAtBorder()) + " each) of white between tags; use at least " +
+    return Status::Error("tag_spacing: " + FormatNumber(tag_spacing) + " leaves less than " + cells +
+                         " (tag_size/" + std::to_string(WidthAtBorder()) + " each) of white between tags; use at least " +
                          FormatNumber(cell_ratio) + " (Kalibr's default is 0.3)");
   }
   if (!(margin >= tag_size * cell_ratio) || !std::isfinite(margin)) {
-    return Status::Error("margin: " + FormatNumber(margin) + " is less than " + std::to_string(border_bits) + " bit cell(s) (" +
+    return Status::Error("margin: " + FormatNumber(margin) + " is less than " + cells + " (" +
                          FormatNumber(tag_size * cell_ratio) + ") of white around the outer tags");
   }
   return Status::Ok();
