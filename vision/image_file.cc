@@ -51,10 +51,12 @@ cv::Mat ToGrey(const cv::Mat& decoded) {
   } else {
     grey = planes[0];
   }
-  if (decoded.channels() == 2 || decoded.channels() == 4) {
+  double transparent = 0, opaque = 0;
+  if (decoded.channels() == 2 || decoded.channels() == 4) cv::minMaxLoc(planes.back(), &transparent, &opaque);
+  if ((decoded.channels() == 2 || decoded.channels() == 4) && transparent < white) {
     cv::Mat g, alpha;
-    grey.convertTo(g, CV_64F);
-    planes.back().convertTo(alpha, CV_64F, 1.0 / white);
+    grey.convertTo(g, CV_32F);
+    planes.back().convertTo(alpha, CV_32F, 1.0 / white);
     // grey · α + white · (1 − α)
     cv::Mat composite = g.mul(alpha) + white * (1.0 - alpha);
     composite.convertTo(grey, decoded.depth());
