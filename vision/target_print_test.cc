@@ -80,6 +80,24 @@ TEST(TargetPrintTest, PngIsToScaleAndDecodesAsTheTarget) {
   EXPECT_NEAR(tag0[0].x() + 0.5, 19 * px_per_mm, 0.1);
 }
 
+// Kalibr's two-cell border, printed and read back: every tag decodes with
+// border_bits 2 and none with 1 reads as a wrong id.
+TEST(TargetPrintTest, TwoCellBordersPrintAndDetect) {
+  Target kalibr = DefaultTarget();
+  kalibr.border_bits = 2;
+  const StatusOr<std::string> png = TargetPng(kalibr, 150);
+  ASSERT_TRUE(png.ok()) << png.status().message();
+  cv::Mat image = cv::imdecode(std::vector<uint8_t>(png->begin(), png->end()), cv::IMREAD_GRAYSCALE);
+  cv::GaussianBlur(image, image, cv::Size(0, 0), 0.8);
+  const Detections found = TagDetector::Create(ForTarget(DetectorOptions{}, kalibr)).value()->Detect(image);
+  ASSERT_EQ(found.tags.size(), 36u);
+  for (size_t i = 0; i < found.tags.size(); ++i) EXPECT_EQ(found.tags[i].id, static_cast<int>(i));
+  // The black square is still tag_size: 30 mm between corners 0 and 1.
+  EXPECT_NEAR((found.tags[0].corners[1] - found.tags[0].corners[0]).norm(), 30 * 150 / 25.4, 0.15);
+  const Detections one_cell = TagDetector::Create(DetectorOptions{}).value()->Detect(image);
+  EXPECT_LT(one_cell.tags.size(), 36u);
+}
+
 TEST(TargetPrintTest, WritesByExtensionAndRejectsOthers) {
   TempDir dir;
   EXPECT_TRUE(WriteTargetPrint(DefaultTarget(), dir.File("t.PDF"), 300).ok());

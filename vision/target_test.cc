@@ -52,6 +52,21 @@ TEST(TargetTest, ReadsKalibrAprilgridInMetres) {
   EXPECT_NEAR(target->Gap(), 0.0264, 1e-15);
   EXPECT_NEAR(target->Pitch(), 0.1144, 1e-15);
   EXPECT_NEAR(target->margin, 0.0264, 1e-15);  // default: the gap (more than two bit cells)
+  EXPECT_EQ(target->border_bits, 2);            // as Kalibr prints its aprilgrid
+  EXPECT_EQ(target->WidthAtBorder(), 10);
+}
+
+TEST(TargetTest, BorderBitsDefaultByKeyNamesAndAreChecked) {
+  EXPECT_EQ(DefaultTarget().border_bits, 1);
+  EXPECT_EQ(DefaultTarget().WidthAtBorder(), 8);
+  const std::string kalibr = "target_type: aprilgrid\ntagCols: 6\ntagRows: 6\ntagSize: 0.088\ntagSpacing: 0.3\n";
+  EXPECT_EQ(ParseTargetYaml(kalibr + "border_bits: 1\n", "k").value().border_bits, 1);
+  const StatusOr<Target> three = ParseTargetYaml(kalibr + "border_bits: 3\n", "k");
+  EXPECT_THAT(three.status().message(), HasSubstr("border_bits: must be 1 (AprilTag's tags) or 2"));
+  // Two border cells need two cells of white: 0.15 of a 10-cell tag is 1.5.
+  const StatusOr<Target> tight = ParseTargetYaml(
+      "target_type: aprilgrid\ntagCols: 6\ntagRows: 6\ntagSize: 0.088\ntagSpacing: 0.15\n", "k");
+  EXPECT_THAT(tight.status().message(), HasSubstr("leaves less than two bit cells"));
 }
 
 TEST(TargetTest, CornersFollowTheTargetFrameAndAprilTagOrder) {
@@ -79,6 +94,7 @@ TEST(TargetTest, YamlRoundTripIsExact) {
   target.length_unit = LengthUnit::kCentimetre;
   target.rows = 4;
   target.first_id = 100;
+  target.border_bits = 2;
   StatusOr<Target> back = ParseTargetYaml(TargetToYaml(target), "round-trip");
   ASSERT_TRUE(back.ok()) << back.status().message();
   EXPECT_EQ(back->tag_size, target.tag_size);
@@ -87,6 +103,7 @@ TEST(TargetTest, YamlRoundTripIsExact) {
   EXPECT_EQ(back->length_unit, target.length_unit);
   EXPECT_EQ(back->rows, 4);
   EXPECT_EQ(back->first_id, 100);
+  EXPECT_EQ(back->border_bits, 2);
 }
 
 TEST(TargetTest, ErrorsNameTheFileTheKeyAndTheProblem) {
