@@ -222,6 +222,7 @@ bool IntrinsicsOptions::IsValid(std::string* error) const {
   if (!(outlier_factor > 1)) return fail("outlier_factor: must be greater than 1");
   if (!(outlier_min_rms_px >= 0)) return fail("outlier_min_rms_px: must be >= 0");
   if (refinement_passes < 0 || refinement_passes > 5) return fail("refinement_passes: must be in 0..5");
+  if (!(max_rms_px > 0)) return fail("max_rms_px: must be > 0");
   return true;
 }
 

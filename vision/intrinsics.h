@@ -36,6 +36,7 @@ struct IntrinsicsOptions {
   double outlier_factor = 3.0;      // a view's RMS over this × the median RMS ...
   double outlier_min_rms_px = 0.5;  // ... and over this is an outlier
   int refinement_passes = 1;        // re-detections with the estimated distortion
+  double max_rms_px = 1.0;          // a larger final RMS is an error (vision/intrinsics_diagnosis.h)
 
   bool IsValid(std::string* error) const;
 };

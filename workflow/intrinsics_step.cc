@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "vision/intrinsics_diagnosis.h"
 #include "vision/measure.h"
 
 namespace hexcal::workflow {
@@ -31,6 +32,7 @@ StatusOr<IntrinsicsOutcome> CalibrateCameraFromFiles(const std::vector<std::stri
   StatusOr<IntrinsicsResult> result = CalibrateIntrinsics(files, target, options, hooks);
   // Unusable images (sizes, too few views) are the usual cause: bad input.
   if (!result.ok()) return result.status();
+  if (Status s = CheckIntrinsicsFit(*result, target, options.max_rms_px); !s.ok()) return s;
   if (Status s = SaveCamera(result->camera, out, ExtrasOf(*result)); !s.ok()) return s.AsFailure();
   if (!coverage.empty()) {
     std::vector<uint8_t> png;

@@ -41,6 +41,10 @@ void AddIntrinsicsCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--threads", options->request.options.threads, "images detected in parallel (0 = every core)")
       ->check(CountRange(0, kMaxThreads))
       ->capture_default_str();
+  sub->add_option("--max-rms", options->request.options.max_rms_px,
+                  "a larger reprojection RMS (px) is an error: the target or the model is wrong")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   sub->add_flag("--force", options->request.force, "overwrite an existing camera file");
   sub->add_flag("--json", options->json, "print one JSON object on stdout");
   sub->callback([=] { *exit_code = RunIntrinsics(*options, std::cout, std::cerr); });

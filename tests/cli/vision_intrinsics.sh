@@ -16,6 +16,17 @@ fx=$(grep -A4 '^camera_matrix' "$dir/camera.yaml" | sed -n 's/.*data: \[ \([0-9.
 awk -v fx="$fx" 'BEGIN { d = fx - 903.2; if (d < 0) d = -d; exit !(d < 2) }'
 "$hexcal" measure --camera "$dir/camera.yaml" --images "$dir/views" --out "$dir/m.csv" | grep -q "10 images: 10 ok"
 
+# A board described with the wrong spacing: calibrateCamera still returns a
+# camera; hexcal refuses it with the diagnosis and writes nothing (exit 2).
+sed -e 's/^tag_spacing: .*/tag_spacing: 0.5/' "$data/../../resources/targets/aprilgrid-6x6.yaml" >"$dir/wrong.yaml"
+code=0
+"$hexcal" intrinsics --images "$dir/views" --target "$dir/wrong.yaml" --out "$dir/wrong_cam.yaml" 2>"$dir/err" || code=$?
+[ "$code" -eq 2 ]
+grep -q "is over the 1 px limit (--max-rms); the camera file was not written" "$dir/err"
+grep -q "a systematic error, not a bad image" "$dir/err"
+grep -q "spacing 0.5" "$dir/err"
+[ ! -e "$dir/wrong_cam.yaml" ]
+
 mkdir "$dir/few"
 cp "$dir/views/view_0000.png" "$dir/views/view_0001.png" "$dir/few/"
 code=0
