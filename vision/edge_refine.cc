@@ -236,8 +236,8 @@ std::string FitEdgeTwice(const cv::Mat& gray, const IdealPixelMap* ideal, const 
   edge->half_width = std::min(kMaxHalfWidthPx, border - 2.0);
   for (int pass = 0; pass < 2; ++pass) {
     // The second band follows the blur the first fit measured: wide enough to
-    // hold the step (±2 s), clear of the next edge's step (2 s from it).
-    if (pass == 1) edge->half_width = std::min(std::max(kMaxHalfWidthPx, 2 * x[kBlur]), border - 2 * x[kBlur]);
+    // hold the step (±2 s), clear of the next edge's step (3 s from it).
+    if (pass == 1) edge->half_width = std::min(std::max(kMaxHalfWidthPx, 2 * x[kBlur]), border - 3 * x[kBlur]);
     if (edge->half_width < kMinHalfWidthPx) {
       return "blur " + FormatPx(x[kBlur]) + " px too wide for a " + FormatPx(border) + " px border";
     }

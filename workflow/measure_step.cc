@@ -6,6 +6,23 @@
 #include "core/atomic_file.h"
 
 namespace hexcal::workflow {
+std::string DiagnoseMeasurements(const MeasureResult& result) { return DiagnoseBoardFits(result.counts); }
+
+std::string DiagnoseBoardFits(const std::map<std::string, int>& counts) {
+  auto count = [&](const char* status) {
+    const auto it = counts.find(status);
+    return it == counts.end() ? 0 : it->second;
+  };
+  const int high = count("high_rms");
+  const int with_board = high + count("ok") + count("ambiguous");
+  if (high == 0 || 2 * high < with_board) return "";
+  return std::to_string(high) + " of " + std::to_string(with_board) +
+         " images that show the board fit it badly (reprojection RMS over the limit): a systematic error, not bad "
+         "images. Check that the target file describes the board as printed (rows, cols, tag_size and its "
+         "length_unit, tag_spacing, first_id, border_bits) and that the camera file is this camera's, at this "
+         "resolution and with a model that fits its lens";
+}
+
 namespace {
 
 nlohmann::json MeasurementJson(const ImageMeasurement& m) {

@@ -44,6 +44,13 @@ StatusOr<MeasureResult> MeasureFiles(const std::vector<std::string>& files, cons
                                      const Target& target, const MeasureOptions& options, const std::string& out,
                                      const JobHooks& hooks = {});
 
+// When at least half of the images that show the board fit it badly
+// (high_rms), what that says: the target or camera file does not describe
+// the board and lens (a wrong layout, unit or model, not a bad image). "" otherwise.
+std::string DiagnoseMeasurements(const MeasureResult& result);
+// The same from counts of images by PoseStatusName.
+std::string DiagnoseBoardFits(const std::map<std::string, int>& counts);
+
 nlohmann::json ToJson(const MeasureResult& result);
 std::string FormatMeasureSummary(const MeasureResult& result);
 

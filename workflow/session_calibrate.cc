@@ -18,6 +18,7 @@
 #include "core/staged_folder.h"
 #include "core/validation.h"
 #include "vision/measure.h"
+#include "workflow/measure_step.h"
 #include "workflow/session_measure.h"
 #include "workflow/session_results.h"
 
@@ -79,6 +80,17 @@ StatusOr<CameraPoses> MeasureSession(const std::string& dir, const SessionInputs
   options.known_hashes = &inputs;
   StatusOr<SessionMeasurements> measured = MeasureSessionImages(dir, images, in.camera, in.target, options, hooks);
   if (!measured.ok()) return measured.status();
+  std::map<std::string, int> counts;
+  int ok = 0;
+  for (const auto& [image, pose] : measured->poses) {
+    ++counts[pose.status];
+    ok += pose.ok ? 1 : 0;
+  }
+  // A board that fits badly in most images is the target or camera file, not the images.
+  if (const std::string diagnosis = DiagnoseBoardFits(counts); !diagnosis.empty()) {
+    if (ok < 3) return Status::Error(dir + ": " + diagnosis);
+    hooks.Note("warning: " + diagnosis);
+  }
   return measured->poses;
 }
 

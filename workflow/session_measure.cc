@@ -18,6 +18,14 @@
 namespace hexcal::workflow {
 namespace {
 
+// The status column of a row of measurements.csv as written.
+std::string StatusCell(const ImageMeasurementRecord& row) {
+  static const std::vector<std::string> columns = ImageMeasurementColumns();
+  static const size_t column =
+      static_cast<size_t>(std::find(columns.begin(), columns.end(), "status") - columns.begin());
+  return column < row.cells.size() ? row.cells[column] : "";
+}
+
 namespace fs = std::filesystem;
 
 // What measurements.csv was measured with: SHA-256 of the camera file, the
@@ -158,7 +166,7 @@ StatusOr<SessionMeasurements> MeasureSessionImages(const std::string& dir, const
   std::vector<std::vector<std::string>> cells;
   for (ImageMeasurementRecord& row : *rows) {
     if (doomed.count(row.file) > 0) continue;
-    result.poses[row.file] = SessionImagePose{row.ok, row.camera_from_target, row.covariance};
+    result.poses[row.file] = SessionImagePose{row.ok, StatusCell(row), row.camera_from_target, row.covariance};
     result.reused += std::count(images.begin(), images.end(), row.file) > 0;
     cells.push_back(std::move(row.cells));
   }
@@ -171,8 +179,8 @@ StatusOr<SessionMeasurements> MeasureSessionImages(const std::string& dir, const
   if (!measured.ok()) return measured.status();
   for (ImageMeasurement m : *measured) {
     m.file = fs::path(m.file).filename().string();
-    result.poses[m.file] = SessionImagePose{m.pose.status == PoseStatus::kOk, m.pose.camera_from_target,
-                                            m.pose.covariance_vector};
+    result.poses[m.file] = SessionImagePose{m.pose.status == PoseStatus::kOk, PoseStatusName(m.pose.status),
+                                            m.pose.camera_from_target, m.pose.covariance_vector};
     cells.push_back(ImageMeasurementRow(m));
   }
   result.measured = static_cast<int>(measured->size());

@@ -25,6 +25,7 @@ namespace hexcal::workflow {
 
 struct SessionImagePose {
   bool ok = false;
+  std::string status;                      // PoseStatusName: "ok", "high_rms", ...
   Pose camera_from_target;                 // target unit
   Matrix6d covariance = Matrix6d::Zero();  // of the pose vector (Euler xyz): target unit², degrees²
 };

@@ -19,7 +19,11 @@ int RunMeasure(const MeasureCliOptions& cli, std::ostream& out, std::ostream& er
   StatusOr<workflow::MeasureResult> result = workflow::MeasureFolder(cli.request, job.hooks());
   if (!result.ok()) return ReportError(err, "measure", result.status());
   out << (cli.json ? workflow::ToJson(*result).dump(2) + "\n" : workflow::FormatMeasureSummary(*result));
-  if (result->ok() == 0) return ReportError(err, "measure", Status::Failed("no image gave a pose"));
+  const std::string diagnosis = workflow::DiagnoseMeasurements(*result);
+  if (result->ok() == 0) {
+    return ReportError(err, "measure", Status::Failed("no image gave a pose" + (diagnosis.empty() ? "" : ": " + diagnosis)));
+  }
+  if (!diagnosis.empty()) err << "hexcal measure: warning: " << diagnosis << "\n";
   return kExitOk;
 }
 

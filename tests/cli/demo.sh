@@ -44,6 +44,16 @@ assert set(steps.values()) == {"done"}, steps'
   grep -q "calibrate stale   images/$first changed since the results" "$dir/status"
 done
 
+# The session's target described with the wrong spacing: calibrate --session
+# refuses with the diagnosis (exit 2) instead of failing in the registration.
+wrong="$dir/inria-left-hand"
+sed -e 's/^tag_spacing: .*/tag_spacing: 0.5/' "$(dirname "$0")/../../resources/targets/aprilgrid-6x6.yaml" >"$wrong/wrong.yaml"
+sed -i 's/^target: aprilgrid-6x6$/target: wrong.yaml/' "$wrong/session.yaml"
+code=0
+"$hexcal" calibrate --session "$wrong" --force >/dev/null 2>"$dir/err" || code=$?
+[ "$code" -eq 2 ]
+grep -q "images that show the board fit it badly" "$dir/err"
+
 # Text output: the figures a person reads.
 "$hexcal" demo --poses 14 --holdout 4 --seed 3 --out "$dir/inria-left-hand" --force >"$dir/text"
 grep -q "within 3 sigma of the truth" "$dir/text" && grep -q "before calibration: position" "$dir/text"

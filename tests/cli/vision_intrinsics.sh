@@ -26,6 +26,12 @@ grep -q "is over the 1 px limit (--max-rms); the camera file was not written" "$
 grep -q "a systematic error, not a bad image" "$dir/err"
 grep -q "spacing 0.5" "$dir/err"
 [ ! -e "$dir/wrong_cam.yaml" ]
+# The same wrong target in measure: every image fits badly, and it says why.
+code=0
+"$hexcal" measure --camera "$dir/camera.yaml" --target "$dir/wrong.yaml" --images "$dir/views" --out "$dir/w.csv" \
+  >/dev/null 2>"$dir/err" || code=$?
+[ "$code" -eq 1 ]
+grep -q "no image gave a pose: 10 of 10 images that show the board fit it badly" "$dir/err"
 
 mkdir "$dir/few"
 cp "$dir/views/view_0000.png" "$dir/views/view_0001.png" "$dir/few/"
