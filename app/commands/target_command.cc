@@ -28,6 +28,7 @@ nlohmann::json TargetJson(const Target& target) {
           {"first_id", target.first_id},
           {"length_unit", LengthUnitName(target.length_unit)},
           {"margin", target.margin},
+          {"border_bits", target.border_bits},
           {"width", target.Width()},
           {"height", target.Height()}};
 }
