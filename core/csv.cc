@@ -261,6 +261,13 @@ std::string Excerpt(const std::string& text, size_t max_chars) {
   return quoted + (shown < text.size() ? "...'" : "'");
 }
 
+std::string FormatSignificant(double v, int digits) {
+  assert(std::isfinite(v) && digits >= 1 && digits <= 17);
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), v, std::chars_format::general, digits);
+  return std::string(buffer, result.ptr);
+}
+
 std::string FormatNumber(double v) {
   assert(std::isfinite(v));
   // The %.<p>g forms (via to_chars: locale-independent) with the fewest digits

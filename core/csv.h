@@ -60,6 +60,9 @@ std::string FormatCsv(const std::vector<std::string>& header, const std::vector<
 // The shortest text that ParseNumber reads back as exactly `v` ("0.1", "52.2496",
 // "1e-20"). `v` must be finite.
 std::string FormatNumber(double v);
+// `v` with at most `digits` significant digits, for messages ("4.65", "0.0152",
+// "1.2e+03"); locale-independent. `v` must be finite.
+std::string FormatSignificant(double v, int digits = 3);
 
 // A short, quoted, escaped excerpt of text from a file, for an error message:
 // at most `max_chars` characters (then "..."), control and non-ASCII bytes as

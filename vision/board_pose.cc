@@ -6,20 +6,12 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <locale>
 #include <opencv2/calib3d.hpp>
-#include <sstream>
+
+#include "core/csv.h"
 
 namespace hexcal {
 namespace {
-
-std::string Format(double value) {
-  std::ostringstream out;
-  out.imbue(std::locale::classic());
-  out.precision(3);
-  out << value;
-  return out.str();
-}
 
 // Corners AprilTag placed itself (no edge fit) are taken as independent with
 // this standard deviation; the variance factor rescales it with the residuals.
@@ -248,12 +240,12 @@ BoardPose EstimateBoardPose(const Camera& camera, const BoardObservation& observ
                             : 0;
   if (result.rms_px > options.max_rms_px) {
     result.status = PoseStatus::kHighRms;
-    result.message = "reprojection RMS " + Format(result.rms_px) + " px > " + Format(options.max_rms_px) + " px";
+    result.message = "reprojection RMS " + FormatSignificant(result.rms_px) + " px > " + FormatSignificant(options.max_rms_px) + " px";
   } else if (candidates.size() > 1 && rotation_gap > 1 &&
              result.alternative_rms_px < options.ambiguity_ratio * result.rms_px) {
     result.status = PoseStatus::kAmbiguous;
-    result.message = "two poses " + Format(rotation_gap) + " deg apart fit almost equally well (RMS " +
-                     Format(result.rms_px) + " and " + Format(result.alternative_rms_px) + " px)";
+    result.message = "two poses " + FormatSignificant(rotation_gap) + " deg apart fit almost equally well (RMS " +
+                     FormatSignificant(result.rms_px) + " and " + FormatSignificant(result.alternative_rms_px) + " px)";
   } else {
     result.status = PoseStatus::kOk;
   }

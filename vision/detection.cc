@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <map>
-#include <sstream>
 
+#include "core/csv.h"
 #include "vision/edge_refine.h"
 #include "vision/quad_finder.h"
 #include "vision/tag_decoder.h"
@@ -21,14 +21,6 @@ struct DetectionsDeleter {
   void operator()(zarray_t* detections) const { apriltag_detections_destroy(detections); }
 };
 using DetectionsPtr = std::unique_ptr<zarray_t, DetectionsDeleter>;
-
-std::string FormatMargin(double margin) {
-  std::ostringstream out;
-  out.imbue(std::locale::classic());
-  out.precision(3);
-  out << margin;
-  return out.str();
-}
 
 }  // namespace
 
@@ -117,7 +109,7 @@ std::string RejectionReason(const DecodedTag& tag, const DetectorOptions& option
     return std::to_string(tag.hamming) + " corrected bits > " + std::to_string(options.max_hamming);
   }
   if (tag.decision_margin < options.min_decision_margin) {
-    return "decision margin " + FormatMargin(tag.decision_margin) + " < " + FormatMargin(options.min_decision_margin);
+    return "decision margin " + FormatSignificant(tag.decision_margin) + " < " + FormatSignificant(options.min_decision_margin);
   }
   // A tag cut by the image border can still decode from its inner cells, but
   // its outer corners are extrapolated: keep only tags whose corners are inside.

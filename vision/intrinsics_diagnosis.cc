@@ -1,20 +1,15 @@
 #include "vision/intrinsics_diagnosis.h"
 
 #include <algorithm>
-#include <locale>
 #include <sstream>
 #include <vector>
+
+#include "core/csv.h"
 
 namespace hexcal {
 namespace {
 
-std::string Px(double value) {
-  std::ostringstream out;
-  out.imbue(std::locale::classic());
-  out.precision(3);
-  out << value << " px";
-  return out.str();
-}
+std::string Px(double value) { return FormatSignificant(value) + " px"; }
 
 }  // namespace
 

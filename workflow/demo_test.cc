@@ -77,7 +77,7 @@ TEST_F(DemoSession, RecalibrationIsRepeatable) {
   ASSERT_TRUE(again.ok()) << again.status().message();
   EXPECT_EQ(stages, std::vector<std::string>{"register and calibrate"});  // nothing left to measure
   for (size_t k = 0; k < again->parameters.size(); ++k)
-    EXPECT_NEAR(again->parameters[k].estimate, result_->calibration.parameters[k].estimate, 1e-9);
+    EXPECT_NEAR(again->parameters[k].estimate, result_->calibration.parameters[k].estimate, 1e-7);  // solver tolerance
 }
 
 TEST_F(DemoSession, CancelReturnsCancelledAndKeepsResults) {
