@@ -22,9 +22,9 @@
 #include "ui/background_job.h"
 #include "ui/error_dialog.h"
 #include "ui/measure_panel.h"
-#include "workflow/intrinsics_step.h"
 #include "vision/intrinsics.h"
 #include "vision/measure.h"
+#include "workflow/intrinsics_step.h"
 
 namespace hexcal::ui {
 namespace {
@@ -132,7 +132,8 @@ void MeasurePanel::AskReadingsAndSave(const QString& image_name, const std::stri
   }
   // The image and its row enter the session in one locked step; legs.csv is
   // edited as it is on disk, so rows others wrote meanwhile are kept.
-  ApplySessionEdit(this, "Capture", [&](bool overwrite) { return session_->RecordCapture(frame_file, row, overwrite); });
+  ApplySessionEdit(this, "Capture",
+                   [&](bool overwrite) { return session_->RecordCapture(frame_file, row, overwrite); });
 }
 
 void MeasurePanel::IntrinsicsFromFolder(const QString& chosen) {
@@ -157,18 +158,21 @@ void MeasurePanel::IntrinsicsFromFolder(const QString& chosen) {
           ShowError(this, "Intrinsics", Message(s) + "\nUse more views of the target, tilted and filling the image.");
       };
     const IntrinsicsResult* result = &outcome->result;
-    QString report = QString("%1 of %2 views used, RMS %3 px\nfx %4 fy %5 cx %6 cy %7 (σ %8 %9 %10 %11)\n")
+    QString report = QString("%1 of %2 views used, RMS %3 px\nfx %4 fy %5 cx %6 cy %7")
                          .arg(result->used_views)
                          .arg(result->views.size())
                          .arg(result->rms_px, 0, 'f', 3)
                          .arg(result->camera.fx)
                          .arg(result->camera.fy)
                          .arg(result->camera.cx)
-                         .arg(result->camera.cy)
-                         .arg(result->std_dev[0], 0, 'g', 3)
-                         .arg(result->std_dev[1], 0, 'g', 3)
-                         .arg(result->std_dev[2], 0, 'g', 3)
-                         .arg(result->std_dev[3], 0, 'g', 3);
+                         .arg(result->camera.cy);
+    if (result->std_dev.size() >= 4)  // empty for a model whose calibration gives none
+      report += QString(" (σ %1 %2 %3 %4)")
+                    .arg(result->std_dev[0], 0, 'g', 3)
+                    .arg(result->std_dev[1], 0, 'g', 3)
+                    .arg(result->std_dev[2], 0, 'g', 3)
+                    .arg(result->std_dev[3], 0, 'g', 3);
+    report += "\n";
     for (const CalibrationView& view : result->views)
       report += QString("%1: %2\n")
                     .arg(QString::fromStdString(std::filesystem::path(view.file).filename().string()),

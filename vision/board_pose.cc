@@ -7,6 +7,7 @@
 #include <cassert>
 #include <cmath>
 #include <opencv2/calib3d.hpp>
+#include <optional>
 
 #include "core/csv.h"
 
@@ -192,14 +193,22 @@ BoardPose EstimateBoardPose(const Camera& camera, const BoardObservation& observ
         std::to_string(result.num_tags) + " tags of the target found, " + std::to_string(options.min_tags) + " needed";
     return result;
   }
+  // OpenCV's PnP takes radial-tangential and rational coefficients, not the
+  // fisheye's: for it, the start poses come from the undistorted normalised
+  // points and an identity camera; the polish below uses Camera::Project.
+  const bool fisheye = camera.model == CameraModel::kPinholeEqui;
   std::vector<cv::Point3d> object;
   std::vector<cv::Point2d> image;
   for (size_t i = 0; i < observation.image_points.size(); ++i) {
     const Eigen::Vector3d& p = observation.target_points[i];
+    std::optional<Eigen::Vector2d> point = observation.image_points[i];
+    if (fisheye) point = camera.Undistort(*point);
+    if (!point) continue;
     object.emplace_back(p.x(), p.y(), p.z());
-    image.emplace_back(observation.image_points[i].x(), observation.image_points[i].y());
+    image.emplace_back(point->x(), point->y());
   }
-  const cv::Mat k(cv::Matx33d(camera.CameraMatrix())), d = camera.DistortionCoefficients();
+  const cv::Mat k(fisheye ? cv::Matx33d::eye() : camera.CameraMatrix());
+  const cv::Mat d = fisheye ? cv::Mat() : camera.DistortionCoefficients();
   std::vector<cv::Mat> rvecs, tvecs;
   try {
     cv::solvePnPGeneric(object, image, k, d, rvecs, tvecs, false, cv::SOLVEPNP_IPPE);

@@ -3,6 +3,9 @@
 // 1. IPPE (cv::solvePnPGeneric, SOLVEPNP_IPPE) on all corners gives the two
 //    poses a plane can have; both are refined by Levenberg–Marquardt on the
 //    reprojection error (cv::solvePnPRefineLM) with the full distortion model.
+//    OpenCV's PnP does not take the fisheye (kPinholeEqui): for it both steps
+//    run on the corners undistorted by Camera::Undistort, with an identity
+//    camera matrix; step 3 then works in pixels with Camera::Project.
 // 2. The better one is kept; if the other explains the corners almost as well
 //    (RMS ratio under ambiguity_ratio) the pose is ambiguous: the target is
 //    too small or too far for perspective to tell the two apart.

@@ -1,17 +1,30 @@
-// The camera model: a pinhole with OpenCV's radial-tangential ("plumb bob")
-// distortion, and its files.
+// The camera models: a pinhole (fx, fy, cx, cy, no skew) with one of three
+// lens distortions, and their files.
 //
 // Camera frame (OpenCV): origin at the optical centre, x right, y down, z along
 // the optical axis. Pixel coordinates: OpenCV's convention, (0, 0) is the
 // centre of the top-left pixel (docs/conventions.md). For a point p in the
-// camera frame, x = p.x/p.z, y = p.y/p.z, r² = x² + y²,
+// camera frame, x = p.x/p.z, y = p.y/p.z, r² = x² + y², and
+//   u = fx x_d + cx,  v = fy y_d + cy
+// with (x_d, y_d) the distorted normalised coordinates of the model:
+//
+// kRadTan (OpenCV's 5 coefficients k1 k2 p1 p2 k3, ROS plumb_bob, Kalibr radtan):
 //   x_d = x (1 + k1 r² + k2 r⁴ + k3 r⁶) + 2 p1 x y + p2 (r² + 2 x²)
 //   y_d = y (1 + k1 r² + k2 r⁴ + k3 r⁶) + p1 (r² + 2 y²) + 2 p2 x y
-//   u = fx x_d + cx,  v = fy y_d + cy
+// kRational (OpenCV's CALIB_RATIONAL_MODEL, k1 k2 p1 p2 k3 k4 k5 k6, ROS
+// rational_polynomial): the radial factor above becomes
+//   (1 + k1 r² + k2 r⁴ + k3 r⁶) / (1 + k4 r² + k5 r⁴ + k6 r⁶)
+// kPinholeEqui (equidistant fisheye: cv::fisheye, Kalibr pinhole-equi, ROS
+// equidistant; k1 k2 k3 k4):
+//   θ = atan(r),  θ_d = θ (1 + k1 θ² + k2 θ⁴ + k3 θ⁶ + k4 θ⁸),  (x_d, y_d) = (θ_d / r) (x, y)
+//   (Project uses θ = atan2(|p.xy|, p.z), the same for p.z > 0.)
 //
 // Files: OpenCV FileStorage YAML as OpenCV's calibration sample writes it
-// (camera_matrix, distortion_coefficients, image_width, image_height), or a
-// ROS camera_info YAML (distortion_model plumb_bob).
+// (camera_matrix, distortion_coefficients, image_width, image_height; 8
+// coefficients are the rational model, `distortion_model: equidistant` marks
+// a fisheye), ROS camera_info YAML (distortion_model plumb_bob,
+// rational_polynomial or equidistant), or a Kalibr camchain YAML (cam0:
+// camera_model pinhole, distortion_model radtan or equidistant).
 //
 //   StatusOr<Camera> camera = LoadCamera("camera.yaml");
 //   Eigen::Vector2d pixel = camera->Project(p_in_camera);
@@ -29,15 +42,32 @@
 
 namespace hexcal {
 
+enum class CameraModel {
+  kRadTan,       // OpenCV's k1 k2 p1 p2 k3 (the default)
+  kRational,     // OpenCV's k1 k2 p1 p2 k3 k4 k5 k6 (CALIB_RATIONAL_MODEL)
+  kPinholeEqui,  // equidistant fisheye k1 k2 k3 k4 (cv::fisheye, Kalibr pinhole-equi)
+};
+
+// "radtan", "rational", "pinhole-equi" (the names of `intrinsics --model`).
+const char* CameraModelName(CameraModel model);
+std::optional<CameraModel> CameraModelFromName(const std::string& name);
+
 struct Camera {
-  int width = 0;                                       // pixels
-  int height = 0;                                      // pixels
-  double fx = 0, fy = 0;                               // focal lengths, pixels
-  double cx = 0, cy = 0;                               // principal point, pixels (OpenCV convention)
-  std::array<double, 5> distortion = {0, 0, 0, 0, 0};  // k1, k2, p1, p2, k3
+  int width = 0;                             // pixels
+  int height = 0;                            // pixels
+  double fx = 0, fy = 0;                     // focal lengths, pixels
+  double cx = 0, cy = 0;                     // principal point, pixels (OpenCV convention)
+  CameraModel model = CameraModel::kRadTan;  // which distortion `distortion` holds
+  std::array<double, 8> distortion = {};     // the model's coefficients in its order (above); unused ones 0
 
   cv::Matx33d CameraMatrix() const { return {fx, 0, cx, 0, fy, cy, 0, 0, 1}; }
-  cv::Mat DistortionCoefficients() const;  // 1×5, CV_64F
+  // The model's coefficients, CV_64F: 1×5 (kRadTan), 1×8 (kRational, for
+  // OpenCV's functions) or 1×4 (kPinholeEqui, for cv::fisheye only).
+  cv::Mat DistortionCoefficients() const;
+  int NumCoefficients() const;  // 5, 8 or 4
+  // "fx", "fy", "cx", "cy" then the model's coefficients ("k1", "k2", "p1", ...).
+  std::vector<std::string> ParameterNames() const;
+  std::vector<double> ParameterValues() const;  // in the order of ParameterNames
 
   // Normalised, undistorted (x, y) -> distorted normalised coordinates.
   Eigen::Vector2d Distort(const Eigen::Vector2d& xy) const;
@@ -45,7 +75,9 @@ struct Camera {
   Eigen::Vector2d Project(const Eigen::Vector3d& p_in_camera) const;
   // Normalised undistorted (x, y) of a pixel: Newton's method on Distort, to
   // 1e-12; nullopt where the model does not invert (far outside the image).
-  // `start`: a first guess, e.g. the answer for a neighbouring pixel.
+  // `start`: a first guess, e.g. the answer for a neighbouring pixel. The
+  // fisheye solves θ_d(θ) = |(x_d, y_d)| for θ on the branch where θ_d grows
+  // (bracketed Newton); nullopt past it or at θ ≥ 90°.
   std::optional<Eigen::Vector2d> Undistort(const Eigen::Vector2d& pixel, const Eigen::Vector2d* start = nullptr) const;
   // The pixel an ideal (distortion-free) camera with the same fx, fy, cx, cy sees.
   std::optional<Eigen::Vector2d> IdealPixel(const Eigen::Vector2d& pixel) const;
@@ -81,18 +113,23 @@ struct CameraFileExtras {
   std::string calibration_time;         // "2026-11-22 10:03:00"
   int views = 0;                        // nr_of_frames
   double rms_px = -1;                   // avg_reprojection_error; < 0: not written
-  std::vector<double> std_dev;          // fx, fy, cx, cy, k1, k2, p1, p2, k3
+  std::vector<double> std_dev;          // in the order of Camera::ParameterNames(); empty: none
   std::vector<double> per_view_rms_px;  // per_view_reprojection_errors
   std::string comment;                  // written as '#' lines at the top
 };
 
 // OpenCV FileStorage YAML text (%YAML:1.0, !!opencv-matrix); numbers in the
-// shortest form that reads back exactly.
+// shortest form that reads back exactly. The model's coefficients (5, 8 or 4),
+// and `distortion_model: rational_polynomial | equidistant` for the models
+// other than kRadTan (whose file is exactly what OpenCV's sample writes).
 std::string CameraToOpenCvYaml(const Camera& camera, const CameraFileExtras& extras = {});
 Status SaveCamera(const Camera& camera, const std::string& path, const CameraFileExtras& extras = {});
 
 // OpenCV FileStorage YAML (read with yaml-cpp) or XML (cv::FileStorage),
-// recognised by its "%YAML:1." or "<?xml" header, else ROS camera_info YAML. Messages read "camera file '<path>': <problem>".
+// recognised by its "%YAML:1." or "<?xml" header; else a Kalibr camchain
+// (a `cam0` key, or `camera_model` / `intrinsics` at the top level; of several
+// cameras cam0 is read) or ROS camera_info YAML. Messages read
+// "camera file '<path>': <key>: <problem>" and never quote the file beyond a short value.
 StatusOr<Camera> ParseCameraFile(const std::string& text, const std::string& source);
 // A file, or the name "sim-4.2mm-1024x768" (SimulatedCamera) when no such file exists.
 StatusOr<Camera> LoadCamera(const std::string& path_or_name);

@@ -3,102 +3,73 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <opencv2/calib3d.hpp>
 
+#include "core/pose.h"
 #include "tests/test_support.h"
 
 namespace hexcal {
 namespace {
 
-using ::hexcal::testing::SourceDir;
-using ::hexcal::testing::TempDir;
 using ::hexcal::testing::Uniform;
-using ::hexcal::testing::WriteTextFile;
 using ::testing::HasSubstr;
 
-void ExpectSameCamera(const Camera& a, const Camera& b) {
-  EXPECT_EQ(a.width, b.width);
-  EXPECT_EQ(a.height, b.height);
-  EXPECT_EQ(a.fx, b.fx);
-  EXPECT_EQ(a.fy, b.fy);
-  EXPECT_EQ(a.cx, b.cx);
-  EXPECT_EQ(a.cy, b.cy);
-  for (size_t i = 0; i < 5; ++i) EXPECT_EQ(a.distortion[i], b.distortion[i]) << i;
-}
-
-std::string ParseError(const std::string& text) {
-  StatusOr<Camera> camera = ParseCameraFile(text, "cam.yaml");
-  EXPECT_FALSE(camera.ok()) << text;
-  return camera.ok() ? "" : camera.status().message();
-}
-
-TEST(CameraTest, OpenCvYamlRoundTripIsExact) {
+Camera RationalCamera() {
   Camera camera = SimulatedCamera();
-  camera.fx = 903.2 + 1e-9;
-  camera.distortion[2] = 1.0 / 3e4;
-  CameraFileExtras extras;
-  extras.views = 20;
-  extras.rms_px = 0.05;
-  extras.std_dev = {0.1, 0.1, 0.2, 0.2, 1e-3, 2e-3, 1e-5, 1e-5, 3e-3};
-  extras.per_view_rms_px = {0.04, 0.06};
-  extras.comment = "line one\nline two";
-  const std::string text = CameraToOpenCvYaml(camera, extras);
-  StatusOr<Camera> back = ParseCameraFile(text, "round-trip");
-  ASSERT_TRUE(back.ok()) << back.status().message();
-  ExpectSameCamera(*back, camera);
-  // OpenCV itself reads the extras.
-  cv::FileStorage storage(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
-  cv::Mat std_dev;
-  storage["intrinsics_std_dev"] >> std_dev;
-  EXPECT_EQ(std_dev.total(), 9u);
-  EXPECT_EQ(static_cast<int>(storage["nr_of_frames"]), 20);
-  EXPECT_EQ(static_cast<double>(storage["avg_reprojection_error"]), 0.05);
+  camera.model = CameraModel::kRational;
+  camera.distortion = {0.4, -0.1, 0.0004, -0.0003, 0.02, 0.68, 0.02, 0.01};
+  return camera;
 }
 
-TEST(CameraTest, ResourceFileAndBuiltInNameAreTheSimulatedCamera) {
-  StatusOr<Camera> file = LoadCamera((SourceDir() / "resources/cameras/sim-4.2mm-1024x768.yaml").string());
-  ASSERT_TRUE(file.ok()) << file.status().message();
-  ExpectSameCamera(*file, SimulatedCamera());
-  StatusOr<Camera> builtin = LoadCamera(kSimulatedCameraName);
-  ASSERT_TRUE(builtin.ok());
-  ExpectSameCamera(*builtin, SimulatedCamera());
-  EXPECT_NEAR(SimulatedCamera().fx, 4.2 / 0.00465, 0.05);
+// A 1024 x 768 fisheye seeing 70° off axis in the image corners.
+Camera FisheyeCamera() {
+  Camera camera = SimulatedCamera();
+  camera.model = CameraModel::kPinholeEqui;
+  camera.fx = 520.4;
+  camera.fy = 519.8;
+  camera.distortion = {0.05, -0.02, 0.004, -0.0005};
+  return camera;
 }
 
-TEST(CameraTest, ReadsRosCameraInfo) {
-  StatusOr<Camera> camera = LoadCamera((SourceDir() / "tests/data/cameras/ros_camera_info.yaml").string());
-  ASSERT_TRUE(camera.ok()) << camera.status().message();
-  ExpectSameCamera(*camera, SimulatedCamera());
-  // The CameraInfo message's own layout.
-  StatusOr<Camera> message = ParseCameraFile(
-      "width: 640\nheight: 480\ndistortion_model: plumb_bob\nD: [0.1, -0.2, 0, 0, 0]\n"
-      "K: [500, 0, 320, 0, 510, 240, 0, 0, 1]\n",
-      "info.yaml");
-  ASSERT_TRUE(message.ok()) << message.status().message();
-  EXPECT_EQ(message->fy, 510);
-  EXPECT_EQ(message->distortion[1], -0.2);
+// Points in front of the camera up to `max_angle_deg` off its axis.
+std::vector<cv::Point3d> RandomRays(int count, double max_angle_deg) {
+  std::vector<cv::Point3d> points;
+  for (int i = 0; i < count; ++i) {
+    const double theta = DegToRad(max_angle_deg) * std::sqrt(Uniform(0, 1)), phi = Uniform(0, 2 * kPi);
+    const double depth = Uniform(0.5, 3);
+    points.emplace_back(depth * std::sin(theta) * std::cos(phi), depth * std::sin(theta) * std::sin(phi),
+                        depth * std::cos(theta));
+  }
+  return points;
 }
 
-TEST(CameraTest, ErrorsAreClear) {
-  StatusOr<Camera> fisheye = LoadCamera((SourceDir() / "tests/data/cameras/fisheye_camera_info.yaml").string());
-  ASSERT_FALSE(fisheye.ok());
-  EXPECT_THAT(fisheye.status().message(), HasSubstr("distortion_model: 'equidistant' is not supported"));
-  EXPECT_THAT(ParseError(""), HasSubstr("camera file 'cam.yaml': empty file"));
-  EXPECT_THAT(ParseError("image_width: 640\nimage_height: 480\n"), HasSubstr("camera_matrix.data: expected a list"));
-  EXPECT_THAT(ParseError("%YAML:1.0\n---\nimage_width: 640\n"), HasSubstr("image_height: missing"));
-  EXPECT_THAT(ParseError("image_width: 640\nimage_height: 480\ncamera_matrix: {data: [500, 2, 320, 0, 500, 240, 0, 0, "
-                         "1]}\ndistortion_coefficients: {data: [0, 0, 0, 0, 0]}\n"),
-              HasSubstr("no skew"));
-  EXPECT_THAT(ParseError("image_width: 640\nimage_height: 480\ncamera_matrix: {data: [-5, 0, 320, 0, 500, 240, 0, 0, "
-                         "1]}\ndistortion_coefficients: {data: [0, 0, 0, 0, 0]}\n"),
-              HasSubstr("must be positive"));
-  EXPECT_THAT(ParseError("image_width: 640\nimage_height: 480\ncamera_matrix: {data: [500, 0, 320, 0, 500, 240, 0, 0, "
-                         "1]}\ndistortion_coefficients: {data: [0, 0, 0, 0, 0, 0.3, 0, 0]}\n"),
-              HasSubstr("coefficient 6 is not 0"));
-  EXPECT_THAT(ParseError("%YAML:1.0\n---\ncamera_matrix: [ 1, 2\n"), HasSubstr("camera file 'cam.yaml'"));
-  StatusOr<Camera> missing = LoadCamera("no-camera.yaml");
-  ASSERT_FALSE(missing.ok());
-  EXPECT_THAT(missing.status().message(), HasSubstr("no-camera.yaml: no such file"));
+// Project, Undistort and the pixel maps agree with each other for `camera`.
+void ExpectRoundTrips(const Camera& camera, const std::vector<cv::Point3d>& points) {
+  for (const cv::Point3d& point : points) {
+    const Eigen::Vector3d p(point.x, point.y, point.z);
+    const Eigen::Vector2d pixel = camera.Project(p);
+    const std::optional<Eigen::Vector2d> ray = camera.Undistort(pixel);
+    ASSERT_TRUE(ray.has_value()) << p.transpose();
+    const Eigen::Vector2d expected = p.head<2>() / p.z();
+    EXPECT_NEAR((*ray - expected).norm(), 0, 1e-11 * std::max(1.0, expected.squaredNorm())) << p.transpose();
+    const Eigen::Vector2d ideal = *camera.IdealPixel(pixel);
+    EXPECT_TRUE(testing::MatrixNear(camera.DistortedPixel(ideal), pixel, 1e-9));
+  }
+}
+
+TEST(CameraTest, ModelNamesAndCoefficientCounts) {
+  for (CameraModel model : {CameraModel::kRadTan, CameraModel::kRational, CameraModel::kPinholeEqui})
+    EXPECT_EQ(CameraModelFromName(CameraModelName(model)), model);
+  EXPECT_FALSE(CameraModelFromName("omni").has_value());
+  EXPECT_EQ(SimulatedCamera().DistortionCoefficients().size(), cv::Size(5, 1));
+  EXPECT_EQ(RationalCamera().DistortionCoefficients().size(), cv::Size(8, 1));
+  EXPECT_EQ(FisheyeCamera().DistortionCoefficients().size(), cv::Size(4, 1));
+  EXPECT_THAT(FisheyeCamera().ParameterNames(), ::testing::ElementsAre("fx", "fy", "cx", "cy", "k1", "k2", "k3", "k4"));
+  EXPECT_EQ(RationalCamera().ParameterValues().size(), 12u);
+  Camera unused = FisheyeCamera();
+  unused.distortion[4] = 0.1;
+  EXPECT_THAT(unused.Validate().message(), HasSubstr("coefficient 5 is not 0; the pinhole-equi model has 4"));
 }
 
 TEST(CameraTest, ProjectionMatchesOpenCvAndUndistortInvertsIt) {
@@ -121,12 +92,84 @@ TEST(CameraTest, ProjectionMatchesOpenCvAndUndistortInvertsIt) {
   }
 }
 
+TEST(CameraTest, RationalModelMatchesOpenCvAndInverts) {
+  const Camera camera = RationalCamera();
+  const std::vector<cv::Point3d> points = RandomRays(300, 30);
+  std::vector<cv::Point2d> expected;
+  cv::projectPoints(points, cv::Vec3d(0.1, -0.2, 0.05), cv::Vec3d(0, 0, 0), camera.CameraMatrix(),
+                    camera.DistortionCoefficients(), expected);
+  const Eigen::Matrix3d rotation =
+      Eigen::AngleAxisd(Eigen::Vector3d(0.1, -0.2, 0.05).norm(), Eigen::Vector3d(0.1, -0.2, 0.05).normalized())
+          .toRotationMatrix();
+  std::vector<cv::Point3d> in_camera;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3d p = rotation * Eigen::Vector3d(points[i].x, points[i].y, points[i].z);
+    EXPECT_TRUE(testing::MatrixNear(camera.Project(p), Eigen::Vector2d(expected[i].x, expected[i].y), 1e-9)) << i;
+    in_camera.emplace_back(p.x(), p.y(), p.z());
+  }
+  ExpectRoundTrips(camera, in_camera);
+}
+
+TEST(CameraTest, FisheyeMatchesOpenCvFisheye) {
+  const Camera camera = FisheyeCamera();
+  const std::vector<cv::Point3d> points = RandomRays(300, 80);
+  std::vector<cv::Point2d> projected;
+  cv::fisheye::projectPoints(points, projected, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0),
+                             cv::Matx33d(camera.CameraMatrix()), camera.DistortionCoefficients());
+  std::vector<cv::Point2d> normalised, distorted;
+  for (const cv::Point3d& p : points) normalised.emplace_back(p.x / p.z, p.y / p.z);
+  cv::fisheye::distortPoints(normalised, distorted, cv::Matx33d(camera.CameraMatrix()),
+                             camera.DistortionCoefficients());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3d p(points[i].x, points[i].y, points[i].z);
+    EXPECT_TRUE(testing::MatrixNear(camera.Project(p), Eigen::Vector2d(projected[i].x, projected[i].y), 1e-9)) << i;
+    const Eigen::Vector2d d = camera.Distort(p.head<2>() / p.z());
+    const Eigen::Vector2d pixel(camera.fx * d.x() + camera.cx, camera.fy * d.y() + camera.cy);
+    EXPECT_TRUE(testing::MatrixNear(pixel, Eigen::Vector2d(distorted[i].x, distorted[i].y), 1e-9)) << i;
+  }
+  ExpectRoundTrips(camera, points);
+}
+
+TEST(CameraTest, FisheyeUndistortsNearTheAxisAndAtWideAngles) {
+  Camera camera = FisheyeCamera();
+  // On the axis and a hair off it.
+  EXPECT_TRUE(testing::MatrixNear(*camera.Undistort({camera.cx, camera.cy}), Eigen::Vector2d(0, 0), 0));
+  for (double offset : {1e-12, 1e-7, 1e-3}) {
+    const Eigen::Vector3d p(offset, -0.5 * offset, 1);
+    const std::optional<Eigen::Vector2d> ray = camera.Undistort(camera.Project(p));
+    ASSERT_TRUE(ray.has_value());
+    EXPECT_NEAR((*ray - p.head<2>()).norm(), 0, 1e-15 + 1e-12 * offset) << offset;
+  }
+  // Up to 89.5° off the axis (x up to 115), also from a neighbour's answer.
+  for (double degrees : {60.0, 80.0, 85.0, 89.5}) {
+    const double x = std::tan(DegToRad(degrees));
+    const Eigen::Vector3d p(0.6 * x, -0.8 * x, 1);
+    const Eigen::Vector2d pixel = camera.Project(p);
+    const Eigen::Vector2d start = 0.9 * p.head<2>();
+    for (const Eigen::Vector2d* guess : {static_cast<const Eigen::Vector2d*>(nullptr), &start}) {
+      const std::optional<Eigen::Vector2d> ray = camera.Undistort(pixel, guess);
+      ASSERT_TRUE(ray.has_value()) << degrees;
+      EXPECT_NEAR((*ray - p.head<2>()).norm() / x, 0, 1e-11) << degrees;
+    }
+  }
+  // 90° and beyond have pixels but no normalised (x, y).
+  EXPECT_FALSE(camera.Undistort(camera.Project(Eigen::Vector3d(1, 0, 0))).has_value());
+  EXPECT_FALSE(camera.Undistort(camera.Project(Eigen::Vector3d(1, 1, -0.5))).has_value());
+  // A lens whose θ_d(θ) turns back before 90°: pixels past its turn do not invert.
+  camera.distortion = {-0.3, 0, 0, 0};  // slope 1 - 0.9 θ² is 0 at θ = 60.4°
+  const double theta_max = std::sqrt(1 / 0.9), theta_d_max = theta_max * (1 - 0.3 * theta_max * theta_max);
+  EXPECT_TRUE(camera.Undistort({camera.cx + 0.999 * theta_d_max * camera.fx, camera.cy}).has_value());
+  EXPECT_FALSE(camera.Undistort({camera.cx + 1.001 * theta_d_max * camera.fx, camera.cy}).has_value());
+}
+
 TEST(CameraTest, IdealPixelMapMatchesIdealPixel) {
-  const Camera camera = SimulatedCamera();
-  const IdealPixelMap map(camera);
-  for (const auto& [u, v] : {std::pair{0, 0}, std::pair{1023, 767}, std::pair{500, 400}, std::pair{17, 700}}) {
-    const Eigen::Vector2d expected = *camera.IdealPixel(Eigen::Vector2d(u, v));
-    EXPECT_TRUE(testing::MatrixNear(map.At(u, v), expected, 1e-3)) << u << "," << v;
+  for (const Camera& camera : {SimulatedCamera(), RationalCamera(), FisheyeCamera()}) {
+    const IdealPixelMap map(camera);
+    for (const auto& [u, v] : {std::pair{0, 0}, std::pair{1023, 767}, std::pair{500, 400}, std::pair{17, 700}}) {
+      const Eigen::Vector2d expected = *camera.IdealPixel(Eigen::Vector2d(u, v));
+      EXPECT_TRUE(testing::MatrixNear(map.At(u, v), expected, 1e-3 * std::max(1.0, expected.norm() / 1000)))
+          << CameraModelName(camera.model) << " " << u << "," << v;
+    }
   }
 }
 

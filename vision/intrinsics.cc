@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "core/parallel.h"
+#include "core/pose.h"
 
 namespace hexcal {
 namespace {
@@ -38,7 +39,8 @@ StatusOr<std::vector<Detected>> DetectAll(int count, const ImageLoader& load, co
                                           const IntrinsicsOptions& options, std::shared_ptr<const IdealPixelMap> ideal,
                                           const std::vector<bool>& wanted, const JobHooks& hooks) {
   const int workers = ParallelWorkers(count, options.threads);
-  StatusOr<std::vector<std::unique_ptr<TagDetector>>> created = CreateWorkerDetectors(ForTarget(options.detector, target), ideal, workers);
+  StatusOr<std::vector<std::unique_ptr<TagDetector>>> created =
+      CreateWorkerDetectors(ForTarget(options.detector, target), ideal, workers);
   if (!created.ok()) return created.status();
   std::vector<std::unique_ptr<TagDetector>> detectors = std::move(*created);
   std::vector<Detected> detected(static_cast<size_t>(count));
@@ -63,12 +65,61 @@ StatusOr<std::vector<Detected>> DetectAll(int count, const ImageLoader& load, co
 
 struct Calibration {
   Camera camera;
-  std::array<double, 9> std_dev = {};
+  std::vector<double> std_dev;  // empty: not estimated
   double rms = 0;
   std::vector<double> view_rms;  // per used view, in order
 };
 
-StatusOr<Calibration> Calibrate(const std::vector<const BoardObservation*>& views, cv::Size size) {
+// The fit's RMS figures from the camera and the views' poses (Camera::Project),
+// so that every model's figures mean the same.
+void ReprojectionRms(const std::vector<const BoardObservation*>& views, const std::vector<cv::Mat>& rvecs,
+                     const std::vector<cv::Mat>& tvecs, Calibration& result) {
+  double total = 0;
+  size_t corners = 0;
+  for (size_t v = 0; v < views.size(); ++v) {
+    cv::Mat r, t, rotation;
+    rvecs[v].reshape(1, 3).convertTo(r, CV_64F);
+    tvecs[v].reshape(1, 3).convertTo(t, CV_64F);
+    cv::Rodrigues(r, rotation);
+    Pose camera_from_target;
+    for (int i = 0; i < 3; ++i) {
+      camera_from_target.position[i] = t.at<double>(i);
+      for (int j = 0; j < 3; ++j) camera_from_target.rotation(i, j) = rotation.at<double>(i, j);
+    }
+    double sum = 0;
+    for (size_t i = 0; i < views[v]->image_points.size(); ++i) {
+      const Eigen::Vector3d p_in_camera = camera_from_target * views[v]->target_points[i];
+      sum += (result.camera.Project(p_in_camera) - views[v]->image_points[i]).squaredNorm();
+    }
+    const size_t n = views[v]->image_points.size();
+    result.view_rms.push_back(std::sqrt(sum / static_cast<double>(std::max<size_t>(1, n))));
+    total += sum;
+    corners += n;
+  }
+  result.rms = std::sqrt(total / static_cast<double>(std::max<size_t>(1, corners)));
+}
+
+// cv::fisheye::calibrate: every point as double (CV_64FC3 / CV_64FC2).
+double CalibrateFisheye(const std::vector<const BoardObservation*>& views, cv::Size size, cv::Mat& k, cv::Mat& d,
+                        std::vector<cv::Mat>& rvecs, std::vector<cv::Mat>& tvecs) {
+  std::vector<std::vector<cv::Point3d>> object(views.size());
+  std::vector<std::vector<cv::Point2d>> image(views.size());
+  for (size_t v = 0; v < views.size(); ++v) {
+    for (size_t i = 0; i < views[v]->image_points.size(); ++i) {
+      const Eigen::Vector3d& p = views[v]->target_points[i];
+      object[v].emplace_back(p.x(), p.y(), p.z());
+      image[v].emplace_back(views[v]->image_points[i].x(), views[v]->image_points[i].y());
+    }
+  }
+  const int flags = cv::fisheye::CALIB_RECOMPUTE_EXTRINSIC | cv::fisheye::CALIB_FIX_SKEW;
+  return cv::fisheye::calibrate(object, image, size, k, d, rvecs, tvecs, flags,
+                                cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 200, 1e-12));
+}
+
+// cv::calibrateCamera, with the rational model's flag when asked; the
+// standard deviations of fx fy cx cy and the model's coefficients.
+void CalibrateRadTan(const std::vector<const BoardObservation*>& views, cv::Size size, CameraModel model, cv::Mat& k,
+                     cv::Mat& d, std::vector<cv::Mat>& rvecs, std::vector<cv::Mat>& tvecs, cv::Mat& std_intrinsics) {
   std::vector<std::vector<cv::Point3f>> object(views.size());
   std::vector<std::vector<cv::Point2f>> image(views.size());
   for (size_t v = 0; v < views.size(); ++v) {
@@ -79,26 +130,43 @@ StatusOr<Calibration> Calibrate(const std::vector<const BoardObservation*>& view
                             static_cast<float>(views[v]->image_points[i].y()));
     }
   }
-  cv::Mat k, d, std_intrinsics, std_extrinsics, per_view;
+  cv::Mat std_extrinsics, per_view;
+  const int flags = model == CameraModel::kRational ? cv::CALIB_RATIONAL_MODEL : 0;
+  cv::calibrateCamera(object, image, size, k, d, rvecs, tvecs, std_intrinsics, std_extrinsics, per_view, flags,
+                      cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 200, 1e-12));
+}
+
+StatusOr<Calibration> Calibrate(const std::vector<const BoardObservation*>& views, cv::Size size, CameraModel model) {
+  cv::Mat k, d, std_intrinsics;
   std::vector<cv::Mat> rvecs, tvecs;
   Calibration result;
   try {
-    result.rms = cv::calibrateCamera(object, image, size, k, d, rvecs, tvecs, std_intrinsics, std_extrinsics, per_view,
-                                     0, cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 200, 1e-12));
+    if (model == CameraModel::kPinholeEqui) {
+      CalibrateFisheye(views, size, k, d, rvecs, tvecs);
+    } else {
+      CalibrateRadTan(views, size, model, k, d, rvecs, tvecs, std_intrinsics);
+    }
   } catch (const cv::Exception& e) {
     return Status::Failed(std::string("calibration failed: ") + e.msg);
   }
   result.camera.width = size.width;
   result.camera.height = size.height;
+  result.camera.model = model;
   result.camera.fx = k.at<double>(0, 0);
   result.camera.fy = k.at<double>(1, 1);
   result.camera.cx = k.at<double>(0, 2);
   result.camera.cy = k.at<double>(1, 2);
-  for (int i = 0; i < 5; ++i) result.camera.distortion[static_cast<size_t>(i)] = d.at<double>(i);
-  for (int i = 0; i < 9; ++i) result.std_dev[static_cast<size_t>(i)] = std_intrinsics.at<double>(i);
-  for (int v = 0; v < per_view.rows; ++v) result.view_rms.push_back(per_view.at<double>(v));
+  const int coefficients = result.camera.NumCoefficients();
+  for (int i = 0; i < coefficients; ++i) result.camera.distortion[static_cast<size_t>(i)] = d.at<double>(i);
+  if (!std_intrinsics.empty()) {
+    for (int i = 0; i < 4 + coefficients; ++i) result.std_dev.push_back(std_intrinsics.at<double>(i));
+  }
   if (Status s = result.camera.Validate(); !s.ok())
     return Status::Failed("calibration gave an invalid camera: " + s.message());
+  if (rvecs.size() != views.size() || tvecs.size() != views.size())
+    return Status::Failed("calibration failed: no pose for every view");
+  ReprojectionRms(views, rvecs, tvecs, result);
+  if (!std::isfinite(result.rms)) return Status::Failed("calibration failed: the reprojection error is not finite");
   return result;
 }
 
@@ -113,7 +181,7 @@ StatusOr<Calibration> CalibrateWithOutliers(std::vector<CalibrationView>& views,
       used.push_back(&detected[i].observation);
       index.push_back(i);
     }
-    StatusOr<Calibration> calibration = Calibrate(used, size);
+    StatusOr<Calibration> calibration = Calibrate(used, size, options.model);
     if (!calibration.ok()) return calibration;
     std::vector<double> sorted = calibration->view_rms;
     std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
@@ -249,12 +317,15 @@ CameraFileExtras ExtrasOf(const IntrinsicsResult& result) {
   extras.calibration_time = stamp;
   extras.views = result.used_views;
   extras.rms_px = result.rms_px;
-  extras.std_dev.assign(result.std_dev.begin(), result.std_dev.end());
+  extras.std_dev = result.std_dev;
   for (const CalibrationView& view : result.views) {
     if (view.used) extras.per_view_rms_px.push_back(view.rms_px);
   }
-  extras.comment = "hexcal intrinsics: " + std::to_string(result.used_views) + " of " +
-                   std::to_string(result.views.size()) + " images used, RMS " + Format(result.rms_px) + " px";
+  extras.comment = "hexcal intrinsics (" + std::string(CameraModelName(result.camera.model)) +
+                   "): " + std::to_string(result.used_views) + " of " + std::to_string(result.views.size()) +
+                   " images used, RMS " + Format(result.rms_px) + " px";
+  if (result.std_dev.empty())
+    extras.comment += "\nno standard deviations: the fisheye calibration does not estimate them";
   return extras;
 }
 

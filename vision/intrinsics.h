@@ -1,9 +1,15 @@
-// Camera intrinsics from images of the target (cv::calibrateCamera).
+// Camera intrinsics from images of the target (cv::calibrateCamera, or
+// cv::fisheye::calibrate for the fisheye).
 //
 // 1. Detection on every image (both cores); a view is usable with at least
 //    min_tags_per_view target tags. All images must have one size.
-// 2. Calibration of fx, fy, cx, cy, k1, k2, p1, p2, k3, with the standard
-//    deviation of each from calibrateCamera (σ² (JᵀJ)⁻¹ at the optimum).
+// 2. Calibration of fx, fy, cx, cy and the model's coefficients (camera.h):
+//    kRadTan k1 k2 p1 p2 k3 and kRational k1..k6 p1 p2 by cv::calibrateCamera,
+//    with the standard deviation of each (σ² (JᵀJ)⁻¹ at the optimum);
+//    kPinholeEqui k1..k4 by cv::fisheye::calibrate (CALIB_RECOMPUTE_EXTRINSIC
+//    | CALIB_FIX_SKEW), which gives no standard deviations. The RMS figures
+//    are hexcal's own, from the solution's poses and Camera::Project, the
+//    same for every model: √(Σ|e|² / corners) overall and per view.
 // 3. Outlier views: while the worst view's RMS exceeds
 //    max(outlier_factor × median view RMS, outlier_min_rms_px), it is dropped
 //    and the calibration repeated (never below min_views).
@@ -30,13 +36,14 @@ namespace hexcal {
 
 struct IntrinsicsOptions {
   DetectorOptions detector;
-  int threads = 2;                  // images detected in parallel, 0..64; 0: every core
-  int min_tags_per_view = 4;        // fewer: the view is not used
-  int min_views = 8;                // fewer usable views: error
-  double outlier_factor = 3.0;      // a view's RMS over this × the median RMS ...
-  double outlier_min_rms_px = 0.5;  // ... and over this is an outlier
-  int refinement_passes = 1;        // re-detections with the estimated distortion
-  double max_rms_px = 1.0;          // a larger final RMS is an error (vision/intrinsics_diagnosis.h)
+  int threads = 2;                           // images detected in parallel, 0..64; 0: every core
+  int min_tags_per_view = 4;                 // fewer: the view is not used
+  int min_views = 8;                         // fewer usable views: error
+  double outlier_factor = 3.0;               // a view's RMS over this × the median RMS ...
+  double outlier_min_rms_px = 0.5;           // ... and over this is an outlier
+  int refinement_passes = 1;                 // re-detections with the estimated distortion
+  CameraModel model = CameraModel::kRadTan;  // distortion model to estimate (camera.h)
+  double max_rms_px = 1.0;                   // a larger final RMS is an error (vision/intrinsics_diagnosis.h)
 
   bool IsValid(std::string* error) const;
 };
@@ -52,8 +59,9 @@ struct CalibrationView {
 
 struct IntrinsicsResult {
   Camera camera;
-  // Standard deviations of fx, fy, cx, cy, k1, k2, p1, p2, k3.
-  std::array<double, 9> std_dev = {};
+  // Standard deviations in the order of camera.ParameterNames(); empty when
+  // the model's calibration does not estimate them (kPinholeEqui).
+  std::vector<double> std_dev;
   double rms_px = 0;  // over every corner of the used views
   int used_views = 0;
   std::vector<CalibrationView> views;  // in the order of the files

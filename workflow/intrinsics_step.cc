@@ -1,5 +1,6 @@
 #include "workflow/intrinsics_step.h"
 
+#include <cmath>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
@@ -16,12 +17,6 @@ std::string DefaultCoveragePath(const std::string& out) {
   std::filesystem::path path(out);
   path.replace_extension(".coverage.png");
   return path.string();
-}
-
-constexpr const char* kParameterNames[9] = {"fx", "fy", "cx", "cy", "k1", "k2", "p1", "p2", "k3"};
-
-std::array<double, 9> ParameterValues(const Camera& c) {
-  return {c.fx, c.fy, c.cx, c.cy, c.distortion[0], c.distortion[1], c.distortion[2], c.distortion[3], c.distortion[4]};
 }
 
 }  // namespace
@@ -55,32 +50,49 @@ StatusOr<IntrinsicsOutcome> CalibrateCameraFromFolder(const IntrinsicsRequest& r
 nlohmann::json ToJson(const IntrinsicsOutcome& outcome) {
   const IntrinsicsResult& result = outcome.result;
   const Camera& c = result.camera;
-  const std::array<double, 9> values = ParameterValues(c);
+  const std::vector<std::string> names = c.ParameterNames();
+  const std::vector<double> values = c.ParameterValues();
   nlohmann::json parameters, views = nlohmann::json::array();
-  for (int i = 0; i < 9; ++i) parameters[kParameterNames[i]] = {{"value", values[i]}, {"std_dev", result.std_dev[i]}};
-  for (const CalibrationView& view : result.views) {
-    views.push_back(
-        {{"file", view.file}, {"used", view.used}, {"tags", view.tags}, {"rms_px", view.rms_px}, {"reason", view.reason}});
+  for (size_t i = 0; i < names.size(); ++i) {
+    // std_dev null: the model's calibration does not estimate it.
+    parameters[names[i]] = {
+        {"value", values[i]},
+        {"std_dev", i < result.std_dev.size() ? nlohmann::json(result.std_dev[i]) : nlohmann::json()}};
   }
-  return {{"out", outcome.out},
-          {"coverage", outcome.coverage},
-          {"coverage_fraction", CoverageFraction(result)},
-          {"image_width", c.width},
-          {"image_height", c.height},
-          {"rms_px", result.rms_px},
-          {"used_views", result.used_views},
-          {"parameters", parameters},
-          {"views", views}};
+  for (const CalibrationView& view : result.views) {
+    views.push_back({{"file", view.file},
+                     {"used", view.used},
+                     {"tags", view.tags},
+                     {"rms_px", view.rms_px},
+                     {"reason", view.reason}});
+  }
+  return {{"out", outcome.out},           {"model", CameraModelName(c.model)},
+          {"coverage", outcome.coverage}, {"coverage_fraction", CoverageFraction(result)},
+          {"image_width", c.width},       {"image_height", c.height},
+          {"rms_px", result.rms_px},      {"used_views", result.used_views},
+          {"parameters", parameters},     {"views", views}};
 }
 
 std::string FormatIntrinsicsSummary(const IntrinsicsOutcome& outcome) {
   const IntrinsicsResult& result = outcome.result;
   const Camera& c = result.camera;
-  const std::array<double, 9> values = ParameterValues(c);
+  const std::vector<std::string> names = c.ParameterNames();
+  const std::vector<double> values = c.ParameterValues();
   std::ostringstream out;
-  out << "camera " << c.width << " x " << c.height << " from " << result.used_views << " of " << outcome.images
-      << " images, RMS " << result.rms_px << " px\n";
-  for (int i = 0; i < 9; ++i) out << "  " << kParameterNames[i] << " = " << values[i] << " +- " << result.std_dev[i] << "\n";
+  out << "camera " << c.width << " x " << c.height << " (" << CameraModelName(c.model) << ") from " << result.used_views
+      << " of " << outcome.images << " images, RMS " << result.rms_px << " px\n";
+  for (size_t i = 0; i < names.size(); ++i) {
+    out << "  " << names[i] << " = " << values[i];
+    if (i < result.std_dev.size()) {
+      if (std::isfinite(result.std_dev[i])) {
+        out << " +- " << result.std_dev[i];
+      } else {
+        out << " +- ? (not determined by the views)";
+      }
+    }
+    out << "\n";
+  }
+  if (result.std_dev.empty()) out << "  (no standard deviations: cv::fisheye::calibrate does not estimate them)\n";
   for (const CalibrationView& view : result.views) {
     if (!view.used) out << "  not used: " << view.file << ": " << view.reason << "\n";
   }

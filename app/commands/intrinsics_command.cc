@@ -1,7 +1,8 @@
 // hexcal intrinsics --target T --images DIR --out camera.yaml [--coverage coverage.png] [--min-views N]
-//                   [--force] [--json]
+//                   [--model radtan|rational|pinhole-equi] [--force] [--json]
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "app/commands/cli_common.h"
 #include "app/commands/command_table.h"
@@ -12,10 +13,14 @@ namespace {
 
 struct IntrinsicsCliOptions {
   workflow::IntrinsicsRequest request;
+  std::string model = CameraModelName(CameraModel::kRadTan);
   bool json = false;
 };
 
-int RunIntrinsics(const IntrinsicsCliOptions& cli, std::ostream& out, std::ostream& err) {
+int RunIntrinsics(IntrinsicsCliOptions cli, std::ostream& out, std::ostream& err) {
+  const std::optional<CameraModel> model = CameraModelFromName(cli.model);
+  if (!model) return ReportError(err, "intrinsics", Status::Error("--model: unknown model '" + cli.model + "'"));
+  cli.request.options.model = *model;
   TerminalJob job("intrinsics");
   StatusOr<workflow::IntrinsicsOutcome> outcome = workflow::CalibrateCameraFromFolder(cli.request, job.hooks());
   if (!outcome.ok()) return ReportError(err, "intrinsics", outcome.status());
@@ -37,6 +42,10 @@ void AddIntrinsicsCommand(CLI::App& app, int* exit_code) {
       ->check(CountRange(1, 100000))
       ->capture_default_str();
   sub->add_option("--min-tags", options->request.options.min_tags_per_view, "target tags for an image to be used")
+      ->capture_default_str();
+  sub->add_option("--model", options->model,
+                  "distortion model: radtan (k1 k2 p1 p2 k3), rational (k1..k6 p1 p2) or pinhole-equi (fisheye k1..k4)")
+      ->check(CLI::IsMember({"radtan", "rational", "pinhole-equi"}))
       ->capture_default_str();
   sub->add_option("--threads", options->request.options.threads, "images detected in parallel (0 = every core)")
       ->check(CountRange(0, kMaxThreads))

@@ -62,7 +62,7 @@ target_unknown_family.yaml | 2 | family: 'tag99h99' is not supported | target pr
 target_wrong_unit.yaml | 2 | length_unit: expected mm, cm or m | target print --target @IN@ --out @OUT@.pdf
 target_nan_size.yaml | 2 | tag_size: '.nan' is not a finite number | measure --camera sim-4.2mm-1024x768 --target @IN@ --images IMAGE --out @OUT@
 camera_empty.yaml | 2 | empty file | measure --camera @IN@ --images IMAGE --out @OUT@
-camera_garbage.yaml | 2 | expected a ROS camera_info mapping or an OpenCV FileStorage file | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_garbage.yaml | 2 | expected a camera mapping | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_truncated.yaml | 2 | YAML syntax error at line 9 | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_nan_focal.yaml | 2 | camera_matrix.data: expected numbers, found '.nan' | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_wrong_matrix_size.yaml | 2 | camera_matrix: expected 9 numbers \(3 x 3\), found 4 | measure --camera @IN@ --images IMAGE --out @OUT@

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # vision_intrinsics.sh HEXCAL DATA: `hexcal intrinsics` on ten rendered views
 # recovers the simulated camera and writes a camera file that `measure` reads;
-# too few views and mixed image sizes are clear errors (exit 2).
+# the same through a fisheye camera file with --model pinhole-equi; too few
+# views, mixed image sizes and an unknown --model are clear errors (exit 2).
 set -eu
 hexcal=$1 data=$2
 dir=$(mktemp -d)
@@ -32,6 +33,38 @@ code=0
   >/dev/null 2>"$dir/err" || code=$?
 [ "$code" -eq 1 ]
 grep -q "no image gave a pose: 10 of 10 images that show the board fit it badly" "$dir/err"
+# The fisheye: rendered through an equidistant camera file, calibrated with --model pinhole-equi.
+cat >"$dir/fisheye.yaml" <<'END'
+%YAML:1.0
+---
+image_width: 1024
+image_height: 768
+distortion_model: equidistant
+camera_matrix: !!opencv-matrix
+   rows: 3
+   cols: 3
+   dt: d
+   data: [ 520.4, 0, 515.3, 0, 519.8, 380.1, 0, 0, 1 ]
+distortion_coefficients: !!opencv-matrix
+   rows: 4
+   cols: 1
+   dt: d
+   data: [ 0.05, -0.02, 0.004, -0.0005 ]
+END
+"$hexcal" render --camera "$dir/fisheye.yaml" --poses "$data/poses/vision_views.csv" --out "$dir/fisheye" >/dev/null
+"$hexcal" intrinsics --model pinhole-equi --images "$dir/fisheye" --out "$dir/fisheye_out.yaml" --json >"$dir/fisheye.json"
+grep -q '"model": "pinhole-equi"' "$dir/fisheye.json"
+# Two of the views (0.56 m, tilted 44 deg) leave bit cells under 3 px at f = 520 px: not detected.
+grep -q '"used_views": 8' "$dir/fisheye.json"
+grep -q '^distortion_model: equidistant' "$dir/fisheye_out.yaml"
+# fx within 0.5 % of 520.4
+fx=$(grep -A4 '^camera_matrix' "$dir/fisheye_out.yaml" | sed -n 's/.*data: \[ \([0-9.]*\),.*/\1/p')
+awk -v fx="$fx" 'BEGIN { d = fx - 520.4; if (d < 0) d = -d; exit !(d < 2.6) }'
+"$hexcal" measure --camera "$dir/fisheye_out.yaml" --images "$dir/fisheye" --out "$dir/fm.csv" | grep -q "10 images: 2 no_target 8 ok"
+code=0
+"$hexcal" intrinsics --model omni --images "$dir/fisheye" --out "$dir/never.yaml" 2>"$dir/err" || code=$?
+[ "$code" -eq 2 ]
+grep -q "model" "$dir/err"
 
 mkdir "$dir/few"
 cp "$dir/views/view_0000.png" "$dir/views/view_0001.png" "$dir/few/"
