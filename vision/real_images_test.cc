@@ -9,6 +9,8 @@
 #include "tests/test_support.h"
 #include "vision/board_pose.h"
 #include "vision/detection.h"
+#include "vision/intrinsics.h"
+#include "vision/renderer.h"
 
 namespace hexcal {
 namespace {
@@ -98,6 +100,81 @@ TEST(RealImagePoseTest, EuRoCCornersFitThePublishedCalibration) {
   EXPECT_EQ(fitted.NumTags(), 36);
   EXPECT_LT(with_fit.rms_px, 0.5);
   EXPECT_LE(with_fit.rms_px, without.rms_px);
+}
+
+// The TUM VI camera's published calibration (Kalibr pinhole-equi at 512 × 512,
+// tests/data/real/README.md), at the frames' 1024 × 1024: f doubles, c → 2c + ½.
+Camera PublishedTumVi() {
+  Camera tum;
+  tum.width = tum.height = 1024;
+  tum.model = CameraModel::kPinholeEqui;
+  tum.fx = 2 * 190.97847715128717;
+  tum.fy = 2 * 190.9733070521226;
+  tum.cx = 2 * 254.93170605935475 + 0.5;
+  tum.cy = 2 * 256.8974428996504 + 0.5;
+  tum.distortion = {0.0034823894022493434, 0.0007150348452162257, -0.0020532361418706202, 0.00020293673591811182};
+  return tum;
+}
+
+// The published fisheye explains both real frames to a fraction of a pixel:
+// the equidistant model, the 16-bit reading and the corners agree with Kalibr's.
+TEST(RealImagePoseTest, TumViCornersFitThePublishedFisheye) {
+  const Camera tum = PublishedTumVi();
+  const Target grid = KalibrGrid();
+  auto ideal = std::make_shared<const IdealPixelMap>(tum);
+  for (const char* file : {"TUM_VI.png", "r45.png"}) {
+    const cv::Mat gray = LoadGrayImage(RealImage(file)).value();
+    DetectorOptions options = ForTarget(DetectorOptions{}, grid);
+    const BoardObservation fitted = MatchToTarget(grid, TagDetector::Create(options, ideal).value()->Detect(gray));
+    options.refine_edges = false;
+    const BoardObservation quads = MatchToTarget(grid, TagDetector::Create(options, ideal).value()->Detect(gray));
+    const BoardPose with_fit = EstimateBoardPose(tum, fitted, BoardPoseOptions{});
+    const BoardPose without = EstimateBoardPose(tum, quads, BoardPoseOptions{});
+    std::cout << file << " board pose RMS with the published fisheye: edge fit " << with_fit.rms_px
+              << " px, quad corners " << without.rms_px << " px\n";
+    ASSERT_TRUE(with_fit.has_pose) << file;
+    EXPECT_LT(with_fit.rms_px, 0.5) << file;
+    EXPECT_LE(with_fit.rms_px, without.rms_px) << file;
+  }
+}
+
+// Intrinsics from the two real frames alone, with the fisheye model, against
+// the published calibration. Two views of one planar board pin the focal
+// length and the principal point only loosely, so the frames are joined by
+// renders through the published camera at other poses (tests/data/real/README.md:
+// "plus renders if needed"); the real frames then still carry their own
+// corners into the fit, and a wrong model, border or reading of them would
+// pull it away.
+TEST(RealImageIntrinsicsTest, TumViFisheyeAgreesWithThePublishedCalibration) {
+  const Camera tum = PublishedTumVi();
+  const Target grid = KalibrGrid();
+  std::vector<cv::Mat> images = {LoadGrayImage(RealImage("TUM_VI.png")).value(),
+                                 LoadGrayImage(RealImage("r45.png")).value()};
+  std::vector<std::string> names = {"TUM_VI.png", "r45.png"};
+  const std::vector<Pose> poses = RandomViewPoses(grid, 10, 0.45, 0.75, 35, 30, 0.12, 7);
+  RenderOptions render;
+  render.blur_sigma_px = 1.2;
+  const Renderer renderer(tum, grid, render);
+  for (size_t i = 0; i < poses.size(); ++i) {
+    images.push_back(renderer.Render(poses[i], i).image);
+    names.push_back("render_" + std::to_string(i));
+  }
+  IntrinsicsOptions options;
+  options.model = CameraModel::kPinholeEqui;
+  const IntrinsicsResult result = CalibrateIntrinsicsFromImages(images, names, grid, options).value();
+  std::cout << "TUM VI fisheye from 2 real frames + " << poses.size() << " renders: fx " << result.camera.fx << " ("
+            << tum.fx << "), fy " << result.camera.fy << " (" << tum.fy << "), cx " << result.camera.cx << " ("
+            << tum.cx << "), cy " << result.camera.cy << " (" << tum.cy << "), RMS " << result.rms_px << " px\n";
+  for (const CalibrationView& view : result.views) {
+    if (view.file.rfind("render_", 0) != 0) {
+      std::cout << "  " << view.file << ": " << (view.used ? "used" : view.reason) << ", RMS " << view.rms_px << " px\n";
+      EXPECT_TRUE(view.used) << view.file;
+    }
+  }
+  EXPECT_NEAR(result.camera.fx / tum.fx, 1, 0.005);
+  EXPECT_NEAR(result.camera.fy / tum.fy, 1, 0.005);
+  EXPECT_NEAR(result.camera.cx, tum.cx, 2);
+  EXPECT_NEAR(result.camera.cy, tum.cy, 2);
 }
 
 }  // namespace
