@@ -13,6 +13,7 @@
 
 #include "core/parallel.h"
 #include "core/pose.h"
+#include "vision/intrinsics_diagnosis.h"
 
 namespace hexcal {
 namespace {
@@ -196,6 +197,22 @@ StatusOr<Calibration> CalibrateWithOutliers(std::vector<CalibrationView>& views,
   }
 }
 
+// Calibrates alternate halves of the used views apart and compares them.
+CrossValidation CrossValidate(const std::vector<CalibrationView>& views, const std::vector<Detected>& detected,
+                              cv::Size size, const Camera& full, CameraModel model) {
+  std::vector<const BoardObservation*> halves[2];
+  for (size_t i = 0; i < views.size(); ++i) {
+    if (views[i].used) halves[(halves[0].size() + halves[1].size()) % 2].push_back(&detected[i].observation);
+  }
+  if (halves[1].size() < 3) return {};
+  const StatusOr<Calibration> a = Calibrate(halves[0], size, model), b = Calibrate(halves[1], size, model);
+  if (!a.ok() || !b.ok()) return {};
+  CrossValidation cross = CompareHalves(full, a->camera, a->std_dev, b->camera, b->std_dev);
+  cross.views_a = static_cast<int>(halves[0].size());
+  cross.views_b = static_cast<int>(halves[1].size());
+  return cross;
+}
+
 StatusOr<IntrinsicsResult> Run(int count, const std::vector<std::string>& names, const ImageLoader& load,
                                const Target& target, const IntrinsicsOptions& options, const JobHooks& hooks) {
   std::string error;
@@ -267,6 +284,7 @@ StatusOr<IntrinsicsResult> Run(int count, const std::vector<std::string>& names,
   result.camera = calibration->camera;
   result.std_dev = calibration->std_dev;
   result.rms_px = calibration->rms;
+  result.cross_validation = CrossValidate(result.views, *detected, size, result.camera, options.model);
   for (size_t i = 0; i < result.views.size(); ++i) {
     CalibrationView& view = result.views[i];
     if (!view.used) view.rms_px = 0;

@@ -57,6 +57,20 @@ struct CalibrationView {
   std::vector<Eigen::Vector2d> corners;  // detected target corners (coverage)
 };
 
+// Cross-validation as mrcal does it: the used views split into two disjoint
+// halves (alternate views), each calibrated alone, and the two cameras
+// compared (vision/intrinsics_diagnosis.h). A difference far above what the
+// halves' own σ allow means the model or the data cannot be trusted.
+struct CrossValidation {
+  bool done = false;       // needs at least 2 × 3 used views
+  int views_a = 0, views_b = 0;
+  double rms_px = 0;       // |project_a(ray) − project_b(ray)| over a 16 × 12 grid of the image, RMS
+  double max_px = 0;       // ... and its largest value
+  // |a − b| / sqrt(σa² + σb²) for fx, fy, cx, cy; empty without σ (kPinholeEqui).
+  std::vector<double> z;
+  double max_z = 0;        // largest of z; 0 when z is empty
+};
+
 struct IntrinsicsResult {
   Camera camera;
   // Standard deviations in the order of camera.ParameterNames(); empty when
@@ -65,6 +79,7 @@ struct IntrinsicsResult {
   double rms_px = 0;  // over every corner of the used views
   int used_views = 0;
   std::vector<CalibrationView> views;  // in the order of the files
+  CrossValidation cross_validation;
 };
 
 // hooks.Progress(done, total) over every detection pass (images × passes);

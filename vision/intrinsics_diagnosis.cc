@@ -1,6 +1,8 @@
 #include "vision/intrinsics_diagnosis.h"
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -39,6 +41,48 @@ Status CheckIntrinsicsFit(const IntrinsicsResult& result, const Target& target, 
     why << "; check them (motion blur, a bent board, another board in view) and leave them out.";
   }
   return Status::Error(why.str());
+}
+
+CrossValidation CompareHalves(const Camera& full, const Camera& a, const std::vector<double>& sigma_a,
+                              const Camera& b, const std::vector<double>& sigma_b) {
+  constexpr int kCols = 16, kRows = 12;
+  CrossValidation cross;
+  cross.done = true;
+  double sum2 = 0;
+  int count = 0;
+  for (int row = 0; row < kRows; ++row) {
+    for (int col = 0; col < kCols; ++col) {
+      const Eigen::Vector2d pixel((col + 0.5) * full.width / kCols - 0.5, (row + 0.5) * full.height / kRows - 0.5);
+      const std::optional<Eigen::Vector2d> ray = full.Undistort(pixel);
+      if (!ray) continue;
+      const Eigen::Vector3d p(ray->x(), ray->y(), 1);
+      const double d = (a.Project(p) - b.Project(p)).norm();
+      if (!std::isfinite(d)) continue;
+      sum2 += d * d;
+      cross.max_px = std::max(cross.max_px, d);
+      ++count;
+    }
+  }
+  cross.rms_px = count > 0 ? std::sqrt(sum2 / count) : 0;
+  if (sigma_a.size() >= 4 && sigma_b.size() >= 4) {
+    const double values_a[4] = {a.fx, a.fy, a.cx, a.cy}, values_b[4] = {b.fx, b.fy, b.cx, b.cy};
+    for (size_t i = 0; i < 4; ++i) {
+      const double sigma = std::hypot(sigma_a[i], sigma_b[i]);
+      if (!(sigma > 0) || !std::isfinite(sigma)) continue;
+      cross.z.push_back(std::abs(values_a[i] - values_b[i]) / sigma);
+      cross.max_z = std::max(cross.max_z, cross.z.back());
+    }
+  }
+  return cross;
+}
+
+std::string DescribeCrossValidation(const CrossValidation& cross) {
+  if (!cross.done) return "cross-validation: too few views to split";
+  std::string text = "cross-validation (" + std::to_string(cross.views_a) + " + " + std::to_string(cross.views_b) +
+                     " views): the halves differ by " + Px(cross.rms_px) + " RMS (" + Px(cross.max_px) +
+                     " max) over the image";
+  if (!cross.z.empty()) text += ", fx fy cx cy at most " + FormatSignificant(cross.max_z) + " sigma apart";
+  return text;
 }
 
 }  // namespace hexcal

@@ -25,4 +25,14 @@ namespace hexcal {
 // few do (those views, named), and what the target file says the board is.
 Status CheckIntrinsicsFit(const IntrinsicsResult& result, const Target& target, double max_rms_px);
 
+// Two cameras calibrated from disjoint halves of the views, compared: the
+// rays of a 16 × 12 grid of pixels (unprojected by `full`) projected by each
+// (pixel difference, RMS and max), and fx, fy, cx, cy in units of the halves'
+// combined σ (when both have σ: std_dev in Camera::ParameterNames() order).
+CrossValidation CompareHalves(const Camera& full, const Camera& a, const std::vector<double>& sigma_a,
+                              const Camera& b, const std::vector<double>& sigma_b);
+
+// "halves differ by 0.012 px RMS (0.03 px max) over the image, 0.8 sigma at most"
+std::string DescribeCrossValidation(const CrossValidation& cross);
+
 }  // namespace hexcal

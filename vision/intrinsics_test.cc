@@ -1,4 +1,5 @@
 #include "vision/intrinsics.h"
+#include "vision/intrinsics_diagnosis.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -52,6 +53,33 @@ TEST(IntrinsicsTest, TwentyRenderedViewsLandWithinThreeSigmaOfTheTruth) {
   const CameraFileExtras extras = ExtrasOf(*result);
   EXPECT_EQ(extras.std_dev.size(), 9u);
   EXPECT_EQ(extras.per_view_rms_px.size(), 20u);
+  // Two halves of 10 views agree within their σ, and project the image alike
+  // to a fraction of a pixel (the model and the data are consistent).
+  const CrossValidation& cross = result->cross_validation;
+  std::cout << DescribeCrossValidation(cross) << "\n";
+  ASSERT_TRUE(cross.done);
+  EXPECT_EQ(cross.views_a + cross.views_b, 20);
+  ASSERT_EQ(cross.z.size(), 4u);
+  EXPECT_LT(cross.max_z, 3);
+  // In pixels the halves differ most where neither saw corners (the image's
+  // corners, extrapolated by each half's distortion): 0.36 px RMS here.
+  EXPECT_LT(cross.rms_px, 1);
+}
+
+// The comparison itself against known cameras: identical halves differ by
+// nothing, and a principal point 3 px off shows as 3 px everywhere and as
+// 3 / √(σa² + σb²) σ.
+TEST(IntrinsicsTest, CompareHalvesSeesADifferentCamera) {
+  const Camera truth = SimulatedCamera();
+  Camera shifted = truth;
+  shifted.cx += 3;
+  const std::vector<double> sigma = {0.5, 0.5, 0.4, 0.4};
+  const CrossValidation same = CompareHalves(truth, truth, sigma, truth, sigma);
+  EXPECT_EQ(same.rms_px, 0);
+  EXPECT_EQ(same.max_z, 0);
+  const CrossValidation apart = CompareHalves(truth, truth, sigma, shifted, sigma);
+  EXPECT_NEAR(apart.rms_px, 3, 1e-9);
+  EXPECT_NEAR(apart.max_z, 3 / std::hypot(0.4, 0.4), 1e-9);
 }
 
 // A 1024 x 768 fisheye (70° off axis in the image corners), calibrated with

@@ -66,11 +66,20 @@ nlohmann::json ToJson(const IntrinsicsOutcome& outcome) {
                      {"rms_px", view.rms_px},
                      {"reason", view.reason}});
   }
+  const CrossValidation& cross = result.cross_validation;
+  nlohmann::json cross_json;  // null: too few views to split
+  if (cross.done) {
+    cross_json = {{"views", {cross.views_a, cross.views_b}},
+                  {"rms_px", cross.rms_px},
+                  {"max_px", cross.max_px},
+                  {"max_sigma", cross.z.empty() ? nlohmann::json() : nlohmann::json(cross.max_z)}};
+  }
   return {{"out", outcome.out},           {"model", CameraModelName(c.model)},
           {"coverage", outcome.coverage}, {"coverage_fraction", CoverageFraction(result)},
           {"image_width", c.width},       {"image_height", c.height},
           {"rms_px", result.rms_px},      {"used_views", result.used_views},
-          {"parameters", parameters},     {"views", views}};
+          {"parameters", parameters},     {"views", views},
+          {"cross_validation", cross_json}};
 }
 
 std::string FormatIntrinsicsSummary(const IntrinsicsOutcome& outcome) {
@@ -96,6 +105,7 @@ std::string FormatIntrinsicsSummary(const IntrinsicsOutcome& outcome) {
   for (const CalibrationView& view : result.views) {
     if (!view.used) out << "  not used: " << view.file << ": " << view.reason << "\n";
   }
+  out << "  " << DescribeCrossValidation(result.cross_validation) << "\n";
   out << "written to " << outcome.out;
   if (!outcome.coverage.empty())
     out << "; corner coverage " << 100 * CoverageFraction(result) << " % in " << outcome.coverage;
