@@ -52,7 +52,7 @@ OverlayResult DetectAndDraw(const QString& file, const Camera& camera, const Tar
     painter.setPen(QPen(QColor(230, 0, 0), 0.6 * line));
     for (int index = 0; index < target.NumTags(); ++index) {
       QPolygonF outline;
-      for (const Eigen::Vector3d& corner : target.TagCorners(target.first_id + index))
+      for (const Eigen::Vector3d& corner : target.TagCorners(target.TagId(index)))
         outline << to_qt(camera.Project(pose.camera_from_target * corner));
       painter.drawPolygon(outline);
     }

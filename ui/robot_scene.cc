@@ -193,8 +193,10 @@ void RobotScene::UpdateTarget() {
   const double s = frames_->target_scale, m = t.margin;
   const Pose base_from_target{pose_.position + pose_.rotation * frames_->platform_from_target.position,
                               pose_.rotation * frames_->platform_from_target.rotation};
+  const double x0 = t.TagsMin().x() - m, y0 = t.TagsMin().y() - m;
+  const double x1 = x0 + t.Width() + 2 * m, y1 = y0 + t.Height() + 2 * m;
   std::vector<Eigen::Vector3d> sheet;
-  for (auto [x, y] : {std::pair{-m, -m}, {t.Width() + m, -m}, {t.Width() + m, t.Height() + m}, {-m, t.Height() + m}})
+  for (auto [x, y] : {std::pair{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}})
     sheet.push_back(base_from_target * Eigen::Vector3d(s * x, s * y, 0.0));
   SetGeometry(target_, Polygons({sheet}, true));
 }

@@ -32,7 +32,8 @@ Status CheckIntrinsicsFit(const IntrinsicsResult& result, const Target& target, 
   if (2 * bad.size() >= view_rms.size()) {
     why << bad.size() << " of " << view_rms.size() << " views fit badly (median view RMS " << Px(median)
         << "): a systematic error, not a bad image. Check that the target file describes the board ("
-        << DescribeTarget(target) << "): rows, cols, tag_spacing, first_id and border_bits as printed, tag_size "
+        << DescribeTarget(target)
+        << "): rows, cols, tag_spacing, first_id (or ids, or tags) and border_bits as printed, tag_size "
         << "in its length_unit; or, for a wide-angle or fisheye lens, the camera model.";
   } else {
     why << "most views fit (median view RMS " << Px(median) << ") but these do not:";

@@ -154,7 +154,7 @@ RenderedView Renderer::Render(const Pose& camera_from_target, uint64_t image_ind
   RenderedView view;
   view.camera_from_target = camera_from_target;
   for (int index = 0; index < target_.NumTags(); ++index) {
-    const int id = target_.first_id + index;
+    const int id = target_.TagId(index);
     const std::array<Eigen::Vector3d, 4> corners = target_.TagCorners(id);
     for (int k = 0; k < 4; ++k) {
       ProjectedCorner corner;
@@ -216,7 +216,8 @@ RenderedView Renderer::Render(const Pose& camera_from_target, uint64_t image_ind
 std::vector<Pose> RandomViewPoses(const Target& target, int count, double distance_min, double distance_max,
                                   double max_tilt_deg, double max_roll_deg, double max_offset, uint64_t seed) {
   StableRandom random(StreamSeed(seed, 0xC0FFEE));
-  const Eigen::Vector3d centre(0.5 * target.Width(), 0.5 * target.Height(), 0);
+  const Eigen::Vector2d middle = target.TagsMin() + 0.5 * Eigen::Vector2d(target.Width(), target.Height());
+  const Eigen::Vector3d centre(middle.x(), middle.y(), 0);
   // Fronto-parallel and upright: camera x = target x, camera y = -target y.
   const Eigen::Matrix3d upright = Eigen::Vector3d(1, -1, -1).asDiagonal();
   std::vector<Pose> poses;

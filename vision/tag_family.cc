@@ -74,13 +74,13 @@ TagCells ThickenBorder(const TagCells& tag, int extra) {
 
 }  // namespace
 
-std::vector<TagCells> TagCellsOf(const std::string& family_name, int first_id, int count, int border_bits) {
+std::vector<TagCells> TagCellsOf(const std::string& family_name, const std::vector<int>& ids, int border_bits) {
   AprilTagFamilyPtr family = CreateAprilTagFamily(family_name);
-  assert(family && first_id >= 0 && first_id + count <= static_cast<int>(family->ncodes));
-  assert(border_bits >= 1);
+  assert(family && border_bits >= 1);
   std::vector<TagCells> tags;
-  tags.reserve(static_cast<size_t>(count));
-  for (int id = first_id; id < first_id + count; ++id) {
+  tags.reserve(ids.size());
+  for (const int id : ids) {
+    assert(id >= 0 && id < static_cast<int>(family->ncodes));
     // apriltag_to_image draws the tag as the library decodes it: white = 255.
     image_u8_t* image = apriltag_to_image(family.get(), id);
     TagCells cells;
@@ -99,6 +99,12 @@ std::vector<TagCells> TagCellsOf(const std::string& family_name, int first_id, i
     tags.push_back(border_bits > 1 ? ThickenBorder(cells, border_bits - 1) : std::move(cells));
   }
   return tags;
+}
+
+std::vector<TagCells> TagCellsOf(const std::string& family, int first_id, int count, int border_bits) {
+  std::vector<int> ids(static_cast<size_t>(std::max(count, 0)));
+  for (int k = 0; k < count; ++k) ids[static_cast<size_t>(k)] = first_id + k;
+  return TagCellsOf(family, ids, border_bits);
 }
 
 void AprilTagFamilyDeleter::operator()(apriltag_family* family) const {

@@ -8,6 +8,7 @@
 //
 //   std::optional<TagFamilyInfo> info = FindTagFamily("tag36h11");
 //   std::vector<TagCells> cells = TagCellsOf("tag36h11", /*first_id=*/0, /*count=*/36);
+//   std::vector<TagCells> board = TagCellsOf(target.family, target.TagIds(), target.border_bits);
 //   bool black = cells[0].IsBlack(/*row=*/1, /*col=*/1);  // row 0 is the top as printed
 #pragma once
 
@@ -48,6 +49,8 @@ struct TagCells {
 // to two cells (Kalibr's aprilgrid): total_width grows by 2, the white ring
 // stays one cell.
 std::vector<TagCells> TagCellsOf(const std::string& family, int first_id, int count, int border_bits = 1);
+// Cells of the tags `ids`, in that order (a target's: Target::TagIds()).
+std::vector<TagCells> TagCellsOf(const std::string& family, const std::vector<int>& ids, int border_bits = 1);
 
 // Owner of an AprilTag library family object; a detector needs its own one
 // (the library keeps per-detector decode tables in it).

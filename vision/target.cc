@@ -1,160 +1,102 @@
+// Target geometry and validation; the YAML form is in target_yaml.cc.
 #include "vision/target.h"
-
-#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <filesystem>
-#include <locale>
-#include <sstream>
 
-#include "core/atomic_file.h"
 #include "core/csv.h"
-#include "core/yaml_document.h"
 #include "vision/tag_family.h"
 
 namespace hexcal {
 namespace {
 
-// hexcal's key, and the Kalibr aprilgrid key that means the same ("" if none).
-struct KeyPair {
-  const char* hexcal;
-  const char* kalibr;
-};
-constexpr KeyPair kKeys[] = {
-    {"family", ""},   {"rows", "tagRows"}, {"cols", "tagCols"}, {"tag_size", "tagSize"}, {"tag_spacing", "tagSpacing"},
-    {"first_id", ""}, {"length_unit", ""}, {"margin", ""},      {"target_type", ""},
-    {"border_bits", ""},
-};
+std::string Int(long long value) { return std::to_string(value); }
 
-std::string KnownKeys() {
-  std::string keys;
-  for (const KeyPair& key : kKeys) {
-    keys += (keys.empty() ? "" : ", ") + std::string(key.hexcal);
-    if (*key.kalibr) keys += " (" + std::string(key.kalibr) + ")";
-  }
-  return keys;
+// (id, index) sorted by id, then index: duplicates sit next to each other.
+std::vector<std::pair<int, int>> SortedIndex(const std::vector<int>& ids) {
+  std::vector<std::pair<int, int>> index;
+  for (size_t i = 0; i < ids.size(); ++i) index.emplace_back(ids[i], static_cast<int>(i));
+  std::sort(index.begin(), index.end());
+  return index;
 }
 
-class TargetReader {
- public:
-  explicit TargetReader(const std::string& source) : label_("target file '" + source + "'") {}
-
-  StatusOr<Target> Read(const std::string& text) const {
-    const StatusOr<YAML::Node> root = LoadYamlDocument(text, label_);
-    if (!root.ok()) return root.status();
-    if (!root->IsMap()) return Error("top level", "expected a mapping with keys " + KnownKeys());
-    return WithYamlBackstop<Target>(label_, [&] { return ReadMap(*root); });
-  }
-
- private:
-  Status Error(const std::string& key, const std::string& problem) const {
-    return Status::Error(label_ + ": " + key + ": " + problem);
-  }
-
-  StatusOr<Target> ReadMap(const YAML::Node& root) const {
-    for (const auto& item : root) {
-      const std::string key = item.first.Scalar();
-      const bool known = std::any_of(std::begin(kKeys), std::end(kKeys), [&](const KeyPair& pair) {
-        return key == pair.hexcal || (*pair.kalibr && key == pair.kalibr);
-      });
-      if (!known) return Error(key, "unknown key; expected " + KnownKeys());
-    }
-    bool kalibr_names = false;
-    for (const KeyPair& pair : kKeys) {
-      if (!*pair.kalibr || !root[pair.kalibr]) continue;
-      if (root[pair.hexcal]) {
-        return Error(pair.kalibr, std::string("given together with ") + pair.hexcal + "; use one of the two");
-      }
-      kalibr_names = true;
-    }
-    Target target;
-    if (const YAML::Node type = root["target_type"]) {
-      if (!type.IsScalar() || type.Scalar() != "aprilgrid") {
-        return Error("target_type", "only 'aprilgrid' is supported");
-      }
-    }
-    if (const YAML::Node family = root["family"]) {
-      if (!family.IsScalar()) return Error("family", "expected a family name");
-      target.family = family.Scalar();
-    }
-    if (Status s = ReadInt(root, "rows", "tagRows", &target.rows); !s.ok()) return s;
-    if (Status s = ReadInt(root, "cols", "tagCols", &target.cols); !s.ok()) return s;
-    if (Status s = ReadNumber(root, "tag_size", "tagSize", &target.tag_size); !s.ok()) return s;
-    if (Status s = ReadNumber(root, "tag_spacing", "tagSpacing", &target.tag_spacing); !s.ok()) return s;
-    target.first_id = 0;
-    if (root["first_id"]) {
-      if (Status s = ReadInt(root, "first_id", "", &target.first_id); !s.ok()) return s;
-    }
-    if (const YAML::Node unit = root["length_unit"]) {
-      const std::optional<LengthUnit> parsed = unit.IsScalar() ? ParseLengthUnit(unit.Scalar()) : std::nullopt;
-      if (!parsed) return Error("length_unit", "expected mm, cm or m");
-      target.length_unit = *parsed;
-    } else if (kalibr_names) {
-      target.length_unit = LengthUnit::kMetre;  // Kalibr's aprilgrid files are in metres
-    } else {
-      return Error("length_unit", "missing (mm, cm or m)");
-    }
-    target.border_bits = kalibr_names ? 2 : 1;  // Kalibr prints its aprilgrid with a two-cell border
-    if (root["border_bits"]) {
-      if (Status s = ReadInt(root, "border_bits", "", &target.border_bits); !s.ok()) return s;
-    }
-    if (root["margin"]) {
-      if (Status s = ReadNumber(root, "margin", "", &target.margin); !s.ok()) return s;
-    } else if (target.WidthAtBorder() > 0) {
-      target.margin = std::max(target.Gap(), 2.0 * target.tag_size / target.WidthAtBorder());
-    }
-    if (Status s = target.Validate(); !s.ok()) return Status::Error(label_ + ": " + s.message());
-    return target;
-  }
-
-  // The value under the hexcal or the Kalibr name; both names are checked
-  // above not to be given together.
-  StatusOr<double> ReadValue(const YAML::Node& root, const char* key, const char* kalibr) const {
-    const bool use_kalibr = *kalibr && root[kalibr];
-    const char* name = use_kalibr ? kalibr : key;
-    const YAML::Node node = root[name];
-    if (!node) {
-      return Error(key, std::string("missing") + (*kalibr ? std::string(" (or ") + kalibr + ")" : std::string()));
-    }
-    if (!node.IsScalar()) return Error(name, "expected a number");
-    StatusOr<double> value = ParseNumber(node.Scalar());
-    if (!value.ok()) return Error(name, Excerpt(node.Scalar()) + " is not a finite number");
-    return *value;
-  }
-
-  Status ReadNumber(const YAML::Node& root, const char* key, const char* kalibr, double* out) const {
-    StatusOr<double> value = ReadValue(root, key, kalibr);
-    if (!value.ok()) return value.status();
-    *out = *value;
-    return Status::Ok();
-  }
-
-  Status ReadInt(const YAML::Node& root, const char* key, const char* kalibr, int* out) const {
-    StatusOr<double> value = ReadValue(root, key, kalibr);
-    if (!value.ok()) return value.status();
-    if (*value != std::floor(*value) || std::abs(*value) > 1e9) {
-      return Error(*kalibr && root[kalibr] ? kalibr : key, "expected a whole number, found " + FormatNumber(*value));
-    }
-    *out = static_cast<int>(*value);
-    return Status::Ok();
-  }
-
-  std::string label_;
-};
+// "row 2, column 3" of an id matrix, rows counted from the top as printed.
+std::string CellName(int row_from_bottom, int col, int rows) {
+  return "row " + Int(rows - row_from_bottom) + ", column " + Int(col + 1);
+}
 
 }  // namespace
 
+void Target::SetIdMatrix(std::vector<std::vector<int>> ids) {
+  layout_ = TargetLayout::kIdMatrix;
+  id_matrix_ = std::move(ids);
+  tag_list_.clear();
+  rows = static_cast<int>(id_matrix_.size());
+  cols = rows > 0 ? static_cast<int>(id_matrix_[0].size()) : 0;
+  ids_.clear();
+  cells_.clear();
+  for (int row = 0; row < rows; ++row) {  // from the bottom: the matrix's last row
+    const std::vector<int>& printed = id_matrix_[static_cast<size_t>(rows - 1 - row)];
+    assert(static_cast<int>(printed.size()) == cols);
+    for (int col = 0; col < cols; ++col) {
+      if (printed[static_cast<size_t>(col)] == -1) continue;
+      ids_.push_back(printed[static_cast<size_t>(col)]);
+      cells_.push_back(row * cols + col);
+    }
+  }
+  index_of_id_ = SortedIndex(ids_);
+}
+
+void Target::SetTagList(std::vector<TargetTag> tags) {
+  layout_ = TargetLayout::kTagList;
+  tag_list_ = std::move(tags);
+  id_matrix_.clear();
+  cells_.clear();
+  rows = cols = 0;
+  ids_.clear();
+  for (const TargetTag& tag : tag_list_) ids_.push_back(tag.id);
+  index_of_id_ = SortedIndex(ids_);
+}
+
+int Target::NumTags() const { return layout_ == TargetLayout::kGrid ? rows * cols : static_cast<int>(ids_.size()); }
+
+int Target::TagId(int index) const {
+  assert(index >= 0 && index < NumTags());
+  return layout_ == TargetLayout::kGrid ? first_id + index : ids_[static_cast<size_t>(index)];
+}
+
+std::vector<int> Target::TagIds() const {
+  std::vector<int> ids;
+  for (int index = 0; index < NumTags(); ++index) ids.push_back(TagId(index));
+  return ids;
+}
+
 std::optional<int> Target::IndexOf(int id) const {
-  const int index = id - first_id;
-  if (index < 0 || index >= NumTags()) return std::nullopt;
-  return index;
+  if (layout_ == TargetLayout::kGrid) {
+    const int index = id - first_id;
+    if (index < 0 || index >= NumTags()) return std::nullopt;
+    return index;
+  }
+  const auto found = std::lower_bound(index_of_id_.begin(), index_of_id_.end(), std::make_pair(id, 0));
+  if (found == index_of_id_.end() || found->first != id) return std::nullopt;
+  return found->second;
 }
 
 Eigen::Vector2d Target::TagOrigin(int index) const {
   assert(index >= 0 && index < NumTags());
-  return {(index % cols) * Pitch(), (index / cols) * Pitch()};
+  switch (layout_) {
+    case TargetLayout::kGrid:
+      return {(index % cols) * Pitch(), (index / cols) * Pitch()};
+    case TargetLayout::kIdMatrix: {
+      const int cell = cells_[static_cast<size_t>(index)];
+      return {(cell % cols) * Pitch(), (cell / cols) * Pitch()};
+    }
+    case TargetLayout::kTagList:
+      break;
+  }
+  const TargetTag& tag = tag_list_[static_cast<size_t>(index)];
+  return {tag.x, tag.y};
 }
 
 std::array<Eigen::Vector3d, 4> Target::TagCorners(int id) const {
@@ -166,6 +108,26 @@ std::array<Eigen::Vector3d, 4> Target::TagCorners(int id) const {
           Eigen::Vector3d(o.x() + s, o.y() + s, 0), Eigen::Vector3d(o.x(), o.y() + s, 0)};
 }
 
+Eigen::Vector2d Target::TagsMin() const {
+  if (layout_ == TargetLayout::kGrid || NumTags() == 0) return Eigen::Vector2d::Zero();
+  Eigen::Vector2d lo = TagOrigin(0);
+  for (int index = 1; index < NumTags(); ++index) lo = lo.cwiseMin(TagOrigin(index));
+  return lo;
+}
+
+Eigen::Vector2d Target::TagsMax() const {
+  if (layout_ == TargetLayout::kGrid) {
+    return {cols * tag_size + (cols - 1) * Gap(), rows * tag_size + (rows - 1) * Gap()};
+  }
+  if (NumTags() == 0) return Eigen::Vector2d::Zero();
+  Eigen::Vector2d hi = TagOrigin(0);
+  for (int index = 1; index < NumTags(); ++index) hi = hi.cwiseMax(TagOrigin(index));
+  return hi + Eigen::Vector2d::Constant(tag_size);
+}
+
+double Target::Width() const { return TagsMax().x() - TagsMin().x(); }
+double Target::Height() const { return TagsMax().y() - TagsMin().y(); }
+
 Status Target::Validate() const {
   const std::optional<TagFamilyInfo> info = FindTagFamily(family);
   if (!info) {
@@ -173,13 +135,17 @@ Status Target::Validate() const {
     for (const std::string& name : SupportedTagFamilies()) names += (names.empty() ? "" : ", ") + name;
     return Status::Error("family: '" + family + "' is not supported; expected one of " + names);
   }
-  if (rows < 1) return Status::Error("rows: must be at least 1, found " + std::to_string(rows));
-  if (cols < 1) return Status::Error("cols: must be at least 1, found " + std::to_string(cols));
-  if (first_id < 0) return Status::Error("first_id: must be at least 0, found " + std::to_string(first_id));
-  if (static_cast<long long>(first_id) + static_cast<long long>(rows) * cols > info->num_codes) {
-    return Status::Error("first_id: ids " + std::to_string(first_id) + " to " +
-                         std::to_string(static_cast<long long>(first_id) + static_cast<long long>(rows) * cols - 1) +
-                         " exceed the " + std::to_string(info->num_codes) + " tags of " + family);
+  if (layout_ == TargetLayout::kGrid) {
+    if (rows < 1) return Status::Error("rows: must be at least 1, found " + Int(rows));
+    if (cols < 1) return Status::Error("cols: must be at least 1, found " + Int(cols));
+    if (first_id < 0) return Status::Error("first_id: must be at least 0, found " + Int(first_id));
+    const long long last = static_cast<long long>(first_id) + static_cast<long long>(rows) * cols - 1;
+    if (last >= info->num_codes) {
+      return Status::Error("first_id: ids " + Int(first_id) + " to " + Int(last) + " exceed the " +
+                           Int(info->num_codes) + " tags of " + family);
+    }
+  } else if (layout_ == TargetLayout::kIdMatrix) {
+    if (Status s = ValidateIdMatrix(info->num_codes); !s.ok()) return s;
   }
   if (!(tag_size > 0) || !std::isfinite(tag_size)) {
     return Status::Error("tag_size: must be a positive length, found " + FormatNumber(tag_size));
@@ -188,19 +154,85 @@ Status Target::Validate() const {
   // bit cell between neighbours and at the edge of the sheet.
   if (border_bits != 1 && border_bits != 2) {
     return Status::Error("border_bits: must be 1 (AprilTag's tags) or 2 (Kalibr's aprilgrid), found " +
-                         std::to_string(border_bits));
+                         Int(border_bits));
   }
   // With a two-cell border the edge fit reaches two cells out: keep that white.
   const double cell_ratio = static_cast<double>(border_bits) / WidthAtBorder();
   const std::string cells = border_bits == 1 ? "one bit cell" : "two bit cells";
-  if (!(tag_spacing >= cell_ratio) || !std::isfinite(tag_spacing)) {
-    return Status::Error("tag_spacing: " + FormatNumber(tag_spacing) + " leaves less than " + cells +
-                         " (tag_size/" + std::to_string(WidthAtBorder()) + " each) of white between tags; use at least " +
+  if (layout_ == TargetLayout::kTagList) {
+    if (Status s = ValidateTagList(info->num_codes); !s.ok()) return s;
+  } else if (!(tag_spacing >= cell_ratio) || !std::isfinite(tag_spacing)) {
+    return Status::Error("tag_spacing: " + FormatNumber(tag_spacing) + " leaves less than " + cells + " (tag_size/" +
+                         Int(WidthAtBorder()) + " each) of white between tags; use at least " +
                          FormatNumber(cell_ratio) + " (Kalibr's default is 0.3)");
   }
   if (!(margin >= tag_size * cell_ratio) || !std::isfinite(margin)) {
     return Status::Error("margin: " + FormatNumber(margin) + " is less than " + cells + " (" +
                          FormatNumber(tag_size * cell_ratio) + ") of white around the outer tags");
+  }
+  return Status::Ok();
+}
+
+Status Target::ValidateIdMatrix(int num_codes) const {
+  if (rows != static_cast<int>(id_matrix_.size())) {
+    return Status::Error("rows: " + Int(rows) + ", but ids has " + Int(static_cast<long long>(id_matrix_.size())) +
+                         " rows");
+  }
+  if (rows < 1 || cols < 1) return Status::Error("ids: expected at least one row of at least one entry");
+  if (cols != static_cast<int>(id_matrix_[0].size())) {
+    return Status::Error("cols: " + Int(cols) + ", but the rows of ids have " +
+                         Int(static_cast<long long>(id_matrix_[0].size())) + " entries");
+  }
+  if (ids_.empty()) return Status::Error("ids: no tag on the board (every entry is -1)");
+  for (size_t index = 0; index < ids_.size(); ++index) {
+    const int id = ids_[index], cell = cells_[index];
+    if (id < 0 || id >= num_codes) {
+      return Status::Error("ids: " + CellName(cell / cols, cell % cols, rows) + ": " + Int(id) + " is not a tag of " +
+                           family + " (0 to " + Int(num_codes - 1) + ", or -1 for no tag)");
+    }
+  }
+  for (size_t k = 1; k < index_of_id_.size(); ++k) {
+    if (index_of_id_[k].first != index_of_id_[k - 1].first) continue;
+    int a = cells_[static_cast<size_t>(index_of_id_[k - 1].second)];
+    int b = cells_[static_cast<size_t>(index_of_id_[k].second)];
+    if (a / cols < b / cols) std::swap(a, b);  // as printed: the upper row first
+    return Status::Error("ids: id " + Int(index_of_id_[k].first) + " appears twice (" +
+                         CellName(a / cols, a % cols, rows) + " and " + CellName(b / cols, b % cols, rows) + ")");
+  }
+  return Status::Ok();
+}
+
+// Each black square needs border_bits cells of white all round (the edge fit
+// reaches that far out): two squares' Chebyshev gap must be at least that.
+Status Target::ValidateTagList(int num_codes) const {
+  if (tag_list_.empty()) return Status::Error("tags: expected at least one tag");
+  for (const TargetTag& tag : tag_list_) {
+    if (tag.id < 0 || tag.id >= num_codes) {
+      return Status::Error("tags: id " + Int(tag.id) + " is not a tag of " + family + " (0 to " + Int(num_codes - 1) +
+                           ")");
+    }
+    if (!std::isfinite(tag.x) || !std::isfinite(tag.y)) {
+      return Status::Error("tags: id " + Int(tag.id) + ": x and y must be finite");
+    }
+  }
+  for (size_t k = 1; k < index_of_id_.size(); ++k) {
+    if (index_of_id_[k].first == index_of_id_[k - 1].first) {
+      return Status::Error("tags: id " + Int(index_of_id_[k].first) + " appears twice (entries " +
+                           Int(index_of_id_[k - 1].second + 1) + " and " + Int(index_of_id_[k].second + 1) + ")");
+    }
+  }
+  const double white = tag_size * border_bits / WidthAtBorder();
+  const std::string cells = border_bits == 1 ? "one bit cell" : "two bit cells";
+  for (size_t a = 0; a < tag_list_.size(); ++a) {
+    for (size_t b = a + 1; b < tag_list_.size(); ++b) {
+      const double gap =
+          std::max(std::abs(tag_list_[a].x - tag_list_[b].x), std::abs(tag_list_[a].y - tag_list_[b].y)) - tag_size;
+      if (gap >= white) continue;
+      const std::string pair = "tags " + Int(tag_list_[a].id) + " and " + Int(tag_list_[b].id);
+      if (gap < 0) return Status::Error("tags: " + pair + " overlap");
+      return Status::Error("tags: " + pair + " are " + FormatNumber(gap) + " apart, less than " + cells + " (" +
+                           FormatNumber(white) + ") of white");
+    }
   }
   return Status::Ok();
 }
@@ -211,50 +243,5 @@ int Target::WidthAtBorder() const {
 }
 
 Target DefaultTarget() { return Target(); }
-
-StatusOr<Target> ParseTargetYaml(const std::string& text, const std::string& source) {
-  return TargetReader(source).Read(text);
-}
-
-StatusOr<Target> LoadTarget(const std::string& path_or_name) {
-  std::error_code error;
-  if (path_or_name == kDefaultTargetName && !std::filesystem::exists(path_or_name, error)) return DefaultTarget();
-  StatusOr<std::string> text = ReadFileToString(path_or_name);
-  if (!text.ok()) {
-    return Status::Error(text.status().message() + " (a target file, or the built-in name " +
-                         std::string(kDefaultTargetName) + ")");
-  }
-  return ParseTargetYaml(*text, path_or_name);
-}
-
-std::string TargetToYaml(const Target& target) {
-  std::ostringstream out;
-  out.imbue(std::locale::classic());
-  out << "# hexcal AprilTag grid target (docs/vision.md). Target frame: origin at the outer\n"
-      << "# bottom-left corner of tag first_id, x along a row, y up, z out of the sheet.\n"
-      << "target_type: aprilgrid\n"
-      << "family: " << target.family << "\n"
-      << "rows: " << target.rows << "\n"
-      << "cols: " << target.cols << "\n"
-      << "tag_size: " << FormatNumber(target.tag_size) << "      # edge of the black square\n"
-      << "tag_spacing: " << FormatNumber(target.tag_spacing) << "   # gap between tags / tag_size (Kalibr)\n"
-      << "first_id: " << target.first_id << "\n"
-      << "length_unit: " << LengthUnitName(target.length_unit) << "\n"
-      << "margin: " << FormatNumber(target.margin) << "        # white sheet beyond the outer tags\n"
-      << "border_bits: " << target.border_bits << "      # black border of each tag, bit cells\n";
-  return out.str();
-}
-
-std::string DescribeTarget(const Target& target) {
-  const std::string unit = LengthUnitName(target.length_unit);
-  std::ostringstream out;
-  out.imbue(std::locale::classic());
-  out.precision(6);
-  out << target.rows << " x " << target.cols << " " << target.family << ", tag " << target.tag_size << " " << unit
-      << ", gap " << target.Gap() << " " << unit << " (spacing " << target.tag_spacing << "), ids " << target.first_id
-      << "-" << target.first_id + target.NumTags() - 1;
-  if (target.border_bits != 1) out << ", " << target.border_bits << "-cell tag border";
-  return out.str();
-}
 
 }  // namespace hexcal

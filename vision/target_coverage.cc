@@ -43,31 +43,69 @@ double ClippedArea(const Eigen::Vector2d* polygon, int count, const Eigen::Vecto
 }
 
 TargetPattern::TargetPattern(const Target& target)
-    : target_(target),
-      cells_(TagCellsOf(target.family, target.first_id, target.NumTags(), target.border_bits)) {
+    : target_(target), cells_(TagCellsOf(target.family, target.TagIds(), target.border_bits)) {
   cell_ = target.tag_size / target.WidthAtBorder();
   ring_ = 1;  // the white ring of TagCells around the black square
-  sheet_min_ = Eigen::Vector2d(-target.margin, -target.margin);
-  sheet_max_ = Eigen::Vector2d(target.Width() + target.margin, target.Height() + target.margin);
+  const Eigen::Vector2d tags_min = target.TagsMin();
+  sheet_min_ = tags_min - Eigen::Vector2d::Constant(target.margin);
+  sheet_max_ = tags_min + Eigen::Vector2d(target.Width(), target.Height()) + Eigen::Vector2d::Constant(target.margin);
+  // A bucket as large as a tag's cell grid: each tag meets at most 2 × 2.
+  const double reach = ring_ * cell_;
+  bucket_size_ = target.tag_size + 2 * reach;
+  bucket_min_ = tags_min - Eigen::Vector2d::Constant(reach);
+  bucket_cols_ = static_cast<int>(std::floor((target.Width() + 2 * reach) / bucket_size_)) + 1;
+  bucket_rows_ = static_cast<int>(std::floor((target.Height() + 2 * reach) / bucket_size_)) + 1;
+  buckets_.resize(static_cast<size_t>(bucket_cols_ * bucket_rows_));
+  for (int index = 0; index < target.NumTags(); ++index) {
+    origins_.push_back(target.TagOrigin(index));
+    const Eigen::Vector2d lo = (origins_.back() - Eigen::Vector2d::Constant(reach) - bucket_min_) / bucket_size_;
+    const Eigen::Vector2d hi = lo + Eigen::Vector2d::Constant(1);
+    for (int row = std::max(0, static_cast<int>(std::floor(lo.y())));
+         row <= std::min(bucket_rows_ - 1, static_cast<int>(std::floor(hi.y()))); ++row) {
+      for (int col = std::max(0, static_cast<int>(std::floor(lo.x())));
+           col <= std::min(bucket_cols_ - 1, static_cast<int>(std::floor(hi.x()))); ++col) {
+        buckets_[static_cast<size_t>(row * bucket_cols_ + col)].push_back(index);
+      }
+    }
+  }
+}
+
+void TargetPattern::TagsNear(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, std::vector<int>* indices) const {
+  indices->clear();
+  const Eigen::Vector2d a = (lo - bucket_min_) / bucket_size_, b = (hi - bucket_min_) / bucket_size_;
+  if (!(b.x() >= 0 && b.y() >= 0 && a.x() < bucket_cols_ && a.y() < bucket_rows_)) return;  // NaN too
+  const int c0 = std::max(0, static_cast<int>(std::floor(a.x())));
+  const int c1 = std::min(bucket_cols_ - 1, static_cast<int>(std::floor(b.x())));
+  const int r0 = std::max(0, static_cast<int>(std::floor(a.y())));
+  const int r1 = std::min(bucket_rows_ - 1, static_cast<int>(std::floor(b.y())));
+  for (int row = r0; row <= r1; ++row) {
+    for (int col = c0; col <= c1; ++col) {
+      const std::vector<int>& bucket = buckets_[static_cast<size_t>(row * bucket_cols_ + col)];
+      indices->insert(indices->end(), bucket.begin(), bucket.end());
+    }
+  }
+  std::sort(indices->begin(), indices->end());
+  indices->erase(std::unique(indices->begin(), indices->end()), indices->end());
 }
 
 bool TargetPattern::IsBlackAt(const Eigen::Vector2d& p) const {
-  const double pitch = target_.Pitch();
-  const int col = static_cast<int>(std::floor(p.x() / pitch)), row = static_cast<int>(std::floor(p.y() / pitch));
-  if (col < 0 || col >= target_.cols || row < 0 || row >= target_.rows) return false;
-  const Eigen::Vector2d o = target_.TagOrigin(row * target_.cols + col);
-  // Cell (i, j) of the total_width grid: i counts down from the top.
-  const int j = static_cast<int>(std::floor((p.x() - o.x()) / cell_)) + ring_;
-  const int i = static_cast<int>(std::floor((o.y() + target_.tag_size - p.y()) / cell_)) + ring_;
-  const TagCells& tag = cells_[static_cast<size_t>(row * target_.cols + col)];
-  if (i < 0 || j < 0 || i >= tag.total_width || j >= tag.total_width) return false;
-  return tag.IsBlack(i, j);
+  thread_local std::vector<int> near;
+  TagsNear(p, p, &near);
+  for (const int index : near) {
+    const Eigen::Vector2d& o = origins_[static_cast<size_t>(index)];
+    // Cell (i, j) of the total_width grid: i counts down from the top.
+    const int j = static_cast<int>(std::floor((p.x() - o.x()) / cell_)) + ring_;
+    const int i = static_cast<int>(std::floor((o.y() + target_.tag_size - p.y()) / cell_)) + ring_;
+    const TagCells& tag = cells_[static_cast<size_t>(index)];
+    if (i >= 0 && j >= 0 && i < tag.total_width && j < tag.total_width && tag.IsBlack(i, j)) return true;
+  }
+  return false;
 }
 
 double TargetPattern::BlackAreaInTag(const std::array<Eigen::Vector2d, 4>& quad, const Eigen::Vector2d& lo,
                                      const Eigen::Vector2d& hi, int index) const {
   const TagCells& tag = cells_[static_cast<size_t>(index)];
-  const Eigen::Vector2d o = target_.TagOrigin(index);
+  const Eigen::Vector2d& o = origins_[static_cast<size_t>(index)];
   const double top = o.y() + target_.tag_size + ring_ * cell_;  // y of the grid's top edge
   const double left = o.x() - ring_ * cell_;
   const int n = tag.total_width;
@@ -111,16 +149,10 @@ TargetPattern::Coverage TargetPattern::Cover(const std::array<Eigen::Vector2d, 4
   } else {
     coverage.sheet = std::min(1.0, ClippedArea(quad.data(), 4, sheet_min_, sheet_max_) / total);
   }
-  // Tags whose cell grid (black square plus white ring) can meet the box.
-  const double pitch = target_.Pitch(), reach = ring_ * cell_;
-  const int c0 = std::max(0, static_cast<int>(std::floor((lo.x() - target_.tag_size - reach) / pitch)) + 1);
-  const int c1 = std::min(target_.cols - 1, static_cast<int>(std::floor((hi.x() + reach) / pitch)));
-  const int r0 = std::max(0, static_cast<int>(std::floor((lo.y() - target_.tag_size - reach) / pitch)) + 1);
-  const int r1 = std::min(target_.rows - 1, static_cast<int>(std::floor((hi.y() + reach) / pitch)));
+  thread_local std::vector<int> near;
+  TagsNear(lo, hi, &near);
   double black = 0;
-  for (int row = r0; row <= r1; ++row) {
-    for (int col = c0; col <= c1; ++col) black += BlackAreaInTag(quad, lo, hi, row * target_.cols + col);
-  }
+  for (const int index : near) black += BlackAreaInTag(quad, lo, hi, index);
   coverage.black = std::min(coverage.sheet, black / total);
   return coverage;
 }

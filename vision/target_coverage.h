@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "vision/tag_family.h"
@@ -37,12 +38,22 @@ class TargetPattern {
   // Black area of `quad` (already known to intersect tag `index`'s cells).
   double BlackAreaInTag(const std::array<Eigen::Vector2d, 4>& quad, const Eigen::Vector2d& lo,
                         const Eigen::Vector2d& hi, int index) const;
+  // Indices, ascending, of the tags whose cell grid (black square and white
+  // ring) may meet the box [lo, hi].
+  void TagsNear(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, std::vector<int>* indices) const;
 
   Target target_;
   std::vector<TagCells> cells_;
+  std::vector<Eigen::Vector2d> origins_;  // by tag index
   double cell_ = 0;  // cell edge, length unit
   int ring_ = 0;     // cells between the total_width grid's edge and the black square
   Eigen::Vector2d sheet_min_, sheet_max_;
+  // Buckets of bucket_size_ squares from bucket_min_, row-major: the tags
+  // whose cell grid meets each, so that a lookup is quick for any layout.
+  Eigen::Vector2d bucket_min_;
+  double bucket_size_ = 1;
+  int bucket_cols_ = 0, bucket_rows_ = 0;
+  std::vector<std::vector<int>> buckets_;
 };
 
 // Area of the part of `polygon` inside [lo, hi] (Sutherland–Hodgman clip).

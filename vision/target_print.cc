@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "core/csv.h"
 #include "vision/tag_family.h"
 
 namespace hexcal {
@@ -58,8 +59,10 @@ void DrawTarget(const Target& target, double x0, double y0, Canvas& canvas) {
   const double mm = MmPerUnit(target);
   const double cell = target.tag_size / target.WidthAtBorder() * mm;
   const int ring = 1;  // the white ring of TagCells around the black square
-  const double origin_x = x0 + target.margin * mm, origin_y = y0 + kCaptionMm + target.margin * mm;
-  const std::vector<TagCells> tags = TagCellsOf(target.family, target.first_id, target.NumTags(), target.border_bits);
+  // The target frame's origin on the page: the sheet starts a margin before the tags.
+  const double origin_x = x0 + (target.margin - target.TagsMin().x()) * mm;
+  const double origin_y = y0 + kCaptionMm + (target.margin - target.TagsMin().y()) * mm;
+  const std::vector<TagCells> tags = TagCellsOf(target.family, target.TagIds(), target.border_bits);
   for (int index = 0; index < target.NumTags(); ++index) {
     const Eigen::Vector2d o = target.TagOrigin(index) * mm;
     const TagCells& tag = tags[static_cast<size_t>(index)];
@@ -237,6 +240,20 @@ std::string WithResolution(const std::string& png, double dpi) {
   return png.substr(0, kAfterHeader) + chunk + png.substr(kAfterHeader);
 }
 
+// Where the target frame's origin is on the print.
+std::string OriginCaption(const Target& target) {
+  if (target.Layout() == TargetLayout::kTagList) {
+    const Eigen::Vector2d o = target.TagOrigin(0);
+    return "tag " + std::to_string(target.TagId(0)) + "'s bottom-left corner at x " + FormatNumber(o.x()) + ", y " +
+           FormatNumber(o.y()) + " " + LengthUnitName(target.length_unit);
+  }
+  // A grid's index 0 is the bottom-left cell's tag, if that cell has one.
+  if (target.NumTags() > 0 && target.TagOrigin(0).isZero()) {
+    return "origin at the outer bottom-left corner of tag " + std::to_string(target.TagId(0));
+  }
+  return "origin at the bottom-left corner of the grid's bottom-left cell (no tag there)";
+}
+
 }  // namespace
 
 std::vector<std::string> TargetPrintCaption(const Target& target) {
@@ -248,8 +265,7 @@ std::vector<std::string> TargetPrintCaption(const Target& target) {
   return {"hexcal target: " + DescribeTarget(target),
           "Print at 100 % (no scaling, no fit to page). Check: the bar is 100 mm, a tag's black square " + size.str() +
               " mm.",
-          "Target frame: origin at the outer bottom-left corner of tag " + std::to_string(target.first_id) +
-              ", x to the right, y up, z out of the page."};
+          "Target frame: " + OriginCaption(target) + ", x to the right, y up, z out of the page."};
 }
 
 std::string TargetPdf(const Target& target) {

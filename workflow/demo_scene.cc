@@ -59,7 +59,8 @@ DemoScene MakeDemoScene(const Robot& nominal, const Camera& camera, const Target
   scene.base_from_camera = PoseFromVector(camera_vector, EulerConvention::kXYZ);
 
   const double target_scale = MetresPerUnit(target.length_unit) / unit;
-  const Eigen::Vector3d target_centre(target.Width() / 2 * target_scale, target.Height() / 2 * target_scale, 0);
+  const Eigen::Vector2d middle = target.TagsMin() + 0.5 * Eigen::Vector2d(target.Width(), target.Height());
+  const Eigen::Vector3d target_centre(middle.x() * target_scale, middle.y() * target_scale, 0);
   Vector6d turn;
   turn << 0, 0, 0.005 / unit, 0, 0, 5.0;
   Pose to_centre;

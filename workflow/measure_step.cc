@@ -19,7 +19,8 @@ std::string DiagnoseBoardFits(const std::map<std::string, int>& counts) {
   return std::to_string(high) + " of " + std::to_string(with_board) +
          " images that show the board fit it badly (reprojection RMS over the limit): a systematic error, not bad "
          "images. Check that the target file describes the board as printed (rows, cols, tag_size and its "
-         "length_unit, tag_spacing, first_id, border_bits) and that the camera file is this camera's, at this "
+         "length_unit, tag_spacing, first_id or its ids or tags, border_bits) and that the camera file is this "
+         "camera's, at this "
          "resolution and with a model that fits its lens";
 }
 

@@ -18,19 +18,48 @@ struct TargetOptions {
   bool force = false, json = false;
 };
 
+const char* LayoutName(TargetLayout layout) {
+  switch (layout) {
+    case TargetLayout::kGrid:
+      return "grid";
+    case TargetLayout::kIdMatrix:
+      return "id_matrix";
+    case TargetLayout::kTagList:
+      break;
+  }
+  return "tag_list";
+}
+
+// The grid's keys always; null where the layout has no such thing, and
+// `tags: [{id, x, y}]` for a layout that is not a plain grid.
 nlohmann::json TargetJson(const Target& target) {
-  return {{"family", target.family},
-          {"rows", target.rows},
-          {"cols", target.cols},
-          {"tag_size", target.tag_size},
-          {"tag_spacing", target.tag_spacing},
-          {"gap", target.Gap()},
-          {"first_id", target.first_id},
-          {"length_unit", LengthUnitName(target.length_unit)},
-          {"margin", target.margin},
-          {"border_bits", target.border_bits},
-          {"width", target.Width()},
-          {"height", target.Height()}};
+  const TargetLayout layout = target.Layout();
+  const bool list = layout == TargetLayout::kTagList;
+  const auto grid_only = [&](auto value) { return list ? nlohmann::json() : nlohmann::json(value); };
+  nlohmann::json json = {
+      {"family", target.family},
+      {"layout", LayoutName(layout)},
+      {"rows", grid_only(target.rows)},
+      {"cols", grid_only(target.cols)},
+      {"tag_size", target.tag_size},
+      {"tag_spacing", grid_only(target.tag_spacing)},
+      {"gap", grid_only(target.Gap())},
+      {"first_id", layout == TargetLayout::kGrid ? nlohmann::json(target.first_id) : nlohmann::json()},
+      {"num_tags", target.NumTags()},
+      {"length_unit", LengthUnitName(target.length_unit)},
+      {"margin", target.margin},
+      {"border_bits", target.border_bits},
+      {"width", target.Width()},
+      {"height", target.Height()}};
+  if (layout != TargetLayout::kGrid) {
+    nlohmann::json tags = nlohmann::json::array();
+    for (int index = 0; index < target.NumTags(); ++index) {
+      const Eigen::Vector2d origin = target.TagOrigin(index);
+      tags.push_back({{"id", target.TagId(index)}, {"x", origin.x()}, {"y", origin.y()}});
+    }
+    json["tags"] = tags;
+  }
+  return json;
 }
 
 int RunTargetCheck(const TargetOptions& options, std::ostream& out, std::ostream& err) {
@@ -63,7 +92,7 @@ int RunTargetPrint(const TargetOptions& options, std::ostream& out, std::ostream
 }  // namespace
 
 void AddTargetCommand(CLI::App& app, int* exit_code) {
-  CLI::App* target = app.add_subcommand("target", "check or print an AprilTag grid target");
+  CLI::App* target = app.add_subcommand("target", "check or print an AprilTag target (grid, id matrix or tag list)");
   target->require_subcommand(1);
 
   auto check = std::make_shared<TargetOptions>();
