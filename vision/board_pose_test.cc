@@ -48,14 +48,6 @@ double Median(std::vector<double> values) {
   return values[values.size() / 2];
 }
 
-Camera FisheyeCamera() {
-  Camera camera = SimulatedCamera();
-  camera.model = CameraModel::kPinholeEqui;
-  camera.fx = 520.4;
-  camera.fy = 519.8;
-  camera.distortion = {0.05, -0.02, 0.004, -0.0005};
-  return camera;
-}
 
 TEST(BoardPoseTest, RotationExpAndLogAreInverse) {
   for (int i = 0; i < 100; ++i) {
@@ -91,7 +83,7 @@ TEST(BoardPoseTest, EveryCameraModelFindsThePose) {
   rational.model = CameraModel::kRational;
   rational.distortion = {0.4, -0.1, 0.0004, -0.0003, 0.02, 0.68, 0.02, 0.01};
   const Target target = DefaultTarget();
-  for (const Camera& camera : {rational, FisheyeCamera()}) {
+  for (const Camera& camera : {rational, SimulatedFisheyeCamera()}) {
     const double distance = camera.model == CameraModel::kPinholeEqui ? 250 : 500;
     for (const Pose& truth : RandomViewPoses(target, 30, distance, 2 * distance, 45, 30, 0.6, 5)) {
       const BoardPose pose = EstimateBoardPose(camera, Synthetic(camera, target, truth, AllIds(target), 0.1), {});
@@ -163,7 +155,7 @@ TEST(BoardPoseTest, RecoversRenderedPosesAtHalfAMetre) {
 // What `measure` does with a fisheye: detection with the edge fit in its
 // undistorted image, then the pose; rendered views up to ~50° off the axis.
 TEST(BoardPoseTest, RecoversRenderedPosesThroughAFisheye) {
-  const Camera camera = FisheyeCamera();
+  const Camera camera = SimulatedFisheyeCamera();
   const Target target = DefaultTarget();
   const Renderer renderer(camera, target, RenderOptions{});
   std::unique_ptr<TagDetector> detector =

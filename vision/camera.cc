@@ -274,4 +274,13 @@ Camera SimulatedCamera() {
   return camera;
 }
 
+Camera SimulatedFisheyeCamera() {
+  Camera camera = SimulatedCamera();
+  camera.model = CameraModel::kPinholeEqui;
+  camera.fx = 520.4;
+  camera.fy = 519.8;
+  camera.distortion = {0.05, -0.02, 0.004, -0.0005};
+  return camera;
+}
+
 }  // namespace hexcal

@@ -139,5 +139,8 @@ StatusOr<Camera> LoadCamera(const std::string& path_or_name);
 // Also resources/cameras/sim-4.2mm-1024x768.yaml.
 Camera SimulatedCamera();
 constexpr const char* kSimulatedCameraName = "sim-4.2mm-1024x768";
+// The tests' fisheye: the same 1024 × 768 sensor and principal point behind an
+// equidistant lens (f ≈ 520 px) that sees 70° off axis in the image corners.
+Camera SimulatedFisheyeCamera();
 
 }  // namespace hexcal

@@ -22,16 +22,6 @@ Camera RationalCamera() {
   return camera;
 }
 
-// A 1024 x 768 fisheye seeing 70° off axis in the image corners.
-Camera FisheyeCamera() {
-  Camera camera = SimulatedCamera();
-  camera.model = CameraModel::kPinholeEqui;
-  camera.fx = 520.4;
-  camera.fy = 519.8;
-  camera.distortion = {0.05, -0.02, 0.004, -0.0005};
-  return camera;
-}
-
 // Points in front of the camera up to `max_angle_deg` off its axis.
 std::vector<cv::Point3d> RandomRays(int count, double max_angle_deg) {
   std::vector<cv::Point3d> points;
@@ -64,10 +54,11 @@ TEST(CameraTest, ModelNamesAndCoefficientCounts) {
   EXPECT_FALSE(CameraModelFromName("omni").has_value());
   EXPECT_EQ(SimulatedCamera().DistortionCoefficients().size(), cv::Size(5, 1));
   EXPECT_EQ(RationalCamera().DistortionCoefficients().size(), cv::Size(8, 1));
-  EXPECT_EQ(FisheyeCamera().DistortionCoefficients().size(), cv::Size(4, 1));
-  EXPECT_THAT(FisheyeCamera().ParameterNames(), ::testing::ElementsAre("fx", "fy", "cx", "cy", "k1", "k2", "k3", "k4"));
+  EXPECT_EQ(SimulatedFisheyeCamera().DistortionCoefficients().size(), cv::Size(4, 1));
+  EXPECT_THAT(SimulatedFisheyeCamera().ParameterNames(),
+              ::testing::ElementsAre("fx", "fy", "cx", "cy", "k1", "k2", "k3", "k4"));
   EXPECT_EQ(RationalCamera().ParameterValues().size(), 12u);
-  Camera unused = FisheyeCamera();
+  Camera unused = SimulatedFisheyeCamera();
   unused.distortion[4] = 0.1;
   EXPECT_THAT(unused.Validate().message(), HasSubstr("coefficient 5 is not 0; the pinhole-equi model has 4"));
 }
@@ -111,7 +102,7 @@ TEST(CameraTest, RationalModelMatchesOpenCvAndInverts) {
 }
 
 TEST(CameraTest, FisheyeMatchesOpenCvFisheye) {
-  const Camera camera = FisheyeCamera();
+  const Camera camera = SimulatedFisheyeCamera();
   const std::vector<cv::Point3d> points = RandomRays(300, 80);
   std::vector<cv::Point2d> projected;
   cv::fisheye::projectPoints(points, projected, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0),
@@ -131,7 +122,7 @@ TEST(CameraTest, FisheyeMatchesOpenCvFisheye) {
 }
 
 TEST(CameraTest, FisheyeUndistortsNearTheAxisAndAtWideAngles) {
-  Camera camera = FisheyeCamera();
+  Camera camera = SimulatedFisheyeCamera();
   // On the axis and a hair off it.
   EXPECT_TRUE(testing::MatrixNear(*camera.Undistort({camera.cx, camera.cy}), Eigen::Vector2d(0, 0), 0));
   for (double offset : {1e-12, 1e-7, 1e-3}) {
@@ -163,7 +154,7 @@ TEST(CameraTest, FisheyeUndistortsNearTheAxisAndAtWideAngles) {
 }
 
 TEST(CameraTest, IdealPixelMapMatchesIdealPixel) {
-  for (const Camera& camera : {SimulatedCamera(), RationalCamera(), FisheyeCamera()}) {
+  for (const Camera& camera : {SimulatedCamera(), RationalCamera(), SimulatedFisheyeCamera()}) {
     const IdealPixelMap map(camera);
     for (const auto& [u, v] : {std::pair{0, 0}, std::pair{1023, 767}, std::pair{500, 400}, std::pair{17, 700}}) {
       const Eigen::Vector2d expected = *camera.IdealPixel(Eigen::Vector2d(u, v));

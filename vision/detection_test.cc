@@ -110,7 +110,9 @@ TEST_F(DetectionTest, TwoCellBordersDecodeWithTheirCornersInOrder) {
     // (where rows happen to repeat) the right one at the right place.
     const Detections wrong = one_cell->Detect(view.image);
     EXPECT_LT(wrong.tags.size(), 36u);
-    if (!wrong.tags.empty()) EXPECT_LT(Compare(wrong, view).rms, 0.5);
+    if (!wrong.tags.empty()) {
+      EXPECT_LT(Compare(wrong, view).rms, 0.5);
+    }
   }
 }
 

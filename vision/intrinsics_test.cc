@@ -85,11 +85,7 @@ TEST(IntrinsicsTest, CompareHalvesSeesADifferentCamera) {
 // A 1024 x 768 fisheye (70° off axis in the image corners), calibrated with
 // cv::fisheye from rendered views (docs/vision.md#camera-models).
 TEST(IntrinsicsTest, FisheyeFromRenderedViewsRecoversTheFocalLengthsAndCentre) {
-  Camera truth = SimulatedCamera();
-  truth.model = CameraModel::kPinholeEqui;
-  truth.fx = 520.4;
-  truth.fy = 519.8;
-  truth.distortion = {0.05, -0.02, 0.004, -0.0005};
+  const Camera truth = SimulatedFisheyeCamera();
   const Target target = DefaultTarget();
   const Renderer renderer(truth, target, RenderOptions{});
   std::vector<cv::Mat> images;
