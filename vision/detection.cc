@@ -39,8 +39,18 @@ struct TagDetector::Impl {
     }
   }
 
-  DetectionsPtr RunLibrary(const cv::Mat& gray) {
+  // Made on first use: only benchmarks call it.
+  DetectionsPtr RunLibrary(const cv::Mat& gray, const DetectorOptions& options) {
     CV_Assert(gray.type() == CV_8UC1);
+    if (!detector) {
+      family = CreateAprilTagFamily(options.family);
+      detector = apriltag_detector_create();
+      apriltag_detector_add_family_bits(detector, family.get(), std::max(1, options.max_hamming));
+      detector->quad_decimate = 1;
+      detector->quad_sigma = static_cast<float>(options.quad_sigma);
+      detector->nthreads = options.threads;
+      detector->refine_edges = 1;
+    }
     // The library reads rows through `stride`; a cv::Mat row step is one.
     image_u8_t image{gray.cols, gray.rows, static_cast<int32_t>(gray.step[0]), const_cast<uint8_t*>(gray.data)};
     return DetectionsPtr(apriltag_detector_detect(detector, &image));
@@ -74,13 +84,6 @@ StatusOr<std::unique_ptr<TagDetector>> TagDetector::Create(const DetectorOptions
   impl->quads = std::move(*quads);
   impl->codebook = std::move(*codebook);
   impl->ideal = std::move(ideal);
-  impl->family = CreateAprilTagFamily(options.family);
-  impl->detector = apriltag_detector_create();
-  apriltag_detector_add_family_bits(impl->detector, impl->family.get(), std::max(1, options.max_hamming));
-  impl->detector->quad_decimate = 1;
-  impl->detector->quad_sigma = static_cast<float>(options.quad_sigma);
-  impl->detector->nthreads = options.threads;
-  impl->detector->refine_edges = 1;
   return std::unique_ptr<TagDetector>(new TagDetector(options, std::move(impl)));
 }
 
@@ -89,7 +92,7 @@ TagDetector::TagDetector(const DetectorOptions& options, std::unique_ptr<Impl> i
 
 TagDetector::~TagDetector() = default;
 
-int TagDetector::DetectWithLibraryOnly(const cv::Mat& gray) { return zarray_size(impl_->RunLibrary(gray).get()); }
+int TagDetector::DetectWithLibraryOnly(const cv::Mat& gray) { return zarray_size(impl_->RunLibrary(gray, options_).get()); }
 
 namespace {
 

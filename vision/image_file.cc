@@ -40,27 +40,26 @@ Status CheckImageHeader(const ImageHeader& header, const std::string& source) {
 
 // Grey in the file's own depth: colour weighted, alpha over white.
 cv::Mat ToGrey(const cv::Mat& decoded) {
+  const int channels = decoded.channels();
+  if (channels == 1) return decoded;
   const double white = decoded.depth() == CV_8U ? 255 : decoded.depth() == CV_16U ? 65535 : 1;
-  std::vector<cv::Mat> planes;
-  cv::split(decoded, planes);
-  cv::Mat grey;
-  if (decoded.channels() >= 3) {
-    cv::Mat colour;
-    cv::merge(std::vector<cv::Mat>(planes.begin(), planes.begin() + 3), colour);
-    cv::cvtColor(colour, grey, cv::COLOR_BGR2GRAY);
+  cv::Mat grey, alpha;
+  if (channels == 2) {
+    cv::extractChannel(decoded, grey, 0);
   } else {
-    grey = planes[0];
+    cv::cvtColor(decoded, grey, channels == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
   }
-  double transparent = 0, opaque = 0;
-  if (decoded.channels() == 2 || decoded.channels() == 4) cv::minMaxLoc(planes.back(), &transparent, &opaque);
-  if ((decoded.channels() == 2 || decoded.channels() == 4) && transparent < white) {
-    cv::Mat g, alpha;
-    grey.convertTo(g, CV_32F);
-    planes.back().convertTo(alpha, CV_32F, 1.0 / white);
-    // grey · α + white · (1 − α)
-    cv::Mat composite = g.mul(alpha) + white * (1.0 - alpha);
-    composite.convertTo(grey, decoded.depth());
-  }
+  if (channels == 3) return grey;
+  cv::extractChannel(decoded, alpha, channels - 1);
+  double transparent = 0;
+  cv::minMaxLoc(alpha, &transparent);
+  if (transparent >= white) return grey;  // opaque everywhere
+  // grey · α + white · (1 − α)
+  cv::Mat g;
+  grey.convertTo(g, CV_32F);
+  alpha.convertTo(alpha, CV_32F, 1.0 / white);
+  cv::Mat composite = g.mul(alpha) + white * (1.0 - alpha);
+  composite.convertTo(grey, decoded.depth());
   return grey;
 }
 

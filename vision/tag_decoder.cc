@@ -68,6 +68,19 @@ class GreyModel {
   int count_ = 0;
 };
 
+// The bits read with the quad's corners taken one step further round
+// (corner k + 1 as corner k): data cell (i, j) of the new reading is cell
+// (d − 1 − j, i) of the old, d the data width.
+uint64_t QuarterTurn(uint64_t bits, int d) {
+  uint64_t turned = 0;
+  for (int row = 0; row < d; ++row) {
+    for (int col = 0; col < d; ++col) {
+      if (bits >> ((d - 1 - col) * d + row) & 1) turned |= uint64_t{1} << (row * d + col);
+    }
+  }
+  return turned;
+}
+
 double PlaneAt(const Eigen::Vector3d& plane, double x, double y) { return plane(0) + plane(1) * x + plane(2) * y; }
 
 // The black model from the border cells and the white one from the ring of
@@ -153,15 +166,19 @@ std::optional<TagCodebook::Reading> TagCodebook::Read(const cv::Mat& gray,
 
 std::optional<DecodedTag> TagCodebook::Decode(const cv::Mat& gray, const Quad& quad, int max_hamming) const {
   CV_Assert(gray.type() == CV_8UC1);
+  // The cells are read once, in the quad's own order; each rotation of the
+  // corners reads the same physical cells (the same homography up to a turn
+  // of the square), so its bits are a turn of these and its margin the same.
+  const std::optional<Reading> reading = Read(gray, quad.corners);
+  if (!reading) return std::nullopt;
   std::optional<DecodedTag> best;
-  for (int rotation = 0; rotation < 4; ++rotation) {
-    std::array<Eigen::Vector2d, 4> corners;
-    for (size_t k = 0; k < 4; ++k) corners[k] = quad.corners[(k + static_cast<size_t>(rotation)) % 4];
-    const std::optional<Reading> reading = Read(gray, corners);
-    if (!reading) return std::nullopt;  // the same cells in every rotation
+  uint64_t bits = reading->bits;
+  for (int rotation = 0; rotation < 4; ++rotation, bits = QuarterTurn(bits, data_width_)) {
     for (size_t id = 0; id < codes_.size(); ++id) {
-      const int hamming = __builtin_popcountll(reading->bits ^ codes_[id]);
+      const int hamming = __builtin_popcountll(bits ^ codes_[id]);
       if (hamming > max_hamming || (best && hamming >= best->hamming)) continue;
+      std::array<Eigen::Vector2d, 4> corners;
+      for (size_t k = 0; k < 4; ++k) corners[k] = quad.corners[(k + static_cast<size_t>(rotation)) % 4];
       best = DecodedTag{static_cast<int>(id), hamming, reading->decision_margin, corners};
     }
   }
