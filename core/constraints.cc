@@ -94,13 +94,14 @@ ConstraintReport EvaluateConstraints(const Robot& robot, const Pose& pose) {
   return report;
 }
 
+bool WithinStroke(const Leg& leg, double reading) {
+  return reading >= leg.stroke_min - kFeasibilityTolerance && reading <= leg.stroke_max + kFeasibilityTolerance;
+}
+
 bool IsFeasible(const Robot& robot, const Pose& pose) {
   // Strokes first: in a pose box most rejected poses fail here, at the cost of IK.
   for (const Leg& leg : robot.legs) {
-    const double reading = LegVector(leg, pose).norm() - leg.offset;
-    if (!(reading >= leg.stroke_min - kFeasibilityTolerance && reading <= leg.stroke_max + kFeasibilityTolerance)) {
-      return false;
-    }
+    if (!WithinStroke(leg, LegVector(leg, pose).norm() - leg.offset)) return false;
   }
   bool feasible = true;
   VisitConstraints(robot, pose, [&](ConstraintKind, int, int, double margin) {

@@ -28,6 +28,10 @@ struct ConstraintMargin {
 // count as satisfied.
 constexpr double kFeasibilityTolerance = 1e-9;
 
+// A reading inside [stroke_min, stroke_max] within kFeasibilityTolerance: the
+// one stroke test of the planner, the status and the GUI's 3D view.
+bool WithinStroke(const Leg& leg, double reading);
+
 struct ConstraintReport {
   std::vector<ConstraintMargin> margins;
   bool feasible = true;

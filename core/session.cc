@@ -164,8 +164,16 @@ StatusOr<SessionConfig> LoadSessionConfig(const std::string& dir) {
   return config;
 }
 
+// What to do about readings that are missing, said the same in every message.
+constexpr const char* kEnterReadings =
+    "enter the six leg readings of each image (the GUI's readings table, `hexcal session record`, or a CSV "
+    "image,L1..L6 imported)";
+
 StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir) {
   const SessionPaths paths(dir);
+  std::error_code missing;
+  if (!fs::exists(fs::symlink_status(paths.legs, missing)))
+    return Status::Error(paths.legs + ": no readings yet: " + kEnterReadings);
   StatusOr<CsvTable> table = ReadCsv(paths.legs);
   if (!table.ok()) return table.status();
   StatusOr<int> image_column = ColumnIndex(*table, "image");
@@ -203,7 +211,8 @@ StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir) {
   }
   for (const std::string& image : images) {
     if (seen.count(image) == 0)
-      return Status::Error((fs::path(paths.images) / image).string() + ": no row in " + paths.legs);
+      return Status::Error((fs::path(paths.images) / image).string() + ": no row in " + paths.legs + ": " +
+                           kEnterReadings);
   }
   return rows;
 }

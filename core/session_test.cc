@@ -101,6 +101,13 @@ TEST(Session, LegsErrorsNameTheFileAndLine) {
               HasSubstr("legs.csv:3: image 'a.png' has a second row"));
   EXPECT_THAT(LegsError(dir, "image,L1,L2,L3,L4,L5,L6,holdout\na.png,1,2,3,4,5,6,2\n"),
               HasSubstr("legs.csv:2: column 'holdout': '2' is not 0 or 1"));
+  // Missing readings say how to enter them.
+  EXPECT_THAT(LegsError(dir, header + "a.png,1,2,3,4,5,6\nb.png,1,2,3,4,5,6\n"),
+              HasSubstr("enter the six leg readings of each image"));
+  std::filesystem::remove(dir + "/legs.csv");
+  StatusOr<std::vector<LegsRow>> none = LoadSessionLegs(dir);
+  ASSERT_FALSE(none.ok());
+  EXPECT_THAT(none.status().message(), HasSubstr("legs.csv: no readings yet: enter the six leg readings"));
 }
 
 std::string ConfigError(const std::string& dir, const std::string& yaml) {

@@ -21,6 +21,7 @@ BackgroundJob::~BackgroundJob() {
 bool BackgroundJob::Start(const QString& what, JobWork work) {
   if (thread_) return false;
   cancel_ = false;
+  abandoned_ = false;
   what_ = what;
   // The continuation is made on the worker and run on the GUI thread; a
   // shared_ptr hands it over without copying the result twice.
@@ -39,7 +40,7 @@ bool BackgroundJob::Start(const QString& what, JobWork work) {
   connect(thread_, &QThread::finished, this, [this, continuation] {
     thread_->deleteLater();
     thread_ = nullptr;
-    if (*continuation) (*continuation)();
+    if (*continuation && !abandoned_) (*continuation)();
     emit Finished();
   });
   emit Started(what);
@@ -48,5 +49,11 @@ bool BackgroundJob::Start(const QString& what, JobWork work) {
 }
 
 void BackgroundJob::Cancel() { cancel_ = true; }
+
+void BackgroundJob::Abandon() {
+  if (!thread_) return;
+  cancel_ = true;
+  abandoned_ = true;
+}
 
 }  // namespace hexcal::ui

@@ -43,7 +43,11 @@ class BackgroundJob : public QObject {
   // False if a job is already running.
   bool Start(const QString& what, JobWork work);
   void Cancel();
+  // Cancels the job and drops what it would show: its continuation is not
+  // run (the session it worked on is no longer open). Finished still comes.
+  void Abandon();
   bool CancelRequested() const { return cancel_.load(); }
+  bool Abandoned() const { return abandoned_; }
 
  signals:
   void Progress(int done, int total, const QString& what);
@@ -53,6 +57,7 @@ class BackgroundJob : public QObject {
  private:
   QThread* thread_ = nullptr;
   std::atomic<bool> cancel_{false};
+  bool abandoned_ = false;
   QString what_;
 };
 

@@ -82,7 +82,18 @@ CalibratePanel::CalibratePanel(SessionState* session, QWidget* parent)
   layout->addWidget(status_);
   layout->addWidget(summary_);
   layout->addWidget(splitter, 1);
+  connect(job_, &BackgroundJob::Finished, this, [this] {
+    run_->setEnabled(true);
+    cancel_->setEnabled(false);
+  });
+  connect(session_, &SessionState::Switched, this, &CalibratePanel::ResetForSession);
   connect(session_, &SessionState::Changed, this, &CalibratePanel::Refresh);
+}
+
+void CalibratePanel::ResetForSession() {
+  job_->Abandon();
+  progress_->reset();
+  SetOutcome("Record images and readings (Measure), then calibrate.");
 }
 
 void CalibratePanel::SetOutcome(const QString& text) {
@@ -113,8 +124,6 @@ void CalibratePanel::Run() {
 }
 
 void CalibratePanel::Finish(const Status& status, const QString& report) {
-  run_->setEnabled(true);
-  cancel_->setEnabled(false);
   if (status.cancelled()) {
     SetOutcome("cancelled: results/ is unchanged.");
   } else if (!status.ok()) {
@@ -179,7 +188,10 @@ void CalibratePanel::FillParameterTable(const std::vector<workflow::ParameterEst
   parameters_->setSortingEnabled(true);
 }
 
+// Only from results/ that loaded whole: a half-written or mixed results/ shows no chart.
 void CalibratePanel::PlotResiduals() {
+  if (!session_->Results().ok())
+    return ShowChart(residuals_, charts::CalibrationResidualsChart(session_->NominalRobot(), session_->NominalRobot(), {}));
   StatusOr<std::vector<Measurement>> rows = LoadMeasurements(ResultsFile(*session_, "calibration_measurements.csv"));
   StatusOr<Robot> calibrated = LoadRobot(ResultsFile(*session_, "calibrated.yaml"));
   const Robot& robot = session_->NominalRobot();

@@ -37,6 +37,8 @@ class CalibratePanel : public QWidget {
  public slots:
   void Run();
   void Refresh();
+  // Another session was opened: no outcome or progress of the last one.
+  void ResetForSession();
 
  private:
   void Finish(const Status& status, const QString& report);

@@ -14,6 +14,7 @@
 #include "ui/background_job.h"
 #include "ui/calibrate_panel.h"
 #include "ui/error_dialog.h"
+#include "ui/help_browser.h"
 #include "ui/measure_panel.h"
 #include "ui/new_session_dialog.h"
 #include "ui/plan_panel.h"
@@ -74,6 +75,7 @@ void MainWindow::BuildMenus() {
     view->addAction(
         StepName(static_cast<Step>(k)), this, [this, k] { ShowStep(static_cast<Step>(k)); },
         QKeySequence(Qt::CTRL + Qt::Key_1 + k));
+  AddHelpMenu(menuBar(), this);
   FillRecentMenu();
 }
 

@@ -19,6 +19,8 @@
 #include "ui/background_job.h"
 #include "ui/error_dialog.h"
 #include "ui/image_overlay.h"
+#include "ui/image_view.h"
+#include "ui/quantity_format.h"
 #include "workflow/measure_step.h"
 #include "workflow/session_measure.h"
 #include "vision/measure.h"
@@ -35,9 +37,8 @@ std::map<QString, QString> MeasuredStatus(const SessionPaths& paths) {
   if (!table.ok()) return status;
   for (const auto& row : table->rows)
     if (row.size() >= 16)
-      status[QString::fromStdString(row[0])] = QString::fromStdString(row[15]) + ", RMS " +
-                                               QString::number(QString::fromStdString(row[13]).toDouble(), 'f', 3) +
-                                               " px";
+      status[QString::fromStdString(row[0])] =
+          QString::fromStdString(row[15]) + ", RMS " + FormatPixels(QString::fromStdString(row[13]).toDouble());
   return status;
 }
 
@@ -48,20 +49,17 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
   images_ = new QListWidget;
   images_->setObjectName("image_list");
   // File names are shown as they are, never as HTML.
-  picture_ = new QLabel("Select an image to see its detection.");
-  picture_->setTextFormat(Qt::PlainText);
-  picture_->setAlignment(Qt::AlignCenter);
-  picture_->setMinimumSize(320, 240);
-  picture_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Ignored);
+  picture_ = new ImageView;
+  picture_->setObjectName("image_view");
+  picture_->SetMessage("Select an image to see its detection.");
   picture_info_ = new QLabel;
   picture_info_->setTextFormat(Qt::PlainText);
   picture_info_->setObjectName("image_status");
-  legs_ = new QTableWidget(0, 8);
-  legs_->setObjectName("legs_table");
-  legs_->setHorizontalHeaderLabels({"image", "L1", "L2", "L3", "L4", "L5", "L6", "holdout (0/1)"});
-  legs_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
-  legs_->setToolTip("Leg readings at each image (robot unit). Edit a cell: legs.csv is saved at once. "
-                    "holdout 1 keeps the image out of the calibration to validate it.");
+  legs_ = new ReadingsEditor(session_);
+  readings_hint_ = new QLabel;
+  readings_hint_->setTextFormat(Qt::PlainText);
+  readings_hint_->setWordWrap(true);
+  readings_hint_->setObjectName("readings_hint");
   progress_ = new QProgressBar;
   status_ = new QLabel;
   status_->setTextFormat(Qt::PlainText);
@@ -117,7 +115,7 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
     pending_row_ = -1;
     ShowImage(row);
   });
-  connect(legs_, &QTableWidget::cellChanged, this, &MeasurePanel::OnLegEdited);
+  connect(legs_, &ReadingsEditor::Note, status_, &QLabel::setText);
 
   auto* left = new QWidget;
   auto* left_layout = new QVBoxLayout(left);
@@ -137,11 +135,30 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
   top->setStretchFactor(1, 3);
   auto* vertical = new QSplitter(Qt::Vertical);
   vertical->addWidget(top);
-  vertical->addWidget(legs_);
+  auto* readings = new QWidget;
+  auto* readings_layout = new QVBoxLayout(readings);
+  readings_layout->setContentsMargins(0, 0, 0, 0);
+  readings_layout->addWidget(readings_hint_);
+  readings_layout->addWidget(legs_, 1);
+  vertical->addWidget(readings);
   vertical->setStretchFactor(0, 3);
   auto* layout = new QVBoxLayout(this);
   layout->addWidget(vertical);
+  connect(session_, &SessionState::Switched, this, &MeasurePanel::ResetForSession);
   connect(session_, &SessionState::Changed, this, &MeasurePanel::Refresh);
+}
+
+void MeasurePanel::ResetForSession() {
+  job_->Abandon();
+  preview_->Abandon();
+  pending_row_ = -1;
+  shown_status_.clear();
+  picture_->SetMessage("Select an image to see its detection.");
+  picture_info_->clear();
+  status_->clear();
+  report_->clear();
+  progress_->reset();
+  images_->clear();  // Refresh then shows the new session's first image
 }
 
 void MeasurePanel::Refresh() {
@@ -161,41 +178,14 @@ void MeasurePanel::Refresh() {
   // Keep the selection; show the first image when there was none.
   if (images_->count() > 0) images_->setCurrentRow(current >= 0 && current < images_->count() ? current : 0);
   if (!session_->LegsError().isEmpty()) status_->setText("legs.csv: " + session_->LegsError());
-  FillLegsTable();
-}
-
-void MeasurePanel::FillLegsTable() {
-  filling_ = true;
-  const std::vector<LegsRow>& rows = session_->Legs();
-  legs_->setRowCount(static_cast<int>(rows.size()));
-  for (int r = 0; r < static_cast<int>(rows.size()); ++r) {
-    auto* image = new QTableWidgetItem(QString::fromStdString(rows[r].image));
-    image->setFlags(image->flags() & ~Qt::ItemIsEditable);
-    legs_->setItem(r, 0, image);
-    for (int i = 0; i < kNumLegs; ++i)
-      legs_->setItem(r, 1 + i, new QTableWidgetItem(QString::number(rows[r].legs[i], 'g', 10)));
-    legs_->setItem(r, 7, new QTableWidgetItem(rows[r].holdout ? "1" : "0"));
-  }
-  filling_ = false;
-}
-
-void MeasurePanel::OnLegEdited(int row, int column) {
-  if (filling_ || column == 0) return;
-  const std::vector<LegsRow>& rows = session_->Legs();
-  bool number = false;
-  const double value = legs_->item(row, column)->text().toDouble(&number);
-  if (!number || (column == 7 && value != 0 && value != 1) || row >= static_cast<int>(rows.size())) {
-    FillLegsTable();
-    return ShowError(this, "Leg readings",
-                     column == 7 ? "holdout is 0 or 1." : "A reading is a number in the robot unit.");
-  }
-  // The edit goes to legs.csv as it is on disk, checked against the value shown.
-  const LegsRow& shown = rows[row];
-  const workflow::LegsEdit edit = column == 7 ? workflow::LegsEdit::SetHoldout(shown.image, shown.holdout, value == 1)
-                                              : workflow::LegsEdit::SetReading(shown.image, column - 1,
-                                                                               shown.legs[column - 1], value);
-  if (!ApplySessionEdit(this, "Leg readings", [&](bool overwrite) { return session_->EditLegs(edit, overwrite); }))
-    FillLegsTable();  // the table shows the file again
+  legs_->Refill();
+  const int missing = legs_->MissingRows();
+  readings_hint_->setText(missing == 0 ? QString("Leg readings (robot unit, %1) of each image:")
+                                             .arg(LengthUnitName(session_->NominalRobot().length_unit))
+                                       : QString("%1 image(s) have no readings yet: type L1..L6 (%2) in their rows, "
+                                                 "or paste lines of six numbers with Ctrl+V.")
+                                             .arg(missing)
+                                             .arg(LengthUnitName(session_->NominalRobot().length_unit)));
 }
 
 void MeasurePanel::StartJob(const QString& what, JobWork work) {
@@ -227,14 +217,13 @@ void MeasurePanel::ShowImage(int row) {
   preview_->Start("detecting", [this, file, camera, target](const JobContext&) -> GuiContinuation {
     OverlayResult overlay = DetectAndDraw(file, camera, target);
     return [this, file, overlay] {
-      picture_->setPixmap(
-          QPixmap::fromImage(overlay.image).scaled(picture_->size(), Qt::KeepAspectRatio, Qt::SmoothTransformation));
+      picture_->SetImage(overlay.image);
       shown_status_ = overlay.status;
-      picture_info_->setText(QString("%1: %2 — %3 target tags, reprojection RMS %4 px  "
+      picture_info_->setText(QString("%1: %2 — %3 target tags, reprojection RMS %4  "
                                      "(green: detected tags and ids; red: the board reprojected)")
                                  .arg(QFileInfo(file).fileName(), overlay.status)
                                  .arg(overlay.tags)
-                                 .arg(overlay.rms_px, 0, 'f', 3));
+                                 .arg(FormatPixels(overlay.rms_px)));
     };
   });
 }

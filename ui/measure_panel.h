@@ -8,6 +8,7 @@
 #include <QWidget>
 
 #include "ui/background_job.h"
+#include "ui/readings_editor.h"
 #include "ui/session_state.h"
 
 class QLabel;
@@ -21,6 +22,7 @@ class QTableWidget;
 namespace hexcal::ui {
 
 class BackgroundJob;
+class ImageView;
 
 class MeasurePanel : public QWidget {
   Q_OBJECT
@@ -29,11 +31,14 @@ class MeasurePanel : public QWidget {
   BackgroundJob* Job() const { return job_; }
   BackgroundJob* PreviewJob() const { return preview_; }
   QListWidget* ImageList() const { return images_; }
-  QTableWidget* LegsTable() const { return legs_; }
+  ImageView* Picture() const { return picture_; }
+  ReadingsEditor* LegsTable() const { return legs_; }
   const QString& ShownStatus() const { return shown_status_; }
 
  public slots:
   void Refresh();
+  // Another session was opened: its first image, no texts of the last one.
+  void ResetForSession();
   void LoadImageFolder(const QString& folder = {});
   void ImportLegs(const QString& file = {});
   void MeasureAll();
@@ -42,8 +47,6 @@ class MeasurePanel : public QWidget {
   void ShowImage(int row);
 
  private:
-  void FillLegsTable();
-  void OnLegEdited(int row, int column);
   bool CameraAndTargetReady(const QString& step);
   void AskReadingsAndSave(const QString& image_name, const std::string& frame_file);
   void StartJob(const QString& what, JobWork work);
@@ -52,9 +55,10 @@ class MeasurePanel : public QWidget {
   BackgroundJob* job_;      // measuring, capture, intrinsics: one at a time
   BackgroundJob* preview_;  // the selected image's detection
   QListWidget* images_;
-  QLabel* picture_;
+  ImageView* picture_;
   QLabel* picture_info_;
-  QTableWidget* legs_;
+  ReadingsEditor* legs_;
+  QLabel* readings_hint_;
   QProgressBar* progress_;
   QLabel* status_;
   QPushButton* cancel_;
@@ -62,7 +66,6 @@ class MeasurePanel : public QWidget {
   QPlainTextEdit* report_;
   QString shown_status_;
   int pending_row_ = -1;  // picked while a detection ran
-  bool filling_ = false;
 };
 
 }  // namespace hexcal::ui

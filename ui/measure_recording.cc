@@ -22,6 +22,7 @@
 #include "ui/background_job.h"
 #include "ui/error_dialog.h"
 #include "ui/measure_panel.h"
+#include "ui/quantity_format.h"
 #include "vision/intrinsics.h"
 #include "vision/measure.h"
 #include "workflow/intrinsics_step.h"
@@ -158,10 +159,10 @@ void MeasurePanel::IntrinsicsFromFolder(const QString& chosen) {
           ShowError(this, "Intrinsics", Message(s) + "\nUse more views of the target, tilted and filling the image.");
       };
     const IntrinsicsResult* result = &outcome->result;
-    QString report = QString("%1 of %2 views used, RMS %3 px\nfx %4 fy %5 cx %6 cy %7")
+    QString report = QString("%1 of %2 views used, RMS %3\nfx %4 fy %5 cx %6 cy %7 (px)")
                          .arg(result->used_views)
                          .arg(result->views.size())
-                         .arg(result->rms_px, 0, 'f', 3)
+                         .arg(FormatPixels(result->rms_px))
                          .arg(result->camera.fx)
                          .arg(result->camera.fy)
                          .arg(result->camera.cx)
@@ -176,7 +177,7 @@ void MeasurePanel::IntrinsicsFromFolder(const QString& chosen) {
     for (const CalibrationView& view : result->views)
       report += QString("%1: %2\n")
                     .arg(QString::fromStdString(std::filesystem::path(view.file).filename().string()),
-                         view.used ? QString("RMS %1 px").arg(view.rms_px, 0, 'f', 3)
+                         view.used ? "RMS " + FormatPixels(view.rms_px)
                                    : "not used, " + QString::fromStdString(view.reason));
     return [this, report] {
       report_->setPlainText(report);

@@ -8,11 +8,15 @@ namespace hexcal::ui {
 
 PlanOptionsForm::PlanOptionsForm(QWidget* parent) : QWidget(parent) {
   auto* form = new QFormLayout(this);
-  workflow::PlanSetup defaults;
   // As `hexcal plan`, except a smaller candidate set so that a first run on
   // the workstation takes seconds.
-  defaults.candidate_count = 2000;
-  rows_ = AddOptionRows(form, workflow::PlanSetupOptions(), defaults);
+  defaults_.candidate_count = 2000;
+  rows_ = AddOptionRows(form, workflow::PlanSetupOptions(), defaults_);
+}
+
+void PlanOptionsForm::Reset() {
+  for (const OptionSpec<workflow::PlanSetup>& spec : workflow::PlanSetupOptions())
+    if (const auto row = rows_.find(spec.key); row != rows_.end()) row->second.set_text(OptionText(spec, defaults_));
 }
 
 void PlanOptionsForm::SetValue(const std::string& key, double value) { SetText(key, FormatNumber(value)); }

@@ -20,9 +20,12 @@ class PlanOptionsForm : public QWidget {
   // Sets one option by key (tests, presets): "poses", "candidate_count", ...
   void SetValue(const std::string& key, double value);
   void SetText(const std::string& key, const std::string& text);
+  // Every option back to its default (a new session).
+  void Reset();
 
  private:
   OptionRows rows_;
+  workflow::PlanSetup defaults_;
 };
 
 }  // namespace hexcal::ui

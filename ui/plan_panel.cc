@@ -25,6 +25,7 @@
 #include "core/session_lock.h"
 #include "ui/error_dialog.h"
 #include "ui/plan_options.h"
+#include "ui/plan_visibility.h"
 #include "workflow/plan_step.h"
 
 namespace hexcal::ui {
@@ -37,9 +38,6 @@ std::string HistoryPath(const SessionState& session) {
   return (std::filesystem::path(session.Dir().toStdString()) / "plan_history.csv").string();
 }
 
-PlanningModel ModelOf(const SessionState& session) {
-  return PlanningModel{session.NominalRobot(), session.Config().noise, std::nullopt};
-}
 
 QTableWidgetItem* NumberItem(double value, bool editable) {
   auto* item = new QTableWidgetItem;
@@ -52,7 +50,11 @@ QTableWidgetItem* NumberItem(double value, bool editable) {
 }  // namespace
 
 PlanPanel::PlanPanel(SessionState* session, QWidget* parent)
-    : QWidget(parent), session_(session), options_(new PlanOptionsForm), job_(new BackgroundJob(this)) {
+    : QWidget(parent),
+      session_(session),
+      options_(new PlanOptionsForm),
+      visibility_(new VisibilityForm(session)),
+      job_(new BackgroundJob(this)) {
   run_ = new QPushButton("Run planner");
   run_->setObjectName("plan_run");
   cancel_ = new QPushButton("Cancel");
@@ -78,6 +80,7 @@ PlanPanel::PlanPanel(SessionState* session, QWidget* parent)
   auto* left = new QWidget;
   auto* left_layout = new QVBoxLayout(left);
   left_layout->addWidget(scroll, 1);
+  left_layout->addWidget(visibility_);
   auto* buttons = new QHBoxLayout;
   buttons->addWidget(run_);
   buttons->addWidget(cancel_);
@@ -127,7 +130,28 @@ PlanPanel::PlanPanel(SessionState* session, QWidget* parent)
   splitter->setSizes({330, 1050});
   auto* layout = new QVBoxLayout(this);
   layout->addWidget(splitter);
+  connect(job_, &BackgroundJob::Finished, this, [this] {
+    run_->setEnabled(true);
+    cancel_->setEnabled(false);
+  });
+  connect(visibility_, &VisibilityForm::Chosen, this, &PlanPanel::FillTable);
+  connect(session_, &SessionState::Switched, this, &PlanPanel::ResetForSession);
   connect(session_, &SessionState::Changed, this, &PlanPanel::Refresh);
+}
+
+void PlanPanel::ResetForSession() {
+  job_->Abandon();
+  options_->Reset();
+  visibility_->Reset();
+  progress_->reset();
+  SetOutcome("Choose the options and run the planner.");
+}
+
+// The robot, the session's noise model and the camera visibility chosen.
+StatusOr<PlanningModel> PlanPanel::Model() const {
+  StatusOr<std::optional<MeasurementConstraints>> visibility = visibility_->Constraints();
+  if (!visibility.ok()) return visibility.status();
+  return PlanningModel{session_->NominalRobot(), session_->Config().noise, *visibility};
 }
 
 void PlanPanel::SetOutcome(const QString& text) {
@@ -139,7 +163,9 @@ void PlanPanel::Run() {
   if (!session_->IsOpen()) return ShowError(this, "Plan", "Open or create a session first (File menu).");
   StatusOr<workflow::PlanSetup> options = options_->Options();
   if (!options.ok()) return ShowError(this, "Plan", QString::fromStdString(options.status().message()));
-  const PlanningModel model = ModelOf(*session_);
+  StatusOr<PlanningModel> chosen = Model();
+  if (!chosen.ok()) return ShowError(this, "Plan", QString::fromStdString(chosen.status().message()));
+  const PlanningModel model = *chosen;
   indices_ = charts::ObservabilityChart({});
   ShowChart(indices_chart_, indices_);
   run_->setEnabled(false);
@@ -152,7 +178,8 @@ void PlanPanel::Run() {
     // is touched on the GUI thread only.
     const auto live = [self](const PlanIteration& step) {
       QMetaObject::invokeMethod(
-          self, [self, step] { if (self) self->PlotIteration(step); }, Qt::QueuedConnection);
+          self, [self, step] { if (self && !self->job_->Abandoned()) self->PlotIteration(step); },
+          Qt::QueuedConnection);
     };
     StatusOr<workflow::PlanOutcome> plan =
         workflow::RunPlan(model, setup, "", context, live);
@@ -162,8 +189,6 @@ void PlanPanel::Run() {
 }
 
 void PlanPanel::Finish(const Status& status, const PlanResult& result) {
-  run_->setEnabled(true);
-  cancel_->setEnabled(false);
   if (status.cancelled()) return SetOutcome("cancelled: the plan is unchanged.");
   if (!status.ok()) {
     SetOutcome("failed: " + QString::fromStdString(status.message()));
@@ -206,7 +231,9 @@ void PlanPanel::FillTable() {
   filling_ = true;
   table_->setSortingEnabled(false);
   const std::vector<Vector6d>& plan = session_->Plan();
-  const PlanningModel model = ModelOf(*session_);
+  // Feasible under the robot and, when they load, the camera visibility chosen.
+  const StatusOr<PlanningModel> chosen = Model();
+  const PlanningModel model = chosen.ok() ? *chosen : PlanningModel{session_->NominalRobot(), {}, {}};
   table_->setRowCount(static_cast<int>(plan.size()));
   for (int j = 0; j < static_cast<int>(plan.size()); ++j) {
     QTableWidgetItem* index = NumberItem(j + 1, false);
@@ -255,7 +282,8 @@ void PlanPanel::ExportPlan() {
   if (session_->Plan().empty()) return ShowError(this, "Export plan", "There is no plan yet: run the planner first.");
   const QString file = QFileDialog::getSaveFileName(this, "Export plan", "plan.csv", "CSV (*.csv)");
   if (file.isEmpty()) return;
-  if (Status s = workflow::WritePlanCsv(file.toStdString(), ModelOf(*session_), session_->Plan()); !s.ok())
+  if (Status s = workflow::WritePlanCsv(file.toStdString(), PlanningModel{session_->NominalRobot(), {}, {}},
+                                              session_->Plan()); !s.ok())
     ShowError(this, "Export plan", QString::fromStdString(s.message()));
 }
 

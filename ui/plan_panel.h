@@ -10,6 +10,7 @@
 
 #include "charts/chart_spec.h"
 #include "core/ioops.h"
+#include "core/planning_model.h"
 #include "ui/session_state.h"
 
 class QLabel;
@@ -24,12 +25,14 @@ namespace hexcal::ui {
 
 class BackgroundJob;
 class PlanOptionsForm;
+class VisibilityForm;
 
 class PlanPanel : public QWidget {
   Q_OBJECT
  public:
   PlanPanel(SessionState* session, QWidget* parent = nullptr);
   PlanOptionsForm* Options() const { return options_; }
+  VisibilityForm* Visibility() const { return visibility_; }
   BackgroundJob* Job() const { return job_; }
   QTableWidget* PoseTable() const { return table_; }
   const QString& LastOutcome() const { return outcome_; }
@@ -38,6 +41,8 @@ class PlanPanel : public QWidget {
   void Run();
   void Cancel();
   void Refresh();
+  // Another session was opened: default options, no outcome of the last one.
+  void ResetForSession();
   void DeleteSelectedPoses();
   void AddPose();
   void ExportPlan();
@@ -47,6 +52,7 @@ class PlanPanel : public QWidget {
   void PoseSelected(int index);
 
  private:
+  StatusOr<PlanningModel> Model() const;
   void Finish(const Status& status, const PlanResult& result);
   // One planner iteration on the live O1..O4 chart (log scale); iteration 0 starts it.
   void PlotIteration(const PlanIteration& step);
@@ -58,6 +64,7 @@ class PlanPanel : public QWidget {
 
   SessionState* session_;
   PlanOptionsForm* options_;
+  VisibilityForm* visibility_;
   BackgroundJob* job_;
   QPushButton *run_, *cancel_;
   QProgressBar* progress_;

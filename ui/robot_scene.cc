@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/constraints.h"
 #include "core/inverse_kinematics.h"
 
 namespace hexcal::ui {
@@ -138,7 +139,8 @@ void RobotScene::SetPose(const Vector6d& pose_vector) {
     SetGeometry(legs_[i], tube->GetOutput());
     stroke_use_[i] = StrokeUse(robot_.legs[i], readings[i]);
     const double use = std::min(stroke_use_[i], 1.0);
-    if (stroke_use_[i] > 1.0) {
+    beyond_stroke_[i] = !WithinStroke(robot_.legs[i], readings[i]);
+    if (beyond_stroke_[i]) {
       legs_[i]->GetProperty()->SetColor(0.85, 0.0, 0.85);  // beyond the stroke
     } else {
       legs_[i]->GetProperty()->SetColor(0.15 + 0.8 * use, 0.7 * (1 - use) + 0.15, 0.15);

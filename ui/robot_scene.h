@@ -44,6 +44,9 @@ class RobotScene {
 
   // Stroke use per leg at the current pose (tests and the legend).
   const std::array<double, kNumLegs>& LegStrokeUse() const { return stroke_use_; }
+  // Outside the stroke by more than the planner's tolerance (core/constraints.h):
+  // a reading a few ulps past an end, as a boundary pose gives, is not.
+  const std::array<bool, kNumLegs>& LegBeyondStroke() const { return beyond_stroke_; }
 
  private:
   void UpdateTarget();
@@ -52,6 +55,7 @@ class RobotScene {
   Pose pose_;
   std::optional<CameraTargetFrames> frames_;
   std::array<double, kNumLegs> stroke_use_{};
+  std::array<bool, kNumLegs> beyond_stroke_{};
   vtkSmartPointer<vtkRenderer> renderer_;
   vtkSmartPointer<vtkActor> base_, platform_, ghosts_, samples_, frustum_, target_;
   std::array<vtkSmartPointer<vtkActor>, kNumLegs> legs_;

@@ -54,7 +54,7 @@ void RobotView::UpdateLegend() {
   QString text = "stroke use (0 mid, 1 end):";
   for (int i = 0; i < kNumLegs; ++i) {
     const double use = scene_.LegStrokeUse()[i];
-    text += QString(" L%1 %2%3").arg(i + 1).arg(use, 0, 'f', 2).arg(use > 1 ? "!" : "");
+    text += QString(" L%1 %2%3").arg(i + 1).arg(use, 0, 'f', 2).arg(scene_.LegBeyondStroke()[i] ? " beyond!" : "");
   }
   legend_->setText(text);
 }

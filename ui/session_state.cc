@@ -1,14 +1,11 @@
 #include "ui/session_state.h"
 
-#include <QDateTime>
 #include <QDir>
 #include <QFileInfo>
-#include <algorithm>
-#include <filesystem>
+#include <QStringList>
 
 #include "workflow/plan_step.h"
 #include "workflow/session_calibrate.h"
-#include "workflow/session_measure.h"
 #include "workflow/session_results.h"
 #include "core/csv.h"
 #include "core/robot_io.h"
@@ -17,9 +14,6 @@
 namespace hexcal::ui {
 namespace {
 
-namespace fs = std::filesystem;
-
-QDateTime Modified(const std::string& path) { return QFileInfo(QString::fromStdString(path)).lastModified(); }
 bool Exists(const std::string& path) { return QFileInfo::exists(QString::fromStdString(path)); }
 
 }  // namespace
@@ -63,47 +57,11 @@ void SessionState::Watch() {
     if (QFileInfo(QString::fromStdString(path)).isFile()) watcher_.addPath(QString::fromStdString(path));
 }
 
-// Measure is done when every image with readings has a row measured with the
-// camera, target and image file as they are now (workflow/session_measure.h).
-void SessionState::LoadMeasureState() {
-  measure_state_ = StepState::kTodo;
-  measure_note_.clear();
-  if (legs_.empty()) return;
-  std::vector<std::string> images;
-  for (const LegsRow& row : legs_) images.push_back(row.image);
-  StatusOr<workflow::MeasureState> state = workflow::SessionMeasureState(dir_.toStdString(), images);
-  if (!state.ok()) {
-    measure_note_ = QString::fromStdString(state.status().message());
-    return;
-  }
-  if (state->to_measure.empty()) {
-    measure_state_ = StepState::kDone;
-  } else if (!state->reason.empty()) {
-    measure_state_ = StepState::kStale;
-    measure_note_ = QString::fromStdString(state->reason);
-  }
-}
-
-// Calibrate and Validate are done when results/ is one whole unit made from
-// the inputs as they are now (workflow/session_results.h).
-void SessionState::LoadResultsState() {
-  results_state_ = StepState::kTodo;
-  results_note_.clear();
-  results_ = Status::Error("No results yet: run the Calibrate step.");
-  std::error_code error;
-  if (!fs::exists(workflow::CalibrationReportPath(dir_.toStdString()), error)) return;
-  results_ = workflow::LoadSessionResults(dir_.toStdString());
-  if (!results_.ok()) {
-    results_note_ = QString::fromStdString(results_.status().message());
-    return;
-  }
-  if (!results_->changed_inputs.empty()) {
-    results_state_ = StepState::kStale;
-    results_note_ = QString::fromStdString(workflow::ListNames(results_->changed_inputs)) +
-                    " changed since the results were computed: calibrate again.";
-    return;
-  }
-  results_state_ = StepState::kDone;
+// Every step's state at once, from the files' contents (workflow/session_status.h);
+// results/ comes back loaded for the panels, hashed once.
+void SessionState::LoadStatus() {
+  StatusOr<workflow::SessionStatus> status = workflow::ReadSessionStatus(dir_.toStdString(), &results_);
+  status_ = status.ok() ? std::optional<workflow::SessionStatus>(*status) : std::nullopt;
 }
 
 std::string SessionState::Resolve(const std::string& name) const {
@@ -145,15 +103,17 @@ Status SessionState::LoadAll(const QString& dir) {
       legs_error_ = QString::fromStdString(legs.status().message());
     }
   }
-  LoadMeasureState();
-  LoadResultsState();
+  LoadStatus();
   Watch();
   return Status::Ok();
 }
 
 Status SessionState::Open(const QString& dir) {
+  const QString previous = dir_;
   Status loaded = LoadAll(QDir(dir).absolutePath());
-  if (loaded.ok()) emit Changed();
+  if (!loaded.ok()) return loaded;
+  if (dir_ != previous) emit Switched();
+  emit Changed();
   return loaded;
 }
 
@@ -211,26 +171,88 @@ std::vector<QString> SessionState::ImageFiles() const {
   return files;
 }
 
-StepState SessionState::State(Step step) const {
-  if (!IsOpen()) return StepState::kTodo;
-  const SessionPaths paths = Paths();
-  switch (step) {
-    case Step::kRobot:
+namespace {
+
+StepState StateOf(const workflow::StepReport* report) {
+  if (report == nullptr) return StepState::kTodo;
+  switch (report->status) {
+    case workflow::StepStatus::kDone:
       return StepState::kDone;
-    case Step::kPlan:
-      if (!Exists(paths.plan)) return StepState::kTodo;
-      // A plan made for another robot file is stale.
-      return Modified(paths.plan) < Modified(Resolve(config_.robot)) ? StepState::kStale : StepState::kDone;
-    case Step::kMeasure:
-      return measure_state_;
-    case Step::kCalibrate:
-    case Step::kValidate:
-      if (step == Step::kValidate && results_state_ != StepState::kTodo &&
-          std::none_of(legs_.begin(), legs_.end(), [](const LegsRow& r) { return r.holdout; }))
-        return StepState::kTodo;  // nothing held out: no validation
-      return results_state_;
+    case workflow::StepStatus::kStale:
+      return StepState::kStale;
+    case workflow::StepStatus::kTodo:
+      return StepState::kTodo;
+    case workflow::StepStatus::kBroken:
+      return StepState::kBroken;
   }
   return StepState::kTodo;
+}
+
+// How much a state asks of the operator: a step made of two workflow steps
+// shows the more urgent one.
+int Urgency(StepState state) {
+  switch (state) {
+    case StepState::kDone:
+      return 0;
+    case StepState::kTodo:
+      return 1;
+    case StepState::kStale:
+      return 2;
+    case StepState::kBroken:
+      return 3;
+  }
+  return 0;
+}
+
+// The workflow steps (session_status.h) a GUI step stands for.
+std::vector<std::string> WorkflowSteps(Step step) {
+  switch (step) {
+    case Step::kRobot:
+      return {"robot"};
+    case Step::kPlan:
+      return {"plan"};
+    case Step::kMeasure:
+      return {"readings", "measure"};
+    case Step::kCalibrate:
+      return {"calibrate"};
+    case Step::kValidate:
+      return {"validate"};
+  }
+  return {};
+}
+
+}  // namespace
+
+StepState SessionState::State(Step step) const {
+  if (!IsOpen() || !status_) return StepState::kTodo;
+  StepState worst = StepState::kDone;
+  for (const std::string& name : WorkflowSteps(step)) {
+    const StepState state = StateOf(status_->Find(name));
+    if (Urgency(state) > Urgency(worst)) worst = state;
+  }
+  return worst;
+}
+
+QString SessionState::Why(Step step) const {
+  if (!IsOpen()) return "no session open";
+  if (!status_) return "the session's status could not be read";
+  QStringList sentences;
+  for (const std::string& name : WorkflowSteps(step))
+    if (const workflow::StepReport* report = status_->Find(name))
+      sentences << QString::fromStdString(report->detail);
+  return sentences.join("; ");
+}
+
+QString SessionState::ResultsNote() const {
+  const StepState state = State(Step::kCalibrate);
+  return state == StepState::kStale || state == StepState::kBroken ? Why(Step::kCalibrate) : QString();
+}
+
+QString SessionState::MeasureNote() const {
+  if (!status_) return {};
+  const workflow::StepReport* measure = status_->Find("measure");
+  return measure != nullptr && measure->status == workflow::StepStatus::kStale ? QString::fromStdString(measure->detail)
+                                                                              : QString();
 }
 
 }  // namespace hexcal::ui

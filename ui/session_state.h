@@ -25,10 +25,13 @@
 #include "vision/target.h"
 #include "workflow/session_edits.h"
 #include "workflow/session_results.h"
+#include "workflow/session_status.h"
 
 namespace hexcal::ui {
 
-enum class StepState { kTodo, kDone, kStale };
+// As workflow::StepStatus: the step list shows exactly what `hexcal session
+// status` prints.
+enum class StepState { kTodo, kDone, kStale, kBroken };
 
 enum class Step { kRobot, kPlan, kMeasure, kCalibrate, kValidate };
 constexpr int kNumSteps = 5;
@@ -72,27 +75,31 @@ class SessionState : public QObject {
   workflow::EditOutcome RecordCapture(const std::string& frame_file, const LegsRow& row, bool overwrite = false);
   std::vector<QString> ImageFiles() const;  // full paths, sorted
 
+  // Each step's state and the sentence saying why, from
+  // workflow::ReadSessionStatus at the last reload: the files' contents.
   StepState State(Step step) const;
-  // Why the Calibrate step is stale or not done: the inputs changed since
-  // results/ was made, or results/ is not one whole unit ("" when done).
-  const QString& ResultsNote() const { return results_note_; }
+  QString Why(Step step) const;
+  // Why the Calibrate step is stale or broken ("" when done or to do).
+  QString ResultsNote() const;
   // results/ as loaded at the last reload (workflow/session_results.h), read
   // once per reload for every panel: hashing the images is not free.
   const StatusOr<workflow::SessionResults>& Results() const { return results_; }
-  // Why Measure is stale ("the camera changed since the images were measured").
-  const QString& MeasureNote() const { return measure_note_; }
+  // Why Measure is stale ("32 of 32 to measure again: the camera changed ...").
+  QString MeasureNote() const;
   // Points the session at another camera file (intrinsics step).
   workflow::EditOutcome SetCamera(const std::string& camera_name, bool overwrite = false);
 
  signals:
+  // Another session folder was opened (before Changed): panels drop what they
+  // show of the previous one — images, status texts, running jobs.
+  void Switched();
   void Changed();
 
  private:
   Status LoadAll(const QString& dir);
   workflow::EditOutcome ApplyEdit(bool overwrite,
                                   const std::function<workflow::EditOutcome(const workflow::EditOptions&)>& edit);
-  void LoadMeasureState();
-  void LoadResultsState();
+  void LoadStatus();
   void Watch();
 
   QString dir_;
@@ -103,11 +110,8 @@ class SessionState : public QObject {
   std::vector<Vector6d> plan_;
   std::vector<LegsRow> legs_;
   QString legs_error_;
-  StepState measure_state_ = StepState::kTodo;
-  QString measure_note_;
-  StepState results_state_ = StepState::kTodo;
+  std::optional<workflow::SessionStatus> status_;  // none when the status could not be read
   StatusOr<workflow::SessionResults> results_ = Status::Error("No results yet: run the Calibrate step.");
-  QString results_note_;
   QFileSystemWatcher watcher_;
   QTimer reload_timer_;  // folds a burst of changes (an atomic write is several) into one reload
 };

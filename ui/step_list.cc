@@ -14,19 +14,41 @@ StepList::StepList(SessionState* session, QWidget* parent) : QListWidget(parent)
   Refresh();
 }
 
+namespace {
+
+struct StateLook {
+  const char* mark;
+  const char* word;
+  QColor colour;
+};
+
+StateLook LookOf(StepState state) {
+  switch (state) {
+    case StepState::kDone:
+      return {"✓", "done", QColor(0, 120, 0)};
+    case StepState::kStale:
+      return {"⟳", "stale", QColor(200, 110, 0)};
+    case StepState::kBroken:
+      return {"✗", "broken", QColor(190, 0, 0)};
+    case StepState::kTodo:
+      break;
+  }
+  return {"○", "to do", QColor(90, 90, 90)};
+}
+
+}  // namespace
+
+// The marks and the tooltips' sentences are those of `hexcal session status`.
 void StepList::Refresh() {
   for (int k = 0; k < kNumSteps; ++k) {
     const Step step = static_cast<Step>(k);
     const StepState state = session_->State(step);
+    const StateLook look = LookOf(state);
     QListWidgetItem* row = item(k);
-    const char* mark = state == StepState::kDone ? "✓" : state == StepState::kStale ? "⟳" : "○";
-    const char* what = state == StepState::kDone ? "done" : state == StepState::kStale ? "stale" : "to do";
-    row->setText(QString("%1  %2").arg(mark, StepName(step)));
-    row->setToolTip(QString("%1: %2").arg(StepName(step), what));
+    row->setText(QString("%1  %2").arg(look.mark, StepName(step)));
+    row->setToolTip(QString("%1: %2 — %3").arg(StepName(step), look.word, session_->Why(step)));
     row->setData(Qt::UserRole, static_cast<int>(state));
-    row->setForeground(state == StepState::kDone    ? QColor(0, 120, 0)
-                       : state == StepState::kStale ? QColor(200, 110, 0)
-                                                    : QColor(90, 90, 90));
+    row->setForeground(look.colour);
   }
 }
 

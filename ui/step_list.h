@@ -1,6 +1,7 @@
 // The step list on the left of the main window: Robot, Plan, Measure,
-// Calibrate, Validate, each marked done (✓), stale (⟳, an input changed since)
-// or to do (○). Picking a step shows its panel.
+// Calibrate, Validate, each marked done (✓), stale (⟳, an input changed since),
+// broken (✗, a file that does not load) or to do (○), with the reason as its
+// tooltip: the states of `hexcal session status`. Picking a step shows its panel.
 #pragma once
 
 #include <QListWidget>

@@ -29,9 +29,10 @@ std::string StatusCell(const ImageMeasurementRecord& row) {
 namespace fs = std::filesystem;
 
 // What measurements.csv was measured with: SHA-256 of the camera file, the
-// target file and each image (measurements.json).
+// target file and each image (measurements.json), and of the table itself as
+// hexcal wrote it, so that a table edited by hand is measured again.
 struct MeasuredWith {
-  std::string camera, target;
+  std::string camera, target, table;
   std::map<std::string, std::string> images;
 };
 
@@ -48,6 +49,8 @@ MeasuredWith ReadRecord(const std::string& dir) {
   JsonFields fields(*json, RecordPath(dir));
   record.camera = fields.String("camera");
   record.target = fields.String("target");
+  if (const auto table = json->find("table"); table != json->end() && table->is_string())
+    record.table = table->get<std::string>();
   const auto images = json->find("images");
   if (!fields.status().ok() || images == json->end() || !images->is_object()) return MeasuredWith{};
   for (const auto& [name, hash] : images->items())
@@ -56,7 +59,8 @@ MeasuredWith ReadRecord(const std::string& dir) {
 }
 
 Status WriteRecord(const std::string& dir, const MeasuredWith& record) {
-  const nlohmann::json json{{"format", 1}, {"camera", record.camera}, {"target", record.target}, {"images", record.images}};
+  const nlohmann::json json{{"format", 1}, {"camera", record.camera}, {"target", record.target},
+                            {"table", record.table}, {"images", record.images}};
   const std::string text = json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
   return WriteFileAtomically(RecordPath(dir), text + "\n");
 }
@@ -101,9 +105,12 @@ MeasureState PlanMeasuring(const MeasuredWith& record, const MeasuredWith& now, 
   if (all) {
     state.to_measure = images;
     state.reason = "measuring every image again, as asked";
-  } else if (!rows.empty() && (record.camera.empty() || record.target.empty())) {
+  } else if (!rows.empty() && (record.camera.empty() || record.target.empty() || record.table.empty())) {
     state.to_measure = images;
     state.reason = "measurements.csv has no record of the camera and target it was measured with (measurements.json)";
+  } else if (!rows.empty() && record.table != now.table) {
+    state.to_measure = images;
+    state.reason = "measurements.csv was changed by another program since hexcal wrote it";
   } else if (!rows.empty() && (record.camera != now.camera || record.target != now.target)) {
     state.to_measure = images;
     state.reason = std::string("the ") + (record.camera != now.camera ? "camera" : "target") +
@@ -125,12 +132,15 @@ MeasureState PlanMeasuring(const MeasuredWith& record, const MeasuredWith& now, 
 
 namespace {
 
-// measurements.csv as it is: the poses by image and every row's cells.
-StatusOr<std::vector<ImageMeasurementRecord>> ReadMeasurementRows(const std::string& path) {
+// measurements.csv as it is: the poses by image and every row's cells, and
+// the SHA-256 of its bytes in `hash` ("" when there is no table).
+StatusOr<std::vector<ImageMeasurementRecord>> ReadMeasurementRows(const std::string& path, std::string* hash) {
+  hash->clear();
   std::error_code error;
   if (!fs::exists(path, error)) return std::vector<ImageMeasurementRecord>{};
   StatusOr<std::string> text = ReadFileToString(path, kMaxTableBytes);
   if (!text.ok()) return text.status();
+  *hash = Sha256Hex(*text);
   return ParseImageMeasurementsCsv(*text, path);
 }
 
@@ -143,10 +153,12 @@ std::set<std::string> RowImages(const std::vector<ImageMeasurementRecord>& rows)
 }  // namespace
 
 StatusOr<MeasureState> SessionMeasureState(const std::string& dir, const std::vector<std::string>& images) {
-  StatusOr<std::vector<ImageMeasurementRecord>> rows = ReadMeasurementRows(SessionPaths(dir).measurements);
+  std::string table;
+  StatusOr<std::vector<ImageMeasurementRecord>> rows = ReadMeasurementRows(SessionPaths(dir).measurements, &table);
   if (!rows.ok()) return rows.status();
   StatusOr<MeasuredWith> now = CurrentInputs(dir, images, nullptr);
   if (!now.ok()) return now.status();
+  now->table = table;
   return PlanMeasuring(ReadRecord(dir), *now, RowImages(*rows), images, false);
 }
 
@@ -154,10 +166,12 @@ StatusOr<SessionMeasurements> MeasureSessionImages(const std::string& dir, const
                                                    const Camera& camera, const Target& target,
                                                    const MeasureSessionOptions& options, const JobHooks& hooks) {
   const SessionPaths paths(dir);
-  StatusOr<std::vector<ImageMeasurementRecord>> rows = ReadMeasurementRows(paths.measurements);
+  std::string table;
+  StatusOr<std::vector<ImageMeasurementRecord>> rows = ReadMeasurementRows(paths.measurements, &table);
   if (!rows.ok()) return rows.status();
   StatusOr<MeasuredWith> now = CurrentInputs(dir, images, options.known_hashes);
   if (!now.ok()) return now.status();
+  now->table = table;
   MeasuredWith record = ReadRecord(dir);
   const MeasureState plan = PlanMeasuring(record, *now, RowImages(*rows), images, options.all);
   const std::set<std::string> doomed(plan.to_measure.begin(), plan.to_measure.end());
@@ -186,10 +200,13 @@ StatusOr<SessionMeasurements> MeasureSessionImages(const std::string& dir, const
   result.measured = static_cast<int>(measured->size());
   // The table first, then its record: a kill between them leaves an old
   // record, which only makes the next run measure again.
-  if (Status s = WriteFileAtomically(paths.measurements, FormatCsv(ImageMeasurementColumns(), cells)); !s.ok()) return s;
-  if (record.camera != now->camera || record.target != now->target) record.images.clear();
+  const std::string written = FormatCsv(ImageMeasurementColumns(), cells);
+  if (Status s = WriteFileAtomically(paths.measurements, written); !s.ok()) return s;
+  if (record.camera != now->camera || record.target != now->target || record.table != now->table)
+    record.images.clear();
   record.camera = now->camera;
   record.target = now->target;
+  record.table = Sha256Hex(written);
   for (const std::string& image : plan.to_measure) record.images[image] = now->images.at(image);
   if (Status s = WriteRecord(dir, record); !s.ok()) return s;
   return result;

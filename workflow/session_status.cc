@@ -4,6 +4,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "core/constraints.h"
 #include "core/csv.h"
 #include "core/robot_io.h"
 #include "core/session.h"
@@ -16,13 +17,28 @@ namespace {
 
 namespace fs = std::filesystem;
 
-StepReport PlanStep(const std::string& dir) {
+// A plan is judged by its content against the robot as it is now: a pose the
+// robot cannot reach (a new stroke, a moved joint) makes it stale, named with
+// the constraint it breaks; a plan merely older than the robot file is not.
+StepReport PlanStep(const std::string& dir, const StatusOr<Robot>& robot) {
   const std::string path = SessionPaths(dir).plan;
   std::error_code error;
   if (!fs::exists(path, error)) return {"plan", StepStatus::kTodo, "no plan.csv: hexcal plan --out " + path};
   StatusOr<std::vector<Vector6d>> plan = LoadPoses(path);
   if (!plan.ok()) return {"plan", StepStatus::kBroken, plan.status().message()};
-  return {"plan", StepStatus::kDone, std::to_string(plan->size()) + " poses"};
+  const std::string count = std::to_string(plan->size()) + " poses";
+  if (!robot.ok()) return {"plan", StepStatus::kStale, count + ", not checked: the robot does not load"};
+  int unreachable = 0;
+  std::string first;
+  for (size_t k = 0; k < plan->size(); ++k) {
+    const ConstraintReport report = EvaluateConstraints(*robot, robot->PoseFromVector((*plan)[k]));
+    if (report.feasible) continue;
+    if (++unreachable == 1) first = "pose " + std::to_string(k + 1) + " breaks " + report.worst_label;
+  }
+  if (unreachable == 0) return {"plan", StepStatus::kDone, count + ", all reachable by the robot"};
+  return {"plan", StepStatus::kStale,
+          std::to_string(unreachable) + " of " + count + " unreachable by the robot as it is now (" + first +
+              "): plan again"};
 }
 
 StepReport ReadingsStep(const std::string& dir, std::vector<LegsRow>* rows) {
@@ -58,14 +74,15 @@ std::string Figure(double value) {
   return out.str();
 }
 
-void ResultSteps(const std::string& dir, SessionStatus* status) {
+void ResultSteps(const std::string& dir, SessionStatus* status, StatusOr<SessionResults>* loaded) {
   std::error_code error;
   if (!fs::exists(CalibrationReportPath(dir), error)) {
     status->steps.push_back({"calibrate", StepStatus::kTodo, "no results: hexcal calibrate --session " + dir});
     status->steps.push_back({"validate", StepStatus::kTodo, "after calibrate"});
     return;
   }
-  StatusOr<SessionResults> results = LoadSessionResults(dir);
+  StatusOr<SessionResults>& results = *loaded;
+  results = LoadSessionResults(dir);
   if (!results.ok()) {
     status->steps.push_back({"calibrate", StepStatus::kBroken, results.status().message()});
     status->steps.push_back({"validate", StepStatus::kTodo, "after calibrate"});
@@ -92,6 +109,12 @@ void ResultSteps(const std::string& dir, SessionStatus* status) {
 
 }  // namespace
 
+const StepReport* SessionStatus::Find(const std::string& step) const {
+  for (const StepReport& report : steps)
+    if (report.step == step) return &report;
+  return nullptr;
+}
+
 const char* StepStatusName(StepStatus status) {
   switch (status) {
     case StepStatus::kDone:
@@ -107,6 +130,12 @@ const char* StepStatusName(StepStatus status) {
 }
 
 StatusOr<SessionStatus> ReadSessionStatus(const std::string& dir) {
+  StatusOr<SessionResults> results = Status::Error("no results");
+  return ReadSessionStatus(dir, &results);
+}
+
+StatusOr<SessionStatus> ReadSessionStatus(const std::string& dir, StatusOr<SessionResults>* results) {
+  *results = Status::Error("No results yet: run the Calibrate step.");
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   if (!config.ok()) return config.status();
   SessionStatus status;
@@ -114,19 +143,24 @@ StatusOr<SessionStatus> ReadSessionStatus(const std::string& dir) {
   StatusOr<Robot> robot = LoadRobot(ResolveSessionFile(dir, config->robot));
   status.steps.push_back(robot.ok() ? StepReport{"robot", StepStatus::kDone, robot->name}
                                     : StepReport{"robot", StepStatus::kBroken, robot.status().message()});
-  status.steps.push_back(PlanStep(dir));
+  status.steps.push_back(PlanStep(dir, robot));
   std::vector<LegsRow> rows;
   status.steps.push_back(ReadingsStep(dir, &rows));
   status.steps.push_back(MeasureStep(dir, rows));
-  ResultSteps(dir, &status);
+  ResultSteps(dir, &status, results);
   return status;
 }
 
+// {"session", "steps": {"robot": "done", ...}, "why": {"robot": "...", ...}}:
+// a program reads the states by step name, a person the sentences.
 nlohmann::json ToJson(const SessionStatus& status) {
-  nlohmann::json steps = nlohmann::json::array();
-  for (const StepReport& step : status.steps)
-    steps.push_back({{"step", step.step}, {"status", StepStatusName(step.status)}, {"detail", step.detail}});
-  return {{"session", status.session}, {"steps", steps}};
+  nlohmann::json steps = nlohmann::json::object();
+  nlohmann::json why = nlohmann::json::object();
+  for (const StepReport& step : status.steps) {
+    steps[step.step] = StepStatusName(step.status);
+    why[step.step] = step.detail;
+  }
+  return {{"session", status.session}, {"steps", steps}, {"why", why}};
 }
 
 std::string FormatSessionStatus(const SessionStatus& status) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/status.h"
+#include "workflow/session_results.h"
 
 namespace hexcal::workflow {
 
@@ -27,10 +28,15 @@ struct StepReport {
 struct SessionStatus {
   std::string session;
   std::vector<StepReport> steps;
+
+  const StepReport* Find(const std::string& step) const;  // nullptr for an unknown name
 };
 
 // Reads only; a session whose session.yaml does not load is an error.
 StatusOr<SessionStatus> ReadSessionStatus(const std::string& session_dir);
+// The same, also handing back results/ as it was loaded to judge it (or why
+// not), so that a caller showing the results does not hash every input twice.
+StatusOr<SessionStatus> ReadSessionStatus(const std::string& session_dir, StatusOr<SessionResults>* results);
 nlohmann::json ToJson(const SessionStatus& status);
 std::string FormatSessionStatus(const SessionStatus& status);
 

@@ -35,8 +35,11 @@ PY
   # Every step done, by content; a replaced image makes measure, calibrate and validate stale.
   "$hexcal" session status "$out" --json | python3 -c '
 import json, sys
-steps = {s["step"]: s["status"] for s in json.load(sys.stdin)["steps"]}
-assert set(steps.values()) == {"done"}, steps'
+status = json.load(sys.stdin)
+steps = status["steps"]
+assert set(steps) >= {"robot", "plan", "measure", "calibrate", "validate"}, steps
+assert set(steps.values()) == {"done"}, steps
+assert set(status["why"]) == set(steps), status["why"]'
   first=$(ls "$out/images" | head -1) second=$(ls "$out/images" | sed -n 2p)
   cp "$out/images/$second" "$out/images/$first"
   "$hexcal" session status "$out" >"$dir/status"

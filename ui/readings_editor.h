@@ -1,0 +1,53 @@
+// The leg readings table of the Measure and Acquire steps: one row per image,
+// L1..L6 in the robot unit and the holdout flag. Rows come from
+// workflow::ReadReadingsTable, so an image without readings has a blank row to
+// type into; its row enters legs.csv when the sixth reading is typed. Ctrl+V
+// pastes lines of six numbers (a spreadsheet's rows) from the current row on.
+// Every change goes to legs.csv at once, as it is on disk (session_edits.h).
+#pragma once
+
+#include <QTableWidget>
+#include <array>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "ui/session_state.h"
+#include "workflow/readings_table.h"
+
+namespace hexcal::ui {
+
+class ReadingsEditor : public QTableWidget {
+  Q_OBJECT
+ public:
+  explicit ReadingsEditor(SessionState* session, QWidget* parent = nullptr);
+
+  // Images shown without readings (blank rows).
+  int MissingRows() const;
+  // Pastes `text` (lines of six numbers) from row `first` on; returns the rows written.
+  int PasteReadings(const QString& text, int first);
+
+ public slots:
+  void Refill();
+
+ signals:
+  // A sentence for the operator: what was written, or why not.
+  void Note(const QString& text);
+
+ protected:
+  void keyPressEvent(QKeyEvent* event) override;
+
+ private:
+  void OnCellEdited(int row, int column);
+  void EditRecorded(const workflow::ReadingsRow& shown, int column, double value);
+  void EditBlank(int row, int column, double value);
+  bool WriteRow(const std::string& image, const std::array<double, kNumLegs>& legs, bool holdout, bool overwrite);
+
+  SessionState* session_;
+  std::vector<workflow::ReadingsRow> rows_;
+  // Readings typed into a blank row, kept until its sixth arrives.
+  std::map<std::string, std::array<std::optional<double>, kNumLegs>> typed_;
+  bool filling_ = false;
+};
+
+}  // namespace hexcal::ui

@@ -1,0 +1,38 @@
+// The readings table as the operator edits it (the GUI's Measure and Acquire
+// steps): every row of legs.csv as its cells read, even when the session's
+// rows do not load (an image without a row makes LoadSessionLegs refuse the
+// file), and a blank row for every image in images/ that has no readings yet,
+// so that there is always a row to type or paste the six readings into.
+//
+//   StatusOr<std::vector<ReadingsRow>> rows = ReadReadingsTable("run1");
+//   for (const ReadingsRow& row : *rows) if (!row.recorded) ...;  // to type
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/robot.h"
+#include "core/status.h"
+
+namespace hexcal::workflow {
+
+struct ReadingsRow {
+  std::string image;                                    // file name in images/
+  std::array<std::optional<double>, kNumLegs> legs{};   // a cell that is not a number: none
+  bool holdout = false;
+  bool recorded = false;       // legs.csv has a row for the image
+  bool image_present = false;  // the image is in images/
+};
+
+// Rows of legs.csv in file order, then the images without one, by name. A
+// legs.csv that does not parse as CSV, or lacks a column, is an error.
+StatusOr<std::vector<ReadingsRow>> ReadReadingsTable(const std::string& session_dir);
+
+// Six readings from one pasted line: numbers separated by tabs, commas,
+// semicolons or spaces (a spreadsheet's row, a terminal's output), with an
+// optional leading image name. None when the line does not hold six numbers.
+std::optional<std::array<double, kNumLegs>> ParseReadingsLine(const std::string& line);
+
+}  // namespace hexcal::workflow
