@@ -1,6 +1,6 @@
 // hexcal-gui [SESSION]
 // hexcal-gui --demo          opens the demo session (made by `hexcal demo` the first time)
-// hexcal-gui --screenshot FILE [--panel robot|plan|measure|calibrate|validate] [SESSION]
+// hexcal-gui --screenshot FILE [--panel robot|plan|measure|calibrate|validate] [--size 1280x720] [SESSION]
 //   renders the window for SESSION to a PNG and exits (tests, docs/gui.md).
 #include <QVTKOpenGLNativeWidget.h>
 
@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   parser.addHelpOption();
   parser.addOption({"screenshot", "Render the window to FILE (PNG) and exit.", "FILE"});
   parser.addOption({"panel", "Panel to show: robot, plan, measure, calibrate, validate.", "NAME"});
+  parser.addOption({"size", "Window size for --screenshot, WIDTHxHEIGHT (default 1280x720).", "WxH", "1280x720"});
   parser.addOption({"demo", "Open the demo session (hexcal demo makes it the first time, about 15 s)."});
   parser.addPositionalArgument("session", "A session folder (hexcal session init, or File > New).");
   parser.process(app);
@@ -39,6 +40,12 @@ int main(int argc, char** argv) {
               << "' is not robot, plan, measure, calibrate or validate\n";
     return 2;
   }
+  const QStringList size = parser.value("size").split('x');
+  if (size.size() != 2 || size[0].toInt() < 320 || size[1].toInt() < 240) {
+    std::cerr << "hexcal-gui: --size: '" << parser.value("size").toStdString() << "' is not WIDTHxHEIGHT (e.g. 1280x720)\n";
+    return 2;
+  }
+  window.resize(size[0].toInt(), size[1].toInt());
   window.show();
   if (parser.isSet("demo")) window.OpenDemoSession();
   if (!screenshot.isEmpty()) {

@@ -57,7 +57,7 @@ MainWindow::MainWindow(QWidget* parent)
   BuildMenus();
   steps_->setCurrentRow(0);
   statusBar()->showMessage("Open a session (File > Open) or the demo session (File > Open demo session).");
-  resize(1400, 880);
+  resize(1280, 720);  // the smallest screen it is made for (docs/gui.md)
 }
 
 void MainWindow::BuildMenus() {

@@ -70,6 +70,7 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
   report_->setObjectName("intrinsics_report");
   report_->setPlaceholderText("Intrinsics report");
   report_->setMaximumHeight(140);
+  report_->setVisible(false);  // shown with an intrinsics report: room for the image until then
   camera_index_ = new QSpinBox;
   camera_index_->setRange(0, 16);
   camera_index_->setPrefix("camera ");
@@ -157,6 +158,7 @@ void MeasurePanel::ResetForSession() {
   picture_info_->clear();
   status_->clear();
   report_->clear();
+  report_->setVisible(false);
   progress_->reset();
   images_->clear();  // Refresh then shows the new session's first image
 }

@@ -181,6 +181,7 @@ void MeasurePanel::IntrinsicsFromFolder(const QString& chosen) {
                                    : "not used, " + QString::fromStdString(view.reason));
     return [this, report] {
       report_->setPlainText(report);
+      report_->setVisible(true);
       ApplySessionEdit(this, "Intrinsics",
                        [this](bool overwrite) { return session_->SetCamera("camera.yaml", overwrite); });
     };

@@ -10,6 +10,7 @@
 #include <QPushButton>
 #include <QScrollArea>
 #include <QSplitter>
+#include <QTabWidget>
 #include <QTableWidget>
 #include <QVBoxLayout>
 #include <cmath>
@@ -25,6 +26,7 @@
 #include "core/session_lock.h"
 #include "ui/error_dialog.h"
 #include "ui/plan_options.h"
+#include "ui/quantity_format.h"
 #include "ui/plan_visibility.h"
 #include "workflow/plan_step.h"
 
@@ -41,8 +43,9 @@ std::string HistoryPath(const SessionState& session) {
 
 QTableWidgetItem* NumberItem(double value, bool editable) {
   auto* item = new QTableWidgetItem;
-  // Micrometre / micro-degree display: IK round-off (1e-15) reads as 0.
-  item->setData(Qt::DisplayRole, std::round(value * 1e6) / 1e6);
+  // As FormatCoordinate (ui/quantity_format.h), but a number, so that the
+  // column sorts: IK round-off (1e-15) reads as 0.
+  item->setData(Qt::DisplayRole, FormatCoordinate(value).toDouble());
   if (!editable) item->setFlags(item->flags() & ~Qt::ItemIsEditable);
   return item;
 }
@@ -116,9 +119,12 @@ PlanPanel::PlanPanel(SessionState* session, QWidget* parent)
   indices_ = charts::ObservabilityChart({});
   indices_chart_ = MakeChartView(indices_);
   legs_chart_ = MakeChartView(charts::LegReadingsChart(session_->NominalRobot(), {}));
-  auto* charts = new QSplitter(Qt::Horizontal);
-  charts->addWidget(indices_chart_);
-  charts->addWidget(legs_chart_);
+  // One chart at a time, each the panel's whole width: side by side at
+  // 1280 px their titles and legends were cut.
+  auto* charts = new QTabWidget;
+  charts->setObjectName("plan_charts");
+  charts->addTab(indices_chart_, "Indices per iteration");
+  charts->addTab(legs_chart_, "Leg readings per pose");
   auto* right = new QSplitter(Qt::Vertical);
   right->addWidget(charts);
   right->addWidget(table_box);

@@ -8,6 +8,7 @@
 #include <algorithm>
 
 #include "ui/error_dialog.h"
+#include "ui/quantity_format.h"
 
 namespace hexcal::ui {
 namespace {
@@ -20,9 +21,7 @@ QTableWidgetItem* Cell(const QString& text, bool editable) {
   return item;
 }
 
-QString ReadingText(const std::optional<double>& value) {
-  return value ? QString::number(*value, 'g', 10) : QString();
-}
+QString ReadingText(const std::optional<double>& value) { return value ? FormatCoordinate(*value) : QString(); }
 
 }  // namespace
 

@@ -5,7 +5,7 @@ namespace hexcal::ui {
 StepList::StepList(SessionState* session, QWidget* parent) : QListWidget(parent), session_(session) {
   setObjectName("step_list");
   for (int k = 0; k < kNumSteps; ++k) addItem(StepName(static_cast<Step>(k)));
-  setMaximumWidth(190);
+  setFixedWidth(150);  // the same on every panel, and the most room for the panel at 1280 px
   QFont big = font();
   big.setPointSizeF(big.pointSizeF() * 1.2);
   setFont(big);
