@@ -5,15 +5,59 @@
 
 #include "vision/measure.h"
 
+#include <opencv2/imgproc.hpp>
+
 namespace hexcal::ui {
 
+namespace {
+
+double Sharpness(const cv::Mat& gray) {
+  cv::Mat laplacian;
+  cv::Laplacian(gray, laplacian, CV_64F);
+  cv::Scalar mean, deviation;
+  cv::meanStdDev(laplacian, mean, deviation);
+  return deviation[0] * deviation[0];
+}
+
+bool InsideImage(const Eigen::Vector2d& p, const cv::Mat& image) {
+  return p.x() >= 0 && p.y() >= 0 && p.x() <= image.cols - 1 && p.y() <= image.rows - 1;
+}
+
+}  // namespace
+
 OverlayResult DetectAndDraw(const QString& file, const Camera& camera, const Target& target) {
-  OverlayResult result;
   StatusOr<cv::Mat> gray = LoadGrayImage(file.toStdString());
   if (!gray.ok()) {
+    OverlayResult result;
     result.status = "unreadable: " + QString::fromStdString(gray.status().message());
     return result;
   }
+  return DetectAndDraw(*gray, camera, target);
+}
+
+QString ReadinessProblem(const OverlayResult& overlay) {
+  if (!overlay.ok) return "no board pose: " + overlay.status;
+  if (!overlay.whole_board_in_view) return "part of the board is outside the image";
+  if (overlay.rms_px > kReadyMaxRmsPx) return QString("reprojection RMS above %1 px").arg(kReadyMaxRmsPx);
+  if (overlay.sharpness < kReadyMinSharpness) return "the image is blurred";
+  return {};
+}
+
+OverlayResult DetectAndDraw(const cv::Mat& frame, const Camera& camera, const Target& target) {
+  OverlayResult result;
+  cv::Mat grey_frame;
+  if (frame.channels() == 3) {
+    cv::cvtColor(frame, grey_frame, cv::COLOR_BGR2GRAY);
+  } else {
+    grey_frame = frame;
+  }
+  const cv::Mat* gray = &grey_frame;
+  if (gray->empty() || gray->type() != CV_8UC1) {
+    result.status = "unreadable: not an 8-bit grey or colour frame";
+    return result;
+  }
+  result.sharpness = Sharpness(*gray);
+  result.board_tags = target.NumTags();
   StatusOr<std::unique_ptr<TagDetector>> detector =
       TagDetector::Create(ForTarget(DetectorOptions{}, target), std::make_shared<const IdealPixelMap>(camera));
   if (!detector.ok()) {
@@ -50,10 +94,14 @@ OverlayResult DetectAndDraw(const QString& file, const Camera& camera, const Tar
   if (pose.has_pose) {
     // The whole board reprojected, seen tags or not: a wrong pose shows at once.
     painter.setPen(QPen(QColor(230, 0, 0), 0.6 * line));
+    result.whole_board_in_view = true;
     for (int index = 0; index < target.NumTags(); ++index) {
       QPolygonF outline;
-      for (const Eigen::Vector3d& corner : target.TagCorners(target.TagId(index)))
-        outline << to_qt(camera.Project(pose.camera_from_target * corner));
+      for (const Eigen::Vector3d& corner : target.TagCorners(target.TagId(index))) {
+        const Eigen::Vector2d pixel = camera.Project(pose.camera_from_target * corner);
+        result.whole_board_in_view = result.whole_board_in_view && InsideImage(pixel, *gray);
+        outline << to_qt(pixel);
+      }
       painter.drawPolygon(outline);
     }
   }

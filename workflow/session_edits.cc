@@ -259,4 +259,27 @@ EditOutcome ApplyCameraEdit(const std::string& dir, const std::string& seen, con
   return Failed(SaveSessionConfig(dir, *config));
 }
 
+Status RemoveCapture(const std::string& dir, const std::string& image, LockWait wait) {
+  if (Status s = CheckImageName(image); !s.ok()) return s;
+  if (Status s = CheckWritableInside(dir, "images"); !s.ok()) return s;
+  StatusOr<SessionLock> lock = SessionLock::Acquire(dir, wait);
+  if (!lock.ok()) return lock.status();
+  StatusOr<CsvTable> table = ReadLegsTable(SessionPaths(dir).legs);
+  if (!table.ok()) return table.status();
+  const int row = RowOf(*table, image);
+  // The row first: a kill before the image goes leaves an image without a
+  // row, which the next capture of the pose records again (acquire_step.h).
+  if (row >= 0) {
+    table->rows.erase(table->rows.begin() + row);
+    if (Status s = WriteFileAtomically(SessionPaths(dir).legs, FormatCsv(table->header, table->rows)); !s.ok())
+      return s;
+  }
+  const fs::path file = fs::path(SessionPaths(dir).images) / image;
+  std::error_code error;
+  const bool had_image = fs::remove(file, error);
+  if (error) return Status::IoError(file.string() + ": cannot remove: " + error.message());
+  if (row < 0 && !had_image) return Status::Error(image + ": neither in legs.csv nor in images/");
+  return Status::Ok();
+}
+
 }  // namespace hexcal::workflow

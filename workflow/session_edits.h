@@ -84,4 +84,8 @@ EditOutcome ApplyPlanEdit(const std::string& session_dir, const std::vector<Vect
 EditOutcome ApplyCameraEdit(const std::string& session_dir, const std::string& seen, const std::string& wanted,
                             const EditOptions& options = {});
 
+// A capture taken back (the Acquire step's Redo): its legs.csv row, then its
+// image, under the lock. An image named in neither is bad input.
+Status RemoveCapture(const std::string& session_dir, const std::string& image, LockWait wait = LockWait::kBriefly);
+
 }  // namespace hexcal::workflow

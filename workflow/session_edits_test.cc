@@ -38,6 +38,22 @@ std::string MakeSession(const TempDir& dir) {
   return session;
 }
 
+TEST(SessionEdits, ACaptureTakenBackLeavesNeitherRowNorImage) {
+  TempDir dir;
+  const std::string s = MakeSession(dir);
+  WriteTextFile(s + "/images/b.png", "image b");
+  WriteTextFile(s + "/legs.csv", ReadTextFile(s + "/legs.csv") + "b.png,60,61,62,63,64,65,1\n");
+  ASSERT_TRUE(RemoveCapture(s, "a.png").ok());
+  EXPECT_FALSE(fs::exists(s + "/images/a.png"));
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s);
+  ASSERT_TRUE(rows.ok()) << rows.status().message();
+  ASSERT_EQ(rows->size(), 1u);
+  EXPECT_EQ((*rows)[0].image, "b.png");
+  EXPECT_FALSE(RemoveCapture(s, "a.png").ok());         // gone already
+  EXPECT_FALSE(RemoveCapture(s, "../session.yaml").ok());  // never outside images/
+  EXPECT_TRUE(fs::exists(s + "/session.yaml"));
+}
+
 TEST(SessionEdits, AnEditKeepsTheRowsAnotherProgramAppended) {
   TempDir dir;
   const std::string s = MakeSession(dir);
