@@ -23,7 +23,6 @@
 namespace hexcal::workflow {
 namespace {
 
-using ::hexcal::testing::ReadTextFile;
 using ::hexcal::testing::TempDir;
 using ::hexcal::testing::WriteTextFile;
 
@@ -34,14 +33,10 @@ namespace fs = std::filesystem;
 // far above the workspace.
 std::string MakeSession(const TempDir& dir, bool with_unreachable = false) {
   const std::string session = dir.File("s");
-  SessionConfig config;
-  config.robot = "inria-left-hand";
-  config.camera = kSimulatedCameraName;
-  config.target = kDefaultTargetName;
-  EXPECT_TRUE(InitSession(session, config).ok());
+  EXPECT_TRUE(InitSession(session, {"inria-left-hand", kSimulatedCameraName, kDefaultTargetName}).ok());
   WriteTextFile(session + "/plan.csv",
-                std::string("x,y,z,q1,q2,q3\n") + "0,0,53.5,0,0,0\n" + "2,-1,52,5,-3,10\n" +
-                    (with_unreachable ? "0,0,500,0,0,0\n" : "-2,1.5,55,-4,6,-8\n") + "1,2,54,3,4,-5\n");
+                std::string("x,y,z,q1,q2,q3\n") + "0,0,53.5,0,0,0\n" + "1,-0.5,53,2,-1,4\n" +
+                    (with_unreachable ? "0,0,500,0,0,0\n" : "-1,0.8,54,-2,2,-3\n") + "0.5,1,53.8,1,1.5,-2\n");
   return session;
 }
 
@@ -54,7 +49,7 @@ TEST(AcquireStep, SimRunRecordsEveryPoseWithItsReadings) {
   request.options.holdout_every = 2;
   StatusOr<AcquireResult> run = AcquirePlan(request);
   ASSERT_TRUE(run.ok()) << run.status().message();
-  EXPECT_EQ(run->Count(PoseState::kRecorded), 4);
+  EXPECT_EQ(run->Count(PoseState::kRecorded), 4) << FormatAcquireSummary(*run);
   StatusOr<std::vector<LegsRow>> rows = Rows(s);
   ASSERT_TRUE(rows.ok()) << rows.status().message();
   ASSERT_EQ(rows->size(), 4u);
@@ -65,7 +60,7 @@ TEST(AcquireStep, SimRunRecordsEveryPoseWithItsReadings) {
   // controller drives) plus the sensor noise of ±noise.leg (0.001 cm).
   const Robot nominal = *LoadRobot("inria-left-hand");
   Vector6d second;
-  second << 2, -1, 52, 5, -3, 10;
+  second << 1, -0.5, 53, 2, -1, 4;
   const LegReadings driven = InverseKinematics(nominal, nominal.PoseFromVector(second));
   EXPECT_LE(((*rows)[1].legs - driven).cwiseAbs().maxCoeff(), 0.001 + 1e-12);
   EXPECT_TRUE(fs::exists(s + "/truth/robot.yaml"));
@@ -103,7 +98,7 @@ TEST(AcquireStep, AnImageLeftWithoutItsRowByAKillIsRecordedAgain) {
   hooks.note = [&](const std::string& line) { notes.push_back(line); };
   StatusOr<AcquireResult> run = AcquirePlan(AcquireRequest{s}, hooks);
   ASSERT_TRUE(run.ok()) << run.status().message();
-  EXPECT_EQ(run->Count(PoseState::kRecorded), 4);
+  EXPECT_EQ(run->Count(PoseState::kRecorded), 4) << FormatAcquireSummary(*run);
   EXPECT_FALSE(cv::imread(s + "/images/pose_0001.png").empty());
   const auto noted = std::find_if(notes.begin(), notes.end(), [](const std::string& line) {
     return line.find("images/pose_0001.png had no row in legs.csv") != std::string::npos;

@@ -3,6 +3,7 @@
 #include "core/constraints.h"
 #include "core/csv.h"
 #include "core/forward_kinematics.h"
+#include "core/registration.h"
 #include "core/robot_io.h"
 #include "core/session.h"
 #include "vision/renderer.h"
