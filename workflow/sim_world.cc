@@ -1,5 +1,7 @@
 #include "workflow/sim_world.h"
 
+#include <cmath>
+
 #include "core/constraints.h"
 #include "core/csv.h"
 #include "core/forward_kinematics.h"
@@ -60,7 +62,7 @@ Status SimWorld::Command(const Vector6d& pose_vector) {
   const ConstraintReport report = EvaluateConstraints(nominal, commanded);
   if (!report.feasible)
     return Status::Error("pose " + PoseText(pose_vector) + " is out of the robot's workspace: " + report.worst_label +
-                         " by " + FormatNumber(-report.worst_margin));
+                         " by " + FormatNumber(std::round(-report.worst_margin * 1e4) / 1e4));
   const LegReadings legs = InverseKinematics(nominal, commanded);
   StatusOr<LocalFkResult> actual = ForwardKinematicsLocal(scene_.truth, legs, commanded);
   if (!actual.ok())
