@@ -89,22 +89,12 @@ expect_refused "drawn with another --seed than 5" --controller sim --camera sim 
 # The truth moved into the registered frames, a -> G a, b -> H b with
 # G = X X*^-1 and H = Y Y*^-1 (core/registration.h, ExpressInFrames), against
 # the calibrated and the nominal parameters: all 42, robot unit.
-python3 - "$s" "$(dirname "$0")/../../resources/robots/inria-left-hand.yaml" "$dir/report.json" <<'PY'
-import json, math, re, sys
+CLI_DIR=$(dirname "$0") python3 - "$s" "$(dirname "$0")/../../resources/robots/inria-left-hand.yaml" "$dir/report.json" <<'PY'
+import json, os, re, sys
+sys.dont_write_bytecode = True  # nothing written into the source tree
+sys.path.insert(0, os.environ["CLI_DIR"])
+from rigid import apply, comp, inv, pose
 s, preset = sys.argv[1], sys.argv[2]
-def rot(q):  # Rz(q3) Ry(q2) Rx(q1), degrees
-    a, b, c = [math.radians(x) for x in q]
-    rx = [[1, 0, 0], [0, math.cos(a), -math.sin(a)], [0, math.sin(a), math.cos(a)]]
-    ry = [[math.cos(b), 0, math.sin(b)], [0, 1, 0], [-math.sin(b), 0, math.cos(b)]]
-    rz = [[math.cos(c), -math.sin(c), 0], [math.sin(c), math.cos(c), 0], [0, 0, 1]]
-    return mm(rz, mm(ry, rx))
-def mm(a, b): return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
-def mv(a, v): return [sum(a[i][k] * v[k] for k in range(3)) for i in range(3)]
-def tr(a): return [list(r) for r in zip(*a)]
-def pose(v): return (v[:3], rot(v[3:]))
-def comp(a, b): return ([x + y for x, y in zip(mv(a[1], b[0]), a[0])], mm(a[1], b[1]))
-def inv(a): return ([-x for x in mv(tr(a[1]), a[0])], tr(a[1]))
-def apply(p, x): return [u + v for u, v in zip(mv(p[1], x), p[0])]
 def frames(path):
     text = open(path).read()
     get = lambda key: pose([float(x) for x in re.search(key + r": \[([^\]]*)\]", text).group(1).split(",")])
