@@ -47,7 +47,8 @@ Status RemoveImageWithoutRow(const std::string& dir, const std::string& image, c
   std::error_code error;
   if (!fs::exists(fs::symlink_status(path, error))) return Status::Ok();
   fs::remove(path, error);
-  if (error) return Status::IoError(path.string() + ": cannot remove an image left without its row: " + error.message());
+  if (error)
+    return Status::IoError(path.string() + ": cannot remove an image left without its row: " + error.message());
   hooks.Note("images/" + image + " had no row in legs.csv (an interrupted capture): recording it again");
   return Status::Ok();
 }
@@ -60,8 +61,8 @@ StatusOr<std::string> EncodePng(const cv::Mat& frame, const std::string& image) 
 }
 
 // Move, settle, grab, read: the device half of AcquirePose.
-Status DriveAndCapture(const Vector6d& pose, Controller& controller, FrameSource& camera,
-                       const AcquireOptions& options, const JobHooks& hooks, cv::Mat* frame, LegReadings* readings) {
+Status DriveAndCapture(const Vector6d& pose, Controller& controller, FrameSource& camera, const AcquireOptions& options,
+                       const JobHooks& hooks, cv::Mat* frame, LegReadings* readings) {
   if (Status s = controller.MoveTo(pose); !s.ok()) return s;
   if (Status s = controller.WaitSettled(options.settle_seconds); !s.ok()) return s;
   if (hooks.Cancelled()) return Status::Cancelled();
@@ -103,8 +104,7 @@ StatusOr<PoseRecord> RunOnePose(const AcquireRequest& request, int index, const 
     skipped.state = PoseState::kAlreadyRecorded;
     return skipped;
   }
-  StatusOr<PoseRecord> done =
-      AcquirePose(request.session, index, pose, controller, camera, request.options, hooks);
+  StatusOr<PoseRecord> done = AcquirePose(request.session, index, pose, controller, camera, request.options, hooks);
   if (done.ok() || StopsTheRun(done.status())) return done;
   PoseRecord failed = skipped;
   failed.state = PoseState::kFailed;
@@ -115,7 +115,8 @@ StatusOr<PoseRecord> RunOnePose(const AcquireRequest& request, int index, const 
 std::string PoseNote(const PoseRecord& record, int total) {
   std::ostringstream line;
   line << "pose " << record.index + 1 << "/" << total << " " << record.image << ": " << PoseStateName(record.state);
-  if (record.state == PoseState::kRecorded) line << " in " << FormatNumber(std::round(record.seconds * 100) / 100) << " s";
+  if (record.state == PoseState::kRecorded)
+    line << " in " << FormatNumber(std::round(record.seconds * 100) / 100) << " s";
   if (record.state == PoseState::kFailed) line << ": " << record.error;
   return line.str();
 }
@@ -153,9 +154,12 @@ bool AcquireOptions::IsValid(std::string* error) const {
 
 const char* PoseStateName(PoseState state) {
   switch (state) {
-    case PoseState::kRecorded: return "recorded";
-    case PoseState::kAlreadyRecorded: return "already recorded";
-    case PoseState::kFailed: return "failed";
+    case PoseState::kRecorded:
+      return "recorded";
+    case PoseState::kAlreadyRecorded:
+      return "already recorded";
+    case PoseState::kFailed:
+      return "failed";
   }
   return "?";
 }
@@ -181,8 +185,7 @@ StatusOr<PoseRecord> AcquirePose(const std::string& dir, int pose_index, const V
   record.pose = pose;
   record.holdout = options.holdout_every > 0 && pose_index % options.holdout_every == options.holdout_every - 1;
   cv::Mat frame;
-  if (Status s = DriveAndCapture(pose, controller, camera, options, hooks, &frame, &record.readings); !s.ok())
-    return s;
+  if (Status s = DriveAndCapture(pose, controller, camera, options, hooks, &frame, &record.readings); !s.ok()) return s;
   StatusOr<std::string> png = EncodePng(frame, record.image);
   if (!png.ok()) return png.status();
 
@@ -254,8 +257,7 @@ StatusOr<AcquireResult> AcquirePlan(const AcquireRequest& request, Controller& c
   hooks.Progress(0, total);
   for (int index = 0; index < total; ++index) {
     if (hooks.Cancelled()) return Status::Cancelled();
-    StatusOr<PoseRecord> record =
-        RunOnePose(request, index, (*poses)[index], *recorded, controller, camera, hooks);
+    StatusOr<PoseRecord> record = RunOnePose(request, index, (*poses)[index], *recorded, controller, camera, hooks);
     if (!record.ok()) return record.status();
     if (record->state != PoseState::kAlreadyRecorded) hooks.Note(PoseNote(*record, total));
     result.poses.push_back(*record);
@@ -268,7 +270,9 @@ StatusOr<AcquireResult> AcquirePlan(const AcquireRequest& request, Controller& c
 nlohmann::json ToJson(const AcquireResult& result) {
   nlohmann::json poses = nlohmann::json::array();
   for (const PoseRecord& r : result.poses) {
-    nlohmann::json row = {{"index", r.index}, {"state", PoseStateName(r.state)}, {"image", r.image},
+    nlohmann::json row = {{"index", r.index},
+                          {"state", PoseStateName(r.state)},
+                          {"image", r.image},
                           {"pose", std::vector<double>(r.pose.data(), r.pose.data() + 6)}};
     if (r.state == PoseState::kRecorded) {
       row["readings"] = std::vector<double>(r.readings.data(), r.readings.data() + kNumLegs);

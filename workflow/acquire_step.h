@@ -38,7 +38,7 @@ namespace hexcal::workflow {
 class SimWorld;
 
 struct AcquireOptions {
-  double settle_seconds = 0;  // waited after each move ends, before the frame, seconds
+  double settle_seconds = 0;   // waited after each move ends, before the frame, seconds
   int grab_timeout_ms = 5000;  // a frame later than this is a failed pose, milliseconds
   // Every Nth pose of the plan (rows N-1, 2N-1, ...) is recorded with
   // holdout = 1, kept out of the calibration to validate it; 0 = none.
@@ -52,14 +52,14 @@ enum class PoseState { kRecorded, kAlreadyRecorded, kFailed };
 const char* PoseStateName(PoseState state);  // "recorded", "already recorded", "failed"
 
 struct PoseRecord {
-  int index = 0;          // row of the plan, from 0
+  int index = 0;  // row of the plan, from 0
   PoseState state = PoseState::kRecorded;
-  std::string image;      // "pose_0007.png"
-  Vector6d pose = Vector6d::Zero();  // as commanded: robot unit, degrees
+  std::string image;                           // "pose_0007.png"
+  Vector6d pose = Vector6d::Zero();            // as commanded: robot unit, degrees
   LegReadings readings = LegReadings::Zero();  // as recorded (kRecorded only), robot unit
   bool holdout = false;
-  double seconds = 0;     // move, settle, grab and record
-  std::string error;      // kFailed: why
+  double seconds = 0;  // move, settle, grab and record
+  std::string error;   // kFailed: why
 };
 
 // "pose_0007.png": the image of plan row `pose_index`.
@@ -95,8 +95,8 @@ struct AcquireRequest {
 
 struct AcquireResult {
   std::string session, controller, camera;  // the folder and the devices' Describe()
-  std::vector<PoseRecord> poses;             // one per plan row, in plan order
-  double seconds = 0;                        // the whole run
+  std::vector<PoseRecord> poses;            // one per plan row, in plan order
+  double seconds = 0;                       // the whole run
 
   int Count(PoseState state) const;
 };

@@ -34,9 +34,9 @@ namespace fs = std::filesystem;
 std::string MakeSession(const TempDir& dir, bool with_unreachable = false) {
   const std::string session = dir.File("s");
   EXPECT_TRUE(InitSession(session, {"inria-left-hand", kSimulatedCameraName, kDefaultTargetName}).ok());
-  WriteTextFile(session + "/plan.csv",
-                std::string("x,y,z,q1,q2,q3\n") + "0,0,53.5,0,0,0\n" + "1,-0.5,53,2,-1,4\n" +
-                    (with_unreachable ? "0,0,500,0,0,0\n" : "-1,0.8,54,-2,2,-3\n") + "0.5,1,53.8,1,1.5,-2\n");
+  WriteTextFile(session + "/plan.csv", std::string("x,y,z,q1,q2,q3\n") + "0,0,53.5,0,0,0\n" + "1,-0.5,53,2,-1,4\n" +
+                                           (with_unreachable ? "0,0,500,0,0,0\n" : "-1,0.8,54,-2,2,-3\n") +
+                                           "0.5,1,53.8,1,1.5,-2\n");
   return session;
 }
 

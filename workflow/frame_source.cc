@@ -141,8 +141,7 @@ Status FrameSource::SetGain(double) {
 
 StatusOr<std::unique_ptr<FrameSource>> OpenFrameSource(const std::string& url, const FrameSourceOptions& options) {
   if (url == "sim") {
-    if (!options.sim)
-      return Status::Error("camera 'sim' looks at the sim world: use it with --controller sim");
+    if (!options.sim) return Status::Error("camera 'sim' looks at the sim world: use it with --controller sim");
     return std::unique_ptr<FrameSource>(std::make_unique<SimFrameSource>(options.sim));
   }
   const size_t colon = url.find(':');

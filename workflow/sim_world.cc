@@ -42,13 +42,12 @@ StatusOr<std::shared_ptr<SimWorld>> SimWorld::ForSession(const std::string& dir,
   options.seed = seed;
   auto world = std::make_shared<SimWorld>(MakeDemoScene(*nominal, *camera, *target, options));
   if (Status s = world->Command(SamplingBoxCentre(*nominal)); !s.ok())
-    return Status::Error(dir + ": the sim machine cannot start at the centre of the robot's sampling box: " +
-                         s.message());
+    return Status::Error(dir +
+                         ": the sim machine cannot start at the centre of the robot's sampling box: " + s.message());
   return world;
 }
 
-SimWorld::SimWorld(DemoScene scene)
-    : scene_(std::move(scene)), reading_noise_(scene_.seed * 7919 + 17) {
+SimWorld::SimWorld(DemoScene scene) : scene_(std::move(scene)), reading_noise_(scene_.seed * 7919 + 17) {
   RenderOptions render;
   render.seed = scene_.seed;
   renderer_ = std::make_unique<Renderer>(scene_.camera, scene_.target, render);
@@ -66,8 +65,8 @@ Status SimWorld::Command(const Vector6d& pose_vector) {
   const LegReadings legs = InverseKinematics(nominal, commanded);
   StatusOr<LocalFkResult> actual = ForwardKinematicsLocal(scene_.truth, legs, commanded);
   if (!actual.ok())
-    return Status::Failed("pose " + PoseText(pose_vector) + ": the simulated platform has no pose for its legs: " +
-                          actual.status().message());
+    return Status::Failed("pose " + PoseText(pose_vector) +
+                          ": the simulated platform has no pose for its legs: " + actual.status().message());
   std::lock_guard<std::mutex> hold(mutex_);
   driven_legs_ = legs;
   actual_pose_ = actual->pose;
@@ -93,8 +92,7 @@ cv::Mat SimWorld::RenderFrame() {
   // camera_from_target = X⁻¹ · base_from_platform · Y, in the target's unit (as RecordDemoSession).
   Pose camera_from_target =
       Compose(Compose(Inverse(scene_.base_from_camera), base_from_platform), scene_.platform_from_target);
-  camera_from_target.position *=
-      MetresPerUnit(scene_.nominal.length_unit) / MetresPerUnit(scene_.target.length_unit);
+  camera_from_target.position *= MetresPerUnit(scene_.nominal.length_unit) / MetresPerUnit(scene_.target.length_unit);
   return renderer_->Render(camera_from_target, index).image;
 }
 

@@ -69,7 +69,8 @@ void AddAcquireCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   sub->add_option("--seed", request.seed, "seed of the sim world's hidden truth and noise (sim only)")
       ->capture_default_str();
-  sub->add_flag("--wait", cli->wait, "when another program writes the session, wait for it instead of stopping (exit 3)");
+  sub->add_flag("--wait", cli->wait,
+                "when another program writes the session, wait for it instead of stopping (exit 3)");
   sub->add_flag("--json", cli->json, "print one JSON object on stdout (progress on stderr)");
   sub->callback([=] { *exit_code = RunAcquireCommand(*cli, std::cout, std::cerr); });
 }
