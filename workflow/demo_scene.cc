@@ -83,6 +83,15 @@ DemoScene MakeDemoScene(const Robot& nominal, const Camera& camera, const Target
   return scene;
 }
 
+Status WriteSceneTruth(const DemoScene& scene, const std::string& dir) {
+  const fs::path truth_dir = fs::path(dir) / "truth";
+  std::error_code error;
+  fs::create_directories(truth_dir, error);
+  if (error) return Status::IoError(truth_dir.string() + ": cannot create the folder: " + error.message());
+  if (Status s = SaveRobot(scene.truth, (truth_dir / "robot.yaml").string()); !s.ok()) return s;
+  return WriteFileAtomically((truth_dir / "frames.yaml").string(), FramesYaml(scene));
+}
+
 Status RecordDemoSession(const DemoScene& scene, const std::string& robot_name, const std::string& camera_name,
                          const std::vector<Vector6d>& planned,
                          const std::vector<Vector6d>& held_out, const std::string& dir,
@@ -94,12 +103,7 @@ Status RecordDemoSession(const DemoScene& scene, const std::string& robot_name, 
   config.noise = scene.noise;
   if (Status s = InitSession(dir, config); !s.ok()) return s;
   const SessionPaths paths(dir);
-  const fs::path truth_dir = fs::path(dir) / "truth";
-  std::error_code error;
-  fs::create_directories(truth_dir, error);
-  if (error) return Status::Error(truth_dir.string() + ": cannot create the folder: " + error.message());
-  if (Status s = SaveRobot(scene.truth, (truth_dir / "robot.yaml").string()); !s.ok()) return s;
-  if (Status s = WriteFileAtomically((truth_dir / "frames.yaml").string(), FramesYaml(scene)); !s.ok()) return s;
+  if (Status s = WriteSceneTruth(scene, dir); !s.ok()) return s;
 
   std::vector<Vector6d> poses = planned;
   poses.insert(poses.end(), held_out.begin(), held_out.end());

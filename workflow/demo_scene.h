@@ -44,6 +44,12 @@ struct DemoScene {
 DemoScene MakeDemoScene(const Robot& nominal, const Camera& camera, const Target& target,
                         const DemoSceneOptions& options);
 
+// Writes the hidden truth to DIR/truth/: the true robot (robot.yaml) and the
+// true frames (frames.yaml, robot unit, degrees, Euler xyz), for comparing a
+// calibration with it. A folder with truth/frames.yaml counts as a demo
+// folder (`hexcal demo --force` may replace it).
+Status WriteSceneTruth(const DemoScene& scene, const std::string& dir);
+
 // Initialises the session folder DIR (hexcal session init) with the robot and
 // camera names as given (a preset or a path) and records one
 // image and one legs.csv row per pose: `planned` for the calibration, then

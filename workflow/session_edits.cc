@@ -181,6 +181,13 @@ Status CheckWritableInside(const std::string& dir, const std::string& folder) {
 
 EditOutcome RecordCapture(const std::string& dir, const std::string& image_file, const LegsRow& row,
                           const EditOptions& options) {
+  StatusOr<std::string> bytes = ReadFileToString(image_file, kMaxImageBytes);
+  if (!bytes.ok()) return Failed(bytes.status());
+  return RecordCaptureBytes(dir, *bytes, row, options);
+}
+
+EditOutcome RecordCaptureBytes(const std::string& dir, const std::string& image_bytes, const LegsRow& row,
+                               const EditOptions& options) {
   if (Status s = CheckWritableInside(dir, "images"); !s.ok()) return Failed(s);
   StatusOr<SessionLock> lock = SessionLock::Acquire(dir, options.wait);
   if (!lock.ok()) return Failed(lock.status());
@@ -194,9 +201,7 @@ EditOutcome RecordCapture(const std::string& dir, const std::string& image_file,
   std::error_code error;
   if (fs::exists(fs::symlink_status(target, error)))  // recorded images are never replaced
     return Failed(Status::Error(target + ": exists already; record the capture under another name"));
-  StatusOr<std::string> bytes = ReadFileToString(image_file, kMaxImageBytes);
-  if (!bytes.ok()) return Failed(bytes.status());
-  if (Status s = WriteFileAtomically(target, *bytes); !s.ok()) return Failed(s);
+  if (Status s = WriteFileAtomically(target, image_bytes); !s.ok()) return Failed(s);
   return Failed(WriteFileAtomically(SessionPaths(dir).legs, FormatCsv(table->header, table->rows)));
 }
 

@@ -67,6 +67,10 @@ Status CheckWritableInside(const std::string& session_dir, const std::string& fo
 // LoadSessionLegs names ("images/x.png: no row in legs.csv").
 EditOutcome RecordCapture(const std::string& session_dir, const std::string& image_file, const LegsRow& row,
                           const EditOptions& options = {});
+// The same with the image file's contents in memory (a frame encoded as PNG
+// by the Acquire step, workflow/acquire_step.h).
+EditOutcome RecordCaptureBytes(const std::string& session_dir, const std::string& image_bytes, const LegsRow& row,
+                               const EditOptions& options = {});
 
 // legs.csv replaced by `legs_file` (the GUI's "Import readings"), under the
 // lock; if the session's rows do not load with it, the old legs.csv is put

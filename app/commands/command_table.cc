@@ -19,6 +19,7 @@ constexpr CommandEntry kCommands[] = {
     {"measure", AddMeasureCommand},
     {"session", AddSessionCommand},
     {"report", AddReportCommand},
+    {"acquire", AddAcquireCommand},
 };
 }  // namespace
 

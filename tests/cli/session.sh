@@ -10,26 +10,13 @@ hexcal=$1 data=$2
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 "$hexcal" candidates --robot inria-left-hand --kind random --count 16 --seed 5 --out "$dir/poses.csv" >/dev/null
-python3 - "$dir" "$data/../../resources/robots/inria-left-hand.yaml" <<'PY'
-import csv, math, random, re, sys
+CLI_DIR=$(dirname "$0") python3 - "$dir" "$data/../../resources/robots/inria-left-hand.yaml" <<'PY'
+import csv, math, os, random, re, sys
+sys.dont_write_bytecode = True  # nothing written into the source tree
+sys.path.insert(0, os.environ["CLI_DIR"])
+from rigid import comp, inv, pose, vec
 d, preset = sys.argv[1], sys.argv[2]
 random.seed(7)
-def mm(a, b): return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
-def mv(a, v): return [sum(a[i][k] * v[k] for k in range(3)) for i in range(3)]
-def tr(a): return [list(r) for r in zip(*a)]
-def rot(q):  # Rz(q3) Ry(q2) Rx(q1), degrees
-    a, b, c = [math.radians(x) for x in q]
-    rx = [[1, 0, 0], [0, math.cos(a), -math.sin(a)], [0, math.sin(a), math.cos(a)]]
-    ry = [[math.cos(b), 0, math.sin(b)], [0, 1, 0], [-math.sin(b), 0, math.cos(b)]]
-    rz = [[math.cos(c), -math.sin(c), 0], [math.sin(c), math.cos(c), 0], [0, 0, 1]]
-    return mm(rz, mm(ry, rx))
-def pose(v): return (v[:3], rot(v[3:]))
-def comp(a, b): return ([x + y for x, y in zip(mv(a[1], b[0]), a[0])], mm(a[1], b[1]))
-def inv(a): return ([-x for x in mv(tr(a[1]), a[0])], tr(a[1]))
-def vec(p):
-    t, r = p
-    return t + [math.degrees(math.atan2(r[2][1], r[2][2])), math.degrees(math.asin(-r[2][0])),
-                math.degrees(math.atan2(r[1][0], r[0][0]))]
 base_from_camera = pose([1.5, -2.0, 103.0, 180.0, 2.0, -4.0])  # cm, degrees
 platform_from_target = pose([-11.25, -11.25, 0.5, 0.0, 0.0, 5.0])
 def moved(m):

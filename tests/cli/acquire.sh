@@ -1,0 +1,125 @@
+#!/usr/bin/env bash
+# acquire.sh HEXCAL: `hexcal acquire` end to end on the sim world
+# (docs/acquisition.md). A session on inria-left-hand, a plan of 16 poses in
+# the sampling box, acquisition with the sim controller and camera, stopped
+# once by Ctrl-C and once by kill -9 and resumed each time without a row
+# twice; then `calibrate --session` must beat the nominal robot against the
+# hidden truth in SESSION/truth (its 42 parameters in the registered frames,
+# at least 2 times closer) and on the held-out poses (3 times). Bad URLs are
+# named.
+set -eu
+hexcal=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+s=$dir/s
+
+"$hexcal" session init --robot inria-left-hand --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 \
+  --noise-position 0.005 --noise-angle 0.02 --noise-leg 0.001 "$s" >/dev/null
+code=0
+"$hexcal" acquire --session "$s" --controller sim --camera sim 2>"$dir/err" || code=$?
+[ "$code" -eq 2 ] && grep -q "no plan in the session; run hexcal plan" "$dir/err"
+"$hexcal" plan --robot inria-left-hand --poses 16 --candidate-count 400 --seed 3 --no-certificate \
+  --out "$s/plan.csv" >/dev/null
+
+# Bad URLs: bad input (2), naming the URL and what is accepted.
+expect_refused() {  # expect_refused PATTERN ARGS...
+  local pattern=$1 code=0
+  shift
+  "$hexcal" acquire --session "$s" "$@" >/dev/null 2>"$dir/err" || code=$?
+  [ "$code" -eq 2 ] || { echo "exit $code for $*"; exit 1; }
+  grep -q "$pattern" "$dir/err" || { echo "no '$pattern' in: $(cat "$dir/err")"; exit 1; }
+}
+expect_refused "camera 'aravis:Fake_1': GenICam cameras through Aravis are not available in this build" \
+  --controller sim --camera aravis:Fake_1
+expect_refused "controller 'linuxcnc://localhost:5007': LinuxCNC through linuxcncrsh is not yet supported" \
+  --controller linuxcnc://localhost:5007 --camera file:/dev/null
+expect_refused "camera 'gige:1': unknown kind 'gige'; accepted forms: sim, v4l2:N, file:PATH" \
+  --controller sim --camera gige:1
+expect_refused "camera 'sim' renders the sim world's platform: it needs --controller sim" \
+  --controller linuxcnc://h:1 --camera sim
+[ ! -e "$s/legs.csv" ]
+
+rows() { if [ -e "$s/legs.csv" ]; then tail -n +2 "$s/legs.csv" | wc -l; else echo 0; fi; }
+wait_rows() {  # wait_rows N: until legs.csv has at least N rows (30 s at most)
+  for _ in $(seq 300); do [ "$(rows)" -ge "$1" ] && return 0; sleep 0.1; done
+  echo "legs.csv never reached $1 rows"; exit 1
+}
+# Run directly (not through a shell function), so that $! is hexcal's PID.
+acquire=("$hexcal" acquire --session "$s" --controller sim --camera sim --holdout-every 4 --seed 2)
+
+# Ctrl-C: the pose being recorded is finished, then exit 1 (cancelled).
+"${acquire[@]}" --settle 0.2 >/dev/null 2>"$dir/err1" &
+pid=$!
+wait_rows 3
+kill -INT $pid
+code=0
+wait $pid || code=$?
+[ "$code" -eq 1 ] && grep -q "hexcal acquire: cancelled" "$dir/err1"
+after_cancel=$(rows)
+[ "$after_cancel" -ge 3 ] && [ "$after_cancel" -lt 16 ]
+
+# kill -9 in the middle of a later pose; then the rest.
+"${acquire[@]}" --settle 0.2 >/dev/null 2>"$dir/err2" &
+pid=$!
+wait_rows $((after_cancel + 3))
+kill -9 $pid
+wait $pid 2>/dev/null || true
+after_kill=$(rows)
+"${acquire[@]}" --json >"$dir/acquire.json" 2>"$dir/err3"
+python3 - "$dir/acquire.json" "$after_kill" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["recorded"] + r["already_recorded"] == 16 and r["failed"] == 0, r
+assert r["already_recorded"] == int(sys.argv[2]), (r["already_recorded"], sys.argv[2])
+assert [p["image"] for p in r["poses"]] == ["pose_%04d.png" % k for k in range(16)]
+assert all(p["holdout"] == (p["index"] % 4 == 3) for p in r["poses"] if p["state"] == "recorded")
+PY
+[ "$(rows)" -eq 16 ] && [ "$(ls "$s/images" | wc -l)" -eq 16 ]
+[ "$(cut -d, -f1 "$s/legs.csv" | sort | uniq -d | wc -l)" -eq 0 ]
+grep -q "sim controller (inria-left-hand" "$dir/acquire.json"
+
+# Nothing left to do: a run records nothing and says so.
+"${acquire[@]}" >"$dir/again" 2>/dev/null
+grep -q "0 recorded, 16 already recorded, 0 failed, of 16 poses" "$dir/again"
+# Another seed would be another hidden robot: refused.
+expect_refused "drawn with another --seed than 5" --controller sim --camera sim --seed 5
+
+# The calibration from the acquired session against the hidden truth.
+"$hexcal" calibrate --session "$s" --json >"$dir/report.json" 2>"$dir/err4"
+# The truth moved into the registered frames, a -> G a, b -> H b with
+# G = X X*^-1 and H = Y Y*^-1 (core/registration.h, ExpressInFrames), against
+# the calibrated and the nominal parameters: all 42, robot unit.
+CLI_DIR=$(dirname "$0") python3 - "$s" "$(dirname "$0")/../../resources/robots/inria-left-hand.yaml" "$dir/report.json" <<'PY'
+import json, os, re, sys
+sys.dont_write_bytecode = True  # nothing written into the source tree
+sys.path.insert(0, os.environ["CLI_DIR"])
+from rigid import apply, comp, inv, pose
+s, preset = sys.argv[1], sys.argv[2]
+def frames(path):
+    text = open(path).read()
+    get = lambda key: pose([float(x) for x in re.search(key + r": \[([^\]]*)\]", text).group(1).split(",")])
+    return get("base_from_camera"), get("platform_from_target")
+def legs(path):
+    text = open(path).read().split("limits:")[0]
+    out = []
+    for m in re.finditer(r"a: \[([^\]]*)\], b: \[([^\]]*)\], l: ([-0-9.e+]+)", text):
+        out.append(([float(x) for x in m.group(1).split(",")], [float(x) for x in m.group(2).split(",")], float(m.group(3))))
+    assert len(out) == 6, path
+    return out
+x_true, y_true = frames(s + "/truth/frames.yaml")
+x_reg, y_reg = frames(s + "/session.yaml")
+g, h = comp(x_reg, inv(x_true)), comp(y_reg, inv(y_true))
+truth = [(apply(g, a), apply(h, b), l) for a, b, l in legs(s + "/truth/robot.yaml")]
+def flat(robot): return [v for a, b, l in robot for v in a + b + [l]]
+t = flat(truth)
+def error(robot): return sum(abs(u - v) for u, v in zip(flat(robot), t)) / len(t)
+nominal, calibrated = error(legs(preset)), error(legs(s + "/results/calibrated.yaml"))
+print("parameter error against the truth in the registered frames, mean of 42: nominal %.5f, calibrated %.5f" % (nominal, calibrated))
+assert calibrated * 2 < nominal, (nominal, calibrated)
+v = json.load(open(sys.argv[3]))["validation"]
+print("held-out position RMS (cm): before %.5f, after %.5f; orientation RMS (deg): before %.4f, after %.4f" %
+      (v["before"]["position_rms"], v["after"]["position_rms"], v["before"]["orientation_rms"],
+       v["after"]["orientation_rms"]))
+assert v["after"]["position_rms"] * 3 < v["before"]["position_rms"], v
+PY
+echo "acquire: ok"

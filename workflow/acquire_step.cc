@@ -1,0 +1,307 @@
+#include "workflow/acquire_step.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <set>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "core/csv.h"
+#include "core/robot_io.h"
+#include "core/session.h"
+#include "workflow/session_edits.h"
+#include "workflow/sim_world.h"
+
+namespace hexcal::workflow {
+namespace {
+
+namespace fs = std::filesystem;
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The images that have a row in legs.csv. Read as a plain table, not with
+// LoadSessionLegs: an image left without its row by a killed capture must not
+// stop the run that records it again.
+StatusOr<std::set<std::string>> ImagesWithRows(const std::string& dir) {
+  const std::string path = SessionPaths(dir).legs;
+  std::error_code error;
+  if (!fs::exists(path, error)) return std::set<std::string>{};
+  StatusOr<CsvTable> table = ReadCsv(path);
+  if (!table.ok()) return table.status();
+  StatusOr<int> column = ColumnIndex(*table, "image");
+  if (!column.ok()) return column.status();
+  std::set<std::string> images;
+  for (const std::vector<std::string>& row : table->rows) images.insert(row[*column]);
+  return images;
+}
+
+// An image of this step without its row is what a kill between RecordCapture's
+// two writes leaves: removed, so that the pose is recorded again whole.
+Status RemoveImageWithoutRow(const std::string& dir, const std::string& image, const JobHooks& hooks) {
+  const fs::path path = fs::path(SessionPaths(dir).images) / image;
+  std::error_code error;
+  if (!fs::exists(fs::symlink_status(path, error))) return Status::Ok();
+  fs::remove(path, error);
+  if (error)
+    return Status::IoError(path.string() + ": cannot remove an image left without its row: " + error.message());
+  hooks.Note("images/" + image + " had no row in legs.csv (an interrupted capture): recording it again");
+  return Status::Ok();
+}
+
+// The frame as PNG bytes (lossless: the corners are measured in it).
+StatusOr<std::string> EncodePng(const cv::Mat& frame, const std::string& image) {
+  std::vector<uint8_t> png;
+  if (!cv::imencode(".png", frame, png)) return Status::Failed(image + ": the frame could not be encoded as PNG");
+  return std::string(png.begin(), png.end());
+}
+
+// Move, settle, grab, read: the device half of AcquirePose.
+Status DriveAndCapture(const Vector6d& pose, Controller& controller, FrameSource& camera, const AcquireOptions& options,
+                       const JobHooks& hooks, cv::Mat* frame, LegReadings* readings) {
+  if (Status s = controller.MoveTo(pose); !s.ok()) return s;
+  if (Status s = controller.WaitSettled(options.settle_seconds); !s.ok()) return s;
+  if (hooks.Cancelled()) return Status::Cancelled();
+  StatusOr<cv::Mat> grabbed = camera.Grab(std::chrono::milliseconds(options.grab_timeout_ms));
+  if (!grabbed.ok()) return grabbed.status();
+  StatusOr<LegReadings> legs = controller.ReadLegs();
+  if (!legs.ok()) return legs.status();
+  for (int i = 0; i < kNumLegs; ++i)
+    if (!std::isfinite((*legs)[i]))
+      return Status::Failed(controller.Describe() + ": leg " + std::to_string(i + 1) + " reads no number");
+  *frame = std::move(*grabbed);
+  *readings = *legs;
+  return Status::Ok();
+}
+
+// Errors that stop the whole run rather than one pose.
+bool StopsTheRun(const Status& status) {
+  return status.cancelled() || status.kind() == StatusKind::kBusy || status.kind() == StatusKind::kIo;
+}
+
+StatusOr<std::vector<Vector6d>> LoadRequestedPoses(const AcquireRequest& request) {
+  const std::string path = request.poses.empty() ? SessionPaths(request.session).plan : request.poses;
+  std::error_code error;
+  if (request.poses.empty() && !fs::exists(path, error))
+    return Status::Error(path + ": no plan in the session; run hexcal plan --out " + path + " or pass --poses FILE");
+  return LoadPoses(path);
+}
+
+// One plan row: skipped when recorded, else acquired; a failure is recorded
+// in the result unless it stops the run.
+StatusOr<PoseRecord> RunOnePose(const AcquireRequest& request, int index, const Vector6d& pose,
+                                const std::set<std::string>& recorded, Controller& controller, FrameSource& camera,
+                                const JobHooks& hooks) {
+  PoseRecord skipped;
+  skipped.index = index;
+  skipped.image = AcquiredImageName(index);
+  skipped.pose = pose;
+  if (recorded.count(skipped.image)) {
+    skipped.state = PoseState::kAlreadyRecorded;
+    return skipped;
+  }
+  StatusOr<PoseRecord> done = AcquirePose(request.session, index, pose, controller, camera, request.options, hooks);
+  if (done.ok() || StopsTheRun(done.status())) return done;
+  PoseRecord failed = skipped;
+  failed.state = PoseState::kFailed;
+  failed.error = done.status().message();
+  return failed;
+}
+
+std::string PoseNote(const PoseRecord& record, int total) {
+  std::ostringstream line;
+  line << "pose " << record.index + 1 << "/" << total << " " << record.image << ": " << PoseStateName(record.state);
+  if (record.state == PoseState::kRecorded)
+    line << " in " << FormatNumber(std::round(record.seconds * 100) / 100) << " s";
+  if (record.state == PoseState::kFailed) line << ": " << record.error;
+  return line.str();
+}
+
+// The sim truth is written once; a resumed run must draw the same truth.
+Status WriteOrCheckTruth(const SimWorld& world, const std::string& dir, uint64_t seed) {
+  const std::string robot_file = (fs::path(dir) / "truth" / "robot.yaml").string();
+  std::error_code error;
+  if (!fs::exists(robot_file, error)) return world.WriteTruth(dir);
+  StatusOr<std::string> on_disk = ReadFileToString(robot_file, kMaxTableBytes);
+  if (!on_disk.ok()) return on_disk.status();
+  if (*on_disk != RobotToYaml(world.scene().truth))
+    return Status::Error(robot_file + ": the session's sim truth was drawn with another --seed than " +
+                         std::to_string(seed) + "; resume with the seed of the first run");
+  return Status::Ok();
+}
+
+}  // namespace
+
+bool AcquireOptions::IsValid(std::string* error) const {
+  if (!(settle_seconds >= 0 && settle_seconds <= 600)) {
+    *error = "--settle must be between 0 and 600 seconds, got " + FormatNumber(settle_seconds);
+    return false;
+  }
+  if (grab_timeout_ms < 1 || grab_timeout_ms > 600000) {
+    *error = "the grab time-out must be between 1 and 600000 ms, got " + std::to_string(grab_timeout_ms);
+    return false;
+  }
+  if (holdout_every < 0 || holdout_every == 1) {
+    *error = "--holdout-every must be 0 (none) or at least 2, got " + std::to_string(holdout_every);
+    return false;
+  }
+  return true;
+}
+
+const char* PoseStateName(PoseState state) {
+  switch (state) {
+    case PoseState::kRecorded:
+      return "recorded";
+    case PoseState::kAlreadyRecorded:
+      return "already recorded";
+    case PoseState::kFailed:
+      return "failed";
+  }
+  return "?";
+}
+
+std::string AcquiredImageName(int pose_index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "pose_%04d.png", pose_index);
+  return name;
+}
+
+int AcquireResult::Count(PoseState state) const {
+  int count = 0;
+  for (const PoseRecord& record : poses) count += record.state == state;
+  return count;
+}
+
+StatusOr<PoseRecord> AcquirePose(const std::string& dir, int pose_index, const Vector6d& pose, Controller& controller,
+                                 FrameSource& camera, const AcquireOptions& options, const JobHooks& hooks) {
+  const auto start = std::chrono::steady_clock::now();
+  PoseRecord record;
+  record.index = pose_index;
+  record.image = AcquiredImageName(pose_index);
+  record.pose = pose;
+  record.holdout = options.holdout_every > 0 && pose_index % options.holdout_every == options.holdout_every - 1;
+  cv::Mat frame;
+  if (Status s = DriveAndCapture(pose, controller, camera, options, hooks, &frame, &record.readings); !s.ok()) return s;
+  StatusOr<std::string> png = EncodePng(frame, record.image);
+  if (!png.ok()) return png.status();
+
+  StatusOr<SessionLock> lock = SessionLock::Acquire(dir, options.wait);
+  if (!lock.ok()) return lock.status();
+  StatusOr<std::set<std::string>> recorded = ImagesWithRows(dir);
+  if (!recorded.ok()) return recorded.status();
+  if (recorded->count(record.image)) return Status::Error(dir + ": " + record.image + " is recorded already");
+  if (Status s = RemoveImageWithoutRow(dir, record.image, hooks); !s.ok()) return s;
+  LegsRow row;
+  row.image = record.image;
+  row.legs = record.readings;
+  row.holdout = record.holdout;
+  const EditOutcome outcome = RecordCaptureBytes(dir, *png, row, {false, options.wait});
+  if (!outcome.status.ok()) return outcome.status;
+  if (outcome.conflict) return Status::Error(outcome.conflict_text);
+  record.seconds = SecondsSince(start);
+  return record;
+}
+
+StatusOr<AcquisitionRig> OpenAcquisitionRig(const std::string& dir, const std::string& controller_url,
+                                            const std::string& camera_url, uint64_t seed) {
+  AcquisitionRig rig;
+  const bool sim = controller_url == "sim" || camera_url == "sim";
+  if (camera_url == "sim" && controller_url != "sim")
+    return Status::Error("camera 'sim' renders the sim world's platform: it needs --controller sim");
+  if (sim) {
+    StatusOr<std::shared_ptr<SimWorld>> world = SimWorld::ForSession(dir, seed);
+    if (!world.ok()) return world.status();
+    rig.sim = *world;
+  }
+  StatusOr<std::unique_ptr<Controller>> controller = OpenController(controller_url, {rig.sim});
+  if (!controller.ok()) return controller.status();
+  StatusOr<std::unique_ptr<FrameSource>> camera = OpenFrameSource(camera_url, {rig.sim});
+  if (!camera.ok()) return camera.status();
+  rig.controller = std::move(*controller);
+  rig.camera = std::move(*camera);
+  if (sim) {  // the truth is written only for a rig that opened whole
+    StatusOr<SessionLock> lock = SessionLock::Acquire(dir, LockWait::kBriefly);
+    if (!lock.ok()) return lock.status();
+    if (Status s = WriteOrCheckTruth(*rig.sim, dir, seed); !s.ok()) return s;
+  }
+  return rig;
+}
+
+StatusOr<AcquireResult> AcquirePlan(const AcquireRequest& request, const JobHooks& hooks) {
+  if (std::string error; !request.options.IsValid(&error)) return Status::Error(error);
+  // The plan is checked before a sim world writes its truth into the session.
+  if (StatusOr<std::vector<Vector6d>> poses = LoadRequestedPoses(request); !poses.ok()) return poses.status();
+  StatusOr<AcquisitionRig> rig = OpenAcquisitionRig(request.session, request.controller, request.camera, request.seed);
+  if (!rig.ok()) return rig.status();
+  return AcquirePlan(request, *rig->controller, *rig->camera, hooks);
+}
+
+StatusOr<AcquireResult> AcquirePlan(const AcquireRequest& request, Controller& controller, FrameSource& camera,
+                                    const JobHooks& hooks) {
+  const auto start = std::chrono::steady_clock::now();
+  if (std::string error; !request.options.IsValid(&error)) return Status::Error(error);
+  StatusOr<std::vector<Vector6d>> poses = LoadRequestedPoses(request);
+  if (!poses.ok()) return poses.status();
+  StatusOr<SessionLock> lock = SessionLock::Acquire(request.session, request.options.wait);
+  if (!lock.ok()) return lock.status();
+  StatusOr<std::set<std::string>> recorded = ImagesWithRows(request.session);
+  if (!recorded.ok()) return recorded.status();
+
+  AcquireResult result{request.session, controller.Describe(), camera.Describe(), {}, 0};
+  const int total = static_cast<int>(poses->size());
+  hooks.Stage("acquire");
+  hooks.Progress(0, total);
+  for (int index = 0; index < total; ++index) {
+    if (hooks.Cancelled()) return Status::Cancelled();
+    StatusOr<PoseRecord> record = RunOnePose(request, index, (*poses)[index], *recorded, controller, camera, hooks);
+    if (!record.ok()) return record.status();
+    if (record->state != PoseState::kAlreadyRecorded) hooks.Note(PoseNote(*record, total));
+    result.poses.push_back(*record);
+    hooks.Progress(index + 1, total);
+  }
+  result.seconds = SecondsSince(start);
+  return result;
+}
+
+nlohmann::json ToJson(const AcquireResult& result) {
+  nlohmann::json poses = nlohmann::json::array();
+  for (const PoseRecord& r : result.poses) {
+    nlohmann::json row = {{"index", r.index},
+                          {"state", PoseStateName(r.state)},
+                          {"image", r.image},
+                          {"pose", std::vector<double>(r.pose.data(), r.pose.data() + 6)}};
+    if (r.state == PoseState::kRecorded) {
+      row["readings"] = std::vector<double>(r.readings.data(), r.readings.data() + kNumLegs);
+      row["holdout"] = r.holdout;
+      row["seconds"] = r.seconds;
+    }
+    if (r.state == PoseState::kFailed) row["error"] = r.error;
+    poses.push_back(row);
+  }
+  return {{"session", result.session},
+          {"controller", result.controller},
+          {"camera", result.camera},
+          {"recorded", result.Count(PoseState::kRecorded)},
+          {"already_recorded", result.Count(PoseState::kAlreadyRecorded)},
+          {"failed", result.Count(PoseState::kFailed)},
+          {"poses", poses},
+          {"seconds", result.seconds}};
+}
+
+std::string FormatAcquireSummary(const AcquireResult& result) {
+  std::ostringstream text;
+  text << "acquired into " << result.session << " with " << result.controller << " and " << result.camera << "\n"
+       << "  " << result.Count(PoseState::kRecorded) << " recorded, " << result.Count(PoseState::kAlreadyRecorded)
+       << " already recorded, " << result.Count(PoseState::kFailed) << " failed, of " << result.poses.size()
+       << " poses in " << FormatNumber(std::round(result.seconds * 10) / 10) << " s\n";
+  for (const PoseRecord& r : result.poses)
+    if (r.state == PoseState::kFailed) text << "  failed: " << r.image << ": " << r.error << "\n";
+  if (result.Count(PoseState::kFailed) > 0) text << "  run hexcal acquire again to retry the failed poses\n";
+  return text.str();
+}
+
+}  // namespace hexcal::workflow

@@ -1,0 +1,55 @@
+// Robot controllers for the Acquire step (docs/acquisition.md): one
+// interface, opened from a URL, for the CLI (`hexcal acquire --controller URL`)
+// and the GUI's Acquire step alike.
+//
+//   sim                    the sim world (workflow/sim_world.h): a hidden true
+//                          robot that the nominal robot's IK drives
+//   linuxcnc://HOST:PORT   LinuxCNC's linuxcncrsh (devices.md): not yet supported
+//
+// Poses are plan.csv's: x, y, z in the robot's length unit, q1..q3 in degrees
+// in the robot's Euler convention; readings are hexcal's L (robot unit).
+//
+//   StatusOr<std::unique_ptr<Controller>> robot = OpenController("sim", {world});
+//   if (Status s = (*robot)->MoveTo(pose); !s.ok()) ...;
+//   (*robot)->WaitSettled(0.5);
+//   StatusOr<LegReadings> legs = (*robot)->ReadLegs();
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "core/inverse_kinematics.h"
+#include "core/pose.h"
+#include "core/status.h"
+
+namespace hexcal::workflow {
+
+class SimWorld;
+
+class Controller {
+ public:
+  virtual ~Controller() = default;
+  // Starts the move to `pose` (may return before it ends). An unreachable
+  // pose is bad input naming the limit; a machine fault is a failure.
+  virtual Status MoveTo(const Vector6d& pose) = 0;
+  // Waits until the move has ended and then `settle_seconds` more (the
+  // structure stops ringing before the camera exposes).
+  virtual Status WaitSettled(double settle_seconds) = 0;
+  // The six leg sensors now, L1..L6.
+  virtual StatusOr<LegReadings> ReadLegs() = 0;
+  // "sim controller (inria-left-hand, seed 1)": for logs.
+  virtual std::string Describe() const = 0;
+};
+
+struct ControllerOptions {
+  // The world a `sim` controller moves (OpenAcquisitionRig in
+  // workflow/acquire_step.h makes it, with the `sim` camera looking at it).
+  std::shared_ptr<SimWorld> sim;
+};
+
+// The accepted URL forms, for messages and --help.
+constexpr const char* kControllerForms = "sim, linuxcnc://HOST:PORT (not yet supported)";
+
+StatusOr<std::unique_ptr<Controller>> OpenController(const std::string& url, const ControllerOptions& options = {});
+
+}  // namespace hexcal::workflow

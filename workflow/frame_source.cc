@@ -1,0 +1,157 @@
+#include "workflow/frame_source.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "workflow/sim_world.h"
+
+namespace hexcal::workflow {
+namespace {
+
+namespace fs = std::filesystem;
+
+Status BadUrl(const std::string& url, const std::string& problem) {
+  return Status::Error("camera '" + url + "': " + problem + "; accepted forms: " + kFrameSourceForms);
+}
+
+double MillisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+class SimFrameSource final : public FrameSource {
+ public:
+  explicit SimFrameSource(std::shared_ptr<SimWorld> world) : world_(std::move(world)) {}
+  StatusOr<cv::Mat> Grab(std::chrono::milliseconds) override { return world_->RenderFrame(); }
+  std::string Describe() const override {
+    const Camera& camera = world_->scene().camera;
+    return "sim camera (" + std::to_string(camera.width) + "x" + std::to_string(camera.height) + ", rendered)";
+  }
+
+ private:
+  std::shared_ptr<SimWorld> world_;
+};
+
+// An image file: the same frame at every Grab (a still scene, or a test).
+class StillImageSource final : public FrameSource {
+ public:
+  StillImageSource(std::string url, cv::Mat image) : url_(std::move(url)), image_(std::move(image)) {}
+  StatusOr<cv::Mat> Grab(std::chrono::milliseconds) override { return image_.clone(); }
+  std::string Describe() const override {
+    return url_ + " (still image " + std::to_string(image_.cols) + "x" + std::to_string(image_.rows) + ")";
+  }
+
+ private:
+  std::string url_;
+  cv::Mat image_;
+};
+
+// A device or a video file through cv::VideoCapture. OpenCV's read blocks
+// (V4L2 gives up after its own select() time-out of 10 s), so a frame that
+// comes later than `timeout` is refused after the fact: the caller learns the
+// camera is too slow, rather than getting a frame from the wrong moment.
+class CaptureSource final : public FrameSource {
+ public:
+  CaptureSource(std::string url, std::unique_ptr<cv::VideoCapture> capture, bool is_device)
+      : url_(std::move(url)), capture_(std::move(capture)), is_device_(is_device) {}
+
+  StatusOr<cv::Mat> Grab(std::chrono::milliseconds timeout) override {
+    const auto start = std::chrono::steady_clock::now();
+    cv::Mat frame;
+    const bool read = capture_->read(frame);
+    const double waited_ms = MillisecondsSince(start);
+    if (!read && !is_device_)
+      return Status::Failed(url_ + ": end of the video after " + std::to_string(frames_) + " frames");
+    if (!read) return Status::Failed(url_ + ": no frame (dropped, or the device stopped streaming)");
+    if (frame.empty()) return Status::Failed(url_ + ": empty frame");
+    if (waited_ms > static_cast<double>(timeout.count()))
+      return Status::Failed(url_ + ": no frame within " + std::to_string(timeout.count()) + " ms (waited " +
+                            std::to_string(static_cast<long>(waited_ms)) + " ms)");
+    ++frames_;
+    return frame;
+  }
+
+  std::string Describe() const override {
+    return url_ + " (" + std::to_string(static_cast<int>(capture_->get(cv::CAP_PROP_FRAME_WIDTH))) + "x" +
+           std::to_string(static_cast<int>(capture_->get(cv::CAP_PROP_FRAME_HEIGHT))) + ", " +
+           capture_->getBackendName() + ")";
+  }
+
+  Status SetExposure(double microseconds) override {
+    // V4L2's exposure_absolute is in units of 100 µs.
+    if (is_device_ && capture_->set(cv::CAP_PROP_EXPOSURE, microseconds / 100)) return Status::Ok();
+    return FrameSource::SetExposure(microseconds);
+  }
+  Status SetGain(double decibels) override {
+    if (is_device_ && capture_->set(cv::CAP_PROP_GAIN, decibels)) return Status::Ok();
+    return FrameSource::SetGain(decibels);
+  }
+
+ private:
+  std::string url_;
+  std::unique_ptr<cv::VideoCapture> capture_;
+  bool is_device_;
+  int frames_ = 0;
+};
+
+bool IsStillImage(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  for (const char* image : {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp", ".pgm", ".ppm"})
+    if (ext == image) return true;
+  return false;
+}
+
+StatusOr<std::unique_ptr<FrameSource>> OpenFile(const std::string& url, const std::string& path) {
+  if (path.empty()) return BadUrl(url, "no path after 'file:'");
+  std::error_code error;
+  if (!fs::is_regular_file(path, error)) return Status::Error(url + ": " + path + ": no such file");
+  if (IsStillImage(path)) {
+    cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
+    if (image.empty()) return Status::Error(url + ": " + path + ": not an image OpenCV can read");
+    return std::unique_ptr<FrameSource>(std::make_unique<StillImageSource>(url, image));
+  }
+  auto capture = std::make_unique<cv::VideoCapture>(path);
+  if (!capture->isOpened()) return Status::Error(url + ": " + path + ": not a video OpenCV can read");
+  return std::unique_ptr<FrameSource>(std::make_unique<CaptureSource>(url, std::move(capture), false));
+}
+
+StatusOr<std::unique_ptr<FrameSource>> OpenV4l2(const std::string& url, const std::string& device) {
+  const bool digits = !device.empty() && device.size() <= 3 &&
+                      std::all_of(device.begin(), device.end(), [](unsigned char c) { return std::isdigit(c); });
+  if (!digits) return BadUrl(url, "expected a device number after 'v4l2:' (v4l2:0 is /dev/video0)");
+  auto capture = std::make_unique<cv::VideoCapture>(std::stoi(device), cv::CAP_V4L2);
+  if (!capture->isOpened())
+    return Status::IoError(url + ": cannot open /dev/video" + device +
+                           " (not connected, no permission, or used by another program)");
+  return std::unique_ptr<FrameSource>(std::make_unique<CaptureSource>(url, std::move(capture), true));
+}
+
+}  // namespace
+
+Status FrameSource::SetExposure(double) {
+  return Status::Error(Describe() + ": setting the exposure is not supported by this camera");
+}
+
+Status FrameSource::SetGain(double) {
+  return Status::Error(Describe() + ": setting the gain is not supported by this camera");
+}
+
+StatusOr<std::unique_ptr<FrameSource>> OpenFrameSource(const std::string& url, const FrameSourceOptions& options) {
+  if (url == "sim") {
+    if (!options.sim) return Status::Error("camera 'sim' looks at the sim world: use it with --controller sim");
+    return std::unique_ptr<FrameSource>(std::make_unique<SimFrameSource>(options.sim));
+  }
+  const size_t colon = url.find(':');
+  const std::string scheme = colon == std::string::npos ? url : url.substr(0, colon);
+  const std::string rest = colon == std::string::npos ? "" : url.substr(colon + 1);
+  if (scheme == "file") return OpenFile(url, rest);
+  if (scheme == "v4l2") return OpenV4l2(url, rest);
+  if (scheme == "aravis")
+    return BadUrl(url, "GenICam cameras through Aravis are not available in this build (docs/acquisition.md)");
+  return BadUrl(url, url.empty() ? "empty URL" : "unknown kind '" + scheme + "'");
+}
+
+}  // namespace hexcal::workflow

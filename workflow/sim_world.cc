@@ -1,0 +1,106 @@
+#include "workflow/sim_world.h"
+
+#include <cmath>
+
+#include "core/constraints.h"
+#include "core/csv.h"
+#include "core/forward_kinematics.h"
+#include "core/registration.h"
+#include "core/robot_io.h"
+#include "core/session.h"
+#include "vision/renderer.h"
+#include "workflow/session_calibrate.h"
+
+namespace hexcal::workflow {
+namespace {
+
+Vector6d SamplingBoxCentre(const Robot& robot) {
+  Vector6d centre = Vector6d::Zero();
+  if (const std::optional<PoseBox> box = robot.limits.SamplingBox(); box && box->IsComplete())
+    for (int k = 0; k < 6; ++k) centre[k] = box->bounds[k]->Centre();
+  return centre;
+}
+
+std::string PoseText(const Vector6d& pose) {
+  std::string text = "(";
+  for (int k = 0; k < 6; ++k) text += FormatNumber(pose[k]) + (k < 5 ? ", " : ")");
+  return text;
+}
+
+}  // namespace
+
+StatusOr<std::shared_ptr<SimWorld>> SimWorld::ForSession(const std::string& dir, uint64_t seed) {
+  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
+  if (!config.ok()) return config.status();
+  StatusOr<Robot> nominal = LoadRobot(ResolveSessionFile(dir, config->robot));
+  if (!nominal.ok()) return nominal.status();
+  StatusOr<Camera> camera = LoadCamera(ResolveSessionFile(dir, config->camera));
+  if (!camera.ok()) return camera.status();
+  StatusOr<Target> target = LoadTarget(ResolveSessionFile(dir, config->target));
+  if (!target.ok()) return target.status();
+  DemoSceneOptions options;
+  options.seed = seed;
+  auto world = std::make_shared<SimWorld>(MakeDemoScene(*nominal, *camera, *target, options));
+  if (Status s = world->Command(SamplingBoxCentre(*nominal)); !s.ok())
+    return Status::Error(dir +
+                         ": the sim machine cannot start at the centre of the robot's sampling box: " + s.message());
+  return world;
+}
+
+SimWorld::SimWorld(DemoScene scene) : scene_(std::move(scene)), reading_noise_(scene_.seed * 7919 + 17) {
+  RenderOptions render;
+  render.seed = scene_.seed;
+  renderer_ = std::make_unique<Renderer>(scene_.camera, scene_.target, render);
+}
+
+SimWorld::~SimWorld() = default;
+
+Status SimWorld::Command(const Vector6d& pose_vector) {
+  const Robot& nominal = scene_.nominal;
+  const Pose commanded = nominal.PoseFromVector(pose_vector);
+  const ConstraintReport report = EvaluateConstraints(nominal, commanded);
+  if (!report.feasible)
+    return Status::Error("pose " + PoseText(pose_vector) + " is out of the robot's workspace: " + report.worst_label +
+                         " by " + FormatNumber(std::round(-report.worst_margin * 1e4) / 1e4));
+  const LegReadings legs = InverseKinematics(nominal, commanded);
+  StatusOr<LocalFkResult> actual = ForwardKinematicsLocal(scene_.truth, legs, commanded);
+  if (!actual.ok())
+    return Status::Failed("pose " + PoseText(pose_vector) +
+                          ": the simulated platform has no pose for its legs: " + actual.status().message());
+  std::lock_guard<std::mutex> hold(mutex_);
+  driven_legs_ = legs;
+  actual_pose_ = actual->pose;
+  return Status::Ok();
+}
+
+LegReadings SimWorld::ReadLegs() {
+  std::lock_guard<std::mutex> hold(mutex_);
+  std::uniform_real_distribution<double> unit_noise(-1, 1);
+  LegReadings readings = driven_legs_;
+  for (int i = 0; i < kNumLegs; ++i) readings[i] += scene_.noise.leg * unit_noise(reading_noise_);
+  return readings;
+}
+
+cv::Mat SimWorld::RenderFrame() {
+  Pose base_from_platform;
+  uint64_t index = 0;
+  {
+    std::lock_guard<std::mutex> hold(mutex_);
+    base_from_platform = actual_pose_;
+    index = frames_rendered_++;
+  }
+  // camera_from_target = X⁻¹ · base_from_platform · Y, in the target's unit (as RecordDemoSession).
+  Pose camera_from_target =
+      Compose(Compose(Inverse(scene_.base_from_camera), base_from_platform), scene_.platform_from_target);
+  camera_from_target.position *= MetresPerUnit(scene_.nominal.length_unit) / MetresPerUnit(scene_.target.length_unit);
+  return renderer_->Render(camera_from_target, index).image;
+}
+
+Pose SimWorld::ActualPose() const {
+  std::lock_guard<std::mutex> hold(mutex_);
+  return actual_pose_;
+}
+
+Status SimWorld::WriteTruth(const std::string& session_dir) const { return WriteSceneTruth(scene_, session_dir); }
+
+}  // namespace hexcal::workflow

@@ -1,0 +1,79 @@
+// The simulated laboratory behind the `sim` controller and the `sim` camera
+// (docs/acquisition.md, "The sim world"): one hidden true robot, camera and
+// target made as `hexcal demo` makes them (workflow/demo_scene.h) from the
+// session's nominal robot, camera and target, and the state of the machine.
+//
+// A commanded pose goes through the controller's model, the nominal robot:
+// its IK gives the leg lengths the actuators are driven to. The platform then
+// sits where the TRUE robot puts those legs (its local FK from the commanded
+// pose); the sensors read the legs with uniform noise of ±noise.leg; the
+// camera sees the board at that true pose, rendered with the demo's renderer
+// and sensor noise. So the difference between nominal and true robot is what
+// a calibration from the recorded images and readings has to find.
+//
+//   StatusOr<std::shared_ptr<SimWorld>> world = SimWorld::ForSession("run1", /*seed=*/1);
+//   Status moved = (*world)->Command(pose);        // robot unit, degrees
+//   LegReadings legs = (*world)->ReadLegs();
+//   cv::Mat image = (*world)->RenderFrame();
+//
+// Thread-safe: the controller and the camera may be driven from two threads.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <opencv2/core.hpp>
+#include <random>
+#include <string>
+
+#include "core/inverse_kinematics.h"
+#include "core/pose.h"
+#include "core/status.h"
+#include "workflow/demo_scene.h"
+
+namespace hexcal {
+class Renderer;
+}
+
+namespace hexcal::workflow {
+
+class SimWorld {
+ public:
+  // The world of a session: its robot, camera and target as session.yaml
+  // names them, the truth drawn from `seed` (DemoSceneOptions). The platform
+  // starts at the centre of the robot's sampling box.
+  static StatusOr<std::shared_ptr<SimWorld>> ForSession(const std::string& session_dir, uint64_t seed);
+
+  explicit SimWorld(DemoScene scene);
+  ~SimWorld();
+  SimWorld(const SimWorld&) = delete;
+  SimWorld& operator=(const SimWorld&) = delete;
+
+  // Drives the legs to the nominal IK of `pose` (x, y, z in the robot unit,
+  // q1..q3 in degrees, the robot's Euler convention): bad input when the
+  // nominal robot cannot reach it (its workspace constraints), a failure when
+  // the true robot has no pose for those legs near it. The machine stays where
+  // it was on an error.
+  Status Command(const Vector6d& pose);
+  // The leg sensors: the driven lengths plus uniform noise of ±noise.leg.
+  LegReadings ReadLegs();
+  // The camera's image of the board at the true platform pose (CV_8UC1).
+  cv::Mat RenderFrame();
+  // Where the platform really is (the true robot's frames).
+  Pose ActualPose() const;
+
+  const DemoScene& scene() const { return scene_; }
+  // Writes the truth to DIR/truth/ (WriteSceneTruth).
+  Status WriteTruth(const std::string& session_dir) const;
+
+ private:
+  mutable std::mutex mutex_;
+  const DemoScene scene_;
+  std::unique_ptr<Renderer> renderer_;
+  LegReadings driven_legs_ = LegReadings::Zero();
+  Pose actual_pose_;
+  std::mt19937_64 reading_noise_;
+  uint64_t frames_rendered_ = 0;
+};
+
+}  // namespace hexcal::workflow
