@@ -1,7 +1,8 @@
 // hexcal-gui [SESSION]
 // hexcal-gui --demo          opens the demo session (made by `hexcal demo` the first time)
-// hexcal-gui --screenshot FILE [--panel robot|plan|measure|calibrate|validate] [--size 1280x720] [SESSION]
+// hexcal-gui --screenshot FILE [--panel robot|plan|acquire|measure|calibrate|validate] [--size 1280x720] [SESSION]
 //   renders the window for SESSION to a PNG and exits (tests, docs/gui.md).
+// hexcal-gui --controller sim --camera sim SESSION   connects the Acquire step's devices at start
 #include <QVTKOpenGLNativeWidget.h>
 
 #include <QApplication>
@@ -9,6 +10,7 @@
 #include <QSurfaceFormat>
 #include <iostream>
 
+#include "ui/acquire_panel.h"
 #include "ui/error_dialog.h"
 #include "ui/main_window.h"
 #include "ui/screenshot.h"
@@ -23,8 +25,10 @@ int main(int argc, char** argv) {
   parser.setApplicationDescription("hexcal-gui: plan, measure, calibrate and validate a hexapod");
   parser.addHelpOption();
   parser.addOption({"screenshot", "Render the window to FILE (PNG) and exit.", "FILE"});
-  parser.addOption({"panel", "Panel to show: robot, plan, measure, calibrate, validate.", "NAME"});
+  parser.addOption({"panel", "Panel to show: robot, plan, acquire, measure, calibrate, validate.", "NAME"});
   parser.addOption({"size", "Window size for --screenshot, WIDTHxHEIGHT (default 1280x720).", "WxH", "1280x720"});
+  parser.addOption({"controller", "Acquire step: connect this controller at start (sim, none).", "URL"});
+  parser.addOption({"camera", "Acquire step: connect this camera at start (sim, v4l2:N, file:PATH).", "URL"});
   parser.addOption({"demo", "Open the demo session (hexcal demo makes it the first time, about 15 s)."});
   parser.addPositionalArgument("session", "A session folder (hexcal session init, or File > New).");
   parser.process(app);
@@ -37,7 +41,7 @@ int main(int argc, char** argv) {
     return 2;
   if (parser.isSet("panel") && !window.ShowPanelNamed(parser.value("panel"))) {
     std::cerr << "hexcal-gui: --panel: '" << parser.value("panel").toStdString()
-              << "' is not robot, plan, measure, calibrate or validate\n";
+              << "' is not robot, plan, acquire, measure, calibrate or validate\n";
     return 2;
   }
   const QStringList size = parser.value("size").split('x');
@@ -47,6 +51,9 @@ int main(int argc, char** argv) {
   }
   window.resize(size[0].toInt(), size[1].toInt());
   window.show();
+  if (parser.isSet("camera") && window.Session()->IsOpen())
+    window.Acquire()->Connect(parser.value("controller").isEmpty() ? "none" : parser.value("controller"),
+                              parser.value("camera"));
   if (parser.isSet("demo")) window.OpenDemoSession();
   if (!screenshot.isEmpty()) {
     if (!hexcal::ui::SaveWindowScreenshot(&window, screenshot)) {

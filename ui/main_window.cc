@@ -11,6 +11,7 @@
 #include <QStatusBar>
 #include <sstream>
 
+#include "ui/acquire_panel.h"
 #include "ui/background_job.h"
 #include "ui/calibrate_panel.h"
 #include "ui/error_dialog.h"
@@ -38,10 +39,11 @@ MainWindow::MainWindow(QWidget* parent)
   stack_ = new QStackedWidget;
   robot_ = new RobotPanel(session_);
   plan_ = new PlanPanel(session_);
+  acquire_ = new AcquirePanel(session_);
   measure_ = new MeasurePanel(session_);
   calibrate_ = new CalibratePanel(session_);
   validate_ = new ValidatePanel(session_);
-  for (QWidget* panel : std::initializer_list<QWidget*>{robot_, plan_, measure_, calibrate_, validate_})
+  for (QWidget* panel : std::initializer_list<QWidget*>{robot_, plan_, acquire_, measure_, calibrate_, validate_})
     stack_->addWidget(panel);
   connect(steps_, &QListWidget::currentRowChanged, stack_, &QStackedWidget::setCurrentIndex);
   connect(plan_, &PlanPanel::PoseSelected, robot_, &RobotPanel::ShowPlannedPose);

@@ -1,5 +1,5 @@
 // The workstation window: a composer of one panel per step (Robot, Plan,
-// Measure, Calibrate, Validate) around one SessionState, with the step list
+// Acquire, Measure, Calibrate, Validate) around one SessionState, with the step list
 // and the File menu (new, open, open demo, reload, recent sessions). The panels
 // own their work; this class only wires them together.
 #pragma once
@@ -13,6 +13,7 @@ class QStackedWidget;
 
 namespace hexcal::ui {
 
+class AcquirePanel;
 class BackgroundJob;
 class CalibratePanel;
 class MeasurePanel;
@@ -29,13 +30,14 @@ class MainWindow : public QMainWindow {
   SessionState* Session() const { return session_; }
   RobotPanel* Robot() const { return robot_; }
   PlanPanel* Plan() const { return plan_; }
+  AcquirePanel* Acquire() const { return acquire_; }
   MeasurePanel* Measure() const { return measure_; }
   CalibratePanel* Calibrate() const { return calibrate_; }
   ValidatePanel* Validate() const { return validate_; }
 
   bool OpenSession(const QString& dir);
   void ShowStep(Step step);
-  // "robot", "plan", "measure", "calibrate", "validate" (any case); false if unknown.
+  // "robot", "plan", "acquire", "measure", "calibrate", "validate" (any case); false if unknown.
   bool ShowPanelNamed(const QString& name);
 
  public slots:
@@ -54,6 +56,7 @@ class MainWindow : public QMainWindow {
   QStackedWidget* stack_;
   RobotPanel* robot_;
   PlanPanel* plan_;
+  AcquirePanel* acquire_;
   MeasurePanel* measure_;
   CalibratePanel* calibrate_;
   ValidatePanel* validate_;

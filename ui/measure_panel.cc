@@ -71,10 +71,6 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
   report_->setPlaceholderText("Intrinsics report");
   report_->setMaximumHeight(140);
   report_->setVisible(false);  // shown with an intrinsics report: room for the image until then
-  camera_index_ = new QSpinBox;
-  camera_index_->setRange(0, 16);
-  camera_index_->setPrefix("camera ");
-  camera_index_->setToolTip("OpenCV VideoCapture device index");
 
   auto* buttons = new QVBoxLayout;
   const auto add_button = [&](const QString& text, const QString& tip, auto slot) {
@@ -86,11 +82,6 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
   };
   add_button("Load image folder…", "Copy the PNG/JPEG/TIFF images of a folder into the session's images/",
              [this] { LoadImageFolder(); });
-  auto* capture_row = new QHBoxLayout;
-  capture_row->addWidget(camera_index_);
-  buttons->addLayout(capture_row);
-  add_button("Capture for next planned pose", "Grab one frame from the camera into images/ and enter the readings",
-             [this] { CaptureFromCamera(); });
   add_button("Import leg readings…", "Use a CSV image,L1..L6[,holdout] as the session's legs.csv",
              [this] { ImportLegs(); });
   add_button("Measure all images", "Detect the target in every image and write measurements.csv",

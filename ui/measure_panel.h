@@ -1,5 +1,5 @@
-// Measure step: the session's images (load a folder, or capture one from a
-// camera for the next planned pose), the leg readings (enter in the table or
+// Measure step: the session's images (load a folder; the Acquire step
+// captures them pose by pose), the leg readings (enter in the table or
 // import a CSV), each image with its detected tags and reprojected board, its
 // status and RMS; the batch measurement into measurements.csv; camera
 // intrinsics from a folder of target images, with their report.
@@ -42,13 +42,11 @@ class MeasurePanel : public QWidget {
   void LoadImageFolder(const QString& folder = {});
   void ImportLegs(const QString& file = {});
   void MeasureAll();
-  void CaptureFromCamera();
   void IntrinsicsFromFolder(const QString& folder = {});
   void ShowImage(int row);
 
  private:
   bool CameraAndTargetReady(const QString& step);
-  void AskReadingsAndSave(const QString& image_name, const std::string& frame_file);
   void StartJob(const QString& what, JobWork work);
 
   SessionState* session_;
@@ -62,7 +60,6 @@ class MeasurePanel : public QWidget {
   QProgressBar* progress_;
   QLabel* status_;
   QPushButton* cancel_;
-  QSpinBox* camera_index_;
   QPlainTextEdit* report_;
   QString shown_status_;
   int pending_row_ = -1;  // picked while a detection ran

@@ -1,23 +1,15 @@
-// MeasurePanel's recording actions: images from a folder or a camera, leg
-// readings from a file or typed in, camera intrinsics from target images.
+// MeasurePanel's recording actions: images from a folder, leg readings from
+// a file, camera intrinsics from target images.
 // The panel's layout, preview and batch measurement are in measure_panel.cc.
-#include <QDialog>
-#include <QDialogButtonBox>
 #include <QDir>
-#include <QDoubleSpinBox>
 #include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
-#include <QFormLayout>
 #include <QLabel>
 #include <QPlainTextEdit>
 #include <QSpinBox>
-#include <QTemporaryFile>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/videoio.hpp>
 
-#include "core/inverse_kinematics.h"
 #include "core/session_lock.h"
 #include "ui/background_job.h"
 #include "ui/error_dialog.h"
@@ -65,76 +57,6 @@ void MeasurePanel::ImportLegs(const QString& chosen) {
   const Status imported = workflow::ImportLegsFile(session_->Dir().toStdString(), file.toStdString());
   session_->Reload();
   if (!imported.ok()) ShowError(this, "Import readings", Message(imported) + "\nThe previous legs.csv is kept.");
-}
-
-void MeasurePanel::CaptureFromCamera() {
-  if (!session_->IsOpen()) return ShowError(this, "Capture", "Open or create a session first (File menu).");
-  const int device = camera_index_->value();
-  // The first free name: recorded images are never replaced.
-  const QDir images(QString::fromStdString(session_->Paths().images));
-  int index = static_cast<int>(session_->ImageFiles().size());
-  while (images.exists(QString("capture_%1.png").arg(index, 4, 10, QChar('0')))) ++index;
-  const QString name = QString("capture_%1.png").arg(index, 4, 10, QChar('0'));
-  // The frame waits outside images/ until its readings are typed: image and
-  // row then enter the session together (workflow::RecordCapture). The temp
-  // file is made exclusively, so imwrite never follows a planted link.
-  QTemporaryFile frame(QDir::temp().filePath("hexcal-capture-XXXXXX.png"));
-  frame.setAutoRemove(false);
-  if (!frame.open()) return ShowError(this, "Capture", "Could not make a temporary file for the frame.");
-  const std::string path = frame.fileName().toStdString();
-  frame.close();
-  StartJob("capturing", [this, device, path, name](const JobContext&) -> GuiContinuation {
-    cv::VideoCapture capture(device);
-    cv::Mat frame;
-    const bool grabbed = capture.isOpened() && capture.read(frame) && !frame.empty();
-    const bool written = grabbed && cv::imwrite(path, frame);
-    return [this, device, grabbed, written, name, path] {
-      if (!grabbed)
-        return ShowError(this, "Capture",
-                         QString("No frame from camera %1: check it is connected and not "
-                                 "used by another program, or choose another index.")
-                             .arg(device));
-      if (!written) return ShowError(this, "Capture", "Could not write the frame to " + QString::fromStdString(path));
-      AskReadingsAndSave(name, path);
-      QFile::remove(QString::fromStdString(path));
-    };
-  });
-}
-
-// The readings at the captured image, prefilled with the planned pose's leg
-// lengths (what the controller was asked for); the operator types the sensors'.
-void MeasurePanel::AskReadingsAndSave(const QString& image_name, const std::string& frame_file) {
-  const std::vector<Vector6d>& plan = session_->Plan();
-  const size_t next = session_->Legs().size();
-  LegReadings readings = LegReadings::Zero();
-  const Robot& robot = session_->NominalRobot();
-  if (next < plan.size()) readings = InverseKinematics(robot, robot.PoseFromVector(plan[next]));
-  LegsRow row;
-  row.image = image_name.toStdString();
-  row.legs = readings;
-  if (Interactive()) {
-    QDialog dialog(this);
-    dialog.setWindowTitle("Leg readings at " + image_name);
-    auto* form = new QFormLayout(&dialog);
-    std::array<QDoubleSpinBox*, kNumLegs> boxes;
-    for (int i = 0; i < kNumLegs; ++i) {
-      boxes[i] = new QDoubleSpinBox;
-      boxes[i]->setRange(-1e6, 1e6);
-      boxes[i]->setDecimals(5);
-      boxes[i]->setValue(readings[i]);
-      form->addRow(QString("L%1 (%2)").arg(i + 1).arg(LengthUnitName(robot.length_unit)), boxes[i]);
-    }
-    auto* ok = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
-    form->addRow(ok);
-    connect(ok, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
-    connect(ok, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
-    if (dialog.exec() != QDialog::Accepted) return;  // nothing recorded: the frame is dropped
-    for (int i = 0; i < kNumLegs; ++i) row.legs[i] = boxes[i]->value();
-  }
-  // The image and its row enter the session in one locked step; legs.csv is
-  // edited as it is on disk, so rows others wrote meanwhile are kept.
-  ApplySessionEdit(this, "Capture",
-                   [&](bool overwrite) { return session_->RecordCapture(frame_file, row, overwrite); });
 }
 
 void MeasurePanel::IntrinsicsFromFolder(const QString& chosen) {

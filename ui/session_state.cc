@@ -24,6 +24,8 @@ const char* StepName(Step step) {
       return "Robot";
     case Step::kPlan:
       return "Plan";
+    case Step::kAcquire:
+      return "Acquire";
     case Step::kMeasure:
       return "Measure";
     case Step::kCalibrate:
@@ -157,6 +159,13 @@ workflow::EditOutcome SessionState::RecordCapture(const std::string& frame_file,
   });
 }
 
+workflow::EditOutcome SessionState::RecordCaptureBytes(const std::string& image_bytes, const LegsRow& row,
+                                                       bool overwrite) {
+  return ApplyEdit(overwrite, [&](const workflow::EditOptions& options) {
+    return workflow::RecordCaptureBytes(dir_.toStdString(), image_bytes, row, options);
+  });
+}
+
 workflow::EditOutcome SessionState::SetCamera(const std::string& camera_name, bool overwrite) {
   return ApplyEdit(overwrite, [&](const workflow::EditOptions& options) {
     return workflow::ApplyCameraEdit(dir_.toStdString(), config_.camera, camera_name, options);
@@ -211,8 +220,10 @@ std::vector<std::string> WorkflowSteps(Step step) {
       return {"robot"};
     case Step::kPlan:
       return {"plan"};
+    case Step::kAcquire:
+      return {"readings"};
     case Step::kMeasure:
-      return {"readings", "measure"};
+      return {"measure"};
     case Step::kCalibrate:
       return {"calibrate"};
     case Step::kValidate:

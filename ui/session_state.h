@@ -33,9 +33,9 @@ namespace hexcal::ui {
 // status` prints.
 enum class StepState { kTodo, kDone, kStale, kBroken };
 
-enum class Step { kRobot, kPlan, kMeasure, kCalibrate, kValidate };
-constexpr int kNumSteps = 5;
-const char* StepName(Step step);  // "Robot", "Plan", ...
+enum class Step { kRobot, kPlan, kAcquire, kMeasure, kCalibrate, kValidate };
+constexpr int kNumSteps = 6;
+const char* StepName(Step step);  // "Robot", "Plan", "Acquire", ...
 
 class SessionState : public QObject {
   Q_OBJECT
@@ -73,6 +73,8 @@ class SessionState : public QObject {
   workflow::EditOutcome EditLegs(const workflow::LegsEdit& edit, bool overwrite = false);
   // A captured frame (a file outside the session) and its readings, added together.
   workflow::EditOutcome RecordCapture(const std::string& frame_file, const LegsRow& row, bool overwrite = false);
+  // The same with the image's bytes (a frame the Acquire step encoded).
+  workflow::EditOutcome RecordCaptureBytes(const std::string& image_bytes, const LegsRow& row, bool overwrite = false);
   std::vector<QString> ImageFiles() const;  // full paths, sorted
 
   // Each step's state and the sentence saying why, from

@@ -2,12 +2,14 @@
 
 #include <filesystem>
 #include <iomanip>
+#include <set>
 #include <sstream>
 
 #include "core/constraints.h"
 #include "core/csv.h"
 #include "core/robot_io.h"
 #include "core/session.h"
+#include "workflow/acquire_step.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_measure.h"
 #include "workflow/session_results.h"
@@ -41,18 +43,40 @@ StepReport PlanStep(const std::string& dir, const StatusOr<Robot>& robot) {
               "): plan again"};
 }
 
+// How many poses of plan.csv have their image (pose_0007.png, the Acquire
+// step's names) among the rows; none without a plan.
+int RecordedPlanPoses(const std::string& dir, const std::vector<LegsRow>& rows, int* planned) {
+  StatusOr<std::vector<Vector6d>> plan = LoadPoses(SessionPaths(dir).plan);
+  *planned = plan.ok() ? static_cast<int>(plan->size()) : 0;
+  std::set<std::string> images;
+  for (const LegsRow& row : rows) images.insert(row.image);
+  int recorded = 0;
+  for (int k = 0; k < *planned; ++k) recorded += images.count(AcquiredImageName(k)) > 0;
+  return recorded;
+}
+
+// Readings are done when legs.csv loads; an acquisition of the plan begun and
+// not finished (some pose_NNNN.png recorded, not all) is still to do.
 StepReport ReadingsStep(const std::string& dir, std::vector<LegsRow>* rows) {
   const SessionPaths paths(dir);
   std::error_code error;
   if (!fs::exists(paths.legs, error))
-    return {"readings", StepStatus::kTodo, "no legs.csv: record the readings of each image (hexcal session record)"};
+    return {"readings", StepStatus::kTodo,
+            "no legs.csv: acquire the planned poses (hexcal acquire) or enter the readings of each image"};
   StatusOr<std::vector<LegsRow>> legs = LoadSessionLegs(dir);
   if (!legs.ok()) return {"readings", StepStatus::kBroken, legs.status().message()};
   *rows = *legs;
   int held_out = 0;
   for (const LegsRow& row : *rows) held_out += row.holdout;
-  return {"readings", StepStatus::kDone,
-          std::to_string(rows->size()) + " images with readings, " + std::to_string(held_out) + " held out"};
+  const std::string count =
+      std::to_string(rows->size()) + " images with readings, " + std::to_string(held_out) + " held out";
+  int planned = 0;
+  const int recorded = RecordedPlanPoses(dir, *rows, &planned);
+  if (recorded > 0 && recorded < planned)
+    return {"readings", StepStatus::kTodo,
+            count + "; " + std::to_string(recorded) + " of " + std::to_string(planned) +
+                " planned poses recorded: acquire the rest (hexcal acquire resumes)"};
+  return {"readings", StepStatus::kDone, count};
 }
 
 StepReport MeasureStep(const std::string& dir, const std::vector<LegsRow>& rows) {

@@ -12,6 +12,7 @@
 #include "tests/test_support.h"
 #include "vision/camera.h"
 #include "vision/target.h"
+#include "workflow/acquire_step.h"
 #include "workflow/demo.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_edits.h"
@@ -264,6 +265,35 @@ TEST_F(StatusAfterChange, ANewNoiseModelMakesOnlyTheResultsStale) {
   config.noise.leg *= 2;
   ASSERT_TRUE(SaveSessionConfig(s_, config).ok());
   ExpectOnly({{"calibrate", StepStatus::kStale}, {"validate", StepStatus::kStale}});
+}
+
+TEST_F(StatusAfterChange, AnAcquisitionOfThePlanBegunIsToDoUntilEveryPoseIsRecorded) {
+  TempDir dir;
+  const std::string fresh = dir.File("fresh");
+  SessionConfig config = Config();
+  config.base_from_camera.reset();
+  config.platform_from_target.reset();
+  ASSERT_TRUE(InitSession(fresh, config).ok());
+  fs::copy_file(s_ + "/plan.csv", fresh + "/plan.csv");
+  StatusOr<std::vector<Vector6d>> plan = LoadPoses(fresh + "/plan.csv");
+  StatusOr<Robot> robot = LoadRobot(config.robot);
+  ASSERT_TRUE(plan.ok() && robot.ok());
+  const std::vector<Vector6d> first(plan->begin(), plan->begin() + 3);
+  ASSERT_TRUE(WritePlanCsv(dir.File("first.csv"), PlanningModel{*robot, std::nullopt, std::nullopt}, first).ok());
+  AcquireRequest request;
+  request.session = fresh;
+  request.poses = dir.File("first.csv");
+  ASSERT_TRUE(AcquirePlan(request).ok());
+  StatusOr<SessionStatus> status = ReadSessionStatus(fresh);
+  ASSERT_TRUE(status.ok());
+  EXPECT_EQ(status->Find("readings")->status, StepStatus::kTodo);
+  EXPECT_NE(status->Find("readings")->detail.find("3 of 8 planned poses recorded"), std::string::npos)
+      << status->Find("readings")->detail;
+  request.poses.clear();  // the plan: the rest
+  ASSERT_TRUE(AcquirePlan(request).ok());
+  status = ReadSessionStatus(fresh);
+  ASSERT_TRUE(status.ok());
+  EXPECT_EQ(status->Find("readings")->status, StepStatus::kDone) << status->Find("readings")->detail;
 }
 
 TEST_F(StatusAfterChange, TheJsonFormHasEveryStepByNameWithItsReason) {

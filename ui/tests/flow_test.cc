@@ -16,6 +16,7 @@
 #include <QTableWidget>
 #include <QTemporaryDir>
 #include <QThread>
+#include <algorithm>
 #include <functional>
 
 #include "core/candidates.h"
@@ -26,10 +27,12 @@
 #include "vision/camera.h"
 #include "vision/target.h"
 #include "workflow/plan_step.h"
+#include "ui/acquire_panel.h"
 #include "ui/background_job.h"
 #include "ui/calibrate_panel.h"
 #include "ui/error_dialog.h"
 #include "ui/help_browser.h"
+#include "ui/image_overlay.h"
 #include "ui/image_view.h"
 #include "ui/main_window.h"
 #include "ui/measure_panel.h"
@@ -462,6 +465,70 @@ TEST(UiFlow, HelpPagesAndImageZoom) {
   EXPECT_NEAR(view.Zoom(), 4 * fitted, 1e-9);
   view.Fit();
   EXPECT_NEAR(view.Zoom(), fitted, 1e-9);
+}
+
+// The Acquire step through the simulated controller and camera (issue 15):
+// the live view's readiness, capture pose by pose, skip, run the rest, redo;
+// then by hand (camera only, readings typed); the session is written after
+// every pose and calibrates.
+TEST(UiFlow, AcquisitionWalksThePlanWithTheSimulatedCamera) {
+  QTemporaryDir temp;
+  const QString dir = temp.filePath("session");
+  ASSERT_TRUE(CopyFolder(sessions_dir + "/session", dir));
+  QFile::remove(dir + "/legs.csv");
+  ASSERT_TRUE(QFile::copy(sessions_dir + "/calibrated/plan.csv", dir + "/plan.csv"));
+  MainWindow window;
+  window.show();
+  ASSERT_TRUE(window.OpenSession(dir));
+  ASSERT_TRUE(window.ShowPanelNamed("acquire"));
+  AcquirePanel* acquire = window.Acquire();
+  const int poses = static_cast<int>(window.Session()->Plan().size());
+  ASSERT_EQ(acquire->Checklist()->rowCount(), poses);
+  EXPECT_EQ(acquire->CurrentPose(), 0);
+  EXPECT_EQ(window.Session()->State(Step::kAcquire), StepState::kTodo);
+
+  acquire->Connect("sim", "sim");
+  ASSERT_TRUE(acquire->Connected());
+  ASSERT_TRUE(WaitFor([&] { return !acquire->Job()->Running(); }));
+  EXPECT_TRUE(acquire->LiveView()->HasImage());
+  EXPECT_TRUE(acquire->LastFrame().ok) << acquire->LastFrame().status.toStdString();
+  EXPECT_TRUE(ReadinessProblem(acquire->LastFrame()).isEmpty()) << ReadinessProblem(acquire->LastFrame()).toStdString();
+
+  acquire->CapturePose();
+  ASSERT_TRUE(WaitFor([&] { return !acquire->Job()->Running(); }));
+  EXPECT_TRUE(acquire->LastOutcome().contains("recorded as pose_0000.png")) << acquire->LastOutcome().toStdString();
+  EXPECT_TRUE(acquire->Checklist()->item(0, 1)->text().contains("recorded"));
+  EXPECT_TRUE(QFile::exists(dir + "/images/pose_0000.png"));
+  EXPECT_EQ(CsvRows(dir + "/legs.csv"), 1);  // saved after the pose, not at the end
+  EXPECT_EQ(acquire->CurrentPose(), 1);
+  acquire->SkipPose();
+  EXPECT_EQ(acquire->Checklist()->item(1, 1)->text(), "skipped");
+  EXPECT_EQ(acquire->CurrentPose(), 2);
+
+  acquire->RunRest();  // every pose not yet recorded, the skipped one included
+  ASSERT_TRUE(WaitFor([&] { return !acquire->Job()->Running(); }, 120000));
+  EXPECT_EQ(CsvRows(dir + "/legs.csv"), poses);
+  EXPECT_EQ(window.Session()->State(Step::kAcquire), StepState::kDone);
+
+  // Redo by hand: a camera only, the readings typed for the pose.
+  acquire->Connect("none", "file:" + dir + "/images/pose_0003.png");
+  ASSERT_TRUE(acquire->Connected());
+  ASSERT_TRUE(WaitFor([&] { return !acquire->Job()->Running(); }));
+  acquire->SelectPose(0);
+  acquire->RedoPose();
+  ASSERT_TRUE(WaitFor([&] { return !acquire->Job()->Running(); }));
+  EXPECT_TRUE(acquire->LastOutcome().contains("pose 1 recorded")) << acquire->LastOutcome().toStdString();
+  EXPECT_EQ(CsvRows(dir + "/legs.csv"), poses);
+  const Robot& robot = window.Session()->NominalRobot();
+  const LegReadings planned = InverseKinematics(robot, robot.PoseFromVector(window.Session()->Plan()[0]));
+  const std::vector<LegsRow>& rows = window.Session()->Legs();
+  const auto redone = std::find_if(rows.begin(), rows.end(), [](const LegsRow& r) { return r.image == "pose_0000.png"; });
+  ASSERT_NE(redone, rows.end());
+  EXPECT_LT((redone->legs - planned).norm(), 1e-9);  // the dialog's prefilled lengths, unattended
+
+  window.Calibrate()->Run();
+  ASSERT_TRUE(WaitFor([&] { return !window.Calibrate()->Job()->Running(); }, 120000));
+  EXPECT_TRUE(window.Calibrate()->LastOutcome().startsWith("done")) << window.Calibrate()->LastOutcome().toStdString();
 }
 
 TEST(UiFlow, BadSessionIsAnErrorNotACrash) {

@@ -1,0 +1,256 @@
+// AcquirePanel's device work: connecting, moving, capturing and the live
+// view, each on the panel's one worker (the devices are used by one job at a
+// time). The layout and the checklist are in acquire_panel.cc.
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QLabel>
+#include <QLineEdit>
+#include <QMessageBox>
+#include <QProgressBar>
+#include <QPushButton>
+#include <array>
+#include <opencv2/imgcodecs.hpp>
+
+#include "core/inverse_kinematics.h"
+#include "ui/acquire_panel.h"
+#include "ui/background_job.h"
+#include "ui/error_dialog.h"
+#include "ui/image_view.h"
+#include "ui/quantity_format.h"
+#include "workflow/acquire_step.h"
+#include "workflow/readings_table.h"
+#include "workflow/session_edits.h"
+
+namespace hexcal::ui {
+namespace {
+
+constexpr std::chrono::milliseconds kGrabTimeout{2000};
+constexpr uint64_t kSimSeed = 1;  // the sim world's truth: the same every time, so a session resumes
+
+QString Message(const Status& status) { return QString::fromStdString(status.message()); }
+
+bool ByHand(const QString& controller) { return controller.isEmpty() || controller.startsWith("none"); }
+
+}  // namespace
+
+void AcquirePanel::Connect(const QString& controller_url, const QString& camera_url) {
+  if (!session_->IsOpen()) return ShowError(this, "Connect", "Open or create a session first (File menu).");
+  if (!controller_url.isEmpty()) controller_url_->setCurrentText(controller_url);
+  if (!camera_url.isEmpty()) camera_url_->setCurrentText(camera_url);
+  const QString controller = controller_url_->currentText().trimmed(), camera = camera_url_->currentText().trimmed();
+  Disconnect();
+  auto rig = std::make_shared<workflow::AcquisitionRig>();
+  if (ByHand(controller)) {
+    StatusOr<std::unique_ptr<workflow::FrameSource>> source = workflow::OpenFrameSource(camera.toStdString());
+    if (!source.ok()) return ShowError(this, "Connect", Message(source.status()));
+    rig->camera = std::move(*source);
+  } else {
+    StatusOr<workflow::AcquisitionRig> opened = workflow::OpenAcquisitionRig(
+        session_->Dir().toStdString(), controller.toStdString(), camera.toStdString(), kSimSeed);
+    if (!opened.ok()) return ShowError(this, "Connect", Message(opened.status()));
+    *rig = std::move(*opened);
+  }
+  rig_ = rig;
+  devices_->setText(QString("Connected: %1; %2.")
+                        .arg(rig_->controller ? QString::fromStdString(rig_->controller->Describe())
+                                              : "no controller (move the robot by hand, type the readings)",
+                             QString::fromStdString(rig_->camera->Describe())));
+  connect_->setText("Disconnect");
+  GrabLiveFrame();
+}
+
+void AcquirePanel::Disconnect() {
+  rig_.reset();  // a running job keeps its own reference until it ends
+  connect_->setText("Connect");
+  devices_->setText("Not connected.");
+  live_->SetMessage("Connect a camera to see it live.");
+  readiness_->setText("No camera connected.");
+  frame_ = OverlayResult{};
+}
+
+bool AcquirePanel::ReadyToAct(const QString& what) {
+  if (!session_->IsOpen()) return ShowError(this, what, "Open or create a session first (File menu)."), false;
+  if (!rig_) return ShowError(this, what, "Connect a camera first (and a controller, or move by hand)."), false;
+  if (current_ < 0) return ShowError(this, what, "There is no planned pose: plan first (Plan step)."), false;
+  if (job_->Running() && !job_->Abandoned()) {
+    // A live frame in flight finishes in a moment; anything else is the operator's.
+    return ShowError(this, what, "The devices are busy: wait for the current step, or press Cancel."), false;
+  }
+  return true;
+}
+
+void AcquirePanel::MoveToPose() {
+  if (!ReadyToAct("Move")) return;
+  if (!rig_->controller) return ShowError(this, "Move", "No controller connected: move the robot by hand.");
+  const Vector6d pose = session_->Plan()[current_];
+  const int index = current_;
+  SetOutcome(QString("moving to pose %1…").arg(index + 1));
+  job_->Start("moving", [this, rig = rig_, pose, index](const JobContext&) -> GuiContinuation {
+    Status moved = rig->controller->MoveTo(pose);
+    if (moved.ok()) moved = rig->controller->WaitSettled(0);
+    return [this, moved, index] {
+      if (!moved.ok()) return SetOutcome(QString("pose %1: %2").arg(index + 1).arg(Message(moved)));
+      SetOutcome(QString("at pose %1: check the live view, then Capture.").arg(index + 1));
+      GrabLiveFrame();
+    };
+  });
+}
+
+void AcquirePanel::CapturePose(const std::optional<LegReadings>& typed) {
+  if (!ReadyToAct("Capture")) return;
+  const int index = current_;
+  const Vector6d pose = session_->Plan()[index];
+  const std::string dir = session_->Dir().toStdString();
+  SetOutcome(QString("capturing pose %1…").arg(index + 1));
+  if (rig_->controller) {
+    // The controller's whole step: move, settle, grab, read the legs, record.
+    job_->Start("capturing", [this, rig = rig_, dir, pose, index](const JobContext& context) -> GuiContinuation {
+      StatusOr<workflow::PoseRecord> record =
+          workflow::AcquirePose(dir, index, pose, *rig->controller, *rig->camera, {}, context);
+      const Status status = record.ok() ? Status::Ok() : record.status();
+      return [this, status, index] { Recorded(QString::fromStdString(workflow::AcquiredImageName(index)), status); };
+    });
+    return;
+  }
+  const Camera camera = *session_->SessionCamera();
+  const Target target = *session_->SessionTarget();
+  job_->Start("grabbing", [this, rig = rig_, camera, target, index, typed](const JobContext&) -> GuiContinuation {
+    StatusOr<cv::Mat> frame = rig->camera->Grab(kGrabTimeout);
+    std::vector<uchar> png;
+    if (frame.ok() && !cv::imencode(".png", *frame, png)) frame = Status::Failed("the frame could not be encoded");
+    const OverlayResult overlay = frame.ok() ? DetectAndDraw(*frame, camera, target) : OverlayResult{};
+    const std::string bytes(png.begin(), png.end());
+    const Status grabbed = frame.ok() ? Status::Ok() : frame.status();
+    return [this, grabbed, overlay, bytes, index, typed] {
+      if (!grabbed.ok()) return Recorded(QString::fromStdString(workflow::AcquiredImageName(index)), grabbed);
+      ShowFrame(overlay);
+      const std::optional<LegReadings> readings = typed ? typed : AskReadings(index);
+      if (!readings) return SetOutcome("not recorded: no readings entered.");
+      LegsRow row;
+      row.image = workflow::AcquiredImageName(index);
+      row.legs = *readings;
+      const bool saved = ApplySessionEdit(this, "Capture", [&](bool overwrite) {
+        return session_->RecordCaptureBytes(bytes, row, overwrite);
+      });
+      Recorded(QString::fromStdString(row.image), saved ? Status::Ok() : Status::Failed("not saved"));
+    };
+  });
+}
+
+// After a capture: the checklist, the next pose, or the failure marked.
+void AcquirePanel::Recorded(const QString& image, const Status& status) {
+  const int index = current_;
+  if (status.cancelled()) return SetOutcome("cancelled: nothing recorded for this pose.");
+  if (!status.ok()) {
+    marks_[index] = "failed: " + Message(status);
+    FillChecklist();
+    SetOutcome(QString("pose %1 failed: %2").arg(index + 1).arg(Message(status)));
+    return;
+  }
+  FillChecklist();
+  const bool more = NextPose();
+  SetOutcome(QString("pose %1 recorded as %2 (saved to the session).%3")
+                 .arg(index + 1)
+                 .arg(image, more ? QString() : QString(" ") + kAllDone));
+}
+
+// The readings at the pose, prefilled with the lengths the nominal robot
+// needs there: the operator types the sensors' values or pastes a line.
+std::optional<LegReadings> AcquirePanel::AskReadings(int index) {
+  const Robot& robot = session_->NominalRobot();
+  const LegReadings planned = InverseKinematics(robot, robot.PoseFromVector(session_->Plan()[index]));
+  if (!Interactive()) return planned;
+  QDialog dialog(this);
+  dialog.setWindowTitle(QString("Leg readings at pose %1").arg(index + 1));
+  auto* form = new QFormLayout(&dialog);
+  auto* paste = new QLineEdit;
+  paste->setPlaceholderText("paste six readings (tabs, commas or spaces)");
+  form->addRow("Paste", paste);
+  std::array<QDoubleSpinBox*, kNumLegs> boxes;
+  for (int i = 0; i < kNumLegs; ++i) {
+    boxes[i] = new QDoubleSpinBox;
+    boxes[i]->setRange(-1e6, 1e6);
+    boxes[i]->setDecimals(5);
+    boxes[i]->setValue(planned[i]);
+    form->addRow(QString("L%1 (%2)").arg(i + 1).arg(LengthUnitName(robot.length_unit)), boxes[i]);
+  }
+  connect(paste, &QLineEdit::textChanged, &dialog, [&](const QString& text) {
+    if (const auto legs = workflow::ParseReadingsLine(text.toStdString()))
+      for (int i = 0; i < kNumLegs; ++i) boxes[i]->setValue((*legs)[i]);
+  });
+  auto* ok = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
+  form->addRow(ok);
+  connect(ok, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
+  connect(ok, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+  if (dialog.exec() != QDialog::Accepted) return std::nullopt;
+  LegReadings legs;
+  for (int i = 0; i < kNumLegs; ++i) legs[i] = boxes[i]->value();
+  return legs;
+}
+
+void AcquirePanel::RedoPose() {
+  if (!ReadyToAct("Redo")) return;
+  const std::string image = workflow::AcquiredImageName(current_);
+  if (Interactive() &&
+      QMessageBox::question(this, "Redo pose", QString("Remove %1 and its readings, and capture pose %2 again?")
+                                                   .arg(QString::fromStdString(image))
+                                                   .arg(current_ + 1)) != QMessageBox::Yes)
+    return;
+  const Status removed = workflow::RemoveCapture(session_->Dir().toStdString(), image);
+  if (!removed.ok()) return ShowError(this, "Redo", Message(removed));
+  marks_.erase(current_);
+  session_->Reload();
+  CapturePose();
+}
+
+void AcquirePanel::RunRest() {
+  if (!ReadyToAct("Run the rest")) return;
+  if (!rig_->controller) return ShowError(this, "Run the rest", "Needs a controller: connect one first.");
+  workflow::AcquireRequest request;
+  request.session = session_->Dir().toStdString();
+  SetOutcome("acquiring the poses not yet recorded…");
+  job_->Start("acquiring", [this, rig = rig_, request](const JobContext& context) -> GuiContinuation {
+    StatusOr<workflow::AcquireResult> run = workflow::AcquirePlan(request, *rig->controller, *rig->camera, context);
+    const Status status = run.ok() ? Status::Ok() : run.status();
+    const QString summary = run.ok() ? QString::fromStdString(workflow::FormatAcquireSummary(*run)) : QString();
+    return [this, status, summary] {
+      session_->Reload();
+      if (status.cancelled()) return SetOutcome("stopped: the poses recorded so far are saved; Run the rest resumes.");
+      if (!status.ok()) return ShowError(this, "Run the rest", Message(status));
+      SetOutcome(summary.trimmed());
+    };
+  });
+}
+
+void AcquirePanel::GrabLiveFrame() {
+  if (!rig_ || job_->Running() || !session_->SessionCamera() || !session_->SessionTarget()) return;
+  const Camera camera = *session_->SessionCamera();
+  const Target target = *session_->SessionTarget();
+  job_->Start("live", [this, rig = rig_, camera, target](const JobContext&) -> GuiContinuation {
+    StatusOr<cv::Mat> frame = rig->camera->Grab(kGrabTimeout);
+    if (!frame.ok()) return [this, s = frame.status()] { readiness_->setText("No frame: " + Message(s).toHtmlEscaped()); };
+    const OverlayResult overlay = DetectAndDraw(*frame, camera, target);
+    return [this, overlay] { ShowFrame(overlay); };
+  });
+}
+
+// The frame and its readiness: each indicator green when it passes.
+void AcquirePanel::ShowFrame(const OverlayResult& frame) {
+  frame_ = frame;
+  if (!frame.image.isNull()) live_->SetImage(frame.image);
+  const auto mark = [](bool good, const QString& text) {
+    return QString("<span style='color:%1'>%2 %3</span>").arg(good ? "#007800" : "#be0000", good ? "✓" : "✗", text);
+  };
+  const QString problem = ReadinessProblem(frame);
+  readiness_->setText(
+      mark(frame.whole_board_in_view, QString("board %1/%2 tags, whole in view").arg(frame.tags).arg(frame.board_tags)) +
+      " &nbsp; " + mark(frame.ok && frame.rms_px <= kReadyMaxRmsPx, "RMS " + FormatPixels(frame.rms_px)) + " &nbsp; " +
+      mark(frame.sharpness >= kReadyMinSharpness, QString("sharpness %1").arg(frame.sharpness, 0, 'f', 0)) +
+      (problem.isEmpty() ? " &nbsp; <b>ready</b>" : " &nbsp; " + problem.toHtmlEscaped()));
+}
+
+}  // namespace hexcal::ui

@@ -1,0 +1,275 @@
+#include "ui/acquire_panel.h"
+
+#include <QApplication>
+#include <QCheckBox>
+#include <QClipboard>
+#include <QComboBox>
+#include <QGridLayout>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QSpinBox>
+#include <QSplitter>
+#include <QTableWidget>
+#include <QTimer>
+#include <QVBoxLayout>
+#include <array>
+#include <set>
+
+#include "core/inverse_kinematics.h"
+#include "ui/background_job.h"
+#include "ui/error_dialog.h"
+#include "ui/image_view.h"
+#include "ui/quantity_format.h"
+#include "workflow/acquire_step.h"
+#include "workflow/readings_table.h"
+
+namespace hexcal::ui {
+namespace {
+
+constexpr int kLiveIntervalMs = 600;
+
+QTableWidgetItem* Cell(const QString& text) {
+  auto* item = new QTableWidgetItem(text);
+  item->setFlags(item->flags() & ~Qt::ItemIsEditable);
+  return item;
+}
+
+QString Joined(const Vector6d& v, int from, int count) {
+  QStringList parts;
+  for (int k = from; k < from + count; ++k) parts << FormatCoordinate(v[k]);
+  return parts.join("  ");
+}
+
+}  // namespace
+
+AcquirePanel::AcquirePanel(SessionState* session, QWidget* parent)
+    : QWidget(parent), session_(session), job_(new BackgroundJob(this)), live_timer_(new QTimer(this)) {
+  BuildLayout();
+  connect(job_, &BackgroundJob::Progress, this, [this](int done, int total, const QString& what) {
+    progress_->setFormat(what + " %v/%m");
+    progress_->setRange(0, total);
+    progress_->setValue(done);
+  });
+  live_timer_->setInterval(kLiveIntervalMs);
+  connect(live_timer_, &QTimer::timeout, this, [this] {
+    if (isVisible() && live_on_->isChecked()) GrabLiveFrame();
+  });
+  live_timer_->start();
+  connect(session_, &SessionState::Switched, this, &AcquirePanel::ResetForSession);
+  connect(session_, &SessionState::Changed, this, &AcquirePanel::Refresh);
+}
+
+AcquirePanel::~AcquirePanel() = default;
+
+void AcquirePanel::BuildLayout() {
+  controller_url_ = new QComboBox;
+  controller_url_->setEditable(true);
+  controller_url_->addItems({"none (move the robot by hand)", "sim", "linuxcnc://localhost:5007"});
+  controller_url_->setToolTip("The controller that moves the robot and reads its legs (docs/acquisition.md)");
+  camera_url_ = new QComboBox;
+  camera_url_->setEditable(true);
+  camera_url_->addItems({"sim", "v4l2:0", "file:"});
+  camera_url_->setToolTip("The camera: sim, v4l2:N (OpenCV), file:PATH (a video or an image)");
+  connect_ = new QPushButton("Connect");
+  connect(connect_, &QPushButton::clicked, this, [this] { Connected() ? Disconnect() : Connect(); });
+  devices_ = new QLabel("Not connected.");
+  devices_->setWordWrap(true);
+  devices_->setTextFormat(Qt::PlainText);
+  checklist_ = new QTableWidget(0, 4);
+  checklist_->setObjectName("pose_checklist");
+  checklist_->setHorizontalHeaderLabels({"#", "state", "x  y  z", "q1  q2  q3 (°)"});
+  checklist_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  checklist_->horizontalHeader()->setStretchLastSection(true);
+  checklist_->setSelectionBehavior(QAbstractItemView::SelectRows);
+  checklist_->verticalHeader()->setVisible(false);  // the # column numbers the poses
+  checklist_->setSelectionMode(QAbstractItemView::SingleSelection);
+  connect(checklist_, &QTableWidget::currentCellChanged, this, [this](int row) { SelectPose(row); });
+  pose_label_ = new QLabel;
+  pose_label_->setObjectName("acquire_pose");
+  pose_label_->setTextFormat(Qt::PlainText);
+  pose_label_->setWordWrap(true);  // a label's one line is its minimum width
+  pose_label_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  copy_ = new QPushButton("Copy");
+  copy_->setToolTip("Put the pose (x y z q1 q2 q3) and the leg lengths to command on the clipboard");
+  connect(copy_, &QPushButton::clicked, this, [this] { QApplication::clipboard()->setText(pose_label_->text()); });
+  const auto button = [this](const QString& text, const QString& tip, auto slot) {
+    auto* made = new QPushButton(text);
+    made->setToolTip(tip);
+    connect(made, &QPushButton::clicked, this, slot);
+    return made;
+  };
+  move_ = button("Move", "Command the controller to this pose and wait until it settles", [this] { MoveToPose(); });
+  capture_ = button("Capture", "Grab a frame and record it with the leg readings, then go to the next pose",
+                    [this] { CapturePose(); });
+  skip_ = button("Skip", "Leave this pose for later and go to the next", [this] { SkipPose(); });
+  redo_ = button("Redo", "Remove this pose's image and readings and capture it again", [this] { RedoPose(); });
+  run_rest_ = button("Run the rest", "With a controller: move, capture and record every pose not yet recorded",
+                     [this] { RunRest(); });
+  cancel_ = button("Cancel", "Stop after the current pose", [this] { job_->Cancel(); });
+  live_on_ = new QCheckBox("Live view");
+  live_on_->setChecked(true);
+  progress_ = new QProgressBar;
+  status_ = new QLabel;
+  status_->setObjectName("acquire_status");
+  status_->setWordWrap(true);
+  status_->setTextFormat(Qt::PlainText);
+  readiness_ = new QLabel("No camera connected.");
+  readiness_->setObjectName("acquire_readiness");
+  readiness_->setTextFormat(Qt::RichText);
+  readiness_->setWordWrap(true);
+  live_ = new ImageView;
+  live_->setObjectName("live_view");
+  live_->SetMessage("Connect a camera to see it live.");
+
+  // Two rows of devices and of actions: one row of each was wider than a
+  // 1280 px window's panel.
+  for (QComboBox* url : {controller_url_, camera_url_}) {
+    url->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+    url->setMinimumContentsLength(12);
+  }
+  auto* devices = new QGridLayout;
+  devices->addWidget(new QLabel("Controller"), 0, 0);
+  devices->addWidget(controller_url_, 0, 1);
+  devices->addWidget(new QLabel("Camera"), 1, 0);
+  devices->addWidget(camera_url_, 1, 1);
+  devices->addWidget(connect_, 0, 2, 2, 1);
+  devices->setColumnStretch(1, 1);
+  auto* pose_row = new QHBoxLayout;
+  pose_row->addWidget(pose_label_, 1);
+  pose_row->addWidget(copy_);
+  auto* actions = new QGridLayout;
+  const std::array<QPushButton*, 6> buttons{capture_, skip_, redo_, move_, run_rest_, cancel_};
+  for (int k = 0; k < static_cast<int>(buttons.size()); ++k) actions->addWidget(buttons[k], k / 3, k % 3);
+  auto* left = new QWidget;
+  auto* left_layout = new QVBoxLayout(left);
+  left_layout->addLayout(devices);
+  left_layout->addWidget(devices_);
+  left_layout->addWidget(checklist_, 1);
+  left_layout->addLayout(pose_row);
+  left_layout->addLayout(actions);
+  left_layout->addWidget(progress_);
+  left_layout->addWidget(status_);
+  auto* right = new QWidget;
+  auto* right_layout = new QVBoxLayout(right);
+  right_layout->addWidget(live_, 1);
+  auto* live_row = new QHBoxLayout;
+  live_row->addWidget(live_on_);
+  live_row->addWidget(readiness_, 1);
+  right_layout->addLayout(live_row);
+  auto* splitter = new QSplitter;
+  splitter->addWidget(left);
+  splitter->addWidget(right);
+  splitter->setStretchFactor(1, 1);
+  splitter->setSizes({560, 520});
+  auto* layout = new QVBoxLayout(this);
+  layout->addWidget(splitter);
+}
+
+// The images with readings: a pose is recorded when its image has a row.
+QString AcquirePanel::PoseState(int index) const {
+  const auto mark = marks_.find(index);
+  if (mark != marks_.end()) return mark->second;
+  return "to do";
+}
+
+void AcquirePanel::FillChecklist() {
+  std::set<std::string> recorded;
+  StatusOr<std::vector<workflow::ReadingsRow>> rows =
+      session_->IsOpen() ? workflow::ReadReadingsTable(session_->Dir().toStdString())
+                         : StatusOr<std::vector<workflow::ReadingsRow>>(std::vector<workflow::ReadingsRow>{});
+  if (rows.ok())
+    for (const workflow::ReadingsRow& row : *rows)
+      if (row.recorded && row.image_present) recorded.insert(row.image);
+  const std::vector<Vector6d>& plan = session_->Plan();
+  checklist_->blockSignals(true);
+  checklist_->setRowCount(static_cast<int>(plan.size()));
+  for (int k = 0; k < static_cast<int>(plan.size()); ++k) {
+    const bool done = recorded.count(workflow::AcquiredImageName(k)) > 0;
+    if (done) marks_.erase(k);
+    const QString state = done ? "✓ recorded" : PoseState(k);
+    checklist_->setItem(k, 0, Cell(QString::number(k + 1)));
+    QTableWidgetItem* state_cell = Cell(state);
+    state_cell->setForeground(done ? QColor(0, 120, 0) : state.startsWith("failed") ? QColor(190, 0, 0)
+                                                                                    : QColor(90, 90, 90));
+    checklist_->setItem(k, 1, state_cell);
+    checklist_->setItem(k, 2, Cell(Joined(plan[k], 0, 3)));
+    checklist_->setItem(k, 3, Cell(Joined(plan[k], 3, 3)));
+  }
+  checklist_->blockSignals(false);
+}
+
+void AcquirePanel::Refresh() {
+  FillChecklist();
+  const int poses = checklist_->rowCount();
+  if (current_ < 0 || current_ >= poses) {
+    current_ = -1;
+    if (!NextPose() && poses > 0) SetOutcome(kAllDone);
+  } else {
+    SelectPose(current_);
+  }
+  if (poses == 0) SetOutcome("No plan yet: plan the poses first (Plan step), then come back to record them.");
+}
+
+void AcquirePanel::ResetForSession() {
+  job_->Abandon();
+  Disconnect();
+  marks_.clear();
+  current_ = -1;
+  progress_->reset();
+  SetOutcome({});
+}
+
+void AcquirePanel::SelectPose(int index) {
+  const std::vector<Vector6d>& plan = session_->Plan();
+  if (index < 0 || index >= static_cast<int>(plan.size())) {
+    pose_label_->setText("no pose");
+    return;
+  }
+  current_ = index;
+  if (checklist_->currentRow() != index) {
+    checklist_->blockSignals(true);
+    checklist_->selectRow(index);
+    checklist_->blockSignals(false);
+  }
+  const Robot& robot = session_->NominalRobot();
+  const LegReadings legs = InverseKinematics(robot, robot.PoseFromVector(plan[index]));
+  QStringList lengths;
+  for (int i = 0; i < kNumLegs; ++i) lengths << FormatCoordinate(legs[i]);
+  pose_label_->setText(QString("pose %1 of %2 (%3): x y z q1 q2 q3 = %4  %5\nL1..L6 = %6")
+                           .arg(index + 1)
+                           .arg(plan.size())
+                           .arg(QString::fromStdString(workflow::AcquiredImageName(index)))
+                           .arg(Joined(plan[index], 0, 3), Joined(plan[index], 3, 3), lengths.join("  ")));
+}
+
+// The next pose after the current one that is neither recorded nor skipped.
+bool AcquirePanel::NextPose() {
+  const int poses = checklist_->rowCount();
+  for (int step = 1; step <= poses; ++step) {
+    const int k = (current_ + step + poses) % poses;
+    const QString state = checklist_->item(k, 1)->text();
+    if (state == "to do" || state.startsWith("failed")) {
+      SelectPose(k);
+      return true;
+    }
+  }
+  if (poses > 0) SelectPose(std::max(current_, 0));
+  return false;
+}
+
+void AcquirePanel::SkipPose() {
+  if (current_ < 0) return;
+  marks_[current_] = "skipped";
+  FillChecklist();
+  if (!NextPose()) SetOutcome(kAllDone);
+}
+
+void AcquirePanel::SetOutcome(const QString& text) {
+  outcome_ = text;
+  status_->setText(text);
+}
+
+}  // namespace hexcal::ui

@@ -1,0 +1,101 @@
+// Acquire step: the operator's walk through the planned poses (issue 15), on
+// the functions `hexcal acquire` runs (workflow/acquire_step.h).
+//
+// Left, the plan as a checklist: pose k of N with the x..q3 to command and
+// the L1..L6 the nominal robot needs there (Copy puts them on the clipboard),
+// each marked recorded (its image pose_000k.png has readings in legs.csv),
+// skipped, failed or to do. Right, the camera live with the detection overlay
+// and readiness indicators: the whole board in view, the reprojection RMS,
+// the sharpness. Capture grabs a frame and records it with the readings —
+// read from the controller when one is connected, else typed or pasted into
+// a dialog prefilled with the commanded lengths — then moves on to the next
+// pose; Skip, Redo and (with a controller) Move and Run the rest. The session
+// is written after every pose (workflow::RecordCaptureBytes under the lock).
+#pragma once
+
+#include <QWidget>
+#include <map>
+#include <memory>
+#include <optional>
+
+#include "ui/image_overlay.h"
+#include "ui/session_state.h"
+
+class QCheckBox;
+class QComboBox;
+class QLabel;
+class QProgressBar;
+class QPushButton;
+class QTableWidget;
+class QTimer;
+
+namespace hexcal::workflow {
+struct AcquisitionRig;
+}
+
+namespace hexcal::ui {
+
+class BackgroundJob;
+class ImageView;
+
+class AcquirePanel : public QWidget {
+  Q_OBJECT
+ public:
+  AcquirePanel(SessionState* session, QWidget* parent = nullptr);
+  ~AcquirePanel() override;
+
+  BackgroundJob* Job() const { return job_; }
+  QTableWidget* Checklist() const { return checklist_; }
+  ImageView* LiveView() const { return live_; }
+  int CurrentPose() const { return current_; }  // plan row, from 0; -1 without a plan
+  const QString& LastOutcome() const { return outcome_; }
+  const OverlayResult& LastFrame() const { return frame_; }
+  bool Connected() const { return rig_ != nullptr; }
+
+ public slots:
+  void Refresh();
+  void ResetForSession();
+  // "sim", "v4l2:0", "file:PATH"; controller "" or "none" for a robot moved by hand.
+  void Connect(const QString& controller_url = {}, const QString& camera_url = {});
+  void Disconnect();
+  void SelectPose(int index);
+  void MoveToPose();
+  // Grabs and records the current pose; `typed` readings stand for the
+  // dialog (tests, a pasted line) when there is no controller.
+  void CapturePose(const std::optional<LegReadings>& typed = std::nullopt);
+  void SkipPose();
+  void RedoPose();
+  void RunRest();
+  void GrabLiveFrame();
+
+ private:
+  void BuildLayout();
+  void FillChecklist();
+  QString PoseState(int index) const;
+  // Selects the next pose to record; false when every pose is recorded or skipped.
+  bool NextPose();
+  bool ReadyToAct(const QString& what);
+  void SetOutcome(const QString& text);
+  void ShowFrame(const OverlayResult& frame);
+  std::optional<LegReadings> AskReadings(int index);
+  void Recorded(const QString& image, const Status& status);
+
+  SessionState* session_;
+  BackgroundJob* job_;  // every use of the devices, live frames included: one at a time
+  std::shared_ptr<workflow::AcquisitionRig> rig_;
+  QComboBox *controller_url_, *camera_url_;
+  QPushButton *connect_, *move_, *capture_, *skip_, *redo_, *run_rest_, *cancel_, *copy_;
+  QCheckBox* live_on_;
+  QTimer* live_timer_;
+  QLabel *devices_, *pose_label_, *readiness_, *status_;
+  QProgressBar* progress_;
+  QTableWidget* checklist_;
+  ImageView* live_;
+  OverlayResult frame_;
+  int current_ = -1;
+  std::map<int, QString> marks_;  // poses skipped or failed this session: why
+  QString outcome_;
+  static constexpr const char* kAllDone = "Every planned pose is recorded or skipped: go on to Measure and Calibrate.";
+};
+
+}  // namespace hexcal::ui
