@@ -55,6 +55,7 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
   picture_info_ = new QLabel;
   picture_info_->setTextFormat(Qt::PlainText);
   picture_info_->setObjectName("image_status");
+  picture_info_->setWordWrap(true);
   legs_ = new ReadingsEditor(session_);
   readings_hint_ = new QLabel;
   readings_hint_->setTextFormat(Qt::PlainText);

@@ -40,6 +40,7 @@ RobotPanel::RobotPanel(SessionState* session, QWidget* parent)
   scrub_->setToolTip("Scrub through the planned poses");
   scrub_label_ = new QLabel;
   scrub_label_->setTextFormat(Qt::PlainText);  // file names are shown as they are, never as HTML
+  scrub_label_->setWordWrap(true);
   ghosts_ = new QCheckBox("Planned poses as ghosts");
   ghosts_->setChecked(true);
   samples_ = new QCheckBox(QString("Workspace samples (%1 random feasible poses)").arg(kWorkspaceSamples));

@@ -30,6 +30,7 @@ RobotView::RobotView(QWidget* parent) : QWidget(parent), vtk_widget_(new QVTKOpe
   legend_ = new QLabel;
   legend_->setTextFormat(Qt::PlainText);  // file names are shown as they are, never as HTML
   legend_->setObjectName("stroke_legend");
+  legend_->setWordWrap(true);  // one line of six legs is wider than the view at 1280 px
   connect(reset, &QPushButton::clicked, this, &RobotView::ResetView);
   connect(screenshot, &QPushButton::clicked, this, &RobotView::SaveScreenshot);
   auto* buttons = new QHBoxLayout;
