@@ -18,6 +18,8 @@
 #include "ui/background_job.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
+#include "ui/verdict_view.h"
+#include "workflow/calibration_verdict.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_results.h"
 
@@ -52,7 +54,12 @@ CalibratePanel::CalibratePanel(SessionState* session, QWidget* parent)
   summary_->setTextFormat(Qt::RichText);
   parameters_ = new QTableWidget(0, 7);
   parameters_->setObjectName("parameter_table");
-  parameters_->setHorizontalHeaderLabels({"leg", "parameter", "nominal", "calibrated", "change", "σ", "|change|/σ"});
+  verdict_ = new VerdictView;
+  parameters_->setHorizontalHeaderLabels({"leg", "parameter", "nominal", "calibrated", "change", "σ", "identified"});
+  // |change|/σ far above 3 says the parameter was identified, not that something is wrong.
+  parameters_->horizontalHeaderItem(6)->setToolTip(
+      "|change|/σ: well above 3 (change ≫ σ) means the calibration identified this parameter and found it "
+      "differs from nominal. Expected, not an alarm.");
   parameters_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
   parameters_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   parameters_->setSortingEnabled(true);
@@ -81,6 +88,7 @@ CalibratePanel::CalibratePanel(SessionState* session, QWidget* parent)
   layout->addLayout(controls);
   layout->addWidget(status_);
   layout->addWidget(summary_);
+  layout->addWidget(verdict_);
   layout->addWidget(splitter, 1);
   connect(session_, &SessionState::Changed, this, &CalibratePanel::Refresh);
 }
@@ -132,6 +140,7 @@ void CalibratePanel::Refresh() {
   parameters_->setSortingEnabled(false);
   parameters_->setRowCount(0);
   summary_->clear();
+  verdict_->Clear();
   const StatusOr<workflow::SessionResults>& loaded = session_->Results();
   if (!session_->IsOpen() || !loaded.ok()) {
     summary_->setText(session_->IsOpen() ? QString::fromStdString(loaded.status().message()).toHtmlEscaped() : "");
@@ -154,11 +163,14 @@ void CalibratePanel::Refresh() {
                     (session_->ResultsNote().isEmpty()
                          ? QString()
                          : "<br><b>Stale:</b> " + session_->ResultsNote().toHtmlEscaped()));
-  FillParameterTable(report.parameters);
+  verdict_->Show(workflow::MakeVerdict(report));
+  FillParameterTable(report.parameters, QString::fromStdString(report.length_unit));
   PlotResiduals();
 }
 
-void CalibratePanel::FillParameterTable(const std::vector<workflow::ParameterEstimate>& rows) {
+void CalibratePanel::FillParameterTable(const std::vector<workflow::ParameterEstimate>& rows, const QString& unit) {
+  for (const auto& [column, name] : {std::pair<int, QString>{2, "nominal"}, {3, "calibrated"}, {4, "change"}, {5, "σ"}})
+    parameters_->horizontalHeaderItem(column)->setText(name + " (" + unit + ")");
   const auto cell = [](const QVariant& v) {
     auto* item = new QTableWidgetItem;
     item->setData(Qt::DisplayRole, v);
@@ -174,7 +186,10 @@ void CalibratePanel::FillParameterTable(const std::vector<workflow::ParameterEst
     parameters_->setItem(r, 3, cell(p.estimate));
     parameters_->setItem(r, 4, cell(change));
     parameters_->setItem(r, 5, p.sigma ? cell(*p.sigma) : cell("—"));
-    parameters_->setItem(r, 6, p.sigma && *p.sigma > 0 ? cell(std::abs(change) / *p.sigma) : cell("—"));
+    // "≫σ" after a clear identification so the number reads as one, not as an alarm.
+    const double identified = p.sigma && *p.sigma > 0 ? std::abs(change) / *p.sigma : -1;
+    parameters_->setItem(r, 6, identified < 0 ? cell("—") : cell(identified));
+    if (identified > 3) parameters_->item(r, 6)->setToolTip("identified: change ≫ σ");
   }
   parameters_->setSortingEnabled(true);
 }

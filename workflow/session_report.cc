@@ -1,5 +1,6 @@
 #include "workflow/session_report.h"
 
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <sstream>
@@ -14,6 +15,7 @@
 #include "core/session.h"
 #include "core/session_lock.h"
 #include "workflow/calibration_report.h"
+#include "workflow/calibration_verdict.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_results.h"
 
@@ -68,17 +70,55 @@ std::vector<double> MeasurementRms(const std::string& path) {
   return rms_px;
 }
 
+// |change|/σ as a word of identification, not an alarm (docs/calibration.md, "Verdict").
+std::string IdentifiedCell(const ParameterEstimate& p) {
+  if (!p.sigma || *p.sigma <= 0) return "–";
+  const double ratio = std::abs(p.estimate - p.nominal) / *p.sigma;
+  return Figure(ratio) + (ratio > 3 ? " (identified)" : "");
+}
+
 std::string ParameterTable(const std::vector<ParameterEstimate>& parameters, const std::string& unit) {
-  std::string html =
-      "<table><tr><th>leg</th><th>parameter</th><th>nominal</th><th>calibrated</th><th>change</th>"
-      "<th>&sigma;</th></tr>\n";
+  const std::string u = Escape(unit);
+  std::string html = "<table><tr><th>leg</th><th>parameter</th><th>nominal (" + u + ")</th><th>calibrated (" + u +
+                     ")</th><th>change (" + u + ")</th><th>&sigma; (" + u +
+                     ")</th><th>identified: |change|/&sigma;</th></tr>\n";
   for (const ParameterEstimate& p : parameters) {
     const double change = p.estimate - p.nominal;
     html += "<tr><td>" + std::to_string(p.leg) + "</td><td>" + Escape(p.name) + "</td><td>" + Figure(p.nominal) +
             "</td><td>" + Figure(p.estimate) + "</td><td>" + Figure(change) + "</td><td>" + Number(p.sigma) +
-            "</td></tr>\n";
+            "</td><td>" + IdentifiedCell(p) + "</td></tr>\n";
   }
-  return html + "</table><p>Lengths in " + Escape(unit) + ".</p>\n";
+  return html +
+         "</table><p>Identified: a change well above 3&sigma; (change &#8811; &sigma;) means the calibration "
+         "determined that parameter and found it differs from nominal: expected, not an alarm.</p>\n";
+}
+
+const char* LevelColour(VerdictLevel level) {
+  switch (level) {
+    case VerdictLevel::kGood:
+      return "#1b7a34";
+    case VerdictLevel::kAcceptable:
+      return "#a86400";
+    case VerdictLevel::kPoor:
+      return "#c0262d";
+  }
+  return "#c0262d";
+}
+
+// The box the page opens with: the level in its colour, then one row per finding.
+std::string VerdictBox(const Verdict& verdict) {
+  std::string html = "<div class=\"verdict\" style=\"border-color:" + std::string(LevelColour(verdict.level)) +
+                     "\"><h2>Verdict: <span style=\"color:" + LevelColour(verdict.level) + "\">" +
+                     VerdictLevelName(verdict.level) +
+                     "</span></h2>\n<table><tr><th>aspect</th><th>level</th><th>figure</th><th>threshold</th>"
+                     "<th>meaning</th><th>advice</th></tr>\n";
+  for (const Finding& f : verdict.findings) {
+    html += "<tr><td>" + Escape(f.aspect) + "</td><td style=\"color:" + LevelColour(f.level) +
+            ";font-weight:bold\">" + VerdictLevelName(f.level) + "</td><td>" + Escape(f.figure) + "</td><td>" +
+            Escape(f.threshold) + "</td><td>" + Escape(f.meaning) + "</td><td>" +
+            (f.advice.empty() ? "–" : Escape(f.advice)) + "</td></tr>\n";
+  }
+  return html + "</table></div>\n";
 }
 
 // The plan: its indices with the nominal robot (paper section 2) and the leg
@@ -152,7 +192,10 @@ StatusOr<std::string> SessionReportHtml(const std::string& dir) {
       "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>hexcal session report</title><style>"
       "body{font-family:sans-serif;max-width:900px;margin:2em auto}table{border-collapse:collapse}"
       "td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}svg{max-width:100%;height:auto}"
+      ".verdict{border:3px solid;border-radius:6px;padding:0 1em 1em;margin-bottom:1.5em}"
+      ".verdict h2{margin:0.5em 0}.verdict td,.verdict th{text-align:left;vertical-align:top;font-size:90%}"
       "</style></head><body>\n";
+  html += VerdictBox(MakeVerdict(report));
   html += "<h1>Session " + Escape(dir) + "</h1>\n<p>" + std::to_string(report.images) +
           " images: " + std::to_string(report.calibration_images) + " for calibration, " +
           std::to_string(report.held_out_images) + " held out, " +

@@ -1,0 +1,88 @@
+#include "ui/verdict_view.h"
+
+#include <QHBoxLayout>
+#include <QLabel>
+
+namespace hexcal::ui {
+namespace {
+
+QString Colour(workflow::VerdictLevel level) {
+  switch (level) {
+    case workflow::VerdictLevel::kGood:
+      return "#1b7a34";
+    case workflow::VerdictLevel::kAcceptable:
+      return "#a86400";
+    case workflow::VerdictLevel::kPoor:
+      return "#c0262d";
+  }
+  return "#c0262d";
+}
+
+QString Html(const std::string& text) { return QString::fromStdString(text).toHtmlEscaped(); }
+
+// Findings that need action in full, the good ones by name on one line.
+QString FindingsHtml(const workflow::Verdict& verdict) {
+  QString html, good;
+  for (const workflow::Finding& f : verdict.findings) {
+    if (f.level == workflow::VerdictLevel::kGood) {
+      good += (good.isEmpty() ? "" : ", ") + Html(f.aspect);
+      continue;
+    }
+    html += QString("<span style=\"color:%1\"><b>%2</b></span> %3: %4. <i>%5.</i><br>")
+                .arg(Colour(f.level), workflow::VerdictLevelName(f.level), Html(f.aspect), Html(f.figure),
+                     Html(f.advice));
+  }
+  if (!good.isEmpty()) html += QString("<span style=\"color:%1\"><b>good</b></span> %2").arg(Colour(workflow::VerdictLevel::kGood), good);
+  return html;
+}
+
+QString FindingsTooltip(const workflow::Verdict& verdict) {
+  QString tip;
+  for (const workflow::Finding& f : verdict.findings) {
+    tip += QString("<p><b>%1</b> (%2): %3 [%4]<br>%5</p>")
+               .arg(Html(f.aspect), workflow::VerdictLevelName(f.level), Html(f.figure), Html(f.threshold),
+                    Html(f.meaning));
+  }
+  return tip;
+}
+
+}  // namespace
+
+VerdictView::VerdictView(QWidget* parent) : QWidget(parent) {
+  setObjectName("verdict_view");
+  level_ = new QLabel;
+  level_->setObjectName("verdict_level");
+  level_->setTextFormat(Qt::RichText);
+  level_->setAlignment(Qt::AlignTop | Qt::AlignLeft);
+  findings_ = new QLabel;
+  findings_->setObjectName("verdict_findings");
+  findings_->setTextFormat(Qt::RichText);  // every text from the report is escaped
+  findings_->setWordWrap(true);
+  findings_->setAlignment(Qt::AlignTop | Qt::AlignLeft);
+  auto* layout = new QHBoxLayout(this);
+  layout->setContentsMargins(0, 2, 0, 2);
+  layout->addWidget(level_);
+  layout->addWidget(findings_, 1);
+  Clear();
+}
+
+void VerdictView::Show(const workflow::Verdict& verdict) {
+  level_->setText(QString("<span style=\"color:%1;font-size:large\"><b>Verdict: %2</b></span>")
+                      .arg(Colour(verdict.level), workflow::VerdictLevelName(verdict.level)));
+  level_->setProperty("level", workflow::VerdictLevelName(verdict.level));
+  findings_->setText(FindingsHtml(verdict));
+  findings_->setToolTip(FindingsTooltip(verdict));
+  setVisible(true);
+}
+
+void VerdictView::Clear() {
+  level_->clear();
+  level_->setProperty("level", QString());
+  findings_->clear();
+  findings_->setToolTip(QString());
+  setVisible(false);
+}
+
+QString VerdictView::LevelText() const { return level_->property("level").toString(); }
+
+}  // namespace hexcal::ui

@@ -1,0 +1,79 @@
+#include "workflow/calibration_verdict.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "workflow/verdict_checks.h"
+
+namespace hexcal::workflow {
+
+const char* VerdictLevelName(VerdictLevel level) {
+  switch (level) {
+    case VerdictLevel::kGood:
+      return "good";
+    case VerdictLevel::kAcceptable:
+      return "acceptable";
+    case VerdictLevel::kPoor:
+      return "poor";
+  }
+  return "poor";
+}
+
+void Verdict::Add(Finding finding) {
+  level = std::max(level, finding.level);
+  findings.push_back(std::move(finding));
+}
+
+nlohmann::json Verdict::ToJson() const {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const Finding& f : findings) {
+    rows.push_back({{"aspect", f.aspect},
+                    {"level", VerdictLevelName(f.level)},
+                    {"figure", f.figure},
+                    {"threshold", f.threshold},
+                    {"meaning", f.meaning},
+                    {"advice", f.advice.empty() ? nlohmann::json(nullptr) : nlohmann::json(f.advice)}});
+  }
+  return {{"level", VerdictLevelName(level)}, {"findings", rows}};
+}
+
+std::string Verdict::ToText() const {
+  std::ostringstream out;
+  out << "Verdict: " << VerdictLevelName(level) << "\n";
+  for (const Finding& f : findings) {
+    char head[64];
+    std::snprintf(head, sizeof head, "  %-10s ", VerdictLevelName(f.level));
+    out << head << f.aspect << ": " << f.figure << " (" << f.threshold << ")";
+    if (!f.advice.empty()) out << "; " << f.advice;
+    out << "\n";
+  }
+  return out.str();
+}
+
+Verdict MakeVerdict(const CalibrationReport& report, const std::optional<VerdictTruth>& truth) {
+  Verdict verdict;
+  verdict.Add(CheckHeldOut(report));
+  if (report.noise) verdict.Add(CheckClosure(report));
+  if (!report.legs.empty()) verdict.Add(CheckResiduals(report));
+  if (report.noise) verdict.Add(CheckParameterSigmas(report));
+  if (!report.parameters.empty()) verdict.Add(CheckParameterChanges(report));
+  if (truth) verdict.Add(CheckTruth(*truth));
+  if (std::optional<Finding> conditioning = CheckConditioning(report)) verdict.Add(*conditioning);
+  verdict.Add(CheckPoses(report));
+  verdict.Add(CheckUnusableImages(report));
+  verdict.Add(CheckOutliers(report));
+  return verdict;
+}
+
+Verdict MakeValidationVerdict(const ValidationReport& report, const ExpectedPoseError& expected,
+                              const std::string& length_unit) {
+  Verdict verdict;
+  PoseErrorStats stats{report.position.rms, report.position.max, report.orientation_deg.rms,
+                       report.orientation_deg.max, report.failed};
+  verdict.Add(CheckFkErrors(stats, expected, length_unit, /*worst_image=*/""));
+  return verdict;
+}
+
+}  // namespace hexcal::workflow
