@@ -10,6 +10,7 @@
 #include <QTableWidget>
 #include <QVBoxLayout>
 #include <filesystem>
+#include <utility>
 
 #include "charts/figures.h"
 #include "core/inverse_kinematics.h"

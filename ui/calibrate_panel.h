@@ -33,7 +33,7 @@ class CalibratePanel : public QWidget {
   CalibratePanel(SessionState* session, QWidget* parent = nullptr);
   BackgroundJob* Job() const { return job_; }
   QTableWidget* ParameterTable() const { return parameters_; }
-  VerdictView* Verdict() const { return verdict_; }
+  VerdictView* VerdictWidget() const { return verdict_; }
   const QString& LastOutcome() const { return outcome_; }
 
  public slots:

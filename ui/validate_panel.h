@@ -24,7 +24,7 @@ class ValidatePanel : public QWidget {
  public:
   ValidatePanel(SessionState* session, QWidget* parent = nullptr);
   QTableWidget* SummaryTable() const { return summary_; }
-  VerdictView* Verdict() const { return verdict_; }
+  VerdictView* VerdictWidget() const { return verdict_; }
 
  public slots:
   void Refresh();

@@ -72,7 +72,9 @@ Verdict MakeValidationVerdict(const ValidationReport& report, const ExpectedPose
   Verdict verdict;
   PoseErrorStats stats{report.position.rms, report.position.max, report.orientation_deg.rms,
                        report.orientation_deg.max, report.failed};
-  verdict.Add(CheckFkErrors(stats, expected, length_unit, /*worst_image=*/""));
+  Finding fk = CheckFkErrors(stats, expected, length_unit, /*worst_image=*/"");
+  fk.aspect = "FK error";  // on the file's rows, held out or not
+  verdict.Add(fk);
   return verdict;
 }
 

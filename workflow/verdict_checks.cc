@@ -123,7 +123,7 @@ Finding CheckResiduals(const CalibrationReport& report) {
   const VerdictLevel low = LevelAtLeast(s_low, 1 / kScatterFactorGood, 1 / kScatterFactorAcceptable);
   Finding finding{"residuals", std::max(high, low),
                   "variance factor s² " + Figure(lowest.variance_factor) + "–" + Figure(highest.variance_factor) +
-                      " over the legs (s " + Figure(s_low) + "–" + Figure(s_high) + ")",
+                      " over the legs, s " + Figure(s_low) + "–" + Figure(s_high),
                   "good: s within a factor " + Figure(kScatterFactorGood) + " of 1, acceptable within " +
                       Figure(kScatterFactorAcceptable),
                   "the residuals scatter as the noise model says.", ""};

@@ -16,7 +16,7 @@ Finding CheckPoses(const CalibrationReport& report) {
   if (held_out > 0 && held_out < kHeldOutImagesGood) level = std::max(level, VerdictLevel::kAcceptable);
   Finding finding{"poses", level,
                   Plural(calibration, "calibration image") + ", " + std::to_string(held_out) + " held out",
-                  "good ≥ " + std::to_string(kCalibrationImagesGood) + " calibration (3 per leg parameter) and ≥ " +
+                  "good ≥ " + std::to_string(kCalibrationImagesGood) + " calibration images, 3 per leg parameter, and ≥ " +
                       std::to_string(kHeldOutImagesGood) + " held out; poor < " + std::to_string(kMinRowsToScreen),
                   "enough poses to fit each leg's 7 parameters with redundancy to spare.", ""};
   if (calibration < kCalibrationImagesGood) {

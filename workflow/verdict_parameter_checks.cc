@@ -54,7 +54,7 @@ Finding CheckParameterSigmas(const CalibrationReport& report) {
   Finding finding{"parameters (σ)", LevelAtMost(ratio, kSigmaRatioGood, kSigmaRatioAcceptable),
                   "largest σ " + Figure(*worst->sigma) + " " + unit + " (" + ParameterLabel(*worst) + ") = " +
                       Figure(ratio) + "× the noise-predicted error",
-                  bands, "every parameter is known at least as well as a single measurement.", ""};
+                  bands, "no parameter's uncertainty moves a predicted pose by more than twice the measurement noise.", ""};
   if (finding.level != VerdictLevel::kGood) {
     finding.meaning = ParameterLabel(*worst) + " is poorly identified: its uncertainty alone moves poses by more " +
                       "than the measurement noise.";
@@ -77,7 +77,7 @@ Finding CheckParameterChanges(const CalibrationReport& report) {
                       Figure(100 * fraction) + " % of the robot's size " + Figure(size) + " " + unit,
                   "good ≤ " + Figure(100 * kChangeFractionGood) + " %, acceptable ≤ " +
                       Figure(100 * kChangeFractionAcceptable) + " % of the size",
-                  "the changes from nominal are of the size of build tolerances." + MostIdentified(report.parameters),
+                  "the changes from nominal are of the size of build tolerances and the registration's gauge." + MostIdentified(report.parameters),
                   ""};
   if (finding.level != VerdictLevel::kGood) {
     finding.meaning = ParameterLabel(*largest) + " moved by more than a build error explains.";
@@ -92,7 +92,7 @@ Finding CheckTruth(const VerdictTruth& truth) {
                   Figure(100 * truth.within_3sigma) + " % of " + std::to_string(truth.with_sigma) +
                       " parameters within 3σ of the true robot",
                   "good ≥ " + Figure(100 * kWithin3SigmaGood) + " %, acceptable ≥ " +
-                      Figure(100 * kWithin3SigmaAcceptable) + " % (99.7 % expected)",
+                      Figure(100 * kWithin3SigmaAcceptable) + " %; 99.7 % expected",
                   "the stated σ describe the real errors.", ""};
   if (finding.level != VerdictLevel::kGood) {
     finding.meaning = "the σ understate the real errors: the noise model is optimistic or the model is biased.";
@@ -109,7 +109,7 @@ std::optional<Finding> CheckConditioning(const CalibrationReport& report) {
   if (!worst) return std::nullopt;
   const double condition = *worst->condition_number;
   Finding finding{"identifiability", LevelAtMost(condition, kConditionGood, kConditionAcceptable),
-                  "largest condition number " + Figure(condition) + " (leg " + std::to_string(worst->leg) + ")",
+                  "largest condition number " + Figure(condition) + ", leg " + std::to_string(worst->leg),
                   "good ≤ " + Figure(kConditionGood) + ", acceptable ≤ " + Figure(kConditionAcceptable),
                   "the poses constrain every direction of each leg's 7 parameters.", ""};
   if (finding.level != VerdictLevel::kGood) {
