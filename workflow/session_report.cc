@@ -1,5 +1,6 @@
 #include "workflow/session_report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -47,6 +48,14 @@ std::string Figure(double value) {
   return out.str();
 }
 
+// 3 significant digits.
+std::string FigureOf3(double value) {
+  std::ostringstream out;
+  out.precision(3);
+  out << value;
+  return out.str();
+}
+
 std::string Number(const std::optional<double>& value) { return value ? Figure(*value) : "–"; }
 
 // A chart inline (charts/figures.h); a chart that cannot be drawn leaves its
@@ -74,14 +83,14 @@ std::vector<double> MeasurementRms(const std::string& path) {
 std::string IdentifiedCell(const ParameterEstimate& p) {
   if (!p.sigma || *p.sigma <= 0) return "–";
   const double ratio = std::abs(p.estimate - p.nominal) / *p.sigma;
-  return Figure(ratio) + (ratio > 3 ? " (identified)" : "");
+  return (ratio > 3 ? "yes, " : "no, ") + FigureOf3(ratio) + "&sigma;";
 }
 
 std::string ParameterTable(const std::vector<ParameterEstimate>& parameters, const std::string& unit) {
   const std::string u = Escape(unit);
   std::string html = "<table><tr><th>leg</th><th>parameter</th><th>nominal (" + u + ")</th><th>calibrated (" + u +
                      ")</th><th>change (" + u + ")</th><th>&sigma; (" + u +
-                     ")</th><th>identified: |change|/&sigma;</th></tr>\n";
+                     ")</th><th>identified (change &#8811; &sigma;)</th></tr>\n";
   for (const ParameterEstimate& p : parameters) {
     const double change = p.estimate - p.nominal;
     html += "<tr><td>" + std::to_string(p.leg) + "</td><td>" + Escape(p.name) + "</td><td>" + Figure(p.nominal) +
@@ -89,8 +98,9 @@ std::string ParameterTable(const std::vector<ParameterEstimate>& parameters, con
             "</td><td>" + IdentifiedCell(p) + "</td></tr>\n";
   }
   return html +
-         "</table><p>Identified: a change well above 3&sigma; (change &#8811; &sigma;) means the calibration "
-         "determined that parameter and found it differs from nominal: expected, not an alarm.</p>\n";
+         "</table><p>Identified: the change is more than 3&sigma; (the figure is |change|/&sigma;): the "
+         "calibration determined that parameter and found it differs from nominal. That is what a calibration is "
+         "for, not an alarm; the verdict above says whether the &sigma; themselves are small enough.</p>\n";
 }
 
 const char* LevelColour(VerdictLevel level) {
@@ -112,7 +122,11 @@ std::string VerdictBox(const Verdict& verdict) {
                      VerdictLevelName(verdict.level) +
                      "</span></h2>\n<table><tr><th>aspect</th><th>level</th><th>figure</th><th>threshold</th>"
                      "<th>meaning</th><th>advice</th></tr>\n";
-  for (const Finding& f : verdict.findings) {
+  // What needs action first; the text and JSON forms keep the fixed order.
+  std::vector<Finding> findings = verdict.findings;
+  std::stable_sort(findings.begin(), findings.end(),
+                   [](const Finding& a, const Finding& b) { return a.level > b.level; });
+  for (const Finding& f : findings) {
     html += "<tr><td>" + Escape(f.aspect) + "</td><td style=\"color:" + LevelColour(f.level) +
             ";font-weight:bold\">" + VerdictLevelName(f.level) + "</td><td>" + Escape(f.figure) + "</td><td>" +
             Escape(f.threshold) + "</td><td>" + Escape(f.meaning) + "</td><td>" +

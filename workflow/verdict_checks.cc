@@ -109,7 +109,8 @@ Finding CheckClosure(const CalibrationReport& report) {
   } else {
     finding.meaning = "camera poses and the calibrated robot disagree beyond the noise on the poses it was fitted to.";
     finding.advice = "recalibrate the camera (intrinsics) and check the target file's tag size (closure RMS " +
-                     Figure(report.closure_position_rms) + " " + report.length_unit + ")";
+                     Figure(report.closure_position_rms) + " " + report.length_unit +
+                     "); if they are right, the noise model in session.yaml is optimistic";
   }
   return finding;
 }

@@ -59,7 +59,8 @@ Finding CheckParameterSigmas(const CalibrationReport& report) {
     finding.meaning = ParameterLabel(*worst) + " is poorly identified: its uncertainty alone moves poses by more " +
                       "than the measurement noise.";
     finding.advice = "add poses that move leg " + std::to_string(worst->leg) +
-                     " over its whole stroke and tilt the platform (hexcal plan picks them)";
+                     " over its whole stroke and tilt the platform (hexcal plan picks them); if the held-out error is poor "
+                     "too, check the noise model first";
   }
   return finding;
 }
