@@ -6,17 +6,7 @@
 namespace hexcal::ui {
 namespace {
 
-QString Colour(workflow::VerdictLevel level) {
-  switch (level) {
-    case workflow::VerdictLevel::kGood:
-      return "#1b7a34";
-    case workflow::VerdictLevel::kAcceptable:
-      return "#a86400";
-    case workflow::VerdictLevel::kPoor:
-      return "#c0262d";
-  }
-  return "#c0262d";
-}
+QString Colour(workflow::VerdictLevel level) { return workflow::VerdictLevelColour(level); }
 
 QString Html(const std::string& text) { return QString::fromStdString(text).toHtmlEscaped(); }
 

@@ -9,17 +9,19 @@
 
 namespace hexcal::workflow {
 
-const char* VerdictLevelName(VerdictLevel level) {
-  switch (level) {
-    case VerdictLevel::kGood:
-      return "good";
-    case VerdictLevel::kAcceptable:
-      return "acceptable";
-    case VerdictLevel::kPoor:
-      return "poor";
-  }
-  return "poor";
-}
+namespace {
+
+struct LevelStyle {
+  const char* name;
+  const char* colour;
+};
+// By VerdictLevel: green, amber, red, dark enough to read as text on white.
+constexpr LevelStyle kLevelStyles[] = {{"good", "#1b7a34"}, {"acceptable", "#a86400"}, {"poor", "#c0262d"}};
+
+}  // namespace
+
+const char* VerdictLevelName(VerdictLevel level) { return kLevelStyles[static_cast<int>(level)].name; }
+const char* VerdictLevelColour(VerdictLevel level) { return kLevelStyles[static_cast<int>(level)].colour; }
 
 void Verdict::Add(Finding finding) {
   level = std::max(level, finding.level);

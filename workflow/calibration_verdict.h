@@ -23,6 +23,8 @@ namespace hexcal::workflow {
 
 enum class VerdictLevel { kGood = 0, kAcceptable = 1, kPoor = 2 };
 const char* VerdictLevelName(VerdictLevel level);  // "good", "acceptable", "poor"
+// The colour the HTML report and the GUI show a level in: "#1b7a34" (green), amber, red.
+const char* VerdictLevelColour(VerdictLevel level);
 
 // Held-out FK error (and closure) over what the noise predicts (expected_error.h):
 // ratio² = 1 + (unexplained error / noise)², so 2 allows an unexplained error

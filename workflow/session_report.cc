@@ -103,22 +103,10 @@ std::string ParameterTable(const std::vector<ParameterEstimate>& parameters, con
          "for, not an alarm; the verdict above says whether the &sigma; themselves are small enough.</p>\n";
 }
 
-const char* LevelColour(VerdictLevel level) {
-  switch (level) {
-    case VerdictLevel::kGood:
-      return "#1b7a34";
-    case VerdictLevel::kAcceptable:
-      return "#a86400";
-    case VerdictLevel::kPoor:
-      return "#c0262d";
-  }
-  return "#c0262d";
-}
-
 // The box the page opens with: the level in its colour, then one row per finding.
 std::string VerdictBox(const Verdict& verdict) {
-  std::string html = "<div class=\"verdict\" style=\"border-color:" + std::string(LevelColour(verdict.level)) +
-                     "\"><h2>Verdict: <span style=\"color:" + LevelColour(verdict.level) + "\">" +
+  std::string html = "<div class=\"verdict\" style=\"border-color:" + std::string(VerdictLevelColour(verdict.level)) +
+                     "\"><h2>Verdict: <span style=\"color:" + VerdictLevelColour(verdict.level) + "\">" +
                      VerdictLevelName(verdict.level) +
                      "</span></h2>\n<table><tr><th>aspect</th><th>level</th><th>figure</th><th>threshold</th>"
                      "<th>meaning</th><th>advice</th></tr>\n";
@@ -127,7 +115,7 @@ std::string VerdictBox(const Verdict& verdict) {
   std::stable_sort(findings.begin(), findings.end(),
                    [](const Finding& a, const Finding& b) { return a.level > b.level; });
   for (const Finding& f : findings) {
-    html += "<tr><td>" + Escape(f.aspect) + "</td><td style=\"color:" + LevelColour(f.level) +
+    html += "<tr><td>" + Escape(f.aspect) + "</td><td style=\"color:" + VerdictLevelColour(f.level) +
             ";font-weight:bold\">" + VerdictLevelName(f.level) + "</td><td>" + Escape(f.figure) + "</td><td>" +
             Escape(f.threshold) + "</td><td>" + Escape(f.meaning) + "</td><td>" +
             (f.advice.empty() ? "–" : Escape(f.advice)) + "</td></tr>\n";
