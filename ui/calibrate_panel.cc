@@ -33,6 +33,23 @@ std::string ResultsFile(const SessionState& session, const char* name) {
   return (fs::path(session.Paths().results) / name).string();
 }
 
+// Sorts by the number it holds, whatever its text.
+class NumberItem : public QTableWidgetItem {
+ public:
+  NumberItem(const QString& text, double value) : QTableWidgetItem(text) { setData(Qt::UserRole, value); }
+  bool operator<(const QTableWidgetItem& other) const override {
+    return data(Qt::UserRole).toDouble() < other.data(Qt::UserRole).toDouble();
+  }
+};
+
+// |change|/σ as "yes, 110σ": far above 3 the parameter was identified and
+// differs from nominal, which is no alarm (docs/calibration.md, "Verdict").
+QTableWidgetItem* IdentifiedItem(const workflow::ParameterEstimate& p) {
+  if (!p.sigma || *p.sigma <= 0) return new NumberItem("—", -1);
+  const double ratio = std::abs(p.estimate - p.nominal) / *p.sigma;
+  return new NumberItem(QString("%1, %2σ").arg(ratio > 3 ? "yes" : "no").arg(ratio, 0, 'g', 3), ratio);
+}
+
 }  // namespace
 
 CalibratePanel::CalibratePanel(SessionState* session, QWidget* parent)
@@ -56,7 +73,8 @@ CalibratePanel::CalibratePanel(SessionState* session, QWidget* parent)
   parameters_ = new QTableWidget(0, 7);
   parameters_->setObjectName("parameter_table");
   verdict_ = new VerdictView;
-  parameters_->setHorizontalHeaderLabels({"leg", "parameter", "nominal", "calibrated", "change", "σ", "identified"});
+  parameters_->setHorizontalHeaderLabels(
+      {"leg", "parameter", "nominal", "calibrated", "change", "σ", "identified (change ≫ σ)"});
   // |change|/σ far above 3 says the parameter was identified, not that something is wrong.
   parameters_->horizontalHeaderItem(6)->setToolTip(
       "|change|/σ: well above 3 (change ≫ σ) means the calibration identified this parameter and found it "
@@ -187,10 +205,7 @@ void CalibratePanel::FillParameterTable(const std::vector<workflow::ParameterEst
     parameters_->setItem(r, 3, cell(p.estimate));
     parameters_->setItem(r, 4, cell(change));
     parameters_->setItem(r, 5, p.sigma ? cell(*p.sigma) : cell("—"));
-    // "≫σ" after a clear identification so the number reads as one, not as an alarm.
-    const double identified = p.sigma && *p.sigma > 0 ? std::abs(change) / *p.sigma : -1;
-    parameters_->setItem(r, 6, identified < 0 ? cell("—") : cell(identified));
-    if (identified > 3) parameters_->item(r, 6)->setToolTip("identified: change ≫ σ");
+    parameters_->setItem(r, 6, IdentifiedItem(p));
   }
   parameters_->setSortingEnabled(true);
 }

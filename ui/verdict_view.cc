@@ -18,11 +18,14 @@ QString FindingsHtml(const workflow::Verdict& verdict) {
       good += (good.isEmpty() ? "" : ", ") + Html(f.aspect);
       continue;
     }
-    html += QString("<span style=\"color:%1\"><b>%2</b></span> %3: %4. <i>%5.</i><br>")
-                .arg(Colour(f.level), workflow::VerdictLevelName(f.level), Html(f.aspect), Html(f.figure),
-                     Html(f.advice));
+    // What to do, on as few lines as possible; the figures are in the tooltip.
+    html += QString("<span style=\"color:%1\"><b>%2</b></span> %3: %4.<br>")
+                .arg(Colour(f.level), workflow::VerdictLevelName(f.level), Html(f.aspect), Html(f.advice));
   }
-  if (!good.isEmpty()) html += QString("<span style=\"color:%1\"><b>good</b></span> %2").arg(Colour(workflow::VerdictLevel::kGood), good);
+  if (!good.isEmpty()) {
+    html += QString("<span style=\"color:%1\">%2:</span> %3")
+                .arg(Colour(workflow::VerdictLevel::kGood), html.isEmpty() ? "every finding good" : "good", good);
+  }
   return html;
 }
 
@@ -59,20 +62,22 @@ VerdictView::VerdictView(QWidget* parent) : QWidget(parent) {
 void VerdictView::Show(const workflow::Verdict& verdict) {
   level_->setText(QString("<span style=\"color:%1;font-size:large\"><b>Verdict: %2</b></span>")
                       .arg(Colour(verdict.level), workflow::VerdictLevelName(verdict.level)));
-  level_->setProperty("level", workflow::VerdictLevelName(verdict.level));
+  level_text_ = workflow::VerdictLevelName(verdict.level);
   findings_->setText(FindingsHtml(verdict));
   findings_->setToolTip(FindingsTooltip(verdict));
+  level_->setToolTip("The worst of the findings; hover over them for each figure, threshold and meaning "
+                     "(docs/calibration.md, \"Verdict\").");
   setVisible(true);
 }
 
 void VerdictView::Clear() {
   level_->clear();
-  level_->setProperty("level", QString());
+  level_text_.clear();
   findings_->clear();
   findings_->setToolTip(QString());
   setVisible(false);
 }
 
-QString VerdictView::LevelText() const { return level_->property("level").toString(); }
+QString VerdictView::LevelText() const { return level_text_; }
 
 }  // namespace hexcal::ui

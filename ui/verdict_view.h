@@ -1,7 +1,7 @@
 // The verdict on a calibration (workflow/calibration_verdict.h) in a panel:
 // the level in its colour, then the findings that are not good with their
-// advice, and the good ones on one line; every figure and threshold in the
-// tooltip. Compact enough to sit above a table in a 1280×720 window. Fed by
+// advice, and the good ones on one line; every figure, threshold and meaning
+// in the tooltip. Compact enough to sit above a table in a 1280×720 window. Fed by
 // the Calibrate and Validate panels from the same Verdict the CLI prints.
 //
 //   auto* verdict = new VerdictView;
@@ -26,6 +26,7 @@ class VerdictView : public QWidget {
 
  private:
   QLabel *level_, *findings_;
+  QString level_text_;
 };
 
 }  // namespace hexcal::ui
