@@ -75,7 +75,15 @@ Verdict MakeValidationVerdict(const ValidationReport& report, const ExpectedPose
   PoseErrorStats stats{report.position.rms, report.position.max, report.orientation_deg.rms,
                        report.orientation_deg.max, report.failed};
   Finding fk = CheckFkErrors(stats, expected, length_unit, /*worst_image=*/"");
-  fk.aspect = "FK error";  // on the file's rows, held out or not
+  // The file's rows, held out or not, and a robot that may be the nominal one.
+  fk.aspect = "FK error";
+  if (fk.level == VerdictLevel::kGood) {
+    fk.meaning = "the robot's forward kinematics match these measured poses as well as their noise allows.";
+  } else {
+    fk.meaning = "the robot's forward kinematics miss these poses by more than the measurement noise explains.";
+    fk.advice = "check that the robot file is the calibrated one and that --noise-* match the sensors; if so, "
+                "calibrate again with more poses";
+  }
   verdict.Add(fk);
   return verdict;
 }

@@ -231,6 +231,21 @@ TEST(Verdict, TextAndJsonForms) {
   for (const char* key : {"level", "figure", "threshold", "meaning"}) EXPECT_TRUE(json["findings"][0].contains(key));
 }
 
+TEST(Verdict, ValidationOfAFileAgainstTheNoisePrediction) {
+  ValidationReport report;
+  report.position.rms = 0.004;
+  report.orientation_deg.rms = 0.01;
+  const ExpectedPoseError expected{kExpectedPosition, kExpectedOrientation};
+  const Verdict good = MakeValidationVerdict(report, expected, "cm");
+  ASSERT_EQ(good.findings.size(), 1u);
+  EXPECT_EQ(good.findings[0].aspect, "FK error");
+  EXPECT_EQ(good.level, VerdictLevel::kGood);
+  report.position.rms = 10 * kExpectedPosition;
+  const Verdict poor = MakeValidationVerdict(report, expected, "cm");
+  EXPECT_EQ(poor.level, VerdictLevel::kPoor);
+  EXPECT_THAT(poor.findings[0].advice, HasSubstr("--noise-*"));
+}
+
 TEST(ExpectedError, PoseNoiseAloneAndWithReadings) {
   StatusOr<Robot> robot = LoadRobot("inria-left-hand");
   ASSERT_TRUE(robot.ok());
