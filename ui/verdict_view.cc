@@ -65,8 +65,9 @@ void VerdictView::Show(const workflow::Verdict& verdict) {
   level_text_ = workflow::VerdictLevelName(verdict.level);
   findings_->setText(FindingsHtml(verdict));
   findings_->setToolTip(FindingsTooltip(verdict));
-  level_->setToolTip("The worst of the findings; hover over them for each figure, threshold and meaning "
-                     "(docs/calibration.md, \"Verdict\").");
+  level_->setToolTip(
+      "The worst of the findings; hover over them for each figure, threshold and meaning "
+      "(docs/calibration.md, \"Verdict\").");
   setVisible(true);
 }
 

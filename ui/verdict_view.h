@@ -21,7 +21,7 @@ class VerdictView : public QWidget {
  public:
   explicit VerdictView(QWidget* parent = nullptr);
   void Show(const workflow::Verdict& verdict);
-  void Clear();  // no results: nothing shown
+  void Clear();               // no results: nothing shown
   QString LevelText() const;  // "good", "acceptable", "poor" or empty
 
  private:

@@ -72,8 +72,8 @@ Verdict MakeVerdict(const CalibrationReport& report, const std::optional<Verdict
 Verdict MakeValidationVerdict(const ValidationReport& report, const ExpectedPoseError& expected,
                               const std::string& length_unit) {
   Verdict verdict;
-  PoseErrorStats stats{report.position.rms, report.position.max, report.orientation_deg.rms,
-                       report.orientation_deg.max, report.failed};
+  PoseErrorStats stats{report.position.rms, report.position.max, report.orientation_deg.rms, report.orientation_deg.max,
+                       report.failed};
   Finding fk = CheckFkErrors(stats, expected, length_unit, /*worst_image=*/"");
   // The file's rows, held out or not, and a robot that may be the nominal one.
   fk.aspect = "FK error";
@@ -81,8 +81,9 @@ Verdict MakeValidationVerdict(const ValidationReport& report, const ExpectedPose
     fk.meaning = "the robot's forward kinematics match these measured poses as well as their noise allows.";
   } else {
     fk.meaning = "the robot's forward kinematics miss these poses by more than the measurement noise explains.";
-    fk.advice = "check that the robot file is the calibrated one and that --noise-* match the sensors; if so, "
-                "calibrate again with more poses";
+    fk.advice =
+        "check that the robot file is the calibrated one and that --noise-* match the sensors; if so, "
+        "calibrate again with more poses";
   }
   verdict.Add(fk);
   return verdict;

@@ -3,11 +3,11 @@
 // wrong reading and a noise model ten times too optimistic are not.
 #include "workflow/calibration_verdict.h"
 
-#include <algorithm>
-#include <cmath>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
 
 #include "core/csv.h"
 #include "core/presets.h"
@@ -21,9 +21,9 @@
 namespace hexcal::workflow {
 namespace {
 
+using hexcal::testing::TempDir;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
-using hexcal::testing::TempDir;
 
 constexpr double kExpectedPosition = 0.005, kExpectedOrientation = 0.015;  // cm, degrees
 
@@ -210,7 +210,8 @@ TEST(Verdict, OutliersNameTheWorstReading) {
   report.outliers = {{"view_0003.png", 5, 2, 0.01, 6.2, true}, {"view_0007.png", 9, 3, 0.1, -48, true}};
   const Finding acceptable = FindingOf(MakeVerdict(report), "outliers");
   EXPECT_EQ(acceptable.level, VerdictLevel::kAcceptable);
-  EXPECT_EQ(acceptable.advice, "check the readings of image view_0007.png (legs.csv line 9), leg 3: its residual is 48σ");
+  EXPECT_EQ(acceptable.advice,
+            "check the readings of image view_0007.png (legs.csv line 9), leg 3: its residual is 48σ");
   for (int j = 0; j < 10; ++j) report.outliers.push_back({"view_0010.png", 12, 1 + j % 6, 0.01, 6, true});
   EXPECT_EQ(LevelOf(report, "outliers"), VerdictLevel::kPoor);
 }

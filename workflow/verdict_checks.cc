@@ -27,8 +27,8 @@ std::string WorstHeldOutImage(const ValidationSummary& validation) {
 std::string FkFigure(const PoseErrorStats& after, const ExpectedPoseError& expected, const std::string& unit) {
   return "position RMS " + Figure(after.position_rms) + " " + unit + " = " +
          Figure(after.position_rms / expected.position_rms) + "× expected " + Figure(expected.position_rms) + " " +
-         unit + ", orientation RMS " + Figure(after.orientation_rms) + "° = " +
-         Figure(after.orientation_rms / expected.orientation_rms_deg) + "× expected " +
+         unit + ", orientation RMS " + Figure(after.orientation_rms) +
+         "° = " + Figure(after.orientation_rms / expected.orientation_rms_deg) + "× expected " +
          Figure(expected.orientation_rms_deg) + "°";
 }
 
@@ -58,10 +58,14 @@ std::string Figure(double value) {
 
 Finding CheckFkErrors(const PoseErrorStats& after, const ExpectedPoseError& expected, const std::string& unit,
                       const std::string& worst_image) {
-  const double ratio = std::max(after.position_rms / expected.position_rms,
-                                after.orientation_rms / expected.orientation_rms_deg);
-  Finding finding{"held-out error", LevelAtMost(ratio, kNoiseRatioGood, kNoiseRatioAcceptable),
-                  FkFigure(after, expected, unit), RatioBands(), "", ""};
+  const double ratio =
+      std::max(after.position_rms / expected.position_rms, after.orientation_rms / expected.orientation_rms_deg);
+  Finding finding{"held-out error",
+                  LevelAtMost(ratio, kNoiseRatioGood, kNoiseRatioAcceptable),
+                  FkFigure(after, expected, unit),
+                  RatioBands(),
+                  "",
+                  ""};
   if (finding.level == VerdictLevel::kGood) {
     finding.meaning = "the calibrated robot predicts poses it was not fitted to as well as the measurements allow.";
   } else {
@@ -82,28 +86,34 @@ Finding CheckFkErrors(const PoseErrorStats& after, const ExpectedPoseError& expe
 
 Finding CheckHeldOut(const CalibrationReport& report) {
   if (!report.validation) {
-    return {"held-out error", VerdictLevel::kAcceptable, "no held-out images",
+    return {"held-out error",
+            VerdictLevel::kAcceptable,
+            "no held-out images",
             "good: at least " + std::to_string(kHeldOutImagesGood) + " held-out images",
             "without poses kept out of the fit nothing checks the calibrated robot on new poses.",
             "set holdout = 1 on about one row in five of legs.csv and calibrate again"};
   }
   if (!report.noise) {
-    return {"held-out error", VerdictLevel::kAcceptable,
+    return {"held-out error",
+            VerdictLevel::kAcceptable,
             "position RMS " + Figure(report.validation->after.position_rms) + " " + report.length_unit,
-            "needs the noise model's prediction", "this report predates the record of the noise model.",
+            "needs the noise model's prediction",
+            "this report predates the record of the noise model.",
             "run hexcal calibrate --session again"};
   }
   const ExpectedPoseError expected{report.noise->position_rms, report.noise->orientation_rms_deg};
-  return CheckFkErrors(report.validation->after, expected, report.length_unit,
-                       WorstHeldOutImage(*report.validation));
+  return CheckFkErrors(report.validation->after, expected, report.length_unit, WorstHeldOutImage(*report.validation));
 }
 
 Finding CheckClosure(const CalibrationReport& report) {
   const double ratio = report.closure_position_rms / report.noise->position_rms;
-  Finding finding{"closure", LevelAtMost(ratio, kNoiseRatioGood, kNoiseRatioAcceptable),
+  Finding finding{"closure",
+                  LevelAtMost(ratio, kNoiseRatioGood, kNoiseRatioAcceptable),
                   "RMS " + Figure(report.closure_position_rms) + " " + report.length_unit + " = " + Figure(ratio) +
                       "× expected " + Figure(report.noise->position_rms) + " " + report.length_unit,
-                  RatioBands(), "", ""};
+                  RatioBands(),
+                  "",
+                  ""};
   if (finding.level == VerdictLevel::kGood) {
     finding.meaning = "camera, registered frames and calibrated robot agree on the calibration poses.";
   } else {
@@ -122,12 +132,14 @@ Finding CheckResiduals(const CalibrationReport& report) {
   const double s_low = std::sqrt(lowest.variance_factor), s_high = std::sqrt(highest.variance_factor);
   const VerdictLevel high = LevelAtMost(s_high, kScatterFactorGood, kScatterFactorAcceptable);
   const VerdictLevel low = LevelAtLeast(s_low, 1 / kScatterFactorGood, 1 / kScatterFactorAcceptable);
-  Finding finding{"residuals", std::max(high, low),
+  Finding finding{"residuals",
+                  std::max(high, low),
                   "variance factor s² " + Figure(lowest.variance_factor) + "–" + Figure(highest.variance_factor) +
                       " over the legs, s " + Figure(s_low) + "–" + Figure(s_high),
                   "good: s within a factor " + Figure(kScatterFactorGood) + " of 1, acceptable within " +
                       Figure(kScatterFactorAcceptable),
-                  "the residuals scatter as the noise model says.", ""};
+                  "the residuals scatter as the noise model says.",
+                  ""};
   if (high > VerdictLevel::kGood) {
     finding.meaning = "leg " + std::to_string(highest.leg) + "'s residuals are " + Figure(s_high) +
                       " times the noise model's: a model error or noisier measurements than assumed.";

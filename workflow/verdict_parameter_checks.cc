@@ -38,29 +38,38 @@ Finding CheckParameterSigmas(const CalibrationReport& report) {
   const ParameterEstimate* worst = nullptr;
   int without_sigma = 0;
   for (const ParameterEstimate& p : report.parameters) {
-    if (!p.sigma) ++without_sigma;
-    else if (!worst || *p.sigma > *worst->sigma) worst = &p;
+    if (!p.sigma)
+      ++without_sigma;
+    else if (!worst || *p.sigma > *worst->sigma)
+      worst = &p;
   }
   const double required = report.noise->position_rms;
   const std::string bands = "good: σ ≤ " + Figure(kSigmaRatioGood) + "×, acceptable ≤ " +
                             Figure(kSigmaRatioAcceptable) + "× the noise-predicted error " + Figure(required) + " " +
                             unit;
   if (without_sigma > 0 || !worst) {
-    return {"parameters (σ)", VerdictLevel::kPoor, std::to_string(without_sigma) + " parameters without σ", bands,
+    return {"parameters (σ)",
+            VerdictLevel::kPoor,
+            std::to_string(without_sigma) + " parameters without σ",
+            bands,
             "a leg with as many poses as parameters is fitted exactly and its precision is unknown.",
             "add poses (hexcal plan) and calibrate again"};
   }
   const double ratio = *worst->sigma / required;
-  Finding finding{"parameters (σ)", LevelAtMost(ratio, kSigmaRatioGood, kSigmaRatioAcceptable),
-                  "largest σ " + Figure(*worst->sigma) + " " + unit + " (" + ParameterLabel(*worst) + ") = " +
-                      Figure(ratio) + "× the noise-predicted error",
-                  bands, "no parameter's uncertainty moves a predicted pose by more than twice the measurement noise.", ""};
+  Finding finding{"parameters (σ)",
+                  LevelAtMost(ratio, kSigmaRatioGood, kSigmaRatioAcceptable),
+                  "largest σ " + Figure(*worst->sigma) + " " + unit + " (" + ParameterLabel(*worst) +
+                      ") = " + Figure(ratio) + "× the noise-predicted error",
+                  bands,
+                  "no parameter's uncertainty moves a predicted pose by more than twice the measurement noise.",
+                  ""};
   if (finding.level != VerdictLevel::kGood) {
     finding.meaning = ParameterLabel(*worst) + " is poorly identified: its uncertainty alone moves poses by more " +
                       "than the measurement noise.";
-    finding.advice = "add poses that move leg " + std::to_string(worst->leg) +
-                     " over its whole stroke and tilt the platform (hexcal plan picks them); if the held-out error is poor "
-                     "too, check the noise model first";
+    finding.advice =
+        "add poses that move leg " + std::to_string(worst->leg) +
+        " over its whole stroke and tilt the platform (hexcal plan picks them); if the held-out error is poor "
+        "too, check the noise model first";
   }
   return finding;
 }
@@ -73,12 +82,14 @@ Finding CheckParameterChanges(const CalibrationReport& report) {
   }
   const double change = std::abs(largest->estimate - largest->nominal), size = RobotSize(report.robot);
   const double fraction = size > 0 ? change / size : 0;
-  Finding finding{"parameters (change)", LevelAtMost(fraction, kChangeFractionGood, kChangeFractionAcceptable),
-                  "largest change " + Figure(change) + " " + unit + " (" + ParameterLabel(*largest) + ") = " +
-                      Figure(100 * fraction) + " % of the robot's size " + Figure(size) + " " + unit,
+  Finding finding{"parameters (change)",
+                  LevelAtMost(fraction, kChangeFractionGood, kChangeFractionAcceptable),
+                  "largest change " + Figure(change) + " " + unit + " (" + ParameterLabel(*largest) +
+                      ") = " + Figure(100 * fraction) + " % of the robot's size " + Figure(size) + " " + unit,
                   "good ≤ " + Figure(100 * kChangeFractionGood) + " %, acceptable ≤ " +
                       Figure(100 * kChangeFractionAcceptable) + " % of the size",
-                  "the changes from nominal are of the size of build tolerances and the registration's gauge." + MostIdentified(report.parameters),
+                  "the changes from nominal are of the size of build tolerances and the registration's gauge." +
+                      MostIdentified(report.parameters),
                   ""};
   if (finding.level != VerdictLevel::kGood) {
     finding.meaning = ParameterLabel(*largest) + " moved by more than a build error explains.";
@@ -94,7 +105,8 @@ Finding CheckTruth(const VerdictTruth& truth) {
                       " parameters within 3σ of the true robot",
                   "good ≥ " + Figure(100 * kWithin3SigmaGood) + " %, acceptable ≥ " +
                       Figure(100 * kWithin3SigmaAcceptable) + " %; 99.7 % expected",
-                  "the stated σ describe the real errors.", ""};
+                  "the stated σ describe the real errors.",
+                  ""};
   if (finding.level != VerdictLevel::kGood) {
     finding.meaning = "the σ understate the real errors: the noise model is optimistic or the model is biased.";
     finding.advice = "raise the noise half-widths in session.yaml or look for a bias (camera, registration)";
@@ -109,10 +121,12 @@ std::optional<Finding> CheckConditioning(const CalibrationReport& report) {
   }
   if (!worst) return std::nullopt;
   const double condition = *worst->condition_number;
-  Finding finding{"identifiability", LevelAtMost(condition, kConditionGood, kConditionAcceptable),
+  Finding finding{"identifiability",
+                  LevelAtMost(condition, kConditionGood, kConditionAcceptable),
                   "largest condition number " + Figure(condition) + ", leg " + std::to_string(worst->leg),
                   "good ≤ " + Figure(kConditionGood) + ", acceptable ≤ " + Figure(kConditionAcceptable),
-                  "the poses constrain every direction of each leg's 7 parameters.", ""};
+                  "the poses constrain every direction of each leg's 7 parameters.",
+                  ""};
   if (finding.level != VerdictLevel::kGood) {
     finding.meaning = "leg " + std::to_string(worst->leg) +
                       "'s poses barely constrain one combination of its parameters: noise is amplified along it.";
