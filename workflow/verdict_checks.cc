@@ -14,6 +14,12 @@ std::string RatioBands() {
          "× the noise-predicted error";
 }
 
+// A figure over what the noise predicts, in the bands of kNoiseRatioGood and
+// kNoiseRatioAcceptable; meaning and advice are the caller's.
+Finding NoiseRatioFinding(const std::string& aspect, double ratio, const std::string& figure) {
+  return {aspect, LevelAtMost(ratio, kNoiseRatioGood, kNoiseRatioAcceptable), figure, RatioBands(), "", ""};
+}
+
 // The held-out image with the largest position error after calibration.
 std::string WorstHeldOutImage(const ValidationSummary& validation) {
   const HeldOutImage* worst = nullptr;
@@ -60,12 +66,7 @@ Finding CheckFkErrors(const PoseErrorStats& after, const ExpectedPoseError& expe
                       const std::string& worst_image) {
   const double ratio =
       std::max(after.position_rms / expected.position_rms, after.orientation_rms / expected.orientation_rms_deg);
-  Finding finding{"held-out error",
-                  LevelAtMost(ratio, kNoiseRatioGood, kNoiseRatioAcceptable),
-                  FkFigure(after, expected, unit),
-                  RatioBands(),
-                  "",
-                  ""};
+  Finding finding = NoiseRatioFinding("held-out error", ratio, FkFigure(after, expected, unit));
   if (finding.level == VerdictLevel::kGood) {
     finding.meaning = "the calibrated robot predicts poses it was not fitted to as well as the measurements allow.";
   } else {
@@ -107,13 +108,10 @@ Finding CheckHeldOut(const CalibrationReport& report) {
 
 Finding CheckClosure(const CalibrationReport& report) {
   const double ratio = report.closure_position_rms / report.noise->position_rms;
-  Finding finding{"closure",
-                  LevelAtMost(ratio, kNoiseRatioGood, kNoiseRatioAcceptable),
-                  "RMS " + Figure(report.closure_position_rms) + " " + report.length_unit + " = " + Figure(ratio) +
-                      "× expected " + Figure(report.noise->position_rms) + " " + report.length_unit,
-                  RatioBands(),
-                  "",
-                  ""};
+  Finding finding = NoiseRatioFinding("closure", ratio,
+                                      "RMS " + Figure(report.closure_position_rms) + " " + report.length_unit + " = " +
+                                          Figure(ratio) + "× expected " + Figure(report.noise->position_rms) + " " +
+                                          report.length_unit);
   if (finding.level == VerdictLevel::kGood) {
     finding.meaning = "camera, registered frames and calibrated robot agree on the calibration poses.";
   } else {
