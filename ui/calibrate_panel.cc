@@ -10,6 +10,7 @@
 #include <QTableWidget>
 #include <QVBoxLayout>
 #include <filesystem>
+#include <utility>
 
 #include "charts/figures.h"
 #include "core/inverse_kinematics.h"
@@ -18,6 +19,8 @@
 #include "ui/background_job.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
+#include "ui/verdict_view.h"
+#include "workflow/calibration_verdict.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_results.h"
 
@@ -28,6 +31,23 @@ namespace fs = std::filesystem;
 
 std::string ResultsFile(const SessionState& session, const char* name) {
   return (fs::path(session.Paths().results) / name).string();
+}
+
+// Sorts by the number it holds, whatever its text.
+class NumberItem : public QTableWidgetItem {
+ public:
+  NumberItem(const QString& text, double value) : QTableWidgetItem(text) { setData(Qt::UserRole, value); }
+  bool operator<(const QTableWidgetItem& other) const override {
+    return data(Qt::UserRole).toDouble() < other.data(Qt::UserRole).toDouble();
+  }
+};
+
+// |change|/σ as "yes, 110σ": far above 3 the parameter was identified and
+// differs from nominal, which is no alarm (docs/calibration.md, "Verdict").
+QTableWidgetItem* IdentifiedItem(const workflow::ParameterEstimate& p) {
+  if (!p.sigma || *p.sigma <= 0) return new NumberItem("—", -1);
+  const double ratio = std::abs(p.estimate - p.nominal) / *p.sigma;
+  return new NumberItem(QString("%1, %2σ").arg(ratio > 3 ? "yes" : "no").arg(ratio, 0, 'g', 3), ratio);
 }
 
 }  // namespace
@@ -52,7 +72,13 @@ CalibratePanel::CalibratePanel(SessionState* session, QWidget* parent)
   summary_->setTextFormat(Qt::RichText);
   parameters_ = new QTableWidget(0, 7);
   parameters_->setObjectName("parameter_table");
-  parameters_->setHorizontalHeaderLabels({"leg", "parameter", "nominal", "calibrated", "change", "σ", "|change|/σ"});
+  verdict_ = new VerdictView;
+  parameters_->setHorizontalHeaderLabels(
+      {"leg", "parameter", "nominal", "calibrated", "change", "σ", "identified (change ≫ σ)"});
+  // |change|/σ far above 3 says the parameter was identified, not that something is wrong.
+  parameters_->horizontalHeaderItem(6)->setToolTip(
+      "|change|/σ: well above 3 (change ≫ σ) means the calibration identified this parameter and found it "
+      "differs from nominal. Expected, not an alarm.");
   parameters_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
   parameters_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   parameters_->setSortingEnabled(true);
@@ -81,6 +107,7 @@ CalibratePanel::CalibratePanel(SessionState* session, QWidget* parent)
   layout->addLayout(controls);
   layout->addWidget(status_);
   layout->addWidget(summary_);
+  layout->addWidget(verdict_);
   layout->addWidget(splitter, 1);
   connect(job_, &BackgroundJob::Finished, this, [this] {
     run_->setEnabled(true);
@@ -141,6 +168,7 @@ void CalibratePanel::Refresh() {
   parameters_->setSortingEnabled(false);
   parameters_->setRowCount(0);
   summary_->clear();
+  verdict_->Clear();
   const StatusOr<workflow::SessionResults>& loaded = session_->Results();
   if (!session_->IsOpen() || !loaded.ok()) {
     summary_->setText(session_->IsOpen() ? QString::fromStdString(loaded.status().message()).toHtmlEscaped() : "");
@@ -163,11 +191,14 @@ void CalibratePanel::Refresh() {
                     (session_->ResultsNote().isEmpty()
                          ? QString()
                          : "<br><b>Stale:</b> " + session_->ResultsNote().toHtmlEscaped()));
-  FillParameterTable(report.parameters);
+  verdict_->Show(workflow::MakeVerdict(report));
+  FillParameterTable(report.parameters, QString::fromStdString(report.length_unit));
   PlotResiduals();
 }
 
-void CalibratePanel::FillParameterTable(const std::vector<workflow::ParameterEstimate>& rows) {
+void CalibratePanel::FillParameterTable(const std::vector<workflow::ParameterEstimate>& rows, const QString& unit) {
+  for (const auto& [column, name] : {std::pair<int, QString>{2, "nominal"}, {3, "calibrated"}, {4, "change"}, {5, "σ"}})
+    parameters_->horizontalHeaderItem(column)->setText(name + " (" + unit + ")");
   const auto cell = [](const QVariant& v) {
     auto* item = new QTableWidgetItem;
     item->setData(Qt::DisplayRole, v);
@@ -183,7 +214,7 @@ void CalibratePanel::FillParameterTable(const std::vector<workflow::ParameterEst
     parameters_->setItem(r, 3, cell(p.estimate));
     parameters_->setItem(r, 4, cell(change));
     parameters_->setItem(r, 5, p.sigma ? cell(*p.sigma) : cell("—"));
-    parameters_->setItem(r, 6, p.sigma && *p.sigma > 0 ? cell(std::abs(change) / *p.sigma) : cell("—"));
+    parameters_->setItem(r, 6, IdentifiedItem(p));
   }
   parameters_->setSortingEnabled(true);
 }

@@ -2,8 +2,8 @@
 // (register the camera with the nominal robot, calibrate the 42 parameters,
 // validate on held-out images) on a worker thread, with its progress (the
 // images it measures, then the legs) and Cancel throughout.
-// Shows the 42 parameters (nominal, calibrated, change, σ) from
-// results/report.json and the leg residuals of the nominal and the calibrated
+// Shows the verdict (ui/verdict_view.h) and the 42 parameters (nominal,
+// calibrated, change, σ, identified) from results/report.json and the leg residuals of the nominal and the calibrated
 // robot on the calibration poses.
 #pragma once
 
@@ -25,6 +25,7 @@ class QChartView;
 namespace hexcal::ui {
 
 class BackgroundJob;
+class VerdictView;
 
 class CalibratePanel : public QWidget {
   Q_OBJECT
@@ -32,6 +33,7 @@ class CalibratePanel : public QWidget {
   CalibratePanel(SessionState* session, QWidget* parent = nullptr);
   BackgroundJob* Job() const { return job_; }
   QTableWidget* ParameterTable() const { return parameters_; }
+  VerdictView* VerdictWidget() const { return verdict_; }
   const QString& LastOutcome() const { return outcome_; }
 
  public slots:
@@ -43,7 +45,7 @@ class CalibratePanel : public QWidget {
  private:
   void Finish(const Status& status, const QString& report);
   void PlotResiduals();
-  void FillParameterTable(const std::vector<workflow::ParameterEstimate>& rows);
+  void FillParameterTable(const std::vector<workflow::ParameterEstimate>& rows, const QString& unit);
   void SetOutcome(const QString& text);
 
   SessionState* session_;
@@ -51,6 +53,7 @@ class CalibratePanel : public QWidget {
   QPushButton *run_, *cancel_;
   QProgressBar* progress_;
   QLabel *status_, *summary_;
+  VerdictView* verdict_;  // the verdict on results/report.json
   QTableWidget* parameters_;
   QtCharts::QChartView* residuals_;
   QString outcome_;

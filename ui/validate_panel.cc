@@ -17,6 +17,8 @@
 #include "charts/figures.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
+#include "ui/verdict_view.h"
+#include "workflow/calibration_verdict.h"
 #include "workflow/session_report.h"
 #include "workflow/session_results.h"
 
@@ -35,6 +37,7 @@ ValidatePanel::ValidatePanel(SessionState* session, QWidget* parent) : QWidget(p
   status_->setTextFormat(Qt::PlainText);  // file names are shown as they are, never as HTML
   status_->setWordWrap(true);
   status_->setObjectName("validate_status");
+  verdict_ = new VerdictView;
   summary_ = new QTableWidget(4, 2);
   summary_->setObjectName("validation_summary");
   summary_->setHorizontalHeaderLabels({"nominal robot (before)", "calibrated robot (after)"});
@@ -56,6 +59,7 @@ ValidatePanel::ValidatePanel(SessionState* session, QWidget* parent) : QWidget(p
   charts->addWidget(position_chart_);
   charts->addWidget(orientation_chart_);
   auto* layout = new QVBoxLayout(this);
+  layout->addWidget(verdict_);
   layout->addWidget(status_);
   layout->addWidget(summary_);
   layout->addLayout(charts, 1);
@@ -71,7 +75,9 @@ void ValidatePanel::Refresh() {
       results.ok() ? StatusOr<workflow::CalibrationReport>(results->report) : results.status();
   ShowChart(position_chart_, charts::ValidationPerImageChart({}, charts::ValidationQuantity::kPosition, ""));
   ShowChart(orientation_chart_, charts::ValidationPerImageChart({}, charts::ValidationQuantity::kOrientation, ""));
+  verdict_->Clear();
   if (!report.ok()) return status_->setText(QString::fromStdString(report.status().message()));
+  verdict_->Show(workflow::MakeVerdict(*report));
   if (!report->validation) {
     status_->setText(
         "No image was held out (holdout column of legs.csv), so there is nothing to validate on. "

@@ -1,4 +1,4 @@
-// Validate/Report step: the held-out images' errors before (nominal robot)
+// Validate/Report step: the verdict on the calibration (ui/verdict_view.h), the held-out images' errors before (nominal robot)
 // and after calibration, overall and per image (forward kinematics from the
 // readings against the camera pose, from results/report.json); export of the
 // calibrated robot file and of the HTML report (`hexcal report`).
@@ -17,11 +17,14 @@ class QChartView;
 
 namespace hexcal::ui {
 
+class VerdictView;
+
 class ValidatePanel : public QWidget {
   Q_OBJECT
  public:
   ValidatePanel(SessionState* session, QWidget* parent = nullptr);
   QTableWidget* SummaryTable() const { return summary_; }
+  VerdictView* VerdictWidget() const { return verdict_; }
 
  public slots:
   void Refresh();
@@ -33,6 +36,7 @@ class ValidatePanel : public QWidget {
   void ShowValidation(const workflow::ValidationSummary& validation, const QString& unit);
 
   SessionState* session_;
+  VerdictView* verdict_;  // the verdict on results/report.json (ui/verdict_view.h)
   QLabel* status_;
   QTableWidget* summary_;
   QtCharts::QChartView *position_chart_, *orientation_chart_;

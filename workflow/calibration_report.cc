@@ -101,7 +101,9 @@ nlohmann::json LegsJson(const std::vector<LegFit>& legs) {
                     {"variance_factor", leg.variance_factor},
                     {"residual_rms", leg.residual_rms},
                     {"iterations", leg.iterations},
-                    {"termination", leg.termination}});
+                    {"termination", leg.termination},
+                    {"condition_number", leg.condition_number ? nlohmann::json(*leg.condition_number)
+                                                              : nlohmann::json(nullptr)}});
   }
   return rows;
 }
@@ -117,6 +119,26 @@ nlohmann::json OutliersJson(const std::vector<OutlierReading>& outliers) {
                     {"excluded", o.excluded}});
   }
   return rows;
+}
+
+nlohmann::json NoiseJson(const std::optional<NoiseExpectation>& noise) {
+  if (!noise) return nullptr;
+  return {{"position", noise->model.position},
+          {"angle_deg", noise->model.angle_deg},
+          {"leg", noise->model.leg},
+          {"expected_position_rms", noise->position_rms},
+          {"expected_orientation_rms_deg", noise->orientation_rms_deg}};
+}
+
+// Reports written before the verdict have no "noise_model": read as none.
+std::optional<NoiseExpectation> NoiseFromJson(JsonFields& fields) {
+  if (!fields.Has("noise_model")) return std::nullopt;
+  JsonFields n = fields.Object("noise_model");
+  NoiseExpectation noise;
+  noise.model = {n.Number("position"), n.Number("angle_deg"), n.Number("leg")};
+  noise.position_rms = n.Number("expected_position_rms");
+  noise.orientation_rms_deg = n.Number("expected_orientation_rms_deg");
+  return noise;
 }
 
 // Reports written before the screening have neither key: read as none.
@@ -154,7 +176,8 @@ nlohmann::json ToJson(const CalibrationReport& report) {
                                                                   {"keep", report.screening->keep},
                                                                   {"screened", report.screening->screened}}
                                                  : nlohmann::json(nullptr)},
-          {"outliers", OutliersJson(report.outliers)}};
+          {"outliers", OutliersJson(report.outliers)},
+          {"noise_model", NoiseJson(report.noise)}};
 }
 
 StatusOr<CalibrationReport> CalibrationReportFromJson(const nlohmann::json& json, const std::string& source) {
@@ -181,9 +204,10 @@ StatusOr<CalibrationReport> CalibrationReportFromJson(const nlohmann::json& json
     fields.Fail("parameters", "expected " + std::to_string(kNumParams) + " parameters");
   for (JsonFields leg : fields.Array("legs")) {
     report.legs.push_back({leg.Int("leg"), leg.Number("variance_factor"), leg.Number("residual_rms"),
-                           leg.Int("iterations"), leg.String("termination")});
+                           leg.Int("iterations"), leg.String("termination"), leg.OptionalNumber("condition_number")});
   }
   OutliersFromJson(fields, &report);
+  report.noise = NoiseFromJson(fields);
   if (!fields.status().ok()) return fields.status();
   return report;
 }

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/noise_model.h"
 #include "core/robot.h"
 #include "core/status.h"
 
@@ -56,6 +57,9 @@ struct LegFit {
   double variance_factor = 0, residual_rms = 0;
   int iterations = 0;
   std::string termination;
+  // σ_max/σ_min of the leg's weighted identification Jacobian at the
+  // estimate; none in reports older than the verdict (calibration_verdict.h).
+  std::optional<double> condition_number;
 };
 
 // A leg reading that failed the outlier screening (core/outlier_screening.h).
@@ -75,6 +79,15 @@ struct OutlierScreeningSummary {
   bool screened = false;  // false: too few calibration images (kMinRowsToScreen)
 };
 
+// The noise model the calibration assumed (session.yaml's `noise:`) and the
+// FK error it predicts on the held-out poses (expected_error.h); none in
+// reports older than the verdict (calibration_verdict.h).
+struct NoiseExpectation {
+  NoiseModel model;                // half-widths, robot unit and degrees
+  double position_rms = 0;         // robot unit
+  double orientation_rms_deg = 0;  // degrees
+};
+
 struct CalibrationReport {
   std::string session;
   int images = 0, unusable_images = 0, calibration_images = 0, held_out_images = 0;
@@ -88,6 +101,7 @@ struct CalibrationReport {
   std::vector<LegFit> legs;                                    // 6
   std::optional<OutlierScreeningSummary> screening;            // none in reports that predate it
   std::vector<OutlierReading> outliers;                        // by image, then leg
+  std::optional<NoiseExpectation> noise;                       // none in reports that predate it
 
   int usable_images() const { return images - unusable_images; }
 };

@@ -139,6 +139,7 @@ Status CalibrateAndCompare(const DemoRequest& request, const DemoScene& scene, S
 
   steps->Step("compare the calibrated parameters with the hidden truth (in the registered frames)");
   if (Status s = CompareWithTruth(scene, request.out, result); !s.ok()) return s;
+  result->verdict = MakeVerdict(result->calibration, VerdictTruth{result->within_3sigma, result->with_sigma});
   steps->Step("write the report");
   StatusOr<std::string> report = WriteSessionReport({request.out, "", true});
   if (!report.ok()) return report.status().AsFailure();
@@ -234,7 +235,8 @@ nlohmann::json ToJson(const DemoResult& r) {
           {"parameters", parameters},
           {"validation", {{"before", pose_errors(v.before)}, {"after", pose_errors(v.after)}}},
           {"report", r.report},
-          {"seconds", r.seconds}};
+          {"seconds", r.seconds},
+          {"verdict", r.verdict.ToJson()}};
 }
 
 std::string FormatDemoSummary(const DemoResult& r) {
@@ -255,7 +257,7 @@ std::string FormatDemoSummary(const DemoResult& r) {
                 v.rows, v.before.position_rms, unit, v.before.orientation_rms, v.after.position_rms, unit,
                 v.after.orientation_rms);
   out += text;
-  return out + "report: " + r.report + "\ndone in " + FormatNumber(r.seconds) + " s\n";
+  return out + r.verdict.ToText() + "report: " + r.report + "\ndone in " + FormatNumber(r.seconds) + " s\n";
 }
 
 }  // namespace hexcal::workflow

@@ -23,6 +23,7 @@
 #include "core/observability.h"
 #include "core/status.h"
 #include "workflow/calibration_report.h"
+#include "workflow/calibration_verdict.h"
 
 namespace hexcal::workflow {
 
@@ -61,6 +62,7 @@ struct DemoResult {
   int with_sigma = 0;
   std::vector<ParameterError> parameters;
   CalibrationReport calibration;  // results/report.json
+  Verdict verdict;                // on `calibration`, with the truth (calibration_verdict.h)
   std::string report;             // results/report.html
   double seconds = 0;
 };

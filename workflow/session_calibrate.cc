@@ -18,6 +18,7 @@
 #include "core/staged_folder.h"
 #include "core/validation.h"
 #include "vision/measure.h"
+#include "workflow/expected_error.h"
 #include "workflow/measure_step.h"
 #include "workflow/session_measure.h"
 #include "workflow/session_results.h"
@@ -135,12 +136,10 @@ PoseErrorStats StatsOf(const ValidationReport& report) {
 
 std::optional<double> IfOk(bool ok, double value) { return ok ? std::optional<double>(value) : std::nullopt; }
 
-// Held-out rows: the camera pose mapped into the registered base frame, FK
-// with the nominal and the calibrated robot.
-StatusOr<std::optional<ValidationSummary>> ValidateHeldOut(const SessionInputs& in, const CameraPoses& poses,
-                                                           const std::vector<const LegsRow*>& held_out,
-                                                           const CameraCalibrationResult& result, double scale) {
-  if (held_out.empty()) return std::optional<ValidationSummary>();
+// Held-out rows: the camera pose mapped into the registered base frame.
+std::vector<Measurement> HeldOutMeasurements(const SessionInputs& in, const CameraPoses& poses,
+                                             const std::vector<const LegsRow*>& held_out,
+                                             const CameraCalibrationResult& result, double scale) {
   std::vector<Measurement> rows;
   for (const LegsRow* row : held_out) {
     Pose camera_from_target = poses.at(row->image).camera_from_target;
@@ -150,6 +149,26 @@ StatusOr<std::optional<ValidationSummary>> ValidateHeldOut(const SessionInputs& 
     m.legs = row->legs;
     rows.push_back(m);
   }
+  return rows;
+}
+
+// The FK error the noise model predicts at the held-out poses, or at the
+// centre of the pose box without any (expected_error.h).
+NoiseExpectation ExpectedNoise(const SessionInputs& in, const std::vector<Measurement>& held_out,
+                               const Robot& calibrated) {
+  std::vector<Pose> where;
+  for (const Measurement& m : held_out) where.push_back(calibrated.PoseFromVector(m.pose));
+  if (where.empty()) where.push_back(in.fk_start);
+  const ExpectedPoseError expected = ExpectedFkError(calibrated, where, in.config.noise);
+  return {in.config.noise, expected.position_rms, expected.orientation_rms_deg};
+}
+
+// FK with the nominal and the calibrated robot on the held-out rows.
+StatusOr<std::optional<ValidationSummary>> ValidateHeldOut(const SessionInputs& in,
+                                                           const std::vector<const LegsRow*>& held_out,
+                                                           const std::vector<Measurement>& rows,
+                                                           const CameraCalibrationResult& result) {
+  if (held_out.empty()) return std::optional<ValidationSummary>();
   StatusOr<ValidationReport> before = Validate(in.nominal, rows);
   if (!before.ok()) return before.status().AsFailure();
   StatusOr<ValidationReport> after = Validate(result.calibration.robot, rows);
@@ -170,7 +189,12 @@ void FillParameters(const CalibrationResult& calibration, CalibrationReport* rep
       report->parameters.push_back({i + 1, ParameterName(k), leg.initial[k], leg.estimate[k],
                                     leg.has_uncertainty ? std::optional<double>(leg.std_dev[k]) : std::nullopt});
     }
-    report->legs.push_back({i + 1, leg.variance_factor, leg.residual_rms, leg.iterations, leg.termination});
+    const LegParameters& singular = leg.singular_values;  // descending
+    const std::optional<double> condition = leg.has_uncertainty && singular[kParamsPerLeg - 1] > 0
+                                                ? std::optional<double>(singular[0] / singular[kParamsPerLeg - 1])
+                                                : std::nullopt;
+    report->legs.push_back(
+        {i + 1, leg.variance_factor, leg.residual_rms, leg.iterations, leg.termination, condition});
   }
 }
 
@@ -302,11 +326,13 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   StatusOr<CameraCalibrationResult> result =
       CalibrateFromCameraPoses(in->nominal, split.input, registration, calibration, hooks);
   if (!result.ok()) return result.status().AsFailure();
-  StatusOr<std::optional<ValidationSummary>> validation = ValidateHeldOut(*in, *poses, split.held_out, *result, scale);
+  const std::vector<Measurement> held_out = HeldOutMeasurements(*in, *poses, split.held_out, *result, scale);
+  StatusOr<std::optional<ValidationSummary>> validation = ValidateHeldOut(*in, split.held_out, held_out, *result);
   if (!validation.ok()) return validation.status();
 
   CalibrationReport report = MakeReport(dir, *in, split, *result);
   report.validation = *validation;
+  report.noise = ExpectedNoise(*in, held_out, result->calibration.robot);
   if (request.outliers.enabled) {
     report.screening = OutlierScreeningSummary{request.outliers.threshold, request.outliers.keep,
                                                report.calibration_images >= kMinRowsToScreen};

@@ -1,5 +1,7 @@
 #include "workflow/session_report.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <sstream>
@@ -14,6 +16,7 @@
 #include "core/session.h"
 #include "core/session_lock.h"
 #include "workflow/calibration_report.h"
+#include "workflow/calibration_verdict.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_results.h"
 
@@ -45,6 +48,14 @@ std::string Figure(double value) {
   return out.str();
 }
 
+// 3 significant digits.
+std::string FigureOf3(double value) {
+  std::ostringstream out;
+  out.precision(3);
+  out << value;
+  return out.str();
+}
+
 std::string Number(const std::optional<double>& value) { return value ? Figure(*value) : "–"; }
 
 // A chart inline (charts/figures.h); a chart that cannot be drawn leaves its
@@ -68,17 +79,48 @@ std::vector<double> MeasurementRms(const std::string& path) {
   return rms_px;
 }
 
+// |change|/σ as a word of identification, not an alarm (docs/calibration.md, "Verdict").
+std::string IdentifiedCell(const ParameterEstimate& p) {
+  if (!p.sigma || *p.sigma <= 0) return "–";
+  const double ratio = std::abs(p.estimate - p.nominal) / *p.sigma;
+  return (ratio > 3 ? "yes, " : "no, ") + FigureOf3(ratio) + "&sigma;";
+}
+
 std::string ParameterTable(const std::vector<ParameterEstimate>& parameters, const std::string& unit) {
-  std::string html =
-      "<table><tr><th>leg</th><th>parameter</th><th>nominal</th><th>calibrated</th><th>change</th>"
-      "<th>&sigma;</th></tr>\n";
+  const std::string u = Escape(unit);
+  std::string html = "<table><tr><th>leg</th><th>parameter</th><th>nominal (" + u + ")</th><th>calibrated (" + u +
+                     ")</th><th>change (" + u + ")</th><th>&sigma; (" + u +
+                     ")</th><th>identified (change &#8811; &sigma;)</th></tr>\n";
   for (const ParameterEstimate& p : parameters) {
     const double change = p.estimate - p.nominal;
     html += "<tr><td>" + std::to_string(p.leg) + "</td><td>" + Escape(p.name) + "</td><td>" + Figure(p.nominal) +
             "</td><td>" + Figure(p.estimate) + "</td><td>" + Figure(change) + "</td><td>" + Number(p.sigma) +
-            "</td></tr>\n";
+            "</td><td>" + IdentifiedCell(p) + "</td></tr>\n";
   }
-  return html + "</table><p>Lengths in " + Escape(unit) + ".</p>\n";
+  return html +
+         "</table><p>Identified: the change is more than 3&sigma; (the figure is |change|/&sigma;): the "
+         "calibration determined that parameter and found it differs from nominal. That is what a calibration is "
+         "for, not an alarm; the verdict above says whether the &sigma; themselves are small enough.</p>\n";
+}
+
+// The box the page opens with: the level in its colour, then one row per finding.
+std::string VerdictBox(const Verdict& verdict) {
+  std::string html = "<div class=\"verdict\" style=\"border-color:" + std::string(VerdictLevelColour(verdict.level)) +
+                     "\"><h2>Verdict: <span style=\"color:" + VerdictLevelColour(verdict.level) + "\">" +
+                     VerdictLevelName(verdict.level) +
+                     "</span></h2>\n<table><tr><th>aspect</th><th>level</th><th>figure</th><th>threshold</th>"
+                     "<th>meaning</th><th>advice</th></tr>\n";
+  // What needs action first; the text and JSON forms keep the fixed order.
+  std::vector<Finding> findings = verdict.findings;
+  std::stable_sort(findings.begin(), findings.end(),
+                   [](const Finding& a, const Finding& b) { return a.level > b.level; });
+  for (const Finding& f : findings) {
+    html += "<tr><td>" + Escape(f.aspect) + "</td><td style=\"color:" + VerdictLevelColour(f.level) +
+            ";font-weight:bold\">" + VerdictLevelName(f.level) + "</td><td>" + Escape(f.figure) + "</td><td>" +
+            Escape(f.threshold) + "</td><td>" + Escape(f.meaning) + "</td><td>" +
+            (f.advice.empty() ? "–" : Escape(f.advice)) + "</td></tr>\n";
+  }
+  return html + "</table></div>\n";
 }
 
 // The plan: its indices with the nominal robot (paper section 2) and the leg
@@ -152,7 +194,10 @@ StatusOr<std::string> SessionReportHtml(const std::string& dir) {
       "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>hexcal session report</title><style>"
       "body{font-family:sans-serif;max-width:900px;margin:2em auto}table{border-collapse:collapse}"
       "td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}svg{max-width:100%;height:auto}"
+      ".verdict{border:3px solid;border-radius:6px;padding:0 1em 1em;margin-bottom:1.5em}"
+      ".verdict h2{margin:0.5em 0}.verdict td,.verdict th{text-align:left;vertical-align:top;font-size:90%}"
       "</style></head><body>\n";
+  html += VerdictBox(MakeVerdict(report));
   html += "<h1>Session " + Escape(dir) + "</h1>\n<p>" + std::to_string(report.images) +
           " images: " + std::to_string(report.calibration_images) + " for calibration, " +
           std::to_string(report.held_out_images) + " held out, " +

@@ -37,7 +37,12 @@ StatusOr<ValidateResult> ValidateMeasurements(const ValidateRequest& request) {
   if (!measurements.ok()) return measurements.status();
   StatusOr<ValidationReport> report = Validate(*robot, *measurements);
   if (!report.ok()) return report.status();  // bad input 2 (e.g. readings in another unit), no FK at all 1
-  return ValidateResult{robot->name, LengthUnitName(robot->length_unit), request.measurements, *report};
+  std::vector<Pose> poses;
+  for (const Measurement& m : *measurements) poses.push_back(robot->PoseFromVector(m.pose));
+  const ExpectedPoseError expected = ExpectedFkError(*robot, poses, request.noise);
+  const std::string unit = LengthUnitName(robot->length_unit);
+  return ValidateResult{robot->name, unit, request.measurements, *report, expected,
+                        MakeValidationVerdict(*report, expected, unit)};
 }
 
 nlohmann::json ToJson(const ValidateResult& result) {
@@ -49,7 +54,8 @@ nlohmann::json ToJson(const ValidateResult& result) {
           {"failed", report.failed},
           {"position", StatsJson(report.position)},
           {"orientation_deg", StatsJson(report.orientation_deg)},
-          {"rows", RowsJson(report)}};
+          {"rows", RowsJson(report)},
+          {"verdict", result.verdict.ToJson()}};
 }
 
 std::string FormatValidateSummary(const ValidateResult& result) {
@@ -73,6 +79,7 @@ std::string FormatValidateSummary(const ValidateResult& result) {
       if (!report.rows[j].ok) out << "  measurement " << j + 1 << ": " << report.rows[j].error << "\n";
     }
   }
+  out << "\n" << result.verdict.ToText();
   return out.str();
 }
 

@@ -3,6 +3,7 @@
 //   [--weighted [--noise-position p] [--noise-angle a] [--noise-leg l]] [--json]
 // hexcal calibrate --session DIR [--keep-outliers] [--outlier-threshold Z] [--json]
 //   (workflow/session_calibrate.h)
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -14,6 +15,7 @@
 #include "core/calibration.h"
 #include "core/calibration_file.h"
 #include "core/robot_io.h"
+#include "workflow/calibration_verdict.h"
 #include "workflow/session_calibrate.h"
 
 namespace hexcal::cli {
@@ -36,10 +38,13 @@ int RunCalibrateSession(const CalibrateCliOptions& cli, std::ostream& out, std::
   TerminalJob job("", &err);  // notes ("measuring 32 images: the camera changed ...") on stderr
   StatusOr<workflow::CalibrationReport> report = workflow::CalibrateSession(request, job.hooks());
   if (!report.ok()) return ReportError(err, "calibrate", report.status());
+  const workflow::Verdict verdict = workflow::MakeVerdict(*report);
   if (cli.json) {
-    out << workflow::ToJson(*report).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+    nlohmann::json json = workflow::ToJson(*report);
+    json["verdict"] = verdict.ToJson();
+    out << json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   } else {
-    out << workflow::FormatCalibrationSummary(*report);
+    out << workflow::FormatCalibrationSummary(*report) << verdict.ToText();
   }
   return kExitOk;
 }
@@ -86,8 +91,9 @@ void PrintReport(const CalibrateCliOptions& cli, const CalibrationResult& result
   const char* unit = LengthUnitName(result.robot.length_unit);
   out << "calibrated robot " << result.robot.name << " from " << result.num_measurements << " measurements ("
       << cli.measurements << ") -> " << cli.out << "\n"
-      << "lengths in " << unit << "; sigma = one standard deviation\n\n"
-      << "leg param      nominal   calibrated       change        sigma\n";
+      << "lengths in " << unit << "; sigma = one standard deviation; identified = |change|/sigma (well above 3: the "
+      << "parameter was identified and differs from nominal, not an alarm)\n\n"
+      << "leg param      nominal   calibrated  change (" << unit << ")   sigma (" << unit << ")  identified\n";
   char line[160];
   for (int i = 0; i < kNumLegs; ++i) {
     const LegCalibration& leg = result.legs[i];
@@ -96,7 +102,9 @@ void PrintReport(const CalibrateCliOptions& cli, const CalibrationResult& result
                     leg.estimate[k], leg.estimate[k] - leg.initial[k]);
       out << line;
       if (leg.has_uncertainty) {
-        std::snprintf(line, sizeof line, "%12.3g\n", leg.std_dev[k]);
+        const double change = std::abs(leg.estimate[k] - leg.initial[k]);
+        std::snprintf(line, sizeof line, "%12.3g %11.3g\n", leg.std_dev[k],
+                      leg.std_dev[k] > 0 ? change / leg.std_dev[k] : 0.0);
         out << line;
       } else {
         out << "           -\n";

@@ -6,6 +6,7 @@
 
 #include "app/commands/cli_common.h"
 #include "app/commands/command_table.h"
+#include "workflow/calibration_verdict.h"
 #include "workflow/session_report.h"
 
 namespace hexcal::cli {
@@ -15,6 +16,10 @@ int RunReport(const workflow::ReportRequest& request, std::ostream& out, std::os
   StatusOr<std::string> written = workflow::WriteSessionReport(request);
   if (!written.ok()) return ReportError(err, "report", written.status());
   out << "report of " << request.session << " written to " << *written << "\n";
+  // The page was made from this report: it loads.
+  StatusOr<workflow::CalibrationReport> report =
+      workflow::LoadCalibrationReport(workflow::CalibrationReportPath(request.session));
+  if (report.ok()) out << workflow::MakeVerdict(*report).ToText();
   return kExitOk;
 }
 

@@ -52,6 +52,9 @@ calibrated=$(position_mean "$dir/v_cal.json") nominal=$(position_mean "$dir/v_no
 below "$calibrated" 1e-8 || { echo "FAIL: calibrated FK position error $calibrated"; exit 1; }
 below 0.01 "$nominal" || { echo "FAIL: nominal FK position error $nominal is not large"; exit 1; }
 "$hexcal" validate --robot "$dir/cal.yaml" --measurements "$dir/m.csv" | grep -q "position (cm)"
+# The verdict (docs/calibration.md, "Verdict"): errors against the noise model's prediction.
+python3 -c 'import json, sys; v = json.load(open(sys.argv[1]))["verdict"]; assert v["level"] == "good", v' "$dir/v_cal.json"
+"$hexcal" validate --robot inria-left-hand --measurements "$dir/m.csv" | grep -q "^Verdict: poor$"
 
 # Every command that takes a robot takes the calibrated file.
 "$hexcal" robot check "$dir/cal.yaml" | grep -q "is valid"

@@ -18,6 +18,9 @@ python3 - "$dir/clean.json" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))
 assert r["outliers"] == [] and r["outlier_screening"] == {"threshold": 5, "keep": False, "screened": True}, r
+# The verdict (docs/calibration.md, "Verdict"): nothing flagged on clean readings.
+[outliers] = [f for f in r["verdict"]["findings"] if f["aspect"] == "outliers"]
+assert outliers["level"] == "good" and outliers["advice"] is None, outliers
 PY
 
 # The eighth row with holdout 0: its image and legs.csv line; L3 += 1 cm.
@@ -35,8 +38,12 @@ PY
 grep -q "^outlier: $image (legs.csv line $line) leg 3: residual 1\(\.00[0-9]*\)\{0,1\} cm = [0-9.]* sigma; excluded from leg 3's fit (--keep-outliers keeps it)$" "$dir/text"
 [ "$(grep -c '^outlier:' "$dir/text")" -eq 1 ]
 grep -q "registration (nominal robot, without the 1 image holding an outlier)" "$dir/text"
+# The verdict names the reading to check.
+grep -q "^Verdict: \(acceptable\|poor\)$" "$dir/text"
+grep -q "^  acceptable outliers: 1 reading of [0-9]* flagged .*; check the readings of image $image (legs.csv line $line), leg 3: its residual is [0-9.e+]*σ$" "$dir/text"
 "$hexcal" report --session "$s" --out "$dir/report.html"
 grep -q "<h2>Outliers" "$dir/report.html" && grep -q "<td>$image</td><td>$line</td><td>3</td>" "$dir/report.html"
+grep -q '<div class="verdict"' "$dir/report.html"
 python3 - "$dir/clean.json" "$s/results/report.json" "$image" "$line" <<'PY'
 import json, sys
 clean, bad = (json.load(open(f)) for f in sys.argv[1:3])

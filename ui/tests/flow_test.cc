@@ -30,6 +30,8 @@
 #include "ui/acquire_panel.h"
 #include "ui/background_job.h"
 #include "ui/calibrate_panel.h"
+#include "ui/verdict_view.h"
+#include "workflow/calibration_verdict.h"
 #include "ui/error_dialog.h"
 #include "ui/help_browser.h"
 #include "ui/image_overlay.h"
@@ -160,9 +162,14 @@ TEST(UiFlow, PlanMeasureCalibrateValidate) {
   EXPECT_EQ(calibrate->ParameterTable()->rowCount(), 42);
   EXPECT_EQ(session.State(Step::kCalibrate), StepState::kDone);
   EXPECT_EQ(session.State(Step::kValidate), StepState::kDone);
+  // The verdict the CLI prints, on both panels (workflow/calibration_verdict.h).
+  ASSERT_TRUE(session.Results().ok());
+  const QString level = workflow::VerdictLevelName(workflow::MakeVerdict(session.Results()->report).level);
+  EXPECT_EQ(calibrate->VerdictWidget()->LevelText(), level);
 
   // Validate: before and after on the 4 held-out images.
   ValidatePanel* validate = window.Validate();
+  EXPECT_EQ(validate->VerdictWidget()->LevelText(), level);
   bool number = false;
   const double before = validate->SummaryTable()->item(0, 0)->text().toDouble(&number);
   EXPECT_TRUE(number);
