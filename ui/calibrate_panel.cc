@@ -19,6 +19,7 @@
 #include "ui/background_job.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
+#include "ui/quantity_format.h"
 #include "ui/verdict_view.h"
 #include "workflow/calibration_verdict.h"
 #include "workflow/session_calibrate.h"
@@ -74,12 +75,13 @@ CalibratePanel::CalibratePanel(SessionState* session, QWidget* parent)
   parameters_->setObjectName("parameter_table");
   verdict_ = new VerdictView;
   parameters_->setHorizontalHeaderLabels(
-      {"leg", "parameter", "nominal", "calibrated", "change", "σ", "identified (change ≫ σ)"});
+      {"leg", "parameter", "nominal", "calibrated", "change", "σ", "identified (|change|/σ)"});
   // |change|/σ far above 3 says the parameter was identified, not that something is wrong.
   parameters_->horizontalHeaderItem(6)->setToolTip(
       "|change|/σ: well above 3 (change ≫ σ) means the calibration identified this parameter and found it "
       "differs from nominal. Expected, not an alarm.");
   parameters_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  for (int narrow : {0, 1}) parameters_->horizontalHeader()->setSectionResizeMode(narrow, QHeaderView::ResizeToContents);
   parameters_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   parameters_->setSortingEnabled(true);
   parameters_->sortByColumn(0, Qt::AscendingOrder);
@@ -177,17 +179,16 @@ void CalibratePanel::Refresh() {
   }
   const workflow::CalibrationReport& report = loaded->report;
   const workflow::RegistrationSummary& reg = report.registration;
+  const QString unit = QString::fromStdString(report.length_unit);
   summary_->setText(QString("%1 images: %2 for calibration, %3 held out, %4 without a usable target pose.<br>"
-                            "Closure (camera vs robot) RMS: nominal robot %5 %7, %6°; calibrated %8 %7, %9°.")
+                            "Closure (camera vs robot) RMS: nominal robot %5, %6; calibrated %7, %8.")
                         .arg(report.images)
                         .arg(report.calibration_images)
                         .arg(report.held_out_images)
                         .arg(report.unusable_images)
-                        .arg(reg.position_rms, 0, 'g', 3)
-                        .arg(reg.angle_rms_deg, 0, 'g', 3)
-                        .arg(QString::fromStdString(report.length_unit).toHtmlEscaped())
-                        .arg(report.closure_position_rms, 0, 'g', 3)
-                        .arg(report.closure_angle_rms_deg, 0, 'g', 3) +
+                        .arg(FormatLength(reg.position_rms, unit).toHtmlEscaped(), FormatAngle(reg.angle_rms_deg),
+                             FormatLength(report.closure_position_rms, unit).toHtmlEscaped(),
+                             FormatAngle(report.closure_angle_rms_deg)) +
                     (session_->ResultsNote().isEmpty()
                          ? QString()
                          : "<br><b>Stale:</b> " + session_->ResultsNote().toHtmlEscaped()));
@@ -210,10 +211,11 @@ void CalibratePanel::FillParameterTable(const std::vector<workflow::ParameterEst
     const double change = p.estimate - p.nominal;
     parameters_->setItem(r, 0, cell(p.leg));
     parameters_->setItem(r, 1, cell(QString::fromStdString(p.name)));
-    parameters_->setItem(r, 2, cell(p.nominal));
-    parameters_->setItem(r, 3, cell(p.estimate));
-    parameters_->setItem(r, 4, cell(change));
-    parameters_->setItem(r, 5, p.sigma ? cell(*p.sigma) : cell("—"));
+    // Values to the robot unit's 1e-4, changes and σ to three digits (ui/quantity_format.h).
+    parameters_->setItem(r, 2, new NumberItem(FormatCoordinate(p.nominal), p.nominal));
+    parameters_->setItem(r, 3, new NumberItem(FormatCoordinate(p.estimate), p.estimate));
+    parameters_->setItem(r, 4, new NumberItem(QString::number(change, 'g', 3), change));
+    parameters_->setItem(r, 5, p.sigma ? new NumberItem(QString::number(*p.sigma, 'g', 3), *p.sigma) : cell("—"));
     parameters_->setItem(r, 6, IdentifiedItem(p));
   }
   parameters_->setSortingEnabled(true);

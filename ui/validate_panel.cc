@@ -17,6 +17,7 @@
 #include "charts/figures.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
+#include "ui/quantity_format.h"
 #include "ui/verdict_view.h"
 #include "workflow/calibration_verdict.h"
 #include "workflow/session_report.h"
@@ -41,7 +42,7 @@ ValidatePanel::ValidatePanel(SessionState* session, QWidget* parent) : QWidget(p
   summary_ = new QTableWidget(4, 2);
   summary_->setObjectName("validation_summary");
   summary_->setHorizontalHeaderLabels({"nominal robot (before)", "calibrated robot (after)"});
-  summary_->setVerticalHeaderLabels({"position RMS", "position max", "orientation RMS (°)", "orientation max (°)"});
+  summary_->setVerticalHeaderLabels({"position RMS", "position max", "orientation RMS", "orientation max"});
   summary_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
   summary_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   summary_->setMaximumHeight(160);
@@ -99,8 +100,9 @@ void ValidatePanel::ShowValidation(const workflow::ValidationSummary& validation
   };
   const std::array<double, 4> before = figures(validation.before), after = figures(validation.after);
   for (int r = 0; r < 4; ++r) {
-    summary_->setItem(r, 0, new QTableWidgetItem(QString::number(before[r], 'g', 4)));
-    summary_->setItem(r, 1, new QTableWidgetItem(QString::number(after[r], 'g', 4)));
+    const auto figure = [&](double value) { return r < 2 ? FormatLength(value, unit) : FormatAngle(value); };
+    summary_->setItem(r, 0, new QTableWidgetItem(figure(before[r])));
+    summary_->setItem(r, 1, new QTableWidgetItem(figure(after[r])));
   }
   std::vector<charts::ImageValidation> images;
   for (const workflow::HeldOutImage& row : validation.per_image) {

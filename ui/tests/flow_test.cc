@@ -171,9 +171,12 @@ TEST(UiFlow, PlanMeasureCalibrateValidate) {
   ValidatePanel* validate = window.Validate();
   EXPECT_EQ(validate->VerdictWidget()->LevelText(), level);
   bool number = false;
-  const double before = validate->SummaryTable()->item(0, 0)->text().toDouble(&number);
+  // "0.0424 cm": the figure, then its unit.
+  const QString before_text = validate->SummaryTable()->item(0, 0)->text();
+  EXPECT_TRUE(before_text.endsWith(" cm")) << before_text.toStdString();
+  const double before = before_text.section(' ', 0, 0).toDouble(&number);
   EXPECT_TRUE(number);
-  const double after = validate->SummaryTable()->item(0, 1)->text().toDouble(&number);
+  const double after = validate->SummaryTable()->item(0, 1)->text().section(' ', 0, 0).toDouble(&number);
   EXPECT_TRUE(number);
   EXPECT_GT(before, 0);
   EXPECT_LT(after, before);  // the true robot differs from the nominal one
