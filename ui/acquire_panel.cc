@@ -48,11 +48,7 @@ QString Joined(const Vector6d& v, int from, int count) {
 AcquirePanel::AcquirePanel(SessionState* session, QWidget* parent)
     : QWidget(parent), session_(session), job_(new BackgroundJob(this)), live_timer_(new QTimer(this)) {
   BuildLayout();
-  connect(job_, &BackgroundJob::Progress, this, [this](int done, int total, const QString& what) {
-    progress_->setFormat(what + " %v/%m");
-    progress_->setRange(0, total);
-    progress_->setValue(done);
-  });
+  ShowProgressOn(job_, progress_);
   live_timer_->setInterval(kLiveIntervalMs);
   connect(live_timer_, &QTimer::timeout, this, [this] {
     if (isVisible() && live_on_->isChecked()) GrabLiveFrame();
@@ -123,7 +119,10 @@ void AcquirePanel::BuildLayout() {
   live_ = new ImageView;
   live_->setObjectName("live_view");
   live_->SetMessage("Connect a camera to see it live.");
+  ArrangeWidgets();
+}
 
+void AcquirePanel::ArrangeWidgets() {
   // Two rows of devices and of actions: one row of each was wider than a
   // 1280 px window's panel.
   for (QComboBox* url : {controller_url_, camera_url_}) {

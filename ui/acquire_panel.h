@@ -69,7 +69,8 @@ class AcquirePanel : public QWidget {
   void GrabLiveFrame();
 
  private:
-  void BuildLayout();
+  void BuildLayout();     // the widgets
+  void ArrangeWidgets();  // and where they go
   void FillChecklist();
   QString PoseState(int index) const;
   // Selects the next pose to record; false when every pose is recorded or skipped.

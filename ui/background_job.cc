@@ -1,5 +1,6 @@
 #include "ui/background_job.h"
 
+#include <QProgressBar>
 #include <QThread>
 #include <exception>
 #include <memory>
@@ -49,6 +50,14 @@ bool BackgroundJob::Start(const QString& what, JobWork work) {
 }
 
 void BackgroundJob::Cancel() { cancel_ = true; }
+
+void ShowProgressOn(BackgroundJob* job, QProgressBar* bar) {
+  QObject::connect(job, &BackgroundJob::Progress, bar, [bar](int done, int total, const QString& what) {
+    bar->setFormat(what + " %v/%m");
+    bar->setRange(0, total);
+    bar->setValue(done);
+  });
+}
 
 void BackgroundJob::Abandon() {
   if (!thread_) return;

@@ -20,6 +20,7 @@
 
 #include "core/job_hooks.h"
 
+class QProgressBar;
 class QThread;
 
 namespace hexcal::ui {
@@ -60,5 +61,8 @@ class BackgroundJob : public QObject {
   bool abandoned_ = false;
   QString what_;
 };
+
+// The job's progress on `bar`: "measuring 3/16", a busy bar while the total is 0.
+void ShowProgressOn(BackgroundJob* job, QProgressBar* bar);
 
 }  // namespace hexcal::ui

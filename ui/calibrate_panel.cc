@@ -91,11 +91,7 @@ CalibratePanel::CalibratePanel(SessionState* session, QWidget* parent)
     job_->Cancel();
     SetOutcome("cancelling…");
   });
-  connect(job_, &BackgroundJob::Progress, this, [this](int done, int total, const QString& what) {
-    progress_->setFormat(what + " %v/%m");
-    progress_->setRange(0, total);
-    progress_->setValue(done);
-  });
+  ShowProgressOn(job_, progress_);
 
   auto* controls = new QHBoxLayout;
   controls->addWidget(run_);

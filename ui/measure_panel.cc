@@ -96,11 +96,7 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
     status_->setText(what + "…");
   });
   connect(job_, &BackgroundJob::Finished, this, [this] { cancel_->setEnabled(false); });
-  connect(job_, &BackgroundJob::Progress, this, [this](int done, int total, const QString& what) {
-    progress_->setFormat(what + " %v/%m");
-    progress_->setRange(0, total);
-    progress_->setValue(done);
-  });
+  ShowProgressOn(job_, progress_);
   connect(images_, &QListWidget::currentRowChanged, this, &MeasurePanel::ShowImage);
   connect(preview_, &BackgroundJob::Finished, this, [this] {
     if (pending_row_ < 0) return;

@@ -71,11 +71,7 @@ PlanPanel::PlanPanel(SessionState* session, QWidget* parent)
   connect(run_, &QPushButton::clicked, this, &PlanPanel::Run);
   connect(cancel_, &QPushButton::clicked, this, &PlanPanel::Cancel);
   connect(export_button, &QPushButton::clicked, this, &PlanPanel::ExportPlan);
-  connect(job_, &BackgroundJob::Progress, this, [this](int done, int total, const QString& what) {
-    progress_->setFormat(what + " %v/%m");
-    progress_->setRange(0, total);
-    progress_->setValue(done);
-  });
+  ShowProgressOn(job_, progress_);
 
   auto* scroll = new QScrollArea;
   scroll->setWidget(options_);

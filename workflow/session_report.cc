@@ -197,12 +197,14 @@ StatusOr<std::string> SessionReportHtml(const std::string& dir) {
       ".verdict{border:3px solid;border-radius:6px;padding:0 1em 1em;margin-bottom:1.5em}"
       ".verdict h2{margin:0.5em 0}.verdict td,.verdict th{text-align:left;vertical-align:top;font-size:90%}"
       "</style></head><body>\n";
-  html += VerdictBox(MakeVerdict(report));
-  html += "<h1>Session " + Escape(dir) + "</h1>\n<p>" + std::to_string(report.images) +
-          " images: " + std::to_string(report.calibration_images) + " for calibration, " +
-          std::to_string(report.held_out_images) + " held out, " +
-          std::to_string(report.unusable_images) + " without a usable target pose.</p>\n";
+  // The title, a stale warning if any, then the verdict: what the reader
+  // needs before any figure.
+  html += "<h1>Session " + Escape(dir) + "</h1>\n";
   html += StaleWarning(*loaded);
+  html += VerdictBox(MakeVerdict(report));
+  html += "<p>" + std::to_string(report.images) + " images: " + std::to_string(report.calibration_images) +
+          " for calibration, " + std::to_string(report.held_out_images) + " held out, " +
+          std::to_string(report.unusable_images) + " without a usable target pose.</p>\n";
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   if (!config.ok()) return config.status();
   StatusOr<Robot> nominal = LoadRobot(ResolveSessionFile(dir, config->robot));
