@@ -63,7 +63,7 @@ CalibratePanel::CalibratePanel(SessionState* session, QWidget* parent)
   cancel_ = new QPushButton("Cancel");
   cancel_->setEnabled(false);
   progress_ = new QProgressBar;
-  status_ = new QLabel("Record images and readings (Measure), then calibrate.");
+  status_ = new QLabel;
   status_->setTextFormat(Qt::PlainText);  // file names are shown as they are, never as HTML
   status_->setWordWrap(true);
   status_->setObjectName("calibrate_status");
@@ -118,7 +118,7 @@ CalibratePanel::CalibratePanel(SessionState* session, QWidget* parent)
 void CalibratePanel::ResetForSession() {
   job_->Abandon();
   progress_->reset();
-  SetOutcome("Record images and readings (Measure), then calibrate.");
+  SetOutcome({});
 }
 
 void CalibratePanel::SetOutcome(const QString& text) {
@@ -163,6 +163,14 @@ void CalibratePanel::Finish(const Status& status, const QString& report) {
 }
 
 void CalibratePanel::Refresh() {
+  // Between runs the line under the buttons says what the results are.
+  if (!job_->Running() && (outcome_.isEmpty() || outcome_ == idle_)) {
+    const StepState state = session_->State(Step::kCalibrate);
+    idle_ = state == StepState::kDone    ? "Results up to date with the session's files."
+            : state == StepState::kStale ? "Results stale: " + session_->ResultsNote()
+                                         : "Record images and readings (Acquire, Measure), then calibrate.";
+    SetOutcome(idle_);
+  }
   parameters_->setSortingEnabled(false);
   parameters_->setRowCount(0);
   summary_->clear();

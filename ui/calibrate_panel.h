@@ -57,6 +57,7 @@ class CalibratePanel : public QWidget {
   QTableWidget* parameters_;
   QtCharts::QChartView* residuals_;
   QString outcome_;
+  QString idle_;  // the outcome line shown between runs
 };
 
 }  // namespace hexcal::ui
