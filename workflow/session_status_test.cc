@@ -46,52 +46,6 @@ std::vector<std::string> ImagesWithReadings(const std::string& dir) {
   return images;
 }
 
-TEST(SessionMeasure, NewIntrinsicsMeasureEveryImageAgainAndAReplacedImageItself) {
-  TempDir dir;
-  DemoRequest demo;
-  demo.out = dir.File("demo");
-  demo.poses = 8;
-  demo.holdout = 2;
-  ASSERT_TRUE(RunDemo(demo).ok());
-  const std::string s = demo.out;
-  for (const auto& [step, status] : Steps(s)) EXPECT_EQ(status, StepStatus::kDone) << step;
-
-  // New intrinsics: a camera file with another focal length.
-  StatusOr<SessionConfig> loaded = LoadSessionConfig(s);
-  ASSERT_TRUE(loaded.ok());
-  SessionConfig config = *loaded;
-  StatusOr<Camera> old_camera = LoadCamera(ResolveSessionFile(s, config.camera));
-  StatusOr<Target> target = LoadTarget(ResolveSessionFile(s, config.target));
-  ASSERT_TRUE(old_camera.ok() && target.ok());
-  Camera camera = *old_camera;
-  camera.fx *= 1.01;
-  ASSERT_TRUE(SaveCamera(camera, s + "/camera.yaml").ok());
-  config.camera = "camera.yaml";
-  ASSERT_TRUE(SaveSessionConfig(s, config).ok());
-  const std::vector<std::string> images = ImagesWithReadings(s);
-  StatusOr<MeasureState> state = SessionMeasureState(s, images);
-  ASSERT_TRUE(state.ok()) << state.status().message();
-  EXPECT_EQ(state->to_measure.size(), images.size());
-  EXPECT_EQ(state->reason, "the camera changed since the images were measured");
-  EXPECT_EQ(Steps(s)["measure"], StepStatus::kStale);
-  EXPECT_EQ(Steps(s)["calibrate"], StepStatus::kStale);
-
-  const std::string before = ReadTextFile(s + "/measurements.csv");
-  ASSERT_TRUE(CalibrateSession({s}).ok());
-  EXPECT_NE(ReadTextFile(s + "/measurements.csv"), before);  // measured with the new camera, not reused
-  for (const auto& [step, status] : Steps(s)) EXPECT_EQ(status, StepStatus::kDone) << step;
-
-  // One image replaced under its name: that image only.
-  fs::copy_file(s + "/images/" + images[1], s + "/images/" + images[0], fs::copy_options::overwrite_existing);
-  state = SessionMeasureState(s, images);
-  ASSERT_TRUE(state.ok());
-  EXPECT_EQ(state->to_measure, std::vector<std::string>{images[0]});
-  StatusOr<SessionMeasurements> measured = MeasureSessionImages(s, images, camera, *target, {}, {});
-  ASSERT_TRUE(measured.ok()) << measured.status().message();
-  EXPECT_EQ(measured->measured, 1);
-  EXPECT_EQ(measured->reused, static_cast<int>(images.size()) - 1);
-}
-
 TEST(SessionStatus, AMissingSessionIsAnErrorAndAnEmptyOneIsTodo) {
   TempDir dir;
   EXPECT_FALSE(ReadSessionStatus(dir.File("none")).ok());
@@ -155,6 +109,47 @@ class StatusAfterChange : public ::testing::Test {
   const std::string s_ = dir_.File("s");
 };
 TempDir* StatusAfterChange::made_ = nullptr;
+
+// The suite's demo session (one RunDemo for every test: it is most of the
+// suite's time under the sanitizers).
+TEST_F(StatusAfterChange, NewIntrinsicsMeasureEveryImageAgainAndAReplacedImageItself) {
+  const std::string s = s_;
+
+  // New intrinsics: a camera file with another focal length.
+  StatusOr<SessionConfig> loaded = LoadSessionConfig(s);
+  ASSERT_TRUE(loaded.ok());
+  SessionConfig config = *loaded;
+  StatusOr<Camera> old_camera = LoadCamera(ResolveSessionFile(s, config.camera));
+  StatusOr<Target> target = LoadTarget(ResolveSessionFile(s, config.target));
+  ASSERT_TRUE(old_camera.ok() && target.ok());
+  Camera camera = *old_camera;
+  camera.fx *= 1.01;
+  ASSERT_TRUE(SaveCamera(camera, s + "/camera.yaml").ok());
+  config.camera = "camera.yaml";
+  ASSERT_TRUE(SaveSessionConfig(s, config).ok());
+  const std::vector<std::string> images = ImagesWithReadings(s);
+  StatusOr<MeasureState> state = SessionMeasureState(s, images);
+  ASSERT_TRUE(state.ok()) << state.status().message();
+  EXPECT_EQ(state->to_measure.size(), images.size());
+  EXPECT_EQ(state->reason, "the camera changed since the images were measured");
+  EXPECT_EQ(Steps(s)["measure"], StepStatus::kStale);
+  EXPECT_EQ(Steps(s)["calibrate"], StepStatus::kStale);
+
+  const std::string before = ReadTextFile(s + "/measurements.csv");
+  ASSERT_TRUE(CalibrateSession({s}).ok());
+  EXPECT_NE(ReadTextFile(s + "/measurements.csv"), before);  // measured with the new camera, not reused
+  for (const auto& [step, status] : Steps(s)) EXPECT_EQ(status, StepStatus::kDone) << step;
+
+  // One image replaced under its name: that image only.
+  fs::copy_file(s + "/images/" + images[1], s + "/images/" + images[0], fs::copy_options::overwrite_existing);
+  state = SessionMeasureState(s, images);
+  ASSERT_TRUE(state.ok());
+  EXPECT_EQ(state->to_measure, std::vector<std::string>{images[0]});
+  StatusOr<SessionMeasurements> measured = MeasureSessionImages(s, images, camera, *target, {}, {});
+  ASSERT_TRUE(measured.ok()) << measured.status().message();
+  EXPECT_EQ(measured->measured, 1);
+  EXPECT_EQ(measured->reused, static_cast<int>(images.size()) - 1);
+}
 
 TEST_F(StatusAfterChange, ARobotThatCannotReachThePlanMakesPlanAndResultsStale) {
   SessionConfig config = Config();
