@@ -182,88 +182,42 @@ std::vector<QString> SessionState::ImageFiles() const {
 
 namespace {
 
-StepState StateOf(const workflow::StepReport* report) {
-  if (report == nullptr) return StepState::kTodo;
-  switch (report->status) {
-    case workflow::StepStatus::kDone:
-      return StepState::kDone;
-    case workflow::StepStatus::kStale:
-      return StepState::kStale;
-    case workflow::StepStatus::kTodo:
-      return StepState::kTodo;
-    case workflow::StepStatus::kBroken:
-      return StepState::kBroken;
-  }
-  return StepState::kTodo;
-}
-
-// How much a state asks of the operator: a step made of two workflow steps
-// shows the more urgent one.
-int Urgency(StepState state) {
-  switch (state) {
-    case StepState::kDone:
-      return 0;
-    case StepState::kTodo:
-      return 1;
-    case StepState::kStale:
-      return 2;
-    case StepState::kBroken:
-      return 3;
-  }
-  return 0;
-}
-
-// The workflow steps (session_status.h) a GUI step stands for.
-std::vector<std::string> WorkflowSteps(Step step) {
+// The workflow step (session_status.h) a GUI step shows: Acquire is `readings`.
+const char* WorkflowStep(Step step) {
   switch (step) {
     case Step::kRobot:
-      return {"robot"};
+      return "robot";
     case Step::kPlan:
-      return {"plan"};
+      return "plan";
     case Step::kAcquire:
-      return {"readings"};
+      return "readings";
     case Step::kMeasure:
-      return {"measure"};
+      return "measure";
     case Step::kCalibrate:
-      return {"calibrate"};
+      return "calibrate";
     case Step::kValidate:
-      return {"validate"};
+      return "validate";
   }
-  return {};
+  return "";
 }
 
 }  // namespace
 
 StepState SessionState::State(Step step) const {
-  if (!IsOpen() || !status_) return StepState::kTodo;
-  StepState worst = StepState::kDone;
-  for (const std::string& name : WorkflowSteps(step)) {
-    const StepState state = StateOf(status_->Find(name));
-    if (Urgency(state) > Urgency(worst)) worst = state;
-  }
-  return worst;
+  const workflow::StepReport* report = IsOpen() && status_ ? status_->Find(WorkflowStep(step)) : nullptr;
+  return report != nullptr ? report->status : StepState::kTodo;
 }
 
 QString SessionState::Why(Step step) const {
   if (!IsOpen()) return "no session open";
   if (!status_) return "the session's status could not be read";
-  QStringList sentences;
-  for (const std::string& name : WorkflowSteps(step))
-    if (const workflow::StepReport* report = status_->Find(name))
-      sentences << QString::fromStdString(report->detail);
-  return sentences.join("; ");
+  const workflow::StepReport* report = status_->Find(WorkflowStep(step));
+  return report != nullptr ? QString::fromStdString(report->detail) : QString();
 }
 
 QString SessionState::ResultsNote() const {
   const StepState state = State(Step::kCalibrate);
   return state == StepState::kStale || state == StepState::kBroken ? Why(Step::kCalibrate) : QString();
-}
-
-QString SessionState::MeasureNote() const {
-  if (!status_) return {};
-  const workflow::StepReport* measure = status_->Find("measure");
-  return measure != nullptr && measure->status == workflow::StepStatus::kStale ? QString::fromStdString(measure->detail)
-                                                                              : QString();
 }
 
 }  // namespace hexcal::ui

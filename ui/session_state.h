@@ -29,9 +29,9 @@
 
 namespace hexcal::ui {
 
-// As workflow::StepStatus: the step list shows exactly what `hexcal session
-// status` prints.
-enum class StepState { kTodo, kDone, kStale, kBroken };
+// workflow::StepStatus itself: the step list shows exactly what `hexcal
+// session status` prints.
+using StepState = workflow::StepStatus;
 
 enum class Step { kRobot, kPlan, kAcquire, kMeasure, kCalibrate, kValidate };
 constexpr int kNumSteps = 6;
@@ -86,8 +86,6 @@ class SessionState : public QObject {
   // results/ as loaded at the last reload (workflow/session_results.h), read
   // once per reload for every panel: hashing the images is not free.
   const StatusOr<workflow::SessionResults>& Results() const { return results_; }
-  // Why Measure is stale ("32 of 32 to measure again: the camera changed ...").
-  QString MeasureNote() const;
   // Points the session at another camera file (intrinsics step).
   workflow::EditOutcome SetCamera(const std::string& camera_name, bool overwrite = false);
 
