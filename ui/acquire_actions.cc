@@ -112,7 +112,7 @@ void AcquirePanel::CapturePose(const std::optional<LegReadings>& typed) {
       StatusOr<workflow::PoseRecord> record =
           workflow::AcquirePose(dir, index, pose, *rig->controller, *rig->camera, {}, context);
       const Status status = record.ok() ? Status::Ok() : record.status();
-      return [this, status, index] { Recorded(QString::fromStdString(workflow::AcquiredImageName(index)), status); };
+      return [this, status, index] { Recorded(index, status); };
     });
     return;
   }
@@ -126,7 +126,7 @@ void AcquirePanel::CapturePose(const std::optional<LegReadings>& typed) {
     const std::string bytes(png.begin(), png.end());
     const Status grabbed = frame.ok() ? Status::Ok() : frame.status();
     return [this, grabbed, overlay, bytes, index, typed] {
-      if (!grabbed.ok()) return Recorded(QString::fromStdString(workflow::AcquiredImageName(index)), grabbed);
+      if (!grabbed.ok()) return Recorded(index, grabbed);
       ShowFrame(overlay);
       const std::optional<LegReadings> readings = typed ? typed : AskReadings(index);
       if (!readings) return SetOutcome("not recorded: no readings entered.");
@@ -136,14 +136,16 @@ void AcquirePanel::CapturePose(const std::optional<LegReadings>& typed) {
       const bool saved = ApplySessionEdit(this, "Capture", [&](bool overwrite) {
         return session_->RecordCaptureBytes(bytes, row, overwrite);
       });
-      Recorded(QString::fromStdString(row.image), saved ? Status::Ok() : Status::Failed("not saved"));
+      Recorded(index, saved ? Status::Ok() : Status::Failed("not saved"));
     };
   });
 }
 
-// After a capture: the checklist, the next pose, or the failure marked.
-void AcquirePanel::Recorded(const QString& image, const Status& status) {
-  const int index = current_;
+// After the capture of pose `index` (the one the job was started for, even if
+// the operator has picked another since): the checklist, the next pose, or
+// the failure marked.
+void AcquirePanel::Recorded(int index, const Status& status) {
+  const QString image = QString::fromStdString(workflow::AcquiredImageName(index));
   if (status.cancelled()) return SetOutcome("cancelled: nothing recorded for this pose.");
   if (!status.ok()) {
     marks_[index] = "failed: " + Message(status);

@@ -79,7 +79,7 @@ class AcquirePanel : public QWidget {
   void SetOutcome(const QString& text);
   void ShowFrame(const OverlayResult& frame);
   std::optional<LegReadings> AskReadings(int index);
-  void Recorded(const QString& image, const Status& status);
+  void Recorded(int index, const Status& status);
 
   SessionState* session_;
   BackgroundJob* job_;  // every use of the devices, live frames included: one at a time
