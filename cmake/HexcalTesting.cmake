@@ -1,11 +1,17 @@
-# hexcal_add_test(NAME name SOURCES a_test.cc ... LIBS lib ...)
+# hexcal_add_test(NAME name SOURCES a_test.cc ... LIBS lib ... [COST seconds])
 # One executable per test file, registered in CTest as <folder>/<name>, with the
 # shared gtest main (tests/test_main.cc) that reseeds the RNG for every test.
+# COST (seconds under the sanitizers) lets CTest start the long tests first on a
+# fresh machine, where it has no timings of its own: with -j2 a long test that
+# starts last is the whole run's tail. Every executable is also a dependency of
+# the target hexcal_unit_tests, which `make sanitize` builds instead of
+# everything (the CLI and its commands are half of that build and no unit
+# test runs them).
 function(hexcal_add_test)
   if(HEXCAL_FUZZ)
     return()  # a fuzz build has no tests/ (root CMakeLists.txt), so no test main
   endif()
-  cmake_parse_arguments(T "" "NAME" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(T "" "NAME;COST" "SOURCES;LIBS;LABELS" ${ARGN})
   get_filename_component(folder "${CMAKE_CURRENT_SOURCE_DIR}" NAME)
   set(target "${folder}_${T_NAME}")
   add_executable(${target} ${T_SOURCES})
@@ -13,7 +19,20 @@ function(hexcal_add_test)
   add_test(NAME "${folder}/${T_NAME}" COMMAND ${target})
   set_tests_properties("${folder}/${T_NAME}" PROPERTIES
     ENVIRONMENT "HEXCAL_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
+  set_property(GLOBAL APPEND PROPERTY HEXCAL_UNIT_TEST_TARGETS ${target})
+  if(T_COST)
+    set_tests_properties("${folder}/${T_NAME}" PROPERTIES COST ${T_COST})
+  endif()
   if(T_LABELS)
     set_tests_properties("${folder}/${T_NAME}" PROPERTIES LABELS "${T_LABELS}")
+  endif()
+endfunction()
+
+# The target of every unit test executable (and of helpers added to the property
+# by hand); call once, after every add_subdirectory.
+function(hexcal_add_unit_tests_target)
+  get_property(targets GLOBAL PROPERTY HEXCAL_UNIT_TEST_TARGETS)
+  if(targets)
+    add_custom_target(hexcal_unit_tests DEPENDS ${targets})
   endif()
 endfunction()
