@@ -29,6 +29,7 @@ namespace hexcal::ui {
 namespace {
 
 constexpr std::chrono::milliseconds kGrabTimeout{2000};
+constexpr const char* kLiveJob = "live";  // the live view's frames, which an operator's action may wait for
 constexpr uint64_t kSimSeed = 1;  // the sim world's truth: the same every time, so a session resumes
 
 QString Message(const Status& status) { return QString::fromStdString(status.message()); }
@@ -64,6 +65,7 @@ void AcquirePanel::Connect(const QString& controller_url, const QString& camera_
 }
 
 void AcquirePanel::Disconnect() {
+  pending_ = nullptr;
   rig_.reset();  // a running job keeps its own reference until it ends
   connect_->setText("Connect");
   devices_->setText("Not connected.");
@@ -72,19 +74,22 @@ void AcquirePanel::Disconnect() {
   frame_ = OverlayResult{};
 }
 
-bool AcquirePanel::ReadyToAct(const QString& what) {
+bool AcquirePanel::ReadyToAct(const QString& what, std::function<void()> action) {
   if (!session_->IsOpen()) return ShowError(this, what, "Open or create a session first (File menu)."), false;
   if (!rig_) return ShowError(this, what, "Connect a camera first (and a controller, or move by hand)."), false;
   if (current_ < 0) return ShowError(this, what, "There is no planned pose: plan first (Plan step)."), false;
-  if (job_->Running() && !job_->Abandoned()) {
-    // A live frame in flight finishes in a moment; anything else is the operator's.
-    return ShowError(this, what, "The devices are busy: wait for the current step, or press Cancel."), false;
+  if (job_->Running() && !job_->Abandoned() && job_->What() == kLiveJob) {
+    // A live frame in flight ends in a moment (the camera's time-out at most): then the action.
+    pending_ = std::move(action);
+    return false;
   }
+  if (job_->Running() && !job_->Abandoned())
+    return ShowError(this, what, "The devices are busy: wait for the current step, or press Cancel."), false;
   return true;
 }
 
 void AcquirePanel::MoveToPose() {
-  if (!ReadyToAct("Move")) return;
+  if (!ReadyToAct("Move", [this] { MoveToPose(); })) return;
   if (!rig_->controller) return ShowError(this, "Move", "No controller connected: move the robot by hand.");
   const Vector6d pose = session_->Plan()[current_];
   const int index = current_;
@@ -101,7 +106,7 @@ void AcquirePanel::MoveToPose() {
 }
 
 void AcquirePanel::CapturePose(const std::optional<LegReadings>& typed) {
-  if (!ReadyToAct("Capture")) return;
+  if (!ReadyToAct("Capture", [this, typed] { CapturePose(typed); })) return;
   const int index = current_;
   const Vector6d pose = session_->Plan()[index];
   const std::string dir = session_->Dir().toStdString();
@@ -195,7 +200,7 @@ std::optional<LegReadings> AcquirePanel::AskReadings(int index) {
 }
 
 void AcquirePanel::RedoPose() {
-  if (!ReadyToAct("Redo")) return;
+  if (!ReadyToAct("Redo", [this] { RedoPose(); })) return;
   const std::string image = workflow::AcquiredImageName(current_);
   if (Interactive() &&
       QMessageBox::question(this, "Redo pose", QString("Remove %1 and its readings, and capture pose %2 again?")
@@ -210,7 +215,7 @@ void AcquirePanel::RedoPose() {
 }
 
 void AcquirePanel::RunRest() {
-  if (!ReadyToAct("Run the rest")) return;
+  if (!ReadyToAct("Run the rest", [this] { RunRest(); })) return;
   if (!rig_->controller) return ShowError(this, "Run the rest", "Needs a controller: connect one first.");
   workflow::AcquireRequest request;
   request.session = session_->Dir().toStdString();
@@ -232,7 +237,7 @@ void AcquirePanel::GrabLiveFrame() {
   if (!rig_ || job_->Running() || !session_->SessionCamera() || !session_->SessionTarget()) return;
   const Camera camera = *session_->SessionCamera();
   const Target target = *session_->SessionTarget();
-  job_->Start("live", [this, rig = rig_, camera, target](const JobContext&) -> GuiContinuation {
+  job_->Start(kLiveJob, [this, rig = rig_, camera, target](const JobContext&) -> GuiContinuation {
     StatusOr<cv::Mat> frame = rig->camera->Grab(kGrabTimeout);
     if (!frame.ok()) return [this, s = frame.status()] { readiness_->setText("No frame: " + Message(s).toHtmlEscaped()); };
     const OverlayResult overlay = DetectAndDraw(*frame, camera, target);

@@ -54,6 +54,13 @@ AcquirePanel::AcquirePanel(SessionState* session, QWidget* parent)
     if (isVisible() && live_on_->isChecked()) GrabLiveFrame();
   });
   live_timer_->start();
+  // An action pressed while a live frame was in flight (ReadyToAct) runs now.
+  connect(job_, &BackgroundJob::Finished, this, [this] {
+    if (!pending_ || job_->Running()) return;
+    std::function<void()> action = std::move(pending_);
+    pending_ = nullptr;
+    action();
+  });
   connect(session_, &SessionState::Switched, this, &AcquirePanel::ResetForSession);
   connect(session_, &SessionState::Changed, this, &AcquirePanel::Refresh);
 }

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <QWidget>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -75,7 +76,9 @@ class AcquirePanel : public QWidget {
   QString PoseState(int index) const;
   // Selects the next pose to record; false when every pose is recorded or skipped.
   bool NextPose();
-  bool ReadyToAct(const QString& what);
+  // False (and says why) when the operator's action cannot start now. A live
+  // frame in flight is not a reason: `action` then runs when it ends.
+  bool ReadyToAct(const QString& what, std::function<void()> action);
   void SetOutcome(const QString& text);
   void ShowFrame(const OverlayResult& frame);
   std::optional<LegReadings> AskReadings(int index);
@@ -93,6 +96,7 @@ class AcquirePanel : public QWidget {
   QTableWidget* checklist_;
   ImageView* live_;
   OverlayResult frame_;
+  std::function<void()> pending_;  // the operator's action waiting for a live frame
   int current_ = -1;
   std::map<int, QString> marks_;  // poses skipped or failed this session: why
   QString outcome_;

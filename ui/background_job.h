@@ -41,6 +41,8 @@ class BackgroundJob : public QObject {
   ~BackgroundJob() override;
 
   bool Running() const { return thread_ != nullptr; }
+  // What the running (or last) job was started as ("live", "capturing").
+  const QString& What() const { return what_; }
   // False if a job is already running.
   bool Start(const QString& what, JobWork work);
   void Cancel();

@@ -34,7 +34,10 @@ namespace hexcal {
 struct DetectorOptions {
   std::string family = "tag36h11";
   int border_bits = 1;               // black border cells: 1 (AprilTag), 2 (Kalibr's aprilgrid)
-  int threads = 2;                  // AprilTag worker threads for one image
+  // AprilTag library worker threads for one image. 1 by default: the worker
+  // pool of libapriltag 3.3 (Debian 12) has a race that calls a freed task
+  // (a SIGSEGV in a worker thread, fixed upstream in 2024; docs/vision.md).
+  int threads = 1;
   double min_decision_margin = 20;  // grey levels; weaker decodes are rejected
   int max_hamming = 0;              // corrected bits accepted, 0..2
   bool refine_edges = true;         // sub-pixel edge fit of each black square

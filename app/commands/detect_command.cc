@@ -140,7 +140,8 @@ void AddDetectCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   sub->add_option("--max-hamming", options->detector.max_hamming, "accept at most this many corrected bits (0-2)")
       ->capture_default_str();
-  sub->add_option("--threads", options->detector.threads, "AprilTag threads")
+  sub->add_option("--threads", options->detector.threads, "AprilTag library worker threads for the quad stage "
+                  "(more than 1 can crash with libapriltag 3.3: docs/vision.md)")
       ->check(CountRange(1, 64))
       ->capture_default_str();
   sub->add_flag("--no-refine", options->no_refine, "report AprilTag's own corners (shifted by -0.5 px)");
