@@ -9,6 +9,7 @@
 #include "core/robot_io.h"
 #include "core/session.h"
 #include "vision/renderer.h"
+#include "workflow/controller.h"
 #include "workflow/session_calibrate.h"
 
 namespace hexcal::workflow {
@@ -19,12 +20,6 @@ Vector6d SamplingBoxCentre(const Robot& robot) {
   if (const std::optional<PoseBox> box = robot.limits.SamplingBox(); box && box->IsComplete())
     for (int k = 0; k < 6; ++k) centre[k] = box->bounds[k]->Centre();
   return centre;
-}
-
-std::string PoseText(const Vector6d& pose) {
-  std::string text = "(";
-  for (int k = 0; k < 6; ++k) text += FormatNumber(pose[k]) + (k < 5 ? ", " : ")");
-  return text;
 }
 
 }  // namespace
@@ -57,11 +52,8 @@ SimWorld::~SimWorld() = default;
 
 Status SimWorld::Command(const Vector6d& pose_vector) {
   const Robot& nominal = scene_.nominal;
+  if (Status s = CheckPoseInWorkspace(nominal, pose_vector); !s.ok()) return s;
   const Pose commanded = nominal.PoseFromVector(pose_vector);
-  const ConstraintReport report = EvaluateConstraints(nominal, commanded);
-  if (!report.feasible)
-    return Status::Error("pose " + PoseText(pose_vector) + " is out of the robot's workspace: " + report.worst_label +
-                         " by " + FormatNumber(std::round(-report.worst_margin * 1e4) / 1e4));
   const LegReadings legs = InverseKinematics(nominal, commanded);
   StatusOr<LocalFkResult> actual = ForwardKinematicsLocal(scene_.truth, legs, commanded);
   if (!actual.ok())

@@ -31,8 +31,11 @@ expect_refused() {  # expect_refused PATTERN ARGS...
 }
 expect_refused "camera 'aravis:Fake_1': GenICam cameras through Aravis are not available in this build" \
   --controller sim --camera aravis:Fake_1
-expect_refused "controller 'linuxcnc://localhost:5007': LinuxCNC through linuxcncrsh is not yet supported" \
-  --controller linuxcnc://localhost:5007 --camera file:/dev/null
+"$hexcal" target print --target aprilgrid-6x6 --out "$dir/still.png" >/dev/null
+expect_refused "controller 'linuxcnc://localhost': no host or no port; expected linuxcnc://HOST:PORT" \
+  --controller linuxcnc://localhost --camera "file:$dir/still.png"
+expect_refused "file:/no/such.png: /no/such.png: no such file" \
+  --controller linuxcnc://localhost:5007 --camera file:/no/such.png
 expect_refused "camera 'gige:1': unknown kind 'gige'; accepted forms: sim, v4l2:N, file:PATH" \
   --controller sim --camera gige:1
 expect_refused "camera 'sim' renders the sim world's platform: it needs --controller sim" \
