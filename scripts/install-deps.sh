@@ -13,6 +13,9 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth libgl1-mesa-dri
   clang libclang-rt-14-dev
+  # LinuxCNC (2.9, Debian's build without a realtime kernel): the simulated
+  # hexapod of scripts/linuxcnc-sim.sh and tests/cli/linuxcnc.sh; ~40 s.
+  linuxcnc-uspace
 )
 
 missing=()
