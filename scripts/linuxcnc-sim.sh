@@ -5,7 +5,8 @@
 # A headless simulated LinuxCNC hexapod with a robot file's geometry, for
 # trying `hexcal acquire --controller linuxcnc://127.0.0.1:PORT` without a
 # machine (docs/acquisition.md). `start` writes DIR/machine.ini and
-# DIR/genhexkins.hal (from `hexcal export --format linuxcnc-hal`) and starts
+# DIR/genhexkins.hal (from `hexcal export --format linuxcnc-hal`), DIR/robot.yaml
+# (the robot file the machine runs with) and starts
 # LinuxCNC with linuxcncrsh on PORT (default 5007; it listens on every
 # interface); `stop` shuts it down through linuxcncrsh and waits for it.
 #
@@ -111,6 +112,8 @@ start() {
   chmod 755 "$dir"  # rtapi_app runs as RTAPI_UID and reads below it
   [ ! -e "$dir/linuxcnc.pid" ] || die "$dir: a machine was started there and not stopped (linuxcnc-sim.sh stop $dir)"
   "$hexcal" export --robot "$robot" --format linuxcnc-hal --machine-unit mm --out "$dir/genhexkins.hal" --force >/dev/null
+  # The robot the machine runs with (its offsets l are the joint homes), for `hexcal sim-camera --machine-robot`.
+  "$hexcal" export --robot "$robot" --format robot --out "$dir/robot.yaml" --force >/dev/null
   echo "x,y,z,q1,q2,q3" >"$dir/home.csv"
   echo "$home" | tr ' ' ',' >>"$dir/home.csv"
   write_ini "$("$hexcal" robot show "$robot" --json)" "$("$hexcal" ik --robot "$robot" --poses "$dir/home.csv" --json)" \

@@ -9,36 +9,13 @@
 #include <vector>
 
 #include "workflow/line_client.h"
+#include "workflow/linuxcnc_reply.h"
 #include "workflow/linuxcnc_geometry.h"
 
 namespace hexcal::workflow {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-std::string Upper(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::toupper(c); });
-  return text;
-}
-
-std::vector<std::string> Words(const std::string& line) {
-  std::istringstream in(line);
-  std::vector<std::string> words;
-  for (std::string word; in >> word;) words.push_back(word);
-  return words;
-}
-
-bool ParseFinite(const std::string& text, double* value) {
-  char* end = nullptr;
-  *value = std::strtod(text.c_str(), &end);
-  return end != text.c_str() && *end == '\0' && std::isfinite(*value);
-}
-
-std::string Joined(const std::vector<std::string>& words) {
-  std::string text;
-  for (const std::string& word : words) text += (text.empty() ? "" : " ") + word;
-  return text;
-}
 
 double SecondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
@@ -116,7 +93,7 @@ Status LinuxCncController::Expect(const std::string& command, const std::string&
                                   const std::string& hint) {
   StatusOr<std::string> reply = Ask(command);
   if (!reply.ok()) return reply.status();
-  if (Upper(Joined(Words(*reply))) == acknowledgement) return Status::Ok();
+  if (UpperCase(JoinWords(ReplyWords(*reply))) == acknowledgement) return Status::Ok();
   Status unexpected = Unexpected(command, *reply, "'" + acknowledgement + "'");
   return hint.empty() ? unexpected : Status::Failed(unexpected.message() + ": " + hint);
 }
@@ -125,8 +102,8 @@ StatusOr<std::vector<std::string>> LinuxCncController::AskWords(const std::strin
                                                                 size_t count) {
   StatusOr<std::string> reply = Ask(command);
   if (!reply.ok()) return reply.status();
-  std::vector<std::string> words = Words(*reply);
-  if (words.size() != count + 1 || Upper(words[0]) != key)
+  std::vector<std::string> words = ReplyWords(*reply);
+  if (words.size() != count + 1 || UpperCase(words[0]) != key)
     return Unexpected(command, *reply, key + " and " + std::to_string(count) + " value(s)");
   words.erase(words.begin());
   return words;
@@ -137,7 +114,7 @@ StatusOr<Vector6d> LinuxCncController::AskSixNumbers(const std::string& command,
   if (!words.ok()) return words.status();
   Vector6d values;
   for (int k = 0; k < 6; ++k)
-    if (!ParseFinite((*words)[k], &values[k]))
+    if (!ParseFiniteNumber((*words)[k], &values[k]))
       return Error("'" + command + "': value " + std::to_string(k + 1) + " is not a number: " + Excerpt((*words)[k]));
   return values;
 }
@@ -145,17 +122,17 @@ StatusOr<Vector6d> LinuxCncController::AskSixNumbers(const std::string& command,
 Status LinuxCncController::Handshake() {
   StatusOr<std::string> hello = Ask("hello " + options_.connect_password + " hexcal 1.0");
   if (!hello.ok()) return hello.status();
-  const std::vector<std::string> words = Words(*hello);
-  if (words.size() < 2 || Upper(words[0]) != "HELLO" || Upper(words[1]) != "ACK")
+  const std::vector<std::string> words = ReplyWords(*hello);
+  if (words.size() < 2 || UpperCase(words[0]) != "HELLO" || UpperCase(words[1]) != "ACK")
     return Unexpected("hello", *hello, "'HELLO ACK ...'; a 'HELLO NAK' means the connect password was refused");
   if (words.size() >= 4) server_ = words[2] + " " + words[3];
   // Echo is on until this command is read, so it may come back as an echo,
   // and it sends no acknowledgement: verbose is off until the next one.
   if (Status s = client_.Send("set echo off"); !s.ok()) return Error(s.message());
   StatusOr<std::string> reply = Ask("set verbose on");
-  if (reply.ok() && Upper(Joined(Words(*reply))) == "SET ECHO OFF") reply = client_.ReadLine(options_.reply_timeout);
+  if (reply.ok() && UpperCase(JoinWords(ReplyWords(*reply))) == "SET ECHO OFF") reply = client_.ReadLine(options_.reply_timeout);
   if (!reply.ok()) return Error("'set verbose on': " + reply.status().message());
-  if (Upper(Joined(Words(*reply))) != "SET VERBOSE ACK")
+  if (UpperCase(JoinWords(ReplyWords(*reply))) != "SET VERBOSE ACK")
     return Unexpected("set verbose on", *reply, "'SET VERBOSE ACK'");
   return Expect("set enable " + options_.enable_password, "SET ENABLE ACK", "the enable password was refused");
 }
@@ -170,7 +147,7 @@ Status LinuxCncController::CheckUnits() {
   unit_ = *unit;
   StatusOr<std::vector<std::string>> angular = AskWords("get user_angular_units", "USER_ANGULAR_UNITS", 1);
   if (!angular.ok()) return angular.status();
-  if (Upper((*angular)[0]) != "DEG")
+  if (UpperCase((*angular)[0]) != "DEG")
     return Error("the machine's angular unit is " + Excerpt((*angular)[0]) +
                  "; genhexkins reads A B C in degrees: set [TRAJ] ANGULAR_UNITS = degree");
   return Status::Ok();
@@ -179,7 +156,7 @@ Status LinuxCncController::CheckUnits() {
 StatusOr<bool> LinuxCncController::AllHomed() {
   StatusOr<std::vector<std::string>> homed = AskWords("get joint_homed", "JOINT_HOMED", 6);
   if (!homed.ok()) return homed.status();
-  return std::all_of(homed->begin(), homed->end(), [](const std::string& word) { return Upper(word) == "YES"; });
+  return std::all_of(homed->begin(), homed->end(), [](const std::string& word) { return UpperCase(word) == "YES"; });
 }
 
 Status LinuxCncController::HomeIfNeeded() {
@@ -199,10 +176,10 @@ Status LinuxCncController::HomeIfNeeded() {
 StatusOr<std::string> LinuxCncController::NextMachineError() {
   StatusOr<std::string> reply = Ask("get error");
   if (!reply.ok()) return reply.status();
-  const std::vector<std::string> words = Words(*reply);
-  if (words.empty() || Upper(words[0]) != "ERROR") return Unexpected("get error", *reply, "'ERROR ...'");
-  if (words.size() == 2 && Upper(words[1]) == "OK") return std::string();
-  return Joined(std::vector<std::string>(words.begin() + 1, words.end()));
+  const std::vector<std::string> words = ReplyWords(*reply);
+  if (words.empty() || UpperCase(words[0]) != "ERROR") return Unexpected("get error", *reply, "'ERROR ...'");
+  if (words.size() == 2 && UpperCase(words[1]) == "OK") return std::string();
+  return JoinWords(std::vector<std::string>(words.begin() + 1, words.end()));
 }
 
 Status LinuxCncController::DiscardOldErrors() {
@@ -247,7 +224,7 @@ StatusOr<LinuxCncController::Motion> LinuxCncController::PollMotion() {
   StatusOr<std::vector<std::string>> program = AskWords("get program_status", "PROGRAM_STATUS", 1);
   if (!program.ok()) return program.status();
   Motion motion;
-  motion.idle = Upper((*program)[0]) == "IDLE";
+  motion.idle = UpperCase((*program)[0]) == "IDLE";
   if (!motion.idle) return motion;
   StatusOr<Vector6d> actual = AskSixNumbers("get abs_act_pos", "ABS_ACT_POS");
   if (!actual.ok()) return actual.status();

@@ -65,6 +65,17 @@ Status SimWorld::Command(const Vector6d& pose_vector) {
   return Status::Ok();
 }
 
+Status SimWorld::DriveLegs(const LegReadings& encoders) {
+  StatusOr<LocalFkResult> actual = ForwardKinematicsLocal(scene_.truth, encoders, ActualPose());
+  if (!actual.ok())
+    return Status::Failed("the simulated platform has no pose for the legs (" + PoseText(encoders) +
+                          ") near where it is: " + actual.status().message());
+  std::lock_guard<std::mutex> hold(mutex_);
+  driven_legs_ = encoders;
+  actual_pose_ = actual->pose;
+  return Status::Ok();
+}
+
 LegReadings SimWorld::ReadLegs() {
   std::lock_guard<std::mutex> hold(mutex_);
   std::uniform_real_distribution<double> unit_noise(-1, 1);

@@ -20,6 +20,7 @@ constexpr CommandEntry kCommands[] = {
     {"session", AddSessionCommand},
     {"report", AddReportCommand},
     {"acquire", AddAcquireCommand},
+    {"sim-camera", AddSimCameraCommand},
     {"export", AddExportCommand},
 };
 }  // namespace

@@ -1,4 +1,4 @@
-// hexcal export --robot R --format linuxcnc-hal --out FILE [--machine-unit mm|inch] [--force]
+// hexcal export --robot R --format linuxcnc-hal|robot --out FILE [--machine-unit mm|inch] [--force]
 //
 // Writes a robot's geometry for a controller: `linuxcnc-hal` is the
 // `setp genhexkins.base.N.*` / `platform.N.*` lines of LinuxCNC's hexapod
@@ -22,9 +22,9 @@ struct ExportOptions {
 };
 
 int RunExport(const ExportOptions& options, std::ostream& out, std::ostream& err) {
-  if (options.format != "linuxcnc-hal")
+  if (options.format != "linuxcnc-hal" && options.format != "robot")
     return ReportError(err, "export",
-                       Status::Error("--format: unknown format '" + options.format + "'; accepted: linuxcnc-hal"));
+                       Status::Error("--format: unknown format '" + options.format + "'; accepted: linuxcnc-hal, robot"));
   const std::optional<workflow::MachineUnit> unit = workflow::ParseMachineUnit(options.machine_unit);
   if (!unit)
     return ReportError(err, "export",
@@ -33,6 +33,12 @@ int RunExport(const ExportOptions& options, std::ostream& out, std::ostream& err
   if (Status s = CheckOutputFree(options.out, options.force); !s.ok()) return ReportError(err, "export", s);
   StatusOr<Robot> robot = LoadRobot(options.robot);
   if (!robot.ok()) return ReportError(err, "export", robot.status());
+  if (options.format == "robot") {  // a preset as a file, e.g. the robot a machine runs with
+    if (Status s = WriteFileAtomically(options.out, RobotToYaml(*robot)); !s.ok()) return ReportError(err, "export", s);
+    out << "wrote " << options.out << ": robot '" << robot->name << "' (" << LengthUnitName(robot->length_unit)
+        << ")\n";
+    return kExitOk;
+  }
   if (Status s = WriteFileAtomically(options.out, workflow::GenhexkinsHal(*robot, *unit)); !s.ok())
     return ReportError(err, "export", s);
   out << "wrote " << options.out << ": genhexkins geometry of robot '" << robot->name << "' in "
@@ -47,7 +53,7 @@ void AddExportCommand(CLI::App& app, int* exit_code) {
   CLI::App* sub = app.add_subcommand("export", "write a robot's geometry for a controller (LinuxCNC genhexkins HAL)");
   sub->add_option("--robot", options->robot, "robot file or preset name (a calibrated robot file, typically)")
       ->required();
-  sub->add_option("--format", options->format, "output format: linuxcnc-hal")->capture_default_str();
+  sub->add_option("--format", options->format, "output format: linuxcnc-hal (genhexkins pins), robot (the robot file)")->capture_default_str();
   sub->add_option("--out", options->out, "file to write")->required();
   sub->add_option("--machine-unit", options->machine_unit,
                   "the machine's [TRAJ] LINEAR_UNITS: mm or inch (lengths are converted from the robot's unit)")
