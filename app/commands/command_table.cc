@@ -20,6 +20,7 @@ constexpr CommandEntry kCommands[] = {
     {"session", AddSessionCommand},
     {"report", AddReportCommand},
     {"acquire", AddAcquireCommand},
+    {"verify", AddVerifyCommand},
     {"sim-camera", AddSimCameraCommand},
     {"export", AddExportCommand},
 };

@@ -31,6 +31,7 @@ void AddSessionCommand(CLI::App& app, int* exit_code);
 void AddReportCommand(CLI::App& app, int* exit_code);
 void AddAcquireCommand(CLI::App& app, int* exit_code);
 void AddSimCameraCommand(CLI::App& app, int* exit_code);
+void AddVerifyCommand(CLI::App& app, int* exit_code);
 void AddExportCommand(CLI::App& app, int* exit_code);
 
 // Builds the whole `hexcal` application; `exit_code` receives the command's code.
