@@ -16,8 +16,9 @@
 //   (0.1-1000). The aravis: camera does not.
 // - Mono8 at the rendered size (SensorWidth/Width and SensorHeight/Height are
 //   set to it); `render` is called once per frame, at the frame's start, on
-//   Aravis' thread, and must return CV_8UC1 of that size: anything else is
-//   served as a black frame.
+//   Aravis' thread (and once by Start, on the caller's, when the size comes
+//   from the first frame), and must return CV_8UC1 of that size: anything
+//   else is served as a black frame.
 // - ExposureTimeAbs (10-1e7 µs) and GainRaw (0-10) are registers only: they
 //   do not change the image.
 // - One camera per address (the GVCP port, UDP 3956): a second Start on the
