@@ -29,8 +29,10 @@ expect_refused() {  # expect_refused PATTERN ARGS...
   [ "$code" -eq 2 ] || { echo "exit $code for $*"; exit 1; }
   grep -q "$pattern" "$dir/err" || { echo "no '$pattern' in: $(cat "$dir/err")"; exit 1; }
 }
-expect_refused "camera 'aravis:Fake_1': GenICam cameras through Aravis are not available in this build" \
-  --controller sim --camera aravis:Fake_1
+# aravis: a bad option is refused before any camera is looked for; a build
+# without Aravis refuses every aravis: URL, naming the package.
+expect_refused "camera 'aravis:Fake_1?exposure=fast': \(exposure 'fast' is not a number\|this hexcal was built without Aravis (install libaravis-dev\)" \
+  --controller sim --camera "aravis:Fake_1?exposure=fast"
 "$hexcal" target print --target aprilgrid-6x6 --out "$dir/still.png" >/dev/null
 expect_refused "controller 'linuxcnc://localhost': no host or no port; expected linuxcnc://HOST:PORT" \
   --controller linuxcnc://localhost --camera "file:$dir/still.png"
