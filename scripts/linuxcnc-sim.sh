@@ -12,7 +12,7 @@
 #
 # The machine works in mm ([TRAJ] LINEAR_UNITS = mm), whatever the robot's
 # unit. Its joints are the full leg lengths: joint limits are the strokes plus
-# the offsets l, and the joints home at the exact IK of --home (robot unit,
+# the offsets l, widened by 2 % of the stroke, and the joints home at the exact IK of --home (robot unit,
 # degrees, the robot's Euler convention; angles 0 for a zyx robot), so that
 # homing leaves no residual pose. As root, rtapi_app needs RTAPI_UID and a
 # FIFO folder it can write (../shared/devices.md): both are set here.
@@ -75,7 +75,11 @@ JOINTS = 6
 """]
 for j, (leg, reading) in enumerate(zip(legs, readings)):
     joint = (reading + leg["l"]) * mm
-    low, high = ((s + leg["l"]) * mm for s in leg["stroke"])
+    # End stops 2 % of the stroke outside it: the planner keeps poses within the
+    # strokes, but a G0 between two poses moves in world space and a leg can
+    # pass its end points on the way (a pose at a stroke end then trips the limit).
+    margin = 0.02 * (leg["stroke"][1] - leg["stroke"][0])
+    low, high = ((s + leg["l"]) * mm for s in (leg["stroke"][0] - margin, leg["stroke"][1] + margin))
     out.append(f"""[JOINT_{j}]
 TYPE = LINEAR
 HOME = {joint:.9f}

@@ -60,6 +60,13 @@ Status CheckPoseInWorkspace(const Robot& robot, const Vector6d& pose) {
                        FormatNumber(std::round(-report.worst_margin * 1e4) / 1e4));
 }
 
+Vector6d WorkspaceCentre(const Robot& robot) {
+  Vector6d centre = Vector6d::Zero();
+  if (const std::optional<PoseBox> box = robot.limits.SamplingBox(); box && box->IsComplete())
+    for (int k = 0; k < 6; ++k) centre[k] = box->bounds[k]->Centre();
+  return centre;
+}
+
 std::string PoseText(const Vector6d& pose) {
   std::string text = "(";
   for (int k = 0; k < 6; ++k) text += FormatNumber(pose[k]) + (k < 5 ? ", " : ")");

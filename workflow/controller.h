@@ -60,6 +60,9 @@ StatusOr<std::unique_ptr<Controller>> OpenController(const std::string& url, con
 // Every controller refuses a pose the robot cannot take before moving: bad
 // input naming the pose and the limit it breaks by how much.
 Status CheckPoseInWorkspace(const Robot& robot, const Vector6d& pose);
+// The centre of the robot's sampling box (robot unit, degrees; zero without
+// one): where the sim machine starts, and the LinuxCNC controller's via pose.
+Vector6d WorkspaceCentre(const Robot& robot);
 // "(1, 2, 53, 0, 0, 5)": a pose in messages.
 std::string PoseText(const Vector6d& pose);
 

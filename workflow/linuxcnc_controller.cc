@@ -35,6 +35,8 @@ class LinuxCncController final : public Controller {
   // The opening sequence of linuxcnc_controller.h.
   Status Open();
   Status MoveTo(const Vector6d& pose) override;
+  // Sends one G0 to a world pose (machine units, degrees); `text` names it in messages.
+  Status SendMove(const Vector6d& world, const std::string& text);
   Status WaitSettled(double settle_seconds) override;
   StatusOr<LegReadings> ReadLegs() override;
   std::string Describe() const override {
@@ -175,6 +177,13 @@ Status LinuxCncController::HomeIfNeeded() {
 
 StatusOr<std::string> LinuxCncController::NextMachineError() {
   StatusOr<std::string> reply = Ask("get error");
+  // linuxcncrsh answers NAK when its error channel could not be read this
+  // time (seen with a second client connected, the follower of
+  // workflow/machine_follower.h): asked again a few times.
+  for (int retry = 0; retry < 5 && reply.ok() && UpperCase(JoinWords(ReplyWords(*reply))) == "GET NAK"; ++retry) {
+    std::this_thread::sleep_for(options_.poll_interval);
+    reply = Ask("get error");
+  }
   if (!reply.ok()) return reply.status();
   const std::vector<std::string> words = ReplyWords(*reply);
   if (words.empty() || UpperCase(words[0]) != "ERROR") return Unexpected("get error", *reply, "'ERROR ...'");
@@ -202,13 +211,9 @@ Status LinuxCncController::Open() {
   return DiscardOldErrors();
 }
 
-Status LinuxCncController::MoveTo(const Vector6d& pose) {
-  moving_ = false;
-  if (Status s = CheckPoseInWorkspace(robot_, pose); !s.ok()) return s;
-  // Messages read now belong to earlier commands: WaitSettled's are this move's.
-  if (Status s = DiscardOldErrors(); !s.ok()) return s;
-  target_ = GenhexkinsWorldFromPose(robot_, pose, unit_);
-  target_text_ = PoseText(pose);
+Status LinuxCncController::SendMove(const Vector6d& world, const std::string& text) {
+  target_ = world;
+  target_text_ = text;
   std::string command = unit_ == MachineUnit::kInch ? "set mdi G20 G90 G53 G0" : "set mdi G21 G90 G53 G0";
   static const char* axes[6] = {"X", "Y", "Z", "A", "B", "C"};
   for (int k = 0; k < 6; ++k) command += std::string(" ") + axes[k] + FixedNumber(target_[k]);
@@ -218,6 +223,28 @@ Status LinuxCncController::MoveTo(const Vector6d& pose) {
     return s;
   moving_ = true;
   return Status::Ok();
+}
+
+Status LinuxCncController::MoveTo(const Vector6d& pose) {
+  moving_ = false;
+  if (Status s = CheckPoseInWorkspace(robot_, pose); !s.ok()) return s;
+  // Messages read now belong to earlier commands: WaitSettled's are this move's.
+  if (Status s = DiscardOldErrors(); !s.ok()) return s;
+  const Vector6d target = GenhexkinsWorldFromPose(robot_, pose, unit_);
+  StatusOr<Vector6d> here = AskSixNumbers("get abs_act_pos", "ABS_ACT_POS");
+  if (!here.ok()) return here.status();
+  // G0 is a straight line in X Y Z A B C, along which a leg can pass its
+  // stroke between two poses within it (and stop the machine at a soft
+  // limit): then the move goes through the workspace centre.
+  if (!StraightMoveWithinStrokes(robot_, *here, target, unit_)) {
+    const Vector6d via = GenhexkinsWorldFromPose(robot_, WorkspaceCentre(robot_), unit_);
+    if (!StraightMoveWithinStrokes(robot_, *here, via, unit_) || !StraightMoveWithinStrokes(robot_, via, target, unit_))
+      return Status::Error("pose " + PoseText(pose) + ": no straight move from where the platform is, nor one " +
+                           "through the workspace centre, keeps every leg within its stroke");
+    if (Status s = SendMove(via, "the workspace centre " + PoseText(WorkspaceCentre(robot_))); !s.ok()) return s;
+    if (Status s = WaitSettled(0); !s.ok()) return s;
+  }
+  return SendMove(target, PoseText(pose));
 }
 
 StatusOr<LinuxCncController::Motion> LinuxCncController::PollMotion() {

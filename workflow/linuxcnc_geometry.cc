@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/constraints.h"
+
 namespace hexcal::workflow {
 namespace {
 
@@ -43,6 +45,23 @@ Vector6d GenhexkinsWorldFromPose(const Robot& robot, const Vector6d& pose, Machi
   Vector6d world = xyz_form;
   world.head<3>() *= MachineUnitsPerRobotUnit(robot, unit);
   return world;
+}
+
+Pose PoseFromGenhexkinsWorld(const Robot& robot, const Vector6d& world, MachineUnit unit) {
+  Vector6d xyz_form = world;
+  xyz_form.head<3>() /= MachineUnitsPerRobotUnit(robot, unit);
+  return PoseFromVector(xyz_form, EulerConvention::kXYZ);
+}
+
+bool StraightMoveWithinStrokes(const Robot& robot, const Vector6d& from, const Vector6d& to, MachineUnit unit,
+                               int samples) {
+  for (int k = 0; k <= samples; ++k) {
+    const double t = static_cast<double>(k) / samples;
+    const LegReadings legs = InverseKinematics(robot, PoseFromGenhexkinsWorld(robot, from + t * (to - from), unit));
+    for (int i = 0; i < kNumLegs; ++i)
+      if (!WithinStroke(robot.legs[i], legs[i])) return false;
+  }
+  return true;
 }
 
 LegReadings ReadingsFromJoints(const Robot& robot, const Vector6d& joints, MachineUnit unit) {

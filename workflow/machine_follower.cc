@@ -1,5 +1,6 @@
 #include "workflow/machine_follower.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "core/robot_io.h"
@@ -80,8 +81,10 @@ StatusOr<std::unique_ptr<MachineFollower>> MachineFollower::Start(const LinuxCnc
                           connection.status().message());
   follower->connection_ = std::move(*connection);
   if (Status s = follower->Poll(*follower->connection_); !s.ok()) return s;
-  if (follower->LatestFrame().empty())
-    return Status::Failed("the machine's joints put the true platform nowhere: " + follower->Problem());
+  if (follower->LatestFrame().empty()) {  // not homed, or legs out of reach: the platform where it starts
+    std::lock_guard<std::mutex> hold(follower->mutex_);
+    follower->frame_ = follower->world_->RenderFrame();
+  }
   follower->thread_ = std::thread([raw = follower.get()] { raw->Run(); });
   return follower;
 }
@@ -92,6 +95,16 @@ MachineFollower::~MachineFollower() {
 }
 
 Status MachineFollower::Poll(Connection& connection) {
+  // Before homing, joint positions are counts from power-on, not leg lengths.
+  StatusOr<std::string> homed = AskFor(connection.client, "get joint_homed", "JOINT_HOMED", options_.reply_timeout);
+  if (!homed.ok()) return homed.status();
+  const std::vector<std::string> flags = ReplyWords(*homed);
+  if (flags.size() != 7 || std::any_of(flags.begin() + 1, flags.end(), [](const std::string& flag) {
+        return UpperCase(flag) != "YES";
+      })) {
+    SetProblem("the machine is not homed: the platform stays where it is");
+    return Status::Ok();
+  }
   StatusOr<std::string> reply = AskFor(connection.client, "get joint_pos", "JOINT_POS", options_.reply_timeout);
   if (!reply.ok()) return reply.status();
   const std::optional<Vector6d> joints = SixNumbersAfter("JOINT_POS", *reply);
@@ -110,6 +123,7 @@ Status MachineFollower::Poll(Connection& connection) {
   ++frames_rendered_;
   std::lock_guard<std::mutex> hold(mutex_);
   frame_ = std::move(frame);
+  problem_.clear();
   return Status::Ok();
 }
 

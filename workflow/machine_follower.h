@@ -36,7 +36,7 @@
 namespace hexcal::workflow {
 
 struct FollowerOptions {
-  std::chrono::milliseconds poll_interval{20};
+  std::chrono::milliseconds poll_interval{40};  // one frame period of the fake camera (25 fps)
   std::chrono::milliseconds reply_timeout{2000};
   std::chrono::milliseconds retry_interval{250};  // after a lost connection
   // Joints that moved by less than this (machine units) leave the frame as it is.

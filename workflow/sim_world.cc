@@ -15,13 +15,6 @@
 namespace hexcal::workflow {
 namespace {
 
-Vector6d SamplingBoxCentre(const Robot& robot) {
-  Vector6d centre = Vector6d::Zero();
-  if (const std::optional<PoseBox> box = robot.limits.SamplingBox(); box && box->IsComplete())
-    for (int k = 0; k < 6; ++k) centre[k] = box->bounds[k]->Centre();
-  return centre;
-}
-
 }  // namespace
 
 StatusOr<std::shared_ptr<SimWorld>> SimWorld::ForSession(const std::string& dir, uint64_t seed) {
@@ -36,7 +29,7 @@ StatusOr<std::shared_ptr<SimWorld>> SimWorld::ForSession(const std::string& dir,
   DemoSceneOptions options;
   options.seed = seed;
   auto world = std::make_shared<SimWorld>(MakeDemoScene(*nominal, *camera, *target, options));
-  if (Status s = world->Command(SamplingBoxCentre(*nominal)); !s.ok())
+  if (Status s = world->Command(WorkspaceCentre(*nominal)); !s.ok())
     return Status::Error(dir +
                          ": the sim machine cannot start at the centre of the robot's sampling box: " + s.message());
   return world;

@@ -19,7 +19,7 @@ if "$hexcal" sim-camera --session /nonexistent --follow linuxcnc://127.0.0.1:1 -
 dir=$(mktemp -d)
 camera_pid=
 cleanup() {
-  [ -z "$camera_pid" ] || { kill "$camera_pid" 2>/dev/null; wait "$camera_pid" 2>/dev/null || true; }
+  [ -z "$camera_pid" ] || { kill "$camera_pid" 2>/dev/null || true; wait "$camera_pid" 2>/dev/null || true; }
   [ ! -e "$dir/machine/linuxcnc.pid" ] || "$sim" stop "$dir/machine" >/dev/null || true
   rm -rf "$dir"
 }
