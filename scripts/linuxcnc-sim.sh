@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # linuxcnc-sim.sh start DIR --robot ROBOT --home "X Y Z Q1 Q2 Q3" [--port PORT] [--hexcal BIN]
 # linuxcnc-sim.sh stop DIR
+# linuxcnc-sim.sh env DIR     (prints the RTAPI_UID and RTAPI_FIFO_PATH halcmd needs, as `export` lines)
 #
 # A headless simulated LinuxCNC hexapod with a robot file's geometry, for
 # trying `hexcal acquire --controller linuxcnc://127.0.0.1:PORT` without a
@@ -19,7 +20,7 @@
 # One LinuxCNC runs per host (its shared memory has fixed keys).
 set -euo pipefail
 
-usage() { echo "usage: $0 start DIR --robot ROBOT --home \"X Y Z Q1 Q2 Q3\" [--port PORT] [--hexcal BIN] | stop DIR" >&2; exit 2; }
+usage() { echo "usage: $0 start DIR --robot ROBOT --home \"X Y Z Q1 Q2 Q3\" [--port PORT] [--hexcal BIN] | stop DIR | env DIR" >&2; exit 2; }
 die() { echo "linuxcnc-sim: $*" >&2; exit 1; }
 
 [ $# -ge 2 ] || usage
@@ -167,8 +168,15 @@ stop() {
   echo "linuxcnc-sim: stopped"
 }
 
+# What halcmd needs to reach this machine's HAL as root (../shared/devices.md).
+print_env() {
+  [ -e "$dir/rtapi_dir" ] || die "$dir: no machine running there"
+  echo "export RTAPI_UID=65534 RTAPI_FIFO_PATH=$(cat "$dir/rtapi_dir")/rtapi_fifo"
+}
+
 case $action in
   start) start "$@" ;;
   stop) [ $# -eq 0 ] || usage; stop ;;
+  env) [ $# -eq 0 ] || usage; print_env ;;
   *) usage ;;
 esac

@@ -38,6 +38,10 @@ class LineClient {
   // host, time-out).
   static StatusOr<LineClient> Connect(const std::string& host, int port, std::chrono::milliseconds timeout);
 
+  // A connected stream socket already open (one end of a socketpair to a
+  // child process, say); the client closes it. `peer` names it in messages.
+  static LineClient Adopt(int fd, std::string peer) { return LineClient(fd, std::move(peer)); }
+
   LineClient(LineClient&& other) noexcept;
   LineClient& operator=(LineClient&& other) noexcept;
   LineClient(const LineClient&) = delete;

@@ -131,8 +131,13 @@ Status LinuxCncController::Handshake() {
   // Echo is on until this command is read, so it may come back as an echo,
   // and it sends no acknowledgement: verbose is off until the next one.
   if (Status s = client_.Send("set echo off"); !s.ok()) return Error(s.message());
+  // Echoes of either command may come first (seen after a machine restart).
   StatusOr<std::string> reply = Ask("set verbose on");
-  if (reply.ok() && UpperCase(JoinWords(ReplyWords(*reply))) == "SET ECHO OFF") reply = client_.ReadLine(options_.reply_timeout);
+  for (int echo = 0; echo < 2 && reply.ok(); ++echo) {
+    const std::string line = UpperCase(JoinWords(ReplyWords(*reply)));
+    if (line != "SET ECHO OFF" && line != "SET VERBOSE ON") break;
+    reply = client_.ReadLine(options_.reply_timeout);
+  }
   if (!reply.ok()) return Error("'set verbose on': " + reply.status().message());
   if (UpperCase(JoinWords(ReplyWords(*reply))) != "SET VERBOSE ACK")
     return Unexpected("set verbose on", *reply, "'SET VERBOSE ACK'");

@@ -5,23 +5,26 @@
 // camera of the sim world (workflow/sim_world.h) shows what a real camera
 // would see of the real machine.
 //
-// It keeps its own linuxcncrsh connection and only reads (`hello`,
-// `get user_linear_units`, `get joint_pos`; never `set enable`), so it runs
-// beside the controller of `hexcal acquire`. Each poll's joints become the
-// legs' encoder readings through the robot file the machine runs with
-// (L = joint / scale − l, workflow/linuxcnc_geometry.h: that file's offsets l
-// are the machine's joint homes), the world's legs are driven there
-// (SimWorld::DriveLegs) and, when they moved, the world's frame is rendered
-// again. A lost connection (the machine restarted, with another robot file
-// perhaps) is retried, and the robot file read again, until the follower
-// stops.
+// It reads the machine on this host through LinuxCNC's status channel (its
+// Python module `linuxcnc`, in a child process of Debian's /usr/bin/python3:
+// shared memory, read-only), not through linuxcncrsh, whose sessions share
+// reply buffers: a second client there garbled the controller's replies
+// (`ABS_ACT_POS 0 -49.03`). Each poll's joints become the legs' encoder
+// readings through the robot file the machine runs with (L = joint / scale −
+// l, workflow/linuxcnc_geometry.h: that file's offsets l are the machine's
+// joint homes); the true FK starts from the machine's own world pose (its
+// model's FK), within the model's error of the truth; the world's frame is
+// rendered again when the joints moved. Before homing the platform stays
+// where it is. The robot file is read again when it changes (the machine was
+// restarted with another robot), and a machine that is down is waited for.
 //
-//   auto follower = MachineFollower::Start(address, "machine/robot.yaml", world, {});
+//   auto follower = MachineFollower::Start("machine/robot.yaml", world, {});
 //   cv::Mat frame = (*follower)->LatestFrame();  // the platform where the joints put it
 #pragma once
 
 #include <atomic>
 #include <chrono>
+#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -30,28 +33,28 @@
 #include <opencv2/core.hpp>
 
 #include "core/status.h"
-#include "workflow/linuxcnc_controller.h"
+#include "workflow/linuxcnc_geometry.h"
 #include "workflow/sim_world.h"
 
 namespace hexcal::workflow {
 
 struct FollowerOptions {
-  std::chrono::milliseconds poll_interval{40};  // one frame period of the fake camera (25 fps)
+  std::string python = "/usr/bin/python3";  // with LinuxCNC's module `linuxcnc`
+  MachineUnit unit = MachineUnit::kMillimetre;  // the machine's [TRAJ] LINEAR_UNITS
+  std::chrono::milliseconds poll_interval{20};
   std::chrono::milliseconds reply_timeout{2000};
-  std::chrono::milliseconds retry_interval{250};  // after a lost connection
   // Joints that moved by less than this (machine units) leave the frame as it is.
   double joint_tolerance = 1e-7;
 };
 
 class MachineFollower {
  public:
-  // Connects once (so that a wrong address is an error now, not a silent
-  // retry loop), renders the first frame and starts polling.
-  static StatusOr<std::unique_ptr<MachineFollower>> Start(const LinuxCncAddress& address,
-                                                          const std::string& machine_robot_file,
+  // Starts the status reader and renders the first frame (the platform where
+  // the world starts, if the machine is down or not homed).
+  static StatusOr<std::unique_ptr<MachineFollower>> Start(const std::string& machine_robot_file,
                                                           std::shared_ptr<SimWorld> world,
                                                           const FollowerOptions& options);
-  ~MachineFollower();  // stops polling
+  ~MachineFollower();  // stops polling and the reader
   MachineFollower(const MachineFollower&) = delete;
   MachineFollower& operator=(const MachineFollower&) = delete;
 
@@ -61,22 +64,24 @@ class MachineFollower {
   uint64_t frames_rendered() const { return frames_rendered_; }
   std::string Problem() const;
 
-  struct Connection;  // a linuxcncrsh session and the machine's robot file (machine_follower.cc)
+  struct Reader;  // the status reader process and its socket (machine_follower.cc)
 
  private:
-  MachineFollower(LinuxCncAddress address, std::string robot_file, std::shared_ptr<SimWorld> world,
-                  FollowerOptions options);
-  // One poll: read the joints, drive the world, render if they moved. An
-  // error is the connection's (a lost or unreadable reply).
-  Status Poll(Connection& connection);
+  MachineFollower(std::string robot_file, std::shared_ptr<SimWorld> world, FollowerOptions options);
+  // The machine's robot file, read again when it changed.
+  Status RefreshRobot();
+  // One status line: drive the world, render if the joints moved.
+  Status Follow(const std::string& line);
   void Run();
   void SetProblem(const std::string& problem);
+  void SetFrame(cv::Mat frame);
 
-  const LinuxCncAddress address_;
   const std::string robot_file_;
   const std::shared_ptr<SimWorld> world_;
   const FollowerOptions options_;
-  std::unique_ptr<Connection> connection_;
+  std::unique_ptr<Reader> reader_;
+  Robot robot_;
+  std::filesystem::file_time_type robot_time_{};
   Vector6d last_joints_;
   bool have_joints_ = false;
   mutable std::mutex mutex_;  // guards frame_ and problem_

@@ -58,8 +58,8 @@ Status SimWorld::Command(const Vector6d& pose_vector) {
   return Status::Ok();
 }
 
-Status SimWorld::DriveLegs(const LegReadings& encoders) {
-  StatusOr<LocalFkResult> actual = ForwardKinematicsLocal(scene_.truth, encoders, ActualPose());
+Status SimWorld::DriveLegs(const LegReadings& encoders, const std::optional<Pose>& near) {
+  StatusOr<LocalFkResult> actual = ForwardKinematicsLocal(scene_.truth, encoders, near ? *near : ActualPose());
   if (!actual.ok())
     return Status::Failed("the simulated platform has no pose for the legs (" + PoseText(encoders) +
                           ") near where it is: " + actual.status().message());

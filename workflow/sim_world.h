@@ -60,8 +60,10 @@ class SimWorld {
   // platform sits where the true robot puts those legs, found by local FK
   // from where it is now. A failure (the machine stays) when the true robot
   // has no pose near it for them. The `sim-camera` command follows a
-  // LinuxCNC machine's joints this way (workflow/machine_follower.h).
-  Status DriveLegs(const LegReadings& encoders);
+  // LinuxCNC machine's joints this way (workflow/machine_follower.h), with
+  // `near` the machine's own idea of the pose (its model's FK), a start the
+  // FK converges from however far the platform moved since the last call.
+  Status DriveLegs(const LegReadings& encoders, const std::optional<Pose>& near = std::nullopt);
   // The leg sensors: the driven lengths plus uniform noise of ±noise.leg.
   LegReadings ReadLegs();
   // The camera's image of the board at the true platform pose (CV_8UC1).

@@ -1,11 +1,12 @@
-// hexcal sim-camera --session DIR --follow linuxcnc://HOST:PORT --machine-robot FILE
-//                   [--seed N] [--interface ADDRESS] [--serial NAME]
+// hexcal sim-camera --session DIR --machine-robot FILE [--machine-unit mm|inch]
+//                   [--seed N] [--interface ADDRESS] [--serial NAME] [--python PATH]
 //
 // A GenICam (GigE Vision) camera of the sim world that follows a LinuxCNC
 // machine: the closed loop in simulation (docs/acquisition.md). The session's
 // hidden true robot, camera and target are drawn from --seed as `acquire
 // --controller sim` draws them and written to DIR/truth/; the platform sits
-// where the true robot puts the machine's joints (workflow/machine_follower.h);
+// where the true robot puts the joints of the LinuxCNC machine running on this
+// host (workflow/machine_follower.h);
 // the camera serves the rendered board through libaravis' fake GigE Vision
 // camera on --interface, for `hexcal acquire --camera aravis:NAME`. Runs until
 // Ctrl-C or SIGTERM.
@@ -28,7 +29,8 @@ namespace hexcal::cli {
 namespace {
 
 struct SimCameraOptions {
-  std::string session, follow, machine_robot, interface = "127.0.0.1", serial = "HEXCAL01";
+  std::string session, machine_robot, machine_unit = "mm", interface = "127.0.0.1", serial = "HEXCAL01";
+  std::string python = "/usr/bin/python3";
   uint64_t seed = 1;
 };
 
@@ -48,13 +50,18 @@ void ServeUntilStopped(const workflow::MachineFollower& follower, std::ostream& 
 }
 
 int RunSimCamera(const SimCameraOptions& options, std::ostream& out, std::ostream& err) {
-  StatusOr<workflow::LinuxCncAddress> address = workflow::ParseLinuxCncUrl(options.follow);
-  if (!address.ok()) return ReportError(err, "sim-camera", address.status());
+  const std::optional<workflow::MachineUnit> unit = workflow::ParseMachineUnit(options.machine_unit);
+  if (!unit)
+    return ReportError(err, "sim-camera",
+                       Status::Error("--machine-unit: '" + options.machine_unit + "'; accepted: mm, inch"));
   StatusOr<std::shared_ptr<workflow::SimWorld>> world = workflow::SimWorld::ForSession(options.session, options.seed);
   if (!world.ok()) return ReportError(err, "sim-camera", world.status());
   if (Status s = (*world)->WriteTruth(options.session); !s.ok()) return ReportError(err, "sim-camera", s);
+  workflow::FollowerOptions follow;
+  follow.python = options.python;
+  follow.unit = *unit;
   StatusOr<std::unique_ptr<workflow::MachineFollower>> follower =
-      workflow::MachineFollower::Start(*address, options.machine_robot, *world, {});
+      workflow::MachineFollower::Start(options.machine_robot, *world, follow);
   if (!follower.ok()) return ReportError(err, "sim-camera", follower.status());
   workflow::FakeCameraOptions camera_options;
   camera_options.interface = options.interface;
@@ -65,8 +72,8 @@ int RunSimCamera(const SimCameraOptions& options, std::ostream& out, std::ostrea
   if (!camera.ok()) return ReportError(err, "sim-camera", camera.status());
   std::signal(SIGINT, StopServing);
   std::signal(SIGTERM, StopServing);
-  out << "sim-camera: serving aravis:" << (*camera)->DeviceId() << " on " << options.interface << ", following "
-      << options.follow << "; the truth is in " << options.session << "/truth" << std::endl;
+  out << "sim-camera: serving aravis:" << (*camera)->DeviceId() << " on " << options.interface
+      << ", following this host's LinuxCNC; the truth is in " << options.session << "/truth" << std::endl;
   ServeUntilStopped(**follower, err);
   out << "sim-camera: stopped after " << (*follower)->frames_rendered() << " rendered frames" << std::endl;
   return kExitOk;
@@ -84,13 +91,15 @@ int RunSimCamera(const SimCameraOptions&, std::ostream&, std::ostream& err) {
 void AddSimCameraCommand(CLI::App& app, int* exit_code) {
   auto options = std::make_shared<SimCameraOptions>();
   CLI::App* sub = app.add_subcommand(
-      "sim-camera", "serve a GenICam camera of the sim world that follows a LinuxCNC machine (closed-loop simulation)");
+      "sim-camera", "serve a GenICam camera of the sim world that follows this host's LinuxCNC (closed-loop simulation)");
   sub->add_option("--session", options->session, "session folder: its robot, camera and target; truth written there")
       ->required();
-  sub->add_option("--follow", options->follow, "the machine to follow: linuxcnc://HOST:PORT")->required();
   sub->add_option("--machine-robot", options->machine_robot,
                   "the robot file the machine runs with (its offsets l are the joints' homes)")
       ->required();
+  sub->add_option("--machine-unit", options->machine_unit, "the machine's [TRAJ] LINEAR_UNITS: mm or inch")
+      ->capture_default_str();
+  sub->add_option("--python", options->python, "a Python 3 with LinuxCNC's module linuxcnc")->capture_default_str();
   sub->add_option("--seed", options->seed, "seed of the hidden truth (as acquire --controller sim --seed)")
       ->capture_default_str();
   sub->add_option("--interface", options->interface, "IPv4 address to serve the camera on")->capture_default_str();
