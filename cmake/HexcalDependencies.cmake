@@ -20,6 +20,18 @@ find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs calib3d videoio
 # Debian's libapriltag-dev ships only a pkg-config file.
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(APRILTAG REQUIRED IMPORTED_TARGET apriltag)
+# GenICam cameras (the aravis: camera, workflow/aravis_frame_source.h) and the
+# fake GigE Vision camera of the tests: optional. Without it hexcal builds and
+# refuses aravis: URLs, saying what to install.
+set(HEXCAL_HAVE_ARAVIS OFF)
+if(HEXCAL_WITH_ARAVIS)
+  pkg_check_modules(ARAVIS IMPORTED_TARGET aravis-0.8)
+  if(ARAVIS_FOUND)
+    set(HEXCAL_HAVE_ARAVIS ON)
+  else()
+    message(STATUS "Aravis 0.8 not found: aravis: cameras are refused (install libaravis-dev: scripts/install-deps.sh)")
+  endif()
+endif()
 find_package(Qt5 5.15 REQUIRED COMPONENTS Widgets Charts Svg)
 # Debian's VTK 9.1 config references MPI::MPI_C: find MPI (C enabled) first.
 find_package(MPI COMPONENTS C)

@@ -13,6 +13,14 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth libgl1-mesa-dri
   clang libclang-rt-14-dev
+  # LinuxCNC (2.9, Debian's build without a realtime kernel): the simulated
+  # hexapod of scripts/linuxcnc-sim.sh and tests/cli/linuxcnc.sh; ~40 s.
+  linuxcnc-uspace
+  # GenICam cameras through Aravis 0.8 (the aravis:NAME camera, the fake GigE
+  # Vision camera of the tests, arv-tool-0.8 and arv-fake-gv-camera-0.8).
+  # libusb-1.0-0-dev: aravis-0.8.pc requires it, and --no-install-recommends
+  # leaves it out (../shared/devices.md).
+  aravis-tools aravis-tools-cli libaravis-dev libusb-1.0-0-dev
 )
 
 missing=()

@@ -12,6 +12,7 @@
 #include "core/csv.h"
 #include "core/robot_io.h"
 #include "core/session.h"
+#include "workflow/session_calibrate.h"
 #include "workflow/session_edits.h"
 #include "workflow/sim_world.h"
 
@@ -121,6 +122,12 @@ std::string PoseNote(const PoseRecord& record, int total) {
   return line.str();
 }
 
+StatusOr<Robot> LoadSessionRobot(const std::string& dir) {
+  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
+  if (!config.ok()) return config.status();
+  return LoadRobot(ResolveSessionFile(dir, config->robot));
+}
+
 // The sim truth is written once; a resumed run must draw the same truth.
 Status WriteOrCheckTruth(const SimWorld& world, const std::string& dir, uint64_t seed) {
   const std::string robot_file = (fs::path(dir) / "truth" / "robot.yaml").string();
@@ -217,10 +224,18 @@ StatusOr<AcquisitionRig> OpenAcquisitionRig(const std::string& dir, const std::s
     if (!world.ok()) return world.status();
     rig.sim = *world;
   }
-  StatusOr<std::unique_ptr<Controller>> controller = OpenController(controller_url, {rig.sim});
-  if (!controller.ok()) return controller.status();
+  // The camera first: a bad camera URL is refused before a real machine is
+  // powered on and homed.
   StatusOr<std::unique_ptr<FrameSource>> camera = OpenFrameSource(camera_url, {rig.sim});
   if (!camera.ok()) return camera.status();
+  ControllerOptions controller_options{rig.sim, nullptr};
+  if (controller_url != "sim") {  // a real machine converts poses and joints with the session's robot
+    StatusOr<Robot> robot = LoadSessionRobot(dir);
+    if (!robot.ok()) return robot.status();
+    controller_options.robot = std::make_shared<const Robot>(std::move(*robot));
+  }
+  StatusOr<std::unique_ptr<Controller>> controller = OpenController(controller_url, controller_options);
+  if (!controller.ok()) return controller.status();
   rig.controller = std::move(*controller);
   rig.camera = std::move(*camera);
   if (sim) {  // the truth is written only for a rig that opened whole

@@ -1,8 +1,12 @@
 #include "workflow/controller.h"
 
 #include <chrono>
+#include <cmath>
 #include <thread>
 
+#include "core/constraints.h"
+#include "core/csv.h"
+#include "workflow/linuxcnc_controller.h"
 #include "workflow/sim_world.h"
 
 namespace hexcal::workflow {
@@ -40,9 +44,33 @@ StatusOr<std::unique_ptr<Controller>> OpenController(const std::string& url, con
     if (!options.sim) return Status::Error("controller 'sim' needs the session's sim world (OpenAcquisitionRig)");
     return std::unique_ptr<Controller>(std::make_unique<SimController>(options.sim));
   }
-  if (url.rfind("linuxcnc://", 0) == 0)
-    return BadUrl(url, "LinuxCNC through linuxcncrsh is not yet supported (docs/acquisition.md)");
+  if (url.rfind("linuxcnc://", 0) == 0) {
+    StatusOr<LinuxCncAddress> address = ParseLinuxCncUrl(url);
+    if (!address.ok()) return address.status();
+    if (!options.robot) return Status::Error("controller '" + url + "' needs the session's robot (OpenAcquisitionRig)");
+    return OpenLinuxCncController(*address, *options.robot);
+  }
   return BadUrl(url, url.empty() ? "empty URL" : "unknown kind");
+}
+
+Status CheckPoseInWorkspace(const Robot& robot, const Vector6d& pose) {
+  const ConstraintReport report = EvaluateConstraints(robot, robot.PoseFromVector(pose));
+  if (report.feasible) return Status::Ok();
+  return Status::Error("pose " + PoseText(pose) + " is out of the robot's workspace: " + report.worst_label + " by " +
+                       FormatNumber(std::round(-report.worst_margin * 1e4) / 1e4));
+}
+
+Vector6d WorkspaceCentre(const Robot& robot) {
+  Vector6d centre = Vector6d::Zero();
+  if (const std::optional<PoseBox> box = robot.limits.SamplingBox(); box && box->IsComplete())
+    for (int k = 0; k < 6; ++k) centre[k] = box->bounds[k]->Centre();
+  return centre;
+}
+
+std::string PoseText(const Vector6d& pose) {
+  std::string text = "(";
+  for (int k = 0; k < 6; ++k) text += FormatNumber(pose[k]) + (k < 5 ? ", " : ")");
+  return text;
 }
 
 }  // namespace hexcal::workflow

@@ -4,7 +4,8 @@
 //
 //   sim                    the sim world (workflow/sim_world.h): a hidden true
 //                          robot that the nominal robot's IK drives
-//   linuxcnc://HOST:PORT   LinuxCNC's linuxcncrsh (devices.md): not yet supported
+//   linuxcnc://HOST:PORT   a LinuxCNC hexapod (genhexkins) through linuxcncrsh
+//                          (workflow/linuxcnc_controller.h)
 //
 // Poses are plan.csv's: x, y, z in the robot's length unit, q1..q3 in degrees
 // in the robot's Euler convention; readings are hexcal's L (robot unit).
@@ -20,6 +21,7 @@
 
 #include "core/inverse_kinematics.h"
 #include "core/pose.h"
+#include "core/robot.h"
 #include "core/status.h"
 
 namespace hexcal::workflow {
@@ -45,11 +47,23 @@ struct ControllerOptions {
   // The world a `sim` controller moves (OpenAcquisitionRig in
   // workflow/acquire_step.h makes it, with the `sim` camera looking at it).
   std::shared_ptr<SimWorld> sim;
+  // The session's nominal robot, which a `linuxcnc://` controller converts
+  // poses and joints with (OpenAcquisitionRig loads it).
+  std::shared_ptr<const Robot> robot;
 };
 
 // The accepted URL forms, for messages and --help.
-constexpr const char* kControllerForms = "sim, linuxcnc://HOST:PORT (not yet supported)";
+constexpr const char* kControllerForms = "sim, linuxcnc://HOST:PORT";
 
 StatusOr<std::unique_ptr<Controller>> OpenController(const std::string& url, const ControllerOptions& options = {});
+
+// Every controller refuses a pose the robot cannot take before moving: bad
+// input naming the pose and the limit it breaks by how much.
+Status CheckPoseInWorkspace(const Robot& robot, const Vector6d& pose);
+// The centre of the robot's sampling box (robot unit, degrees; zero without
+// one): where the sim machine starts, and the LinuxCNC controller's via pose.
+Vector6d WorkspaceCentre(const Robot& robot);
+// "(1, 2, 53, 0, 0, 5)": a pose in messages.
+std::string PoseText(const Vector6d& pose);
 
 }  // namespace hexcal::workflow

@@ -8,6 +8,10 @@
 
 #include "workflow/sim_world.h"
 
+#ifdef HEXCAL_HAVE_ARAVIS
+#include "workflow/aravis_frame_source.h"
+#endif
+
 namespace hexcal::workflow {
 namespace {
 
@@ -149,8 +153,14 @@ StatusOr<std::unique_ptr<FrameSource>> OpenFrameSource(const std::string& url, c
   const std::string rest = colon == std::string::npos ? "" : url.substr(colon + 1);
   if (scheme == "file") return OpenFile(url, rest);
   if (scheme == "v4l2") return OpenV4l2(url, rest);
-  if (scheme == "aravis")
-    return BadUrl(url, "GenICam cameras through Aravis are not available in this build (docs/acquisition.md)");
+  if (scheme == "aravis") {
+#ifdef HEXCAL_HAVE_ARAVIS
+    return OpenAravisFrameSource(url);
+#else
+    return Status::Error("camera '" + url +
+                         "': this hexcal was built without Aravis (install libaravis-dev: scripts/install-deps.sh)");
+#endif
+  }
   return BadUrl(url, url.empty() ? "empty URL" : "unknown kind '" + scheme + "'");
 }
 

@@ -7,7 +7,11 @@
 //   v4l2:N         /dev/videoN through OpenCV's V4L2 backend
 //   file:PATH      a video file (one frame per Grab, in order) or an image
 //                  (the same frame every time), through OpenCV
-//   aravis:NAME    GenICam cameras: not in this build yet (devices.md)
+//   aravis:NAME[?exposure=US&gain=DB]
+//                  a GenICam camera (GigE Vision, USB3 Vision) through Aravis,
+//                  NAME as arv-tool-0.8 lists it; each Grab gives a frame that
+//                  started after the call (workflow/aravis_frame_source.h).
+//                  A build without Aravis refuses it, naming the package.
 //
 //   StatusOr<std::unique_ptr<FrameSource>> camera = OpenFrameSource("v4l2:0");
 //   if (!camera.ok()) return camera.status();  // names the URL and the forms above
@@ -47,7 +51,7 @@ struct FrameSourceOptions {
 };
 
 // The accepted URL forms, for messages and --help.
-constexpr const char* kFrameSourceForms = "sim, v4l2:N, file:PATH (aravis:NAME is not in this build)";
+constexpr const char* kFrameSourceForms = "sim, v4l2:N, file:PATH, aravis:NAME[?exposure=US&gain=DB]";
 
 StatusOr<std::unique_ptr<FrameSource>> OpenFrameSource(const std::string& url, const FrameSourceOptions& options = {});
 

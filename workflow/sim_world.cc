@@ -9,23 +9,11 @@
 #include "core/robot_io.h"
 #include "core/session.h"
 #include "vision/renderer.h"
+#include "workflow/controller.h"
 #include "workflow/session_calibrate.h"
 
 namespace hexcal::workflow {
 namespace {
-
-Vector6d SamplingBoxCentre(const Robot& robot) {
-  Vector6d centre = Vector6d::Zero();
-  if (const std::optional<PoseBox> box = robot.limits.SamplingBox(); box && box->IsComplete())
-    for (int k = 0; k < 6; ++k) centre[k] = box->bounds[k]->Centre();
-  return centre;
-}
-
-std::string PoseText(const Vector6d& pose) {
-  std::string text = "(";
-  for (int k = 0; k < 6; ++k) text += FormatNumber(pose[k]) + (k < 5 ? ", " : ")");
-  return text;
-}
 
 }  // namespace
 
@@ -41,7 +29,7 @@ StatusOr<std::shared_ptr<SimWorld>> SimWorld::ForSession(const std::string& dir,
   DemoSceneOptions options;
   options.seed = seed;
   auto world = std::make_shared<SimWorld>(MakeDemoScene(*nominal, *camera, *target, options));
-  if (Status s = world->Command(SamplingBoxCentre(*nominal)); !s.ok())
+  if (Status s = world->Command(WorkspaceCentre(*nominal)); !s.ok())
     return Status::Error(dir +
                          ": the sim machine cannot start at the centre of the robot's sampling box: " + s.message());
   return world;
@@ -57,11 +45,8 @@ SimWorld::~SimWorld() = default;
 
 Status SimWorld::Command(const Vector6d& pose_vector) {
   const Robot& nominal = scene_.nominal;
+  if (Status s = CheckPoseInWorkspace(nominal, pose_vector); !s.ok()) return s;
   const Pose commanded = nominal.PoseFromVector(pose_vector);
-  const ConstraintReport report = EvaluateConstraints(nominal, commanded);
-  if (!report.feasible)
-    return Status::Error("pose " + PoseText(pose_vector) + " is out of the robot's workspace: " + report.worst_label +
-                         " by " + FormatNumber(std::round(-report.worst_margin * 1e4) / 1e4));
   const LegReadings legs = InverseKinematics(nominal, commanded);
   StatusOr<LocalFkResult> actual = ForwardKinematicsLocal(scene_.truth, legs, commanded);
   if (!actual.ok())
@@ -69,6 +54,17 @@ Status SimWorld::Command(const Vector6d& pose_vector) {
                           ": the simulated platform has no pose for its legs: " + actual.status().message());
   std::lock_guard<std::mutex> hold(mutex_);
   driven_legs_ = legs;
+  actual_pose_ = actual->pose;
+  return Status::Ok();
+}
+
+Status SimWorld::DriveLegs(const LegReadings& encoders, const std::optional<Pose>& near) {
+  StatusOr<LocalFkResult> actual = ForwardKinematicsLocal(scene_.truth, encoders, near ? *near : ActualPose());
+  if (!actual.ok())
+    return Status::Failed("the simulated platform has no pose for the legs (" + PoseText(encoders) +
+                          ") near where it is: " + actual.status().message());
+  std::lock_guard<std::mutex> hold(mutex_);
+  driven_legs_ = encoders;
   actual_pose_ = actual->pose;
   return Status::Ok();
 }

@@ -55,6 +55,15 @@ class SimWorld {
   // the true robot has no pose for those legs near it. The machine stays where
   // it was on an error.
   Status Command(const Vector6d& pose);
+  // Drives the legs to `encoders` (the readings the sensors would show
+  // without noise), as a machine that is not the sim controller does: the
+  // platform sits where the true robot puts those legs, found by local FK
+  // from where it is now. A failure (the machine stays) when the true robot
+  // has no pose near it for them. The `sim-camera` command follows a
+  // LinuxCNC machine's joints this way (workflow/machine_follower.h), with
+  // `near` the machine's own idea of the pose (its model's FK), a start the
+  // FK converges from however far the platform moved since the last call.
+  Status DriveLegs(const LegReadings& encoders, const std::optional<Pose>& near = std::nullopt);
   // The leg sensors: the driven lengths plus uniform noise of ±noise.leg.
   LegReadings ReadLegs();
   // The camera's image of the board at the true platform pose (CV_8UC1).

@@ -20,6 +20,9 @@ constexpr CommandEntry kCommands[] = {
     {"session", AddSessionCommand},
     {"report", AddReportCommand},
     {"acquire", AddAcquireCommand},
+    {"verify", AddVerifyCommand},
+    {"sim-camera", AddSimCameraCommand},
+    {"export", AddExportCommand},
 };
 }  // namespace
 

@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# linuxcnc.sh HEXCAL: `hexcal acquire --controller linuxcnc://...` against a
+# real LinuxCNC (genhexkins, simulated drives) started by
+# scripts/linuxcnc-sim.sh with inria-left-hand's geometry (a cm robot on a
+# mm machine). Three poses, with rotations about every axis, are acquired;
+# each recorded reading must be hexcal's IK of the commanded pose within
+# 2e-6 cm (linuxcncrsh prints joints to 1e-6 mm). Skipped (exit 77) without
+# LinuxCNC or when another LinuxCNC runs on the host (one per host).
+set -eu
+hexcal=$1
+here=$(cd "$(dirname "$0")" && pwd)
+sim=$here/../../scripts/linuxcnc-sim.sh
+if ! command -v linuxcnc >/dev/null; then
+  echo "linuxcnc is not installed (apt-get install linuxcnc-uspace): skipped"; exit 77
+fi
+if pid=$(pgrep -x rtapi_app); then
+  echo "another LinuxCNC runs on this host (rtapi_app $pid): skipped"; exit 77
+fi
+dir=$(mktemp -d)
+cleanup() {
+  [ ! -e "$dir/machine/linuxcnc.pid" ] || "$sim" stop "$dir/machine" >/dev/null || true
+  rm -rf "$dir"
+}
+trap cleanup EXIT
+port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+
+"$sim" start "$dir/machine" --robot inria-left-hand --home "0 0 53.5 0 0 0" --port "$port" --hexcal "$hexcal"
+s=$dir/s
+"$hexcal" session init --robot inria-left-hand --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 \
+  --noise-position 0.005 --noise-angle 0.02 --noise-leg 0.001 "$s" >/dev/null
+"$hexcal" target print --target aprilgrid-6x6 --out "$dir/still.png" >/dev/null
+cat >"$dir/poses.csv" <<'CSV'
+x,y,z,q1,q2,q3
+0,0,53.5,0,0,0
+1,-1,53,2,-2,3
+-1,1.5,54,-3,2,-4
+CSV
+"$hexcal" acquire --session "$s" --controller "linuxcnc://127.0.0.1:$port" --camera "file:$dir/still.png" \
+  --poses "$dir/poses.csv" >"$dir/out" 2>"$dir/err" || { cat "$dir/out" "$dir/err"; exit 1; }
+grep -q "LinuxCNC at 127.0.0.1:$port" "$dir/out" || { cat "$dir/out"; exit 1; }
+"$hexcal" ik --robot inria-left-hand --poses "$dir/poses.csv" --out "$dir/ik.csv" >/dev/null
+
+python3 - "$s/legs.csv" "$dir/ik.csv" <<'PY'
+import csv, sys
+recorded = list(csv.DictReader(open(sys.argv[1])))
+expected = list(csv.DictReader(open(sys.argv[2])))
+assert len(recorded) == 3, f"{len(recorded)} rows recorded, expected 3"
+worst = 0.0
+for row, ik in zip(recorded, expected):
+    for leg in ("L1", "L2", "L3", "L4", "L5", "L6"):
+        worst = max(worst, abs(float(row[leg]) - float(ik[leg])))
+print(f"linuxcnc: 3 poses, readings - IK of the commanded poses: max {worst:.2e} cm")
+assert worst < 2e-6, f"readings differ from the IK by {worst} cm"
+PY
+
+"$sim" stop "$dir/machine" >/dev/null
+! pgrep -x rtapi_app >/dev/null || { echo "rtapi_app still runs after stop"; exit 1; }
+echo "linuxcnc: ok"

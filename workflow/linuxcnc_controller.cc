@@ -1,0 +1,351 @@
+#include "workflow/linuxcnc_controller.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+#include "workflow/line_client.h"
+#include "workflow/linuxcnc_reply.h"
+#include "workflow/linuxcnc_geometry.h"
+
+namespace hexcal::workflow {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// The six-number form of a pose in messages: "(x, y, z, a, b, c)".
+std::string SixText(const Vector6d& values) {
+  std::string text = "(";
+  for (int k = 0; k < 6; ++k) text += FixedNumber(values[k], 6) + (k < 5 ? ", " : ")");
+  return text;
+}
+
+class LinuxCncController final : public Controller {
+ public:
+  LinuxCncController(LineClient client, Robot robot, LinuxCncOptions options)
+      : client_(std::move(client)), robot_(std::move(robot)), options_(std::move(options)) {}
+  ~LinuxCncController() override { (void)client_.Send("quit"); }
+
+  // The opening sequence of linuxcnc_controller.h.
+  Status Open();
+  Status MoveTo(const Vector6d& pose) override;
+  // Sends one G0 to a world pose (machine units, degrees); `text` names it in messages.
+  Status SendMove(const Vector6d& world, const std::string& text);
+  Status WaitSettled(double settle_seconds) override;
+  StatusOr<LegReadings> ReadLegs() override;
+  std::string Describe() const override {
+    return "LinuxCNC at " + client_.peer() + " (" + server_ + ", machine in " + MachineUnitName(unit_) + ", robot " +
+           robot_.name + " in " + LengthUnitName(robot_.length_unit) + ")";
+  }
+
+ private:
+  Status Error(const std::string& problem) const {
+    return Status::Failed("LinuxCNC at " + client_.peer() + ": " + problem);
+  }
+  Status Unexpected(const std::string& command, const std::string& reply, const std::string& expected) const {
+    return Error("'" + command + "' was answered " + Excerpt(reply) + " (expected " + expected + ")");
+  }
+  StatusOr<std::string> Ask(const std::string& command);
+  Status Expect(const std::string& command, const std::string& acknowledgement, const std::string& hint = "");
+  // The reply "KEY word ..." to `command`, as its words after KEY.
+  StatusOr<std::vector<std::string>> AskWords(const std::string& command, const std::string& key, size_t count);
+  StatusOr<Vector6d> AskSixNumbers(const std::string& command, const std::string& key);
+  Status Handshake();
+  Status CheckUnits();
+  Status HomeIfNeeded();
+  StatusOr<bool> AllHomed();
+  // The oldest error message the machine has not reported yet; empty if none.
+  StatusOr<std::string> NextMachineError();
+  Status DiscardOldErrors();
+  struct Motion {
+    bool idle = false;         // the program (the MDI command) has ended
+    bool in_position = false;  // and the platform is at the commanded pose
+  };
+  StatusOr<Motion> PollMotion();
+
+  LineClient client_;
+  Robot robot_;
+  LinuxCncOptions options_;
+  MachineUnit unit_ = MachineUnit::kMillimetre;
+  std::string server_ = "linuxcncrsh";  // the HELLO ACK's server name and version
+  Vector6d target_ = Vector6d::Zero();  // the commanded world pose, machine units and degrees
+  std::string target_text_;             // hexcal's pose, for messages
+  std::string lost_;                    // why the connection was given up, if it was
+  bool moving_ = false;                 // a MoveTo was accepted and WaitSettled has not confirmed it
+};
+
+StatusOr<std::string> LinuxCncController::Ask(const std::string& command) {
+  // After a lost or late reply, the next line read could be the answer to an
+  // earlier command: the connection is not used again.
+  if (!lost_.empty()) return Error("the connection is unusable since an earlier error (" + lost_ + "); reconnect");
+  Status sent = client_.Send(command);
+  StatusOr<std::string> reply = sent.ok() ? client_.ReadLine(options_.reply_timeout) : StatusOr<std::string>(sent);
+  if (reply.ok()) return reply;
+  lost_ = "'" + command + "': " + reply.status().message();
+  return Error(lost_);
+}
+
+Status LinuxCncController::Expect(const std::string& command, const std::string& acknowledgement,
+                                  const std::string& hint) {
+  StatusOr<std::string> reply = Ask(command);
+  if (!reply.ok()) return reply.status();
+  if (UpperCase(JoinWords(ReplyWords(*reply))) == acknowledgement) return Status::Ok();
+  Status unexpected = Unexpected(command, *reply, "'" + acknowledgement + "'");
+  return hint.empty() ? unexpected : Status::Failed(unexpected.message() + ": " + hint);
+}
+
+StatusOr<std::vector<std::string>> LinuxCncController::AskWords(const std::string& command, const std::string& key,
+                                                                size_t count) {
+  StatusOr<std::string> reply = Ask(command);
+  if (!reply.ok()) return reply.status();
+  std::vector<std::string> words = ReplyWords(*reply);
+  if (words.size() != count + 1 || UpperCase(words[0]) != key)
+    return Unexpected(command, *reply, key + " and " + std::to_string(count) + " value(s)");
+  words.erase(words.begin());
+  return words;
+}
+
+StatusOr<Vector6d> LinuxCncController::AskSixNumbers(const std::string& command, const std::string& key) {
+  StatusOr<std::vector<std::string>> words = AskWords(command, key, 6);
+  if (!words.ok()) return words.status();
+  Vector6d values;
+  for (int k = 0; k < 6; ++k)
+    if (!ParseFiniteNumber((*words)[k], &values[k]))
+      return Error("'" + command + "': value " + std::to_string(k + 1) + " is not a number: " + Excerpt((*words)[k]));
+  return values;
+}
+
+Status LinuxCncController::Handshake() {
+  StatusOr<std::string> hello = Ask("hello " + options_.connect_password + " hexcal 1.0");
+  if (!hello.ok()) return hello.status();
+  const std::vector<std::string> words = ReplyWords(*hello);
+  if (words.size() < 2 || UpperCase(words[0]) != "HELLO" || UpperCase(words[1]) != "ACK")
+    return Unexpected("hello", *hello, "'HELLO ACK ...'; a 'HELLO NAK' means the connect password was refused");
+  if (words.size() >= 4) server_ = words[2] + " " + words[3];
+  // Echo is on until this command is read, so it may come back as an echo,
+  // and it sends no acknowledgement: verbose is off until the next one.
+  if (Status s = client_.Send("set echo off"); !s.ok()) return Error(s.message());
+  // Echoes of either command may come first (seen after a machine restart).
+  StatusOr<std::string> reply = Ask("set verbose on");
+  for (int echo = 0; echo < 2 && reply.ok(); ++echo) {
+    const std::string line = UpperCase(JoinWords(ReplyWords(*reply)));
+    if (line != "SET ECHO OFF" && line != "SET VERBOSE ON") break;
+    reply = client_.ReadLine(options_.reply_timeout);
+  }
+  if (!reply.ok()) return Error("'set verbose on': " + reply.status().message());
+  if (UpperCase(JoinWords(ReplyWords(*reply))) != "SET VERBOSE ACK")
+    return Unexpected("set verbose on", *reply, "'SET VERBOSE ACK'");
+  return Expect("set enable " + options_.enable_password, "SET ENABLE ACK", "the enable password was refused");
+}
+
+Status LinuxCncController::CheckUnits() {
+  StatusOr<std::vector<std::string>> linear = AskWords("get user_linear_units", "USER_LINEAR_UNITS", 1);
+  if (!linear.ok()) return linear.status();
+  const std::optional<MachineUnit> unit = ParseMachineUnit((*linear)[0]);
+  if (!unit)
+    return Error("the machine's linear unit is " + Excerpt((*linear)[0]) +
+                 "; hexcal needs [TRAJ] LINEAR_UNITS = mm or inch");
+  unit_ = *unit;
+  StatusOr<std::vector<std::string>> angular = AskWords("get user_angular_units", "USER_ANGULAR_UNITS", 1);
+  if (!angular.ok()) return angular.status();
+  if (UpperCase((*angular)[0]) != "DEG")
+    return Error("the machine's angular unit is " + Excerpt((*angular)[0]) +
+                 "; genhexkins reads A B C in degrees: set [TRAJ] ANGULAR_UNITS = degree");
+  return Status::Ok();
+}
+
+StatusOr<bool> LinuxCncController::AllHomed() {
+  StatusOr<std::vector<std::string>> homed = AskWords("get joint_homed", "JOINT_HOMED", 6);
+  if (!homed.ok()) return homed.status();
+  return std::all_of(homed->begin(), homed->end(), [](const std::string& word) { return UpperCase(word) == "YES"; });
+}
+
+Status LinuxCncController::HomeIfNeeded() {
+  StatusOr<bool> homed = AllHomed();
+  if (!homed.ok() || *homed) return homed.status();
+  if (Status s = Expect("set mode manual", "SET MODE ACK"); !s.ok()) return s;
+  if (Status s = Expect("set home -1", "SET HOME ACK"); !s.ok()) return s;
+  const Clock::time_point start = Clock::now();
+  while (SecondsSince(start) < options_.motion_timeout_seconds) {
+    std::this_thread::sleep_for(options_.poll_interval);
+    homed = AllHomed();
+    if (!homed.ok() || *homed) return homed.status();
+  }
+  return Error("the joints were not homed within " + FixedNumber(options_.motion_timeout_seconds, 3) + " s");
+}
+
+StatusOr<std::string> LinuxCncController::NextMachineError() {
+  StatusOr<std::string> reply = Ask("get error");
+  // linuxcncrsh answers NAK when its error channel could not be read this
+  // time (seen with a second client connected, the follower of
+  // workflow/machine_follower.h): asked again a few times.
+  for (int retry = 0; retry < 5 && reply.ok() && UpperCase(JoinWords(ReplyWords(*reply))) == "GET NAK"; ++retry) {
+    std::this_thread::sleep_for(options_.poll_interval);
+    reply = Ask("get error");
+  }
+  if (!reply.ok()) return reply.status();
+  const std::vector<std::string> words = ReplyWords(*reply);
+  if (words.empty() || UpperCase(words[0]) != "ERROR") return Unexpected("get error", *reply, "'ERROR ...'");
+  if (words.size() == 2 && UpperCase(words[1]) == "OK") return std::string();
+  return JoinWords(std::vector<std::string>(words.begin() + 1, words.end()));
+}
+
+Status LinuxCncController::DiscardOldErrors() {
+  // linuxcncrsh keeps the machine's messages since it started; a bounded
+  // number, so a bound here that no machine reaches.
+  for (int count = 0; count < 1000; ++count) {
+    StatusOr<std::string> message = NextMachineError();
+    if (!message.ok() || message->empty()) return message.status();
+  }
+  return Error("'get error' never answered 'ERROR OK'");
+}
+
+Status LinuxCncController::Open() {
+  if (Status s = Handshake(); !s.ok()) return s;
+  if (Status s = CheckUnits(); !s.ok()) return s;
+  if (Status s = Expect("set estop off", "SET ESTOP ACK"); !s.ok()) return s;
+  if (Status s = Expect("set machine on", "SET MACHINE ACK"); !s.ok()) return s;
+  if (Status s = HomeIfNeeded(); !s.ok()) return s;
+  if (Status s = Expect("set mode mdi", "SET MODE ACK"); !s.ok()) return s;
+  return DiscardOldErrors();
+}
+
+Status LinuxCncController::SendMove(const Vector6d& world, const std::string& text) {
+  target_ = world;
+  target_text_ = text;
+  std::string command = unit_ == MachineUnit::kInch ? "set mdi G20 G90 G53 G0" : "set mdi G21 G90 G53 G0";
+  static const char* axes[6] = {"X", "Y", "Z", "A", "B", "C"};
+  for (int k = 0; k < 6; ++k) command += std::string(" ") + axes[k] + FixedNumber(target_[k]);
+  if (Status s =
+          Expect(command, "SET MDI ACK", "the machine refused the move (is it in estop, off or not in MDI mode?)");
+      !s.ok())
+    return s;
+  moving_ = true;
+  return Status::Ok();
+}
+
+Status LinuxCncController::MoveTo(const Vector6d& pose) {
+  moving_ = false;
+  if (Status s = CheckPoseInWorkspace(robot_, pose); !s.ok()) return s;
+  // Messages read now belong to earlier commands: WaitSettled's are this move's.
+  if (Status s = DiscardOldErrors(); !s.ok()) return s;
+  const Vector6d target = GenhexkinsWorldFromPose(robot_, pose, unit_);
+  StatusOr<Vector6d> here = AskSixNumbers("get abs_act_pos", "ABS_ACT_POS");
+  if (!here.ok()) return here.status();
+  // G0 is a straight line in X Y Z A B C, along which a leg can pass its
+  // stroke between two poses within it (and stop the machine at a soft
+  // limit): then the move goes through the workspace centre.
+  if (!StraightMoveWithinStrokes(robot_, *here, target, unit_)) {
+    const Vector6d via = GenhexkinsWorldFromPose(robot_, WorkspaceCentre(robot_), unit_);
+    if (!StraightMoveWithinStrokes(robot_, *here, via, unit_) || !StraightMoveWithinStrokes(robot_, via, target, unit_))
+      return Status::Error("pose " + PoseText(pose) + ": no straight move from where the platform is, nor one " +
+                           "through the workspace centre, keeps every leg within its stroke");
+    if (Status s = SendMove(via, "the workspace centre " + PoseText(WorkspaceCentre(robot_))); !s.ok()) return s;
+    if (Status s = WaitSettled(0); !s.ok()) return s;
+  }
+  return SendMove(target, PoseText(pose));
+}
+
+StatusOr<LinuxCncController::Motion> LinuxCncController::PollMotion() {
+  StatusOr<std::vector<std::string>> program = AskWords("get program_status", "PROGRAM_STATUS", 1);
+  if (!program.ok()) return program.status();
+  Motion motion;
+  motion.idle = UpperCase((*program)[0]) == "IDLE";
+  if (!motion.idle) return motion;
+  StatusOr<Vector6d> actual = AskSixNumbers("get abs_act_pos", "ABS_ACT_POS");
+  if (!actual.ok()) return actual.status();
+  motion.in_position = (*actual - target_).cwiseAbs().maxCoeff() <= options_.position_tolerance;
+  return motion;
+}
+
+Status LinuxCncController::WaitSettled(double settle_seconds) {
+  if (!moving_) return Error("no move to wait for: the last MoveTo failed or none was made");
+  const Clock::time_point start = Clock::now();
+  double idle_since = -1;  // when the machine was first seen idle away from the target, seconds since start
+  for (;;) {
+    StatusOr<std::string> message = NextMachineError();
+    if (!message.ok()) return message.status();
+    if (!message->empty()) return Error("the move to " + target_text_ + " failed: " + Excerpt(*message));
+    StatusOr<Motion> motion = PollMotion();
+    if (!motion.ok()) return motion.status();
+    if (motion->in_position) break;
+    const double elapsed = SecondsSince(start);
+    if (elapsed > options_.motion_timeout_seconds)
+      return Error("the platform did not reach " + target_text_ + " within " +
+                   FixedNumber(options_.motion_timeout_seconds, 3) + " s");
+    // Idle right after the command may be a move not started yet; idle for
+    // longer is a move that ended elsewhere.
+    if (!motion->idle) idle_since = -1;
+    if (motion->idle && idle_since < 0) idle_since = elapsed;
+    if (motion->idle && elapsed - idle_since > options_.idle_grace_seconds)
+      return Error("the machine is idle but not at " + target_text_ + " = machine " + SixText(target_));
+    std::this_thread::sleep_for(options_.poll_interval);
+  }
+  moving_ = false;
+  if (settle_seconds > 0) std::this_thread::sleep_for(std::chrono::duration<double>(settle_seconds));
+  return Status::Ok();
+}
+
+StatusOr<LegReadings> LinuxCncController::ReadLegs() {
+  StatusOr<Vector6d> joints = AskSixNumbers("get joint_pos", "JOINT_POS");
+  if (!joints.ok()) return joints.status();
+  return ReadingsFromJoints(robot_, *joints, unit_);
+}
+
+}  // namespace
+
+bool LinuxCncOptions::IsValid(std::string* error) const {
+  if (connect_timeout.count() < 1 || reply_timeout.count() < 1 || poll_interval.count() < 1) {
+    *error = "LinuxCNC time-outs and the poll interval must be at least 1 ms";
+    return false;
+  }
+  if (!(motion_timeout_seconds > 0) || !(idle_grace_seconds > 0) || !(position_tolerance > 0)) {
+    *error = "LinuxCNC motion time-out, idle grace and position tolerance must be positive";
+    return false;
+  }
+  return true;
+}
+
+StatusOr<LinuxCncAddress> ParseLinuxCncUrl(const std::string& url) {
+  const std::string scheme = "linuxcnc://";
+  auto bad = [&](const std::string& problem) {
+    return Status::Error("controller '" + url + "': " + problem + "; expected linuxcnc://HOST:PORT");
+  };
+  if (url.rfind(scheme, 0) != 0) return bad("not a linuxcnc:// URL");
+  const std::string rest = url.substr(scheme.size());
+  LinuxCncAddress address;
+  size_t colon = rest.rfind(':');
+  if (!rest.empty() && rest[0] == '[') {  // [IPv6]:PORT
+    const size_t close = rest.find(']');
+    if (close == std::string::npos || close + 1 >= rest.size() || rest[close + 1] != ':') return bad("bad [address]");
+    address.host = rest.substr(1, close - 1);
+    colon = close + 1;
+  } else if (colon != std::string::npos) {
+    address.host = rest.substr(0, colon);
+  }
+  if (colon == std::string::npos || address.host.empty()) return bad("no host or no port");
+  const std::string port = rest.substr(colon + 1);
+  const bool digits = std::all_of(port.begin(), port.end(), [](unsigned char c) { return std::isdigit(c); });
+  if (port.empty() || port.size() > 5 || !digits) return bad("bad port");
+  address.port = std::stoi(port);
+  if (address.port < 1 || address.port > 65535) return bad("port out of 1..65535");
+  return address;
+}
+
+StatusOr<std::unique_ptr<Controller>> OpenLinuxCncController(const LinuxCncAddress& address, const Robot& robot,
+                                                             const LinuxCncOptions& options) {
+  if (std::string error; !options.IsValid(&error)) return Status::Error(error);
+  StatusOr<LineClient> client = LineClient::Connect(address.host, address.port, options.connect_timeout);
+  if (!client.ok()) return Status::Failed("LinuxCNC: " + client.status().message());
+  auto controller = std::make_unique<LinuxCncController>(std::move(*client), robot, options);
+  if (Status s = controller->Open(); !s.ok()) return s;
+  return std::unique_ptr<Controller>(std::move(controller));
+}
+
+}  // namespace hexcal::workflow

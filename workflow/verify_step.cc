@@ -1,0 +1,202 @@
+#include "workflow/verify_step.h"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "core/atomic_file.h"
+#include "core/csv.h"
+#include "core/registration.h"
+#include "core/robot_io.h"
+#include "core/session.h"
+#include "vision/board_pose.h"
+#include "vision/measure.h"
+#include "workflow/acquire_step.h"
+#include "workflow/session_calibrate.h"
+
+namespace hexcal::workflow {
+namespace {
+
+// What the check needs from the session: robot (pose convention and unit),
+// camera, target and the registered frames.
+struct CheckInputs {
+  Robot robot;
+  Camera camera;
+  Target target;
+  Registration frames;
+};
+
+StatusOr<CheckInputs> LoadCheckInputs(const std::string& dir) {
+  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
+  if (!config.ok()) return config.status();
+  if (!config->base_from_camera || !config->platform_from_target)
+    return Status::Error(dir + ": the session has no registered camera and target frames; calibrate it first "
+                               "(hexcal calibrate --session " + dir + ")");
+  StatusOr<Robot> robot = LoadRobot(ResolveSessionFile(dir, config->robot));
+  if (!robot.ok()) return robot.status();
+  StatusOr<Camera> camera = LoadCamera(ResolveSessionFile(dir, config->camera));
+  if (!camera.ok()) return camera.status();
+  StatusOr<Target> target = LoadTarget(ResolveSessionFile(dir, config->target));
+  if (!target.ok()) return target.status();
+  Registration frames;
+  frames.base_from_camera = *config->base_from_camera;
+  frames.platform_from_target = *config->platform_from_target;
+  return CheckInputs{std::move(*robot), std::move(*camera), std::move(*target), frames};
+}
+
+cv::Mat Gray(const cv::Mat& frame) {
+  if (frame.channels() == 1) return frame;
+  cv::Mat gray;
+  cv::cvtColor(frame, gray, frame.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
+  return gray;
+}
+
+// Where the camera sees the platform, compared with the commanded pose.
+void CompareWithCommanded(const CheckInputs& in, const BoardPose& board, PoseCheck* check) {
+  Pose camera_from_target = board.camera_from_target;  // target unit
+  camera_from_target.position *= MetresPerUnit(in.target.length_unit) / MetresPerUnit(in.robot.length_unit);
+  const Pose seen = BaseFromPlatform(in.frames, camera_from_target);
+  const Pose commanded = in.robot.PoseFromVector(check->commanded);
+  check->seen = in.robot.VectorFromPose(seen);
+  check->position_error = (seen.position - commanded.position).norm();
+  check->orientation_error = RotationLog(commanded.rotation.transpose() * seen.rotation).norm() * 180 / M_PI;
+  check->reprojection_rms_px = board.rms_px;
+}
+
+Status KeepFrame(const std::string& folder, int index, const cv::Mat& frame) {
+  std::vector<uint8_t> png;
+  if (!cv::imencode(".png", frame, png)) return Status::Failed("a frame could not be encoded as PNG");
+  char name[32];
+  std::snprintf(name, sizeof name, "check_%04d.png", index);
+  return WriteFileAtomically((std::filesystem::path(folder) / name).string(), std::string(png.begin(), png.end()));
+}
+
+// One pose: move, settle, grab, measure, compare. Device errors are the pose's.
+PoseCheck CheckOnePose(const VerifyRequest& request, const CheckInputs& in, AcquisitionRig& rig,
+                       TagDetector& detector, int index, const Vector6d& pose) {
+  PoseCheck check;
+  check.index = index;
+  check.commanded = pose;
+  Status moved = rig.controller->MoveTo(pose);
+  if (moved.ok()) moved = rig.controller->WaitSettled(request.settle_seconds);
+  StatusOr<cv::Mat> frame = moved.ok() ? rig.camera->Grab(std::chrono::milliseconds(request.grab_timeout_ms))
+                                       : StatusOr<cv::Mat>(moved);
+  if (!frame.ok()) {
+    check.problem = frame.status().message();
+    return check;
+  }
+  if (!request.images_out.empty())
+    if (Status s = KeepFrame(request.images_out, index, *frame); !s.ok()) check.problem = s.message();
+  const ImageMeasurement measured = MeasureImage(detector, Gray(*frame), in.camera, in.target, BoardPoseOptions{});
+  if (measured.pose.status != PoseStatus::kOk) {
+    check.problem = std::string("the board was not measured: ") + PoseStatusName(measured.pose.status) + " " +
+                    measured.pose.message;
+    return check;
+  }
+  CompareWithCommanded(in, measured.pose, &check);
+  return check;
+}
+
+void Summarise(VerifyResult* result) {
+  double position_sum = 0, orientation_sum = 0;
+  for (const PoseCheck& check : result->poses) {
+    if (!check.seen) continue;
+    position_sum += check.position_error * check.position_error;
+    orientation_sum += check.orientation_error * check.orientation_error;
+    result->position_max = std::max(result->position_max, check.position_error);
+    result->orientation_max = std::max(result->orientation_max, check.orientation_error);
+  }
+  const int seen = result->Seen();
+  if (seen == 0) return;
+  result->position_rms = std::sqrt(position_sum / seen);
+  result->orientation_rms = std::sqrt(orientation_sum / seen);
+}
+
+}  // namespace
+
+int VerifyResult::Seen() const {
+  int seen = 0;
+  for (const PoseCheck& check : poses) seen += check.seen ? 1 : 0;
+  return seen;
+}
+
+StatusOr<VerifyResult> VerifyPoses(const VerifyRequest& request, const JobHooks& hooks) {
+  const auto start = std::chrono::steady_clock::now();
+  if (!(request.settle_seconds >= 0) || request.grab_timeout_ms < 1)
+    return Status::Error("settle must be ≥ 0 s and the grab time-out ≥ 1 ms");
+  StatusOr<CheckInputs> in = LoadCheckInputs(request.session);
+  if (!in.ok()) return in.status();
+  StatusOr<std::vector<Vector6d>> poses =
+      LoadPoses(request.poses.empty() ? SessionPaths(request.session).plan : request.poses);
+  if (!poses.ok()) return poses.status();
+  if (!request.images_out.empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(request.images_out, error);
+    if (error) return Status::IoError(request.images_out + ": cannot create the folder: " + error.message());
+  }
+  StatusOr<std::unique_ptr<TagDetector>> detector = TagDetector::Create(
+      ForTarget(DetectorOptions{}, in->target), std::make_shared<const IdealPixelMap>(in->camera));
+  if (!detector.ok()) return detector.status();
+  StatusOr<AcquisitionRig> rig = OpenAcquisitionRig(request.session, request.controller, request.camera, request.seed);
+  if (!rig.ok()) return rig.status();
+  VerifyResult result;
+  result.session = request.session;
+  result.controller = rig->controller->Describe();
+  result.camera = rig->camera->Describe();
+  result.length_unit = LengthUnitName(in->robot.length_unit);
+  hooks.Stage("verify");
+  for (size_t k = 0; k < poses->size(); ++k) {
+    if (hooks.Cancelled()) return Status::Cancelled();
+    result.poses.push_back(CheckOnePose(request, *in, *rig, **detector, static_cast<int>(k), (*poses)[k]));
+    const PoseCheck& check = result.poses.back();
+    hooks.Note("pose " + std::to_string(k + 1) + "/" + std::to_string(poses->size()) + ": " +
+               (check.seen ? "position error " + FormatNumber(check.position_error) + " " + result.length_unit +
+                                 ", orientation error " + FormatNumber(check.orientation_error) + " deg"
+                           : check.problem));
+    hooks.Progress(static_cast<int>(k + 1), static_cast<int>(poses->size()));
+  }
+  Summarise(&result);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+nlohmann::json ToJson(const VerifyResult& result) {
+  nlohmann::json poses = nlohmann::json::array();
+  for (const PoseCheck& check : result.poses) {
+    nlohmann::json pose = {{"index", check.index},
+                           {"commanded", std::vector<double>(check.commanded.data(), check.commanded.data() + 6)}};
+    if (check.seen) {
+      pose["seen"] = std::vector<double>(check.seen->data(), check.seen->data() + 6);
+      pose["position_error"] = check.position_error;
+      pose["orientation_error"] = check.orientation_error;
+      pose["reprojection_rms_px"] = check.reprojection_rms_px;
+    } else {
+      pose["problem"] = check.problem;
+    }
+    poses.push_back(pose);
+  }
+  return {{"session", result.session},     {"controller", result.controller},
+          {"camera", result.camera},       {"length_unit", result.length_unit},
+          {"seen", result.Seen()},         {"failed", static_cast<int>(result.poses.size()) - result.Seen()},
+          {"position_rms", result.position_rms},       {"position_max", result.position_max},
+          {"orientation_rms", result.orientation_rms}, {"orientation_max", result.orientation_max},
+          {"seconds", result.seconds},     {"poses", poses}};
+}
+
+std::string FormatVerifySummary(const VerifyResult& result) {
+  std::ostringstream out;
+  out << "checked " << result.poses.size() << " poses through the camera (" << result.Seen() << " seen, "
+      << result.poses.size() - result.Seen() << " failed) in " << FormatNumber(std::round(result.seconds * 10) / 10)
+      << " s\n  controller: " << result.controller << "\n  camera: " << result.camera << "\n";
+  if (result.Seen() > 0)
+    out << "commanded against seen: position RMS " << FormatNumber(result.position_rms) << " " << result.length_unit
+        << " (max " << FormatNumber(result.position_max) << "), orientation RMS "
+        << FormatNumber(result.orientation_rms) << " deg (max " << FormatNumber(result.orientation_max) << ")\n";
+  return out.str();
+}
+
+}  // namespace hexcal::workflow
