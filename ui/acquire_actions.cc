@@ -38,24 +38,46 @@ bool ByHand(const QString& controller) { return controller.isEmpty() || controll
 
 }  // namespace
 
+// Opening the devices can take long (a LinuxCNC machine powers on and homes,
+// up to its motion time-out): it runs as a job, and the window stays live.
 void AcquirePanel::Connect(const QString& controller_url, const QString& camera_url) {
   if (!session_->IsOpen()) return ShowError(this, "Connect", "Open or create a session first (File menu).");
   if (!controller_url.isEmpty()) controller_url_->setCurrentText(controller_url);
   if (!camera_url.isEmpty()) camera_url_->setCurrentText(camera_url);
-  const QString controller = controller_url_->currentText().trimmed(), camera = camera_url_->currentText().trimmed();
-  Disconnect();
-  auto rig = std::make_shared<workflow::AcquisitionRig>();
-  if (ByHand(controller)) {
-    StatusOr<std::unique_ptr<workflow::FrameSource>> source = workflow::OpenFrameSource(camera.toStdString());
-    if (!source.ok()) return ShowError(this, "Connect", Message(source.status()));
-    rig->camera = std::move(*source);
-  } else {
-    StatusOr<workflow::AcquisitionRig> opened = workflow::OpenAcquisitionRig(
-        session_->Dir().toStdString(), controller.toStdString(), camera.toStdString(), kSimSeed);
-    if (!opened.ok()) return ShowError(this, "Connect", Message(opened.status()));
-    *rig = std::move(*opened);
+  if (job_->Running()) {
+    if (job_->What() != kLiveJob && !job_->Abandoned())
+      return ShowError(this, "Connect", "The devices are busy: wait for the current step, or press Cancel.");
+    pending_ = [this] { Connect({}, {}); };  // after the live frame (or dropped job) in flight
+    return;
   }
-  rig_ = rig;
+  const std::string controller = controller_url_->currentText().trimmed().toStdString();
+  const std::string camera = camera_url_->currentText().trimmed().toStdString();
+  const std::string dir = session_->Dir().toStdString();
+  const bool by_hand = ByHand(QString::fromStdString(controller));
+  Disconnect();
+  devices_->setText("Connecting (a machine may power on and home first)…");
+  job_->Start("connecting", [this, controller, camera, dir, by_hand](const JobContext&) -> GuiContinuation {
+    auto rig = std::make_shared<workflow::AcquisitionRig>();
+    Status opened = Status::Ok();
+    if (by_hand) {
+      StatusOr<std::unique_ptr<workflow::FrameSource>> source = workflow::OpenFrameSource(camera);
+      if (source.ok()) rig->camera = std::move(*source);
+      opened = source.status();
+    } else {
+      StatusOr<workflow::AcquisitionRig> both = workflow::OpenAcquisitionRig(dir, controller, camera, kSimSeed);
+      if (both.ok()) *rig = std::move(*both);
+      opened = both.status();
+    }
+    return [this, rig, opened] { Connected(rig, opened); };
+  });
+}
+
+void AcquirePanel::Connected(std::shared_ptr<workflow::AcquisitionRig> rig, const Status& opened) {
+  if (!opened.ok()) {
+    devices_->setText("Not connected.");
+    return ShowError(this, "Connect", Message(opened));
+  }
+  rig_ = std::move(rig);
   devices_->setText(QString("Connected: %1; %2.")
                         .arg(rig_->controller ? QString::fromStdString(rig_->controller->Describe())
                                               : "no controller (move the robot by hand, type the readings)",

@@ -74,8 +74,9 @@ void AcquirePanel::BuildLayout() {
   controller_url_->setToolTip("The controller that moves the robot and reads its legs (docs/acquisition.md)");
   camera_url_ = new QComboBox;
   camera_url_->setEditable(true);
-  camera_url_->addItems({"sim", "v4l2:0", "file:"});
-  camera_url_->setToolTip("The camera: sim, v4l2:N (OpenCV), file:PATH (a video or an image)");
+  camera_url_->addItems({"sim", "aravis:", "v4l2:0", "file:"});
+  camera_url_->setToolTip(
+      "The camera: sim, aravis:NAME (GenICam through Aravis), v4l2:N (OpenCV), file:PATH (a video or an image)");
   connect_ = new QPushButton("Connect");
   connect(connect_, &QPushButton::clicked, this, [this] { Connected() ? Disconnect() : Connect(); });
   devices_ = new QLabel("Not connected.");

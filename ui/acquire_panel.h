@@ -83,6 +83,8 @@ class AcquirePanel : public QWidget {
   void ShowFrame(const OverlayResult& frame);
   std::optional<LegReadings> AskReadings(int index);
   void Recorded(int index, const Status& status);
+  // The end of Connect's job: the devices, or why not.
+  void Connected(std::shared_ptr<workflow::AcquisitionRig> rig, const Status& opened);
 
   SessionState* session_;
   BackgroundJob* job_;  // every use of the devices, live frames included: one at a time

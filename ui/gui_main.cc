@@ -11,6 +11,7 @@
 #include <iostream>
 
 #include "ui/acquire_panel.h"
+#include "ui/background_job.h"
 #include "ui/error_dialog.h"
 #include "ui/main_window.h"
 #include "ui/screenshot.h"
@@ -54,6 +55,9 @@ int main(int argc, char** argv) {
   if (parser.isSet("camera") && window.Session()->IsOpen())
     window.Acquire()->Connect(parser.value("controller").isEmpty() ? "none" : parser.value("controller"),
                               parser.value("camera"));
+  // A screenshot shows the devices connected and a live frame, not "connecting".
+  while (!screenshot.isEmpty() && window.Acquire()->Job()->Running())
+    app.processEvents(QEventLoop::AllEvents, 50);
   if (parser.isSet("demo")) window.OpenDemoSession();
   if (!screenshot.isEmpty()) {
     if (!hexcal::ui::SaveWindowScreenshot(&window, screenshot)) {

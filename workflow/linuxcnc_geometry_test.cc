@@ -5,7 +5,9 @@
 #include <map>
 #include <sstream>
 
+#include "core/constraints.h"
 #include "core/inverse_kinematics.h"
+#include "workflow/hal_push.h"
 #include "tests/robot_presets.h"
 #include "tests/test_support.h"
 
@@ -121,6 +123,44 @@ TEST(LinuxCncGeometry, UnitsAndNumbers) {
   EXPECT_EQ(FixedNumber(-0.25), "-0.25");
   EXPECT_EQ(FixedNumber(-1e-12), "0");
   EXPECT_EQ(FixedNumber(1.0 / 3.0, 6), "0.333333");
+}
+
+// A sideways move: a leg's length along a straight line is convex, shortest
+// where the leg is most upright, here between the end points. The strokes
+// are set to just hold both end poses; the middle is outside them (checked
+// here, so the case cannot pass vacuously).
+TEST(LinuxCncGeometry, AStraightMoveWhoseMiddleLeavesAStrokeIsRefused) {
+  Robot robot = Preset("inria-left-hand");
+  Vector6d from, to, middle;
+  from << -6, -6, 53.5, 0, 0, 0;
+  to << 6, 6, 53.5, 0, 0, 0;
+  middle << 0, 0, 53.5, 0, 0, 0;
+  const LegReadings a = InverseKinematics(robot, robot.PoseFromVector(from));
+  const LegReadings b = InverseKinematics(robot, robot.PoseFromVector(to));
+  const LegReadings m = InverseKinematics(robot, robot.PoseFromVector(middle));
+  bool middle_outside = false;
+  for (int i = 0; i < kNumLegs; ++i) {
+    robot.legs[i].stroke_min = std::min(a[i], b[i]) - 1e-3;
+    robot.legs[i].stroke_max = std::max(a[i], b[i]) + 1e-3;
+    middle_outside |= !WithinStroke(robot.legs[i], m[i]);
+  }
+  ASSERT_TRUE(middle_outside);
+  const auto world = [&](const Vector6d& pose) { return GenhexkinsWorldFromPose(robot, pose, MachineUnit::kMillimetre); };
+  EXPECT_FALSE(StraightMoveWithinStrokes(robot, world(from), world(to), MachineUnit::kMillimetre));
+  EXPECT_TRUE(StraightMoveWithinStrokes(robot, world(from), world(from), MachineUnit::kMillimetre));
+  // Round trip of the world form.
+  const Pose back = PoseFromGenhexkinsWorld(robot, world(to), MachineUnit::kMillimetre);
+  EXPECT_TRUE(MatrixNear(robot.VectorFromPose(back), to, 1e-9));
+}
+
+TEST(LinuxCncGeometry, HomeShiftsAreTheOffsetChangesInMachineUnits) {
+  const Robot running = Preset("inria-left-hand");
+  Robot calibrated = running;
+  calibrated.legs[2].offset += 0.041;  // cm
+  const std::string shifts = HomeOffsetShifts(running, calibrated, MachineUnit::kMillimetre);
+  EXPECT_NE(shifts.find("[JOINT_2] HOME and HOME_OFFSET: add 0.41 mm"), std::string::npos) << shifts;
+  EXPECT_EQ(shifts.find("[JOINT_0]"), std::string::npos) << shifts;
+  EXPECT_EQ(HomeOffsetShifts(running, running, MachineUnit::kMillimetre), "");
 }
 
 }  // namespace

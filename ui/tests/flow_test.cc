@@ -498,7 +498,7 @@ TEST(UiFlow, AcquisitionWalksThePlanWithTheSimulatedCamera) {
   EXPECT_EQ(window.Session()->State(Step::kAcquire), StepState::kTodo);
 
   acquire->Connect("sim", "sim");
-  ASSERT_TRUE(acquire->Connected());
+  ASSERT_TRUE(WaitFor([&] { return acquire->Connected(); }));
   ASSERT_TRUE(WaitFor([&] { return !acquire->Job()->Running(); }));
   EXPECT_TRUE(acquire->LiveView()->HasImage());
   EXPECT_TRUE(acquire->LastFrame().ok) << acquire->LastFrame().status.toStdString();
@@ -522,7 +522,7 @@ TEST(UiFlow, AcquisitionWalksThePlanWithTheSimulatedCamera) {
 
   // Redo by hand: a camera only, the readings typed for the pose.
   acquire->Connect("none", "file:" + dir + "/images/pose_0003.png");
-  ASSERT_TRUE(acquire->Connected());
+  ASSERT_TRUE(WaitFor([&] { return acquire->Connected(); }));
   ASSERT_TRUE(WaitFor([&] { return !acquire->Job()->Running(); }));
   acquire->SelectPose(0);
   acquire->RedoPose();
