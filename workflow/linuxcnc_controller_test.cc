@@ -52,6 +52,8 @@ struct FakeLinuxCnc {
   std::map<std::string, std::string> overrides;  // line -> reply, before the rules below
   Vector6d world = Vector6d::Zero(), joints = Vector6d::Zero();
   int polls_left = 0;
+  bool moved = false;             // until the first move the platform is at home, the workspace centre
+  std::vector<std::string> mdi;  // the moves received
 
   std::string Reply(const std::string& line) {
     if (auto found = overrides.find(line); found != overrides.end()) return found->second;
@@ -73,7 +75,10 @@ struct FakeLinuxCnc {
       if (polls_left > 0) --polls_left;
       return polls_left > 0 ? "PROGRAM_STATUS RUNNING\r\n" : "PROGRAM_STATUS IDLE\r\n";
     }
-    if (line == "get abs_act_pos") return SixNumbers("ABS_ACT_POS", polls_left > 0 ? Vector6d::Zero() : world);
+    if (line == "get abs_act_pos") {
+      if (!moved) world = GenhexkinsWorldFromPose(robot, WorkspaceCentre(robot), unit);
+      return SixNumbers("ABS_ACT_POS", polls_left > 0 ? Vector6d::Zero() : world);
+    }
     if (line == "get joint_pos") return SixNumbers("JOINT_POS", joints);
     if (line.rfind("set mdi ", 0) == 0) return Move(line);
     if (line == "quit") return kCloseConnection;
@@ -87,6 +92,8 @@ struct FakeLinuxCnc {
 
   // "set mdi G21 G90 G53 G0 X1 Y2 ...": the world pose, and the joints of genhexkins' IK.
   std::string Move(const std::string& line) {
+    moved = true;
+    mdi.push_back(line);
     std::istringstream words(line.substr(8));
     for (std::string word; words >> word;) {
       const size_t axis = std::string("XYZABC").find(word[0]);
@@ -325,7 +332,7 @@ TEST(LinuxCncController, MoveErrors) {
   EXPECT_NE(slow.message().find("did not reach (1, -2, 53, 3, -4, 5) within 1 s"), std::string::npos) << slow.message();
 
   fake.machine.overrides["get program_status"] = "PROGRAM_STATUS IDLE\r\n";
-  fake.machine.overrides["get abs_act_pos"] = "ABS_ACT_POS 0 0 500 0 0 0\r\n";
+  fake.machine.overrides["get abs_act_pos"] = "ABS_ACT_POS 0 0 535 0 0 0\r\n";  // reachable, not the target
   ASSERT_TRUE((*machine)->MoveTo(SomePose()).ok());
   Status elsewhere = (*machine)->WaitSettled(0);
   EXPECT_NE(elsewhere.message().find("idle but not at (1, -2, 53, 3, -4, 5)"), std::string::npos)
@@ -338,6 +345,49 @@ TEST(LinuxCncController, MoveErrors) {
   EXPECT_NE((*machine)->ReadLegs().status().message().find("was answered 'GET JOINT_POS NAK'"), std::string::npos);
   fake.machine.overrides["get joint_pos"] = "";
   EXPECT_NE((*machine)->ReadLegs().status().message().find("'get joint_pos': 127.0.0.1:"), std::string::npos);
+}
+
+// Strokes set to just hold the legs along the two straight moves from `from`
+// to the workspace centre and on to `to` (64 samples each): then the move
+// from `from` to `to` must take that road, unless its straight path keeps
+// within them too.
+void NarrowStrokesToTheRoadThroughTheCentre(Robot* robot, const Vector6d& from, const Vector6d& to) {
+  const Vector6d centre = WorkspaceCentre(*robot);
+  LegReadings low = LegReadings::Constant(1e9), high = LegReadings::Constant(-1e9);
+  for (const auto& [start, end] : {std::pair(from, centre), std::pair(centre, to)})
+    for (int k = 0; k <= 64; ++k) {
+      const Vector6d pose = start + (end - start) * (k / 64.0);
+      const LegReadings legs = InverseKinematics(*robot, robot->PoseFromVector(pose));
+      low = low.cwiseMin(legs);
+      high = high.cwiseMax(legs);
+    }
+  for (int i = 0; i < kNumLegs; ++i) {
+    robot->legs[i].stroke_min = low[i] - 1e-3;
+    robot->legs[i].stroke_max = high[i] + 1e-3;
+  }
+}
+
+TEST(LinuxCncController, AMoveWhosePathLeavesAStrokeGoesThroughTheCentre) {
+  FakeMachine fake;
+  Robot& robot = fake.machine.robot;
+  Vector6d from, to;
+  from << 5, 5, 53.5, 0, 0, 0;
+  to << 3, -3, 53.5, 0, 10, 0;
+  NarrowStrokesToTheRoadThroughTheCentre(&robot, from, to);
+  const MachineUnit mm = MachineUnit::kMillimetre;
+  ASSERT_FALSE(StraightMoveWithinStrokes(robot, GenhexkinsWorldFromPose(robot, from, mm),
+                                         GenhexkinsWorldFromPose(robot, to, mm), mm));  // the case is what it says
+  StatusOr<std::unique_ptr<Controller>> machine = fake.Open();
+  ASSERT_TRUE(machine.ok()) << machine.status().message();
+  ASSERT_TRUE((*machine)->MoveTo(from).ok());
+  ASSERT_TRUE((*machine)->WaitSettled(0).ok());
+  fake.machine.mdi.clear();
+  Status moved = (*machine)->MoveTo(to);
+  ASSERT_TRUE(moved.ok()) << moved.message();
+  ASSERT_TRUE((*machine)->WaitSettled(0).ok());
+  ASSERT_EQ(fake.machine.mdi.size(), 2u);
+  EXPECT_NE(fake.machine.mdi[0].find("X0 Y0 Z530 A0 B0 C0"), std::string::npos) << fake.machine.mdi[0];
+  EXPECT_NE(fake.machine.mdi[1].find("X30 Y-30 Z535 A0 B10 C0"), std::string::npos) << fake.machine.mdi[1];
 }
 
 TEST(LinuxCncController, AMdiNakIsNamed) {

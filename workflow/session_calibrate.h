@@ -14,8 +14,12 @@
 
 #include "core/job_hooks.h"
 #include "core/outlier_screening.h"
+#include "core/robot.h"
+#include "core/session.h"
 #include "core/session_lock.h"
 #include "core/status.h"
+#include "vision/camera.h"
+#include "vision/target.h"
 #include "workflow/calibration_report.h"
 
 namespace hexcal::workflow {
@@ -38,6 +42,15 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
 // A name in session.yaml: a file relative to the session folder when one
 // exists there, otherwise as given (a preset name or a path).
 std::string ResolveSessionFile(const std::string& dir, const std::string& name);
+
+// The session's configuration and the robot, camera and target it names, loaded.
+struct SessionModels {
+  SessionConfig config;
+  Robot robot;
+  Camera camera;
+  Target target;
+};
+StatusOr<SessionModels> LoadSessionModels(const std::string& dir);
 
 // The lines `hexcal calibrate --session` prints: counts, closure before and
 // after, held-out validation, one warning per outlier reading, files written.

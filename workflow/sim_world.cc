@@ -18,18 +18,12 @@ namespace {
 }  // namespace
 
 StatusOr<std::shared_ptr<SimWorld>> SimWorld::ForSession(const std::string& dir, uint64_t seed) {
-  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
-  if (!config.ok()) return config.status();
-  StatusOr<Robot> nominal = LoadRobot(ResolveSessionFile(dir, config->robot));
-  if (!nominal.ok()) return nominal.status();
-  StatusOr<Camera> camera = LoadCamera(ResolveSessionFile(dir, config->camera));
-  if (!camera.ok()) return camera.status();
-  StatusOr<Target> target = LoadTarget(ResolveSessionFile(dir, config->target));
-  if (!target.ok()) return target.status();
+  StatusOr<SessionModels> models = LoadSessionModels(dir);
+  if (!models.ok()) return models.status();
   DemoSceneOptions options;
   options.seed = seed;
-  auto world = std::make_shared<SimWorld>(MakeDemoScene(*nominal, *camera, *target, options));
-  if (Status s = world->Command(WorkspaceCentre(*nominal)); !s.ok())
+  auto world = std::make_shared<SimWorld>(MakeDemoScene(models->robot, models->camera, models->target, options));
+  if (Status s = world->Command(WorkspaceCentre(models->robot)); !s.ok())
     return Status::Error(dir +
                          ": the sim machine cannot start at the centre of the robot's sampling box: " + s.message());
   return world;
@@ -47,22 +41,16 @@ Status SimWorld::Command(const Vector6d& pose_vector) {
   const Robot& nominal = scene_.nominal;
   if (Status s = CheckPoseInWorkspace(nominal, pose_vector); !s.ok()) return s;
   const Pose commanded = nominal.PoseFromVector(pose_vector);
-  const LegReadings legs = InverseKinematics(nominal, commanded);
-  StatusOr<LocalFkResult> actual = ForwardKinematicsLocal(scene_.truth, legs, commanded);
-  if (!actual.ok())
-    return Status::Failed("pose " + PoseText(pose_vector) +
-                          ": the simulated platform has no pose for its legs: " + actual.status().message());
-  std::lock_guard<std::mutex> hold(mutex_);
-  driven_legs_ = legs;
-  actual_pose_ = actual->pose;
+  if (Status s = DriveLegs(InverseKinematics(nominal, commanded), commanded); !s.ok())
+    return Status::Failed("pose " + PoseText(pose_vector) + ": " + s.message());
   return Status::Ok();
 }
 
 Status SimWorld::DriveLegs(const LegReadings& encoders, const std::optional<Pose>& near) {
   StatusOr<LocalFkResult> actual = ForwardKinematicsLocal(scene_.truth, encoders, near ? *near : ActualPose());
   if (!actual.ok())
-    return Status::Failed("the simulated platform has no pose for the legs (" + PoseText(encoders) +
-                          ") near where it is: " + actual.status().message());
+    return Status::Failed("the simulated platform has no pose for the legs " + PoseText(encoders) + ": " +
+                          actual.status().message());
   std::lock_guard<std::mutex> hold(mutex_);
   driven_legs_ = encoders;
   actual_pose_ = actual->pose;

@@ -31,21 +31,16 @@ struct CheckInputs {
 };
 
 StatusOr<CheckInputs> LoadCheckInputs(const std::string& dir) {
-  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
-  if (!config.ok()) return config.status();
-  if (!config->base_from_camera || !config->platform_from_target)
+  StatusOr<SessionModels> models = LoadSessionModels(dir);
+  if (!models.ok()) return models.status();
+  const SessionConfig& config = models->config;
+  if (!config.base_from_camera || !config.platform_from_target)
     return Status::Error(dir + ": the session has no registered camera and target frames; calibrate it first "
                                "(hexcal calibrate --session " + dir + ")");
-  StatusOr<Robot> robot = LoadRobot(ResolveSessionFile(dir, config->robot));
-  if (!robot.ok()) return robot.status();
-  StatusOr<Camera> camera = LoadCamera(ResolveSessionFile(dir, config->camera));
-  if (!camera.ok()) return camera.status();
-  StatusOr<Target> target = LoadTarget(ResolveSessionFile(dir, config->target));
-  if (!target.ok()) return target.status();
   Registration frames;
-  frames.base_from_camera = *config->base_from_camera;
-  frames.platform_from_target = *config->platform_from_target;
-  return CheckInputs{std::move(*robot), std::move(*camera), std::move(*target), frames};
+  frames.base_from_camera = *config.base_from_camera;
+  frames.platform_from_target = *config.platform_from_target;
+  return CheckInputs{std::move(models->robot), std::move(models->camera), std::move(models->target), frames};
 }
 
 cv::Mat Gray(const cv::Mat& frame) {
