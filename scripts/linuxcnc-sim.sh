@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # linuxcnc-sim.sh start DIR --robot ROBOT --home "X Y Z Q1 Q2 Q3" [--port PORT] [--hexcal BIN]
+# linuxcnc-sim.sh camera DIR --session SESSION [--seed N] [--hexcal BIN]
 # linuxcnc-sim.sh stop DIR
 # linuxcnc-sim.sh env DIR     (prints the RTAPI_UID and RTAPI_FIFO_PATH halcmd needs, as `export` lines)
 #
@@ -10,6 +11,10 @@
 # (the robot file the machine runs with) and starts
 # LinuxCNC with linuxcncrsh on PORT (default 5007; it listens on every
 # interface); `stop` shuts it down through linuxcncrsh and waits for it.
+# `camera` starts `hexcal sim-camera` for the machine of DIR (a GigE Vision
+# camera on 127.0.0.1 showing where SESSION's hidden true robot puts the
+# machine's joints), prints its URL (aravis:...) and keeps it in DIR/camera;
+# `stop` stops it too.
 #
 # The machine works in mm ([TRAJ] LINEAR_UNITS = mm), whatever the robot's
 # unit. Its joints are the full leg lengths: joint limits are the strokes plus
@@ -20,7 +25,11 @@
 # One LinuxCNC runs per host (its shared memory has fixed keys).
 set -euo pipefail
 
-usage() { echo "usage: $0 start DIR --robot ROBOT --home \"X Y Z Q1 Q2 Q3\" [--port PORT] [--hexcal BIN] | stop DIR | env DIR" >&2; exit 2; }
+usage() {
+  echo "usage: $0 start DIR --robot ROBOT --home \"X Y Z Q1 Q2 Q3\" [--port PORT] [--hexcal BIN]" \
+       "| camera DIR --session SESSION [--seed N] [--hexcal BIN] | stop DIR | env DIR" >&2
+  exit 2
+}
 die() { echo "linuxcnc-sim: $*" >&2; exit 1; }
 
 [ $# -ge 2 ] || usage
@@ -146,7 +155,47 @@ start() {
   die "LinuxCNC did not open port $port within 30 s (its log is above and in $dir/linuxcnc.log)"
 }
 
+# hexcal sim-camera in its own session, its URL read from its first line.
+camera() {
+  local session="" seed=1 hexcal=hexcal
+  while [ $# -gt 0 ]; do
+    case $1 in
+      --session) session=$2; shift 2 ;;
+      --seed) seed=$2; shift 2 ;;
+      --hexcal) hexcal=$2; shift 2 ;;
+      *) usage ;;
+    esac
+  done
+  [ -n "$session" ] || usage
+  [ -e "$dir/robot.yaml" ] || die "$dir: no machine started there (linuxcnc-sim.sh start $dir ...)"
+  [ ! -e "$dir/camera.pid" ] || die "$dir: a camera was started there and not stopped"
+  setsid "$hexcal" sim-camera --session "$session" --machine-robot "$dir/robot.yaml" --seed "$seed" \
+    >"$dir/camera.log" 2>&1 </dev/null &
+  echo $! >"$dir/camera.pid"
+  for _ in $(seq 100); do
+    local url
+    url=$(sed -n 's/^sim-camera: serving \(aravis:.*\) on [0-9.]*, following .*/\1/p' "$dir/camera.log")
+    if [ -n "$url" ]; then echo "$url" >"$dir/camera"; echo "$url"; return 0; fi
+    kill -0 "$(cat "$dir/camera.pid")" 2>/dev/null || break
+    sleep 0.1
+  done
+  cat "$dir/camera.log" >&2
+  stop_camera
+  die "hexcal sim-camera did not start within 10 s (its log is above)"
+}
+
+stop_camera() {
+  [ -e "$dir/camera.pid" ] || return 0
+  local pid
+  pid=$(cat "$dir/camera.pid")
+  kill -TERM "$pid" 2>/dev/null || true
+  for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+  kill -KILL "$pid" 2>/dev/null || true
+  rm -f "$dir/camera.pid" "$dir/camera"
+}
+
 stop() {
+  stop_camera
   [ -e "$dir/linuxcnc.pid" ] || die "$dir: no machine started there"
   local pid port
   pid=$(cat "$dir/linuxcnc.pid")
@@ -176,6 +225,7 @@ print_env() {
 
 case $action in
   start) start "$@" ;;
+  camera) camera "$@" ;;
   stop) [ $# -eq 0 ] || usage; stop ;;
   env) [ $# -eq 0 ] || usage; print_env ;;
   *) usage ;;

@@ -89,15 +89,16 @@ Status CompareWithTruth(const DemoScene& scene, const std::string& dir, DemoResu
 // Step 1: IOOPS among random and boundary candidates in the camera's view.
 StatusOr<PlanResult> PlanDemo(const DemoRequest& request, const PlanningModel& model, const JobHooks& hooks,
                               int* candidates) {
-  StatusOr<CandidatePool> pool =
-      BuildCandidatePool(model, "", {"random", "boundary"}, 2000, false, request.seed, hooks.progress);
+  const std::vector<std::string> kinds =
+      request.quick_plan ? std::vector<std::string>{"random"} : std::vector<std::string>{"random", "boundary"};
+  StatusOr<CandidatePool> pool = BuildCandidatePool(model, "", kinds, 2000, false, request.seed, hooks.progress);
   if (!pool.ok()) return pool.status().AsFailure();
   *candidates = static_cast<int>(pool->poses.size());
   StatusOr<std::vector<Vector6d>> initial = InitialPoses(model, "random", request.poses, request.seed);
   if (!initial.ok()) return initial.status().AsFailure();
   PlannerOptions planner;
   planner.num_poses = request.poses;
-  planner.secondary = Criterion::kO4;
+  if (!request.quick_plan) planner.secondary = Criterion::kO4;
   planner.tabu = 4;
   planner.seed = request.seed;
   StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, *initial, planner, hooks);
@@ -186,8 +187,9 @@ StatusOr<DemoResult> RunDemo(const DemoRequest& request, const JobHooks& hooks) 
   result.held_out = request.holdout;
 
   steps.Step("plan " + std::to_string(request.poses) +
-             " poses (IOOPS: O1, secondary O4, Tabu 4) among random and "
-             "boundary candidates with the target in the camera's view");
+             (request.quick_plan ? " poses (IOOPS: O1, Tabu 4; quick) among random candidates"
+                                 : " poses (IOOPS: O1, secondary O4, Tabu 4) among random and boundary candidates") +
+             " with the target in the camera's view");
   const PlanningModel model{*nominal, std::nullopt, scene.view};
   StatusOr<PlanResult> plan = PlanDemo(request, model, hooks, &result.plan_candidates);
   if (!plan.ok()) return plan.status();

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "core/design_criteria.h"
 #include "core/job_hooks.h"
 #include "core/observability.h"
 #include "core/status.h"
@@ -40,6 +41,11 @@ struct DemoRequest {
   int holdout = 8;                        // random poses kept out to validate
   uint64_t seed = 1;                      // of the truth, the candidates and the noise
   bool force = false;                     // replace an earlier demo in `out`
+  // For tests that need a calibrated session, not the demo's figures: random
+  // candidates only (no boundary poses, whose FK is most of the plan's time)
+  // and O1 alone, no secondary criterion. Under the sanitizers the full plan
+  // is about a minute.
+  bool quick_plan = false;
 
   Status Check() const;
 };

@@ -61,9 +61,10 @@ std::string HomeOffsetShifts(const Robot& running, const Robot& calibrated, Mach
   for (int i = 0; i < kNumLegs; ++i) {
     const double shift = (calibrated.legs[i].offset - running.legs[i].offset) * scale;
     if (std::abs(shift) <= 1e-9) continue;
-    out << "[JOINT_" << i << "] HOME and HOME_OFFSET: add " << FixedNumber(shift) << " " << MachineUnitName(unit)
-        << " (leg " << i + 1 << ": l " << FixedNumber(running.legs[i].offset * scale) << " -> "
-        << FixedNumber(calibrated.legs[i].offset * scale) << ")\n";
+    // Six decimals: 1 nm on a mm machine, below any encoder.
+    out << "[JOINT_" << i << "] HOME and HOME_OFFSET: add " << FixedNumber(shift, 6) << " " << MachineUnitName(unit)
+        << " (leg " << i + 1 << ": l " << FixedNumber(running.legs[i].offset * scale, 6) << " -> "
+        << FixedNumber(calibrated.legs[i].offset * scale, 6) << ")\n";
   }
   return out.str();
 }

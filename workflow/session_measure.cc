@@ -152,11 +152,12 @@ std::set<std::string> RowImages(const std::vector<ImageMeasurementRecord>& rows)
 
 }  // namespace
 
-StatusOr<MeasureState> SessionMeasureState(const std::string& dir, const std::vector<std::string>& images) {
+StatusOr<MeasureState> SessionMeasureState(const std::string& dir, const std::vector<std::string>& images,
+                                           const ContentHashes* known_hashes) {
   std::string table;
   StatusOr<std::vector<ImageMeasurementRecord>> rows = ReadMeasurementRows(SessionPaths(dir).measurements, &table);
   if (!rows.ok()) return rows.status();
-  StatusOr<MeasuredWith> now = CurrentInputs(dir, images, nullptr);
+  StatusOr<MeasuredWith> now = CurrentInputs(dir, images, known_hashes);
   if (!now.ok()) return now.status();
   now->table = table;
   return PlanMeasuring(ReadRecord(dir), *now, RowImages(*rows), images, false);

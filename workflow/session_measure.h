@@ -69,6 +69,9 @@ struct MeasureState {
   std::vector<std::string> to_measure;
   std::string reason;
 };
-StatusOr<MeasureState> SessionMeasureState(const std::string& session_dir, const std::vector<std::string>& images);
+// `known_hashes`: the session's inputs already hashed (HashSessionInputs), so
+// that a status read hashes each image once.
+StatusOr<MeasureState> SessionMeasureState(const std::string& session_dir, const std::vector<std::string>& images,
+                                           const std::map<std::string, std::string>* known_hashes = nullptr);
 
 }  // namespace hexcal::workflow

@@ -132,7 +132,7 @@ std::vector<std::string> DifferingNames(const ContentHashes& a, const ContentHas
   return names;
 }
 
-StatusOr<SessionResults> LoadSessionResults(const std::string& dir) {
+StatusOr<SessionResults> LoadSessionResults(const std::string& dir, const ContentHashes* inputs) {
   const std::string manifest_path = ResultsManifestPath(dir);
   std::error_code error;
   if (!fs::exists(manifest_path, error)) {
@@ -149,7 +149,7 @@ StatusOr<SessionResults> LoadSessionResults(const std::string& dir) {
   StatusOr<CalibrationReport> report = LoadCalibrationReport(CalibrationReportPath(dir));
   if (!report.ok()) return report.status();
   results.report = *report;
-  StatusOr<ContentHashes> now = HashSessionInputs(dir);
+  StatusOr<ContentHashes> now = inputs ? StatusOr<ContentHashes>(*inputs) : HashSessionInputs(dir);
   results.changed_inputs = now.ok() ? DifferingNames(results.manifest.inputs, *now) : std::vector<std::string>{"session"};
   return results;
 }

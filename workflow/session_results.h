@@ -52,8 +52,9 @@ struct SessionResults {
 };
 
 // Reads results/manifest.json, checks every output's hash, reads report.json
-// and compares the inputs with the session as it is now.
-StatusOr<SessionResults> LoadSessionResults(const std::string& session_dir);
+// and compares the inputs with the session as it is now (`inputs`, when the
+// caller hashed them already: HashSessionInputs).
+StatusOr<SessionResults> LoadSessionResults(const std::string& session_dir, const ContentHashes* inputs = nullptr);
 
 // "legs.csv, images/img_004.png and 3 more": a short list for messages.
 std::string ListNames(const std::vector<std::string>& names);

@@ -79,11 +79,11 @@ StepReport ReadingsStep(const std::string& dir, std::vector<LegsRow>* rows) {
   return {"readings", StepStatus::kDone, count};
 }
 
-StepReport MeasureStep(const std::string& dir, const std::vector<LegsRow>& rows) {
+StepReport MeasureStep(const std::string& dir, const std::vector<LegsRow>& rows, const ContentHashes* hashes) {
   if (rows.empty()) return {"measure", StepStatus::kTodo, "no images with readings yet"};
   std::vector<std::string> images;
   for (const LegsRow& row : rows) images.push_back(row.image);
-  StatusOr<MeasureState> state = SessionMeasureState(dir, images);
+  StatusOr<MeasureState> state = SessionMeasureState(dir, images, hashes);
   if (!state.ok()) return {"measure", StepStatus::kBroken, state.status().message()};
   if (state->to_measure.empty()) return {"measure", StepStatus::kDone, std::to_string(images.size()) + " images measured"};
   const std::string count = std::to_string(state->to_measure.size()) + " of " + std::to_string(images.size());
@@ -98,7 +98,8 @@ std::string Figure(double value) {
   return out.str();
 }
 
-void ResultSteps(const std::string& dir, SessionStatus* status, StatusOr<SessionResults>* loaded) {
+void ResultSteps(const std::string& dir, const ContentHashes* hashes, SessionStatus* status,
+                 StatusOr<SessionResults>* loaded) {
   std::error_code error;
   if (!fs::exists(CalibrationReportPath(dir), error)) {
     status->steps.push_back({"calibrate", StepStatus::kTodo, "no results: hexcal calibrate --session " + dir});
@@ -106,7 +107,7 @@ void ResultSteps(const std::string& dir, SessionStatus* status, StatusOr<Session
     return;
   }
   StatusOr<SessionResults>& results = *loaded;
-  results = LoadSessionResults(dir);
+  results = LoadSessionResults(dir, hashes);
   if (!results.ok()) {
     status->steps.push_back({"calibrate", StepStatus::kBroken, results.status().message()});
     status->steps.push_back({"validate", StepStatus::kTodo, "after calibrate"});
@@ -170,8 +171,13 @@ StatusOr<SessionStatus> ReadSessionStatus(const std::string& dir, StatusOr<Sessi
   status.steps.push_back(PlanStep(dir, robot));
   std::vector<LegsRow> rows;
   status.steps.push_back(ReadingsStep(dir, &rows));
-  status.steps.push_back(MeasureStep(dir, rows));
-  ResultSteps(dir, &status, results);
+  // Every input hashed once, for the measure record and the results manifest
+  // both (images are most of it); on an error each hashes what it needs and
+  // reports its own error.
+  const StatusOr<ContentHashes> hashes = HashSessionInputs(dir);
+  const ContentHashes* known = hashes.ok() ? &*hashes : nullptr;
+  status.steps.push_back(MeasureStep(dir, rows, known));
+  ResultSteps(dir, known, &status, results);
   return status;
 }
 

@@ -74,6 +74,7 @@ class StatusAfterChange : public ::testing::Test {
     demo.out = made_->File("demo");
     demo.poses = 8;
     demo.holdout = 2;
+    demo.quick_plan = true;  // the session is what is tested, not the plan
     ASSERT_TRUE(RunDemo(demo).ok());
   }
   static void TearDownTestSuite() {

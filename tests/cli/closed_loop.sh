@@ -1,15 +1,17 @@
 #!/usr/bin/env bash
 # closed_loop.sh HEXCAL: the acquisition loop with real device software, in
 # simulation (docs/acquisition.md, "The closed loop in simulation"): LinuxCNC
-# (scripts/linuxcnc-sim.sh) runs inria-left-hand's nominal geometry; `hexcal
-# sim-camera` serves, as a GigE Vision camera through libaravis, the board
-# where a hidden true robot puts LinuxCNC's joints; `hexcal acquire` drives
+# (scripts/linuxcnc-sim.sh start) runs inria-left-hand's nominal geometry;
+# `hexcal sim-camera` (linuxcnc-sim.sh camera) serves, as a GigE Vision
+# camera through libaravis, the board where a hidden true robot puts
+# LinuxCNC's joints; `hexcal acquire` drives
 # the machine through a 16-pose plan and grabs each frame with the `aravis:`
 # camera; `calibrate --session` must then beat the nominal robot against the
 # hidden truth (truth_error.py). The calibrated geometry then goes into
 # LinuxCNC (export --push, and a restart for the offsets l) and `hexcal
-# verify` must see the commanded poses 3 times closer through the camera. Skipped (77) without LinuxCNC, without
-# Aravis in this build, or when another LinuxCNC runs on the host.
+# verify` must see the commanded poses 3 times closer through the camera.
+# Skipped (77) without LinuxCNC, without Aravis in this build, or when
+# another LinuxCNC runs on the host.
 set -eu
 hexcal=$1
 here=$(cd "$(dirname "$0")" && pwd)
@@ -19,9 +21,7 @@ if pid=$(pgrep -x rtapi_app); then echo "another LinuxCNC runs on this host (rta
 if "$hexcal" sim-camera --session /nonexistent --machine-robot x 2>&1 |
   grep -q "built without Aravis"; then echo "hexcal was built without Aravis: skipped"; exit 77; fi
 dir=$(mktemp -d)
-camera_pid=
 cleanup() {
-  [ -z "$camera_pid" ] || { kill "$camera_pid" 2>/dev/null || true; wait "$camera_pid" 2>/dev/null || true; }
   [ ! -e "$dir/machine/linuxcnc.pid" ] || "$sim" stop "$dir/machine" >/dev/null || true
   rm -rf "$dir"
 }
@@ -35,12 +35,7 @@ s=$dir/s
 
 start=$(date +%s.%N)
 "$sim" start "$dir/machine" --robot inria-left-hand --home "0 0 53.5 0 0 0" --port "$port" --hexcal "$hexcal" >/dev/null
-"$hexcal" sim-camera --session "$s" --machine-robot "$dir/machine/robot.yaml" \
-  --seed 2 --serial HEXCALCI >"$dir/camera.out" 2>"$dir/camera.err" &
-camera_pid=$!
-for _ in $(seq 100); do grep -q "serving aravis:" "$dir/camera.out" && break; sleep 0.1; done
-camera=$(sed -n "s/^sim-camera: serving \(aravis:.*\) on [0-9.]*, following .*/\1/p" "$dir/camera.out")
-[ -n "$camera" ] || { echo "sim-camera did not start:"; cat "$dir/camera.out" "$dir/camera.err"; exit 1; }
+camera=$("$sim" camera "$dir/machine" --session "$s" --seed 2 --hexcal "$hexcal")
 
 "$hexcal" acquire --session "$s" --controller "linuxcnc://127.0.0.1:$port" --camera "$camera" --settle 0.3 \
   --holdout-every 4 --json >"$dir/acquire.json" 2>"$dir/acquire.err" || { cat "$dir/acquire.err"; exit 1; }
@@ -84,6 +79,7 @@ python3 -c "import sys; assert abs(float(sys.argv[1]) - float(sys.argv[2])) < 1e
   "$(halcmd getp genhexkins.base.2.y)" "$expected"
 "$sim" stop "$dir/machine" >/dev/null
 "$sim" start "$dir/machine" --robot "$calibrated" --home "0 0 53.5 0 0 0" --port "$port" --hexcal "$hexcal" >/dev/null
+camera=$("$sim" camera "$dir/machine" --session "$s" --seed 2 --hexcal "$hexcal")
 verify "$dir/after.json"
 
 python3 - "$dir/before.json" "$dir/after.json" <<'PY'
