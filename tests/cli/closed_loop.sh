@@ -15,18 +15,9 @@
 set -eu
 hexcal=$1
 here=$(cd "$(dirname "$0")" && pwd)
-sim=$here/../../scripts/linuxcnc-sim.sh
-command -v linuxcnc >/dev/null || { echo "linuxcnc is not installed: skipped"; exit 77; }
-if pid=$(pgrep -x rtapi_app); then echo "another LinuxCNC runs on this host (rtapi_app $pid): skipped"; exit 77; fi
 if "$hexcal" sim-camera --session /nonexistent --machine-robot x 2>&1 |
   grep -q "built without Aravis"; then echo "hexcal was built without Aravis: skipped"; exit 77; fi
-dir=$(mktemp -d)
-cleanup() {
-  [ ! -e "$dir/machine/linuxcnc.pid" ] || "$sim" stop "$dir/machine" >/dev/null || true
-  rm -rf "$dir"
-}
-trap cleanup EXIT
-port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+. "$here/linuxcnc_common.sh"
 s=$dir/s
 "$hexcal" session init --robot inria-left-hand --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 \
   --noise-position 0.005 --noise-angle 0.02 --noise-leg 0.001 "$s" >/dev/null

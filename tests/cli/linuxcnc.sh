@@ -8,21 +8,7 @@
 # LinuxCNC or when another LinuxCNC runs on the host (one per host).
 set -eu
 hexcal=$1
-here=$(cd "$(dirname "$0")" && pwd)
-sim=$here/../../scripts/linuxcnc-sim.sh
-if ! command -v linuxcnc >/dev/null; then
-  echo "linuxcnc is not installed (apt-get install linuxcnc-uspace): skipped"; exit 77
-fi
-if pid=$(pgrep -x rtapi_app); then
-  echo "another LinuxCNC runs on this host (rtapi_app $pid): skipped"; exit 77
-fi
-dir=$(mktemp -d)
-cleanup() {
-  [ ! -e "$dir/machine/linuxcnc.pid" ] || "$sim" stop "$dir/machine" >/dev/null || true
-  rm -rf "$dir"
-}
-trap cleanup EXIT
-port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+. "$(dirname "$0")/linuxcnc_common.sh"
 
 "$sim" start "$dir/machine" --robot inria-left-hand --home "0 0 53.5 0 0 0" --port "$port" --hexcal "$hexcal"
 s=$dir/s
