@@ -85,7 +85,8 @@ PoseCheck CheckOnePose(const VerifyRequest& request, const CheckInputs& in, Acqu
     return check;
   }
   if (!request.images_out.empty())
-    if (Status s = KeepFrame(request.images_out, index, *frame); !s.ok()) check.problem = s.message();
+    if (Status s = KeepFrame(request.images_out, index, *frame); !s.ok())
+      check.problem = "the frame was not kept: " + s.message();
   const ImageMeasurement measured = MeasureImage(detector, Gray(*frame), in.camera, in.target, BoardPoseOptions{});
   if (measured.pose.status != PoseStatus::kOk) {
     check.problem = std::string("the board was not measured: ") + PoseStatusName(measured.pose.status) + " " +
@@ -169,9 +170,8 @@ nlohmann::json ToJson(const VerifyResult& result) {
       pose["position_error"] = check.position_error;
       pose["orientation_error"] = check.orientation_error;
       pose["reprojection_rms_px"] = check.reprojection_rms_px;
-    } else {
-      pose["problem"] = check.problem;
     }
+    if (!check.problem.empty()) pose["problem"] = check.problem;  // no pose seen, or its frame not kept
     poses.push_back(pose);
   }
   return {{"session", result.session},     {"controller", result.controller},

@@ -46,7 +46,7 @@ struct PoseCheck {
   double position_error = 0;     // robot unit
   double orientation_error = 0;  // degrees
   double reprojection_rms_px = 0;
-  std::string problem;  // why there is no `seen`
+  std::string problem;  // why there is no `seen`, or that --keep-images failed for this frame
 };
 
 struct VerifyResult {
