@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <iomanip>
 #include <sstream>
 
 #include <opencv2/imgcodecs.hpp>
@@ -97,6 +98,13 @@ PoseCheck CheckOnePose(const VerifyRequest& request, const CheckInputs& in, Acqu
   return check;
 }
 
+// Three significant digits, as the other summaries print figures.
+std::string Figure(double value) {
+  std::ostringstream out;
+  out << std::setprecision(3) << value;
+  return out.str();
+}
+
 void Summarise(VerifyResult* result) {
   double position_sum = 0, orientation_sum = 0;
   for (const PoseCheck& check : result->poses) {
@@ -150,8 +158,8 @@ StatusOr<VerifyResult> VerifyPoses(const VerifyRequest& request, const JobHooks&
     result.poses.push_back(CheckOnePose(request, *in, *rig, **detector, static_cast<int>(k), (*poses)[k]));
     const PoseCheck& check = result.poses.back();
     hooks.Note("pose " + std::to_string(k + 1) + "/" + std::to_string(poses->size()) + ": " +
-               (check.seen ? "position error " + FormatNumber(check.position_error) + " " + result.length_unit +
-                                 ", orientation error " + FormatNumber(check.orientation_error) + " deg"
+               (check.seen ? "position error " + Figure(check.position_error) + " " + result.length_unit +
+                                 ", orientation error " + Figure(check.orientation_error) + " deg"
                            : check.problem));
     hooks.Progress(static_cast<int>(k + 1), static_cast<int>(poses->size()));
   }
@@ -188,9 +196,9 @@ std::string FormatVerifySummary(const VerifyResult& result) {
       << result.poses.size() - result.Seen() << " failed) in " << FormatNumber(std::round(result.seconds * 10) / 10)
       << " s\n  controller: " << result.controller << "\n  camera: " << result.camera << "\n";
   if (result.Seen() > 0)
-    out << "commanded against seen: position RMS " << FormatNumber(result.position_rms) << " " << result.length_unit
-        << " (max " << FormatNumber(result.position_max) << "), orientation RMS "
-        << FormatNumber(result.orientation_rms) << " deg (max " << FormatNumber(result.orientation_max) << ")\n";
+    out << "commanded against seen: position RMS " << Figure(result.position_rms) << " " << result.length_unit
+        << " (max " << Figure(result.position_max) << "), orientation RMS " << Figure(result.orientation_rms)
+        << " deg (max " << Figure(result.orientation_max) << ")\n";
   return out.str();
 }
 
