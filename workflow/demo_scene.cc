@@ -14,6 +14,7 @@
 #include "core/session.h"
 #include "core/simulation.h"
 #include "vision/renderer.h"
+#include "workflow/controller.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -51,9 +52,7 @@ DemoScene MakeDemoScene(const Robot& nominal, const Camera& camera, const Target
   // The camera looks down (+z of the camera along -z of the base) from above
   // the centre of the sampling box, a little off-centre and tilted, as mounted
   // by hand; the target lies on the platform, centred, turned by 5 degrees.
-  Vector6d centre = Vector6d::Zero();
-  if (const std::optional<PoseBox> box = nominal.limits.SamplingBox(); box && box->IsComplete())
-    for (int k = 0; k < 6; ++k) centre[k] = box->bounds[k]->Centre();
+  const Vector6d centre = WorkspaceCentre(nominal);
   Vector6d camera_vector;
   camera_vector << 0.015 / unit, -0.02 / unit, centre[2] + options.camera_distance_m / unit, 180.0, 2.0, -4.0;
   scene.base_from_camera = PoseFromVector(camera_vector, EulerConvention::kXYZ);

@@ -18,8 +18,9 @@ constexpr size_t kQuotedOutputChars = 300;
 StatusOr<int> CountSetpLines(const std::string& hal_file) {
   std::ifstream in(hal_file);
   if (!in) return Status::Error(hal_file + ": cannot read the HAL file");
-  int count = 0;
-  for (std::string line; std::getline(in, line);) count += line.rfind("setp ", 0) == 0 ? 1 : 0;
+  std::ostringstream text;
+  text << in.rdbuf();
+  const int count = CountHalPins(text.str());
   if (count == 0) return Status::Error(hal_file + ": no setp lines: not a file of hexcal export --format linuxcnc-hal");
   return count;
 }
@@ -39,6 +40,13 @@ Status RunCapturing(const std::vector<std::string>& argv, int* exit_status, std:
 }
 
 }  // namespace
+
+int CountHalPins(const std::string& hal_text) {
+  std::istringstream lines(hal_text);
+  int count = 0;
+  for (std::string line; std::getline(lines, line);) count += line.rfind("setp ", 0) == 0 ? 1 : 0;
+  return count;
+}
 
 StatusOr<int> PushHalFile(const std::string& halcmd, const std::string& hal_file) {
   StatusOr<int> pins = CountSetpLines(hal_file);

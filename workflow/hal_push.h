@@ -20,6 +20,9 @@
 
 namespace hexcal::workflow {
 
+// The `setp` lines of a HAL text: the pins it sets.
+int CountHalPins(const std::string& hal_text);
+
 // Runs `halcmd -f hal_file`; returns how many setp lines it holds. Errors
 // name halcmd and quote at most the last 300 characters of its output.
 StatusOr<int> PushHalFile(const std::string& halcmd, const std::string& hal_file);

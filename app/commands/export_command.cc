@@ -10,7 +10,6 @@
 
 #include <iostream>
 #include <memory>
-#include <sstream>
 
 #include "app/commands/cli_common.h"
 #include "app/commands/command_table.h"
@@ -48,9 +47,7 @@ Status Confirm(const ExportOptions& options, const Robot& robot, int pins, std::
 // then what the INI must change for the offsets l, which are not pins.
 int PushToMachine(const ExportOptions& options, const Robot& robot, workflow::MachineUnit unit, std::ostream& out,
                   std::ostream& err) {
-  std::istringstream hal(workflow::GenhexkinsHal(robot, unit));
-  int pins = 0;
-  for (std::string line; std::getline(hal, line);) pins += line.rfind("setp ", 0) == 0 ? 1 : 0;
+  const int pins = workflow::CountHalPins(workflow::GenhexkinsHal(robot, unit));
   if (Status s = Confirm(options, robot, pins, out); !s.ok()) {
     if (s.cancelled()) return out << "not pushed: the machine is unchanged\n", kExitFailure;
     return ReportError(err, "export", s);
