@@ -1,5 +1,7 @@
 #include "core/design_criteria.h"
 
+#include "core/sigma_criterion.h"
+
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -73,7 +75,7 @@ double LogDetOrMinusInfinity(const InfoBlock& block) {
 const std::vector<std::pair<std::string, Criterion>>& CriterionNames() {
   static const std::vector<std::pair<std::string, Criterion>> kNames = {
       {"O1", Criterion::kO1}, {"O2", Criterion::kO2}, {"O3", Criterion::kO3}, {"O4", Criterion::kO4},
-      {"D", Criterion::kD},   {"A", Criterion::kA},   {"E", Criterion::kE}};
+      {"D", Criterion::kD},   {"A", Criterion::kA},   {"E", Criterion::kE},   {"S", Criterion::kS}};
   return kNames;
 }
 
@@ -148,6 +150,7 @@ void DesignState::Refactor() {
   full_rank_ = true;
   log_det_ = 0;
   trace_inverse_ = 0;
+  sigma_sum_ = 0;
   for (int i = 0; i < kNumLegs; ++i) {
     const Eigen::SelfAdjointEigenSolver<InfoBlock> eigen(blocks_[i]);
     eigenvalues_[i] = eigen.eigenvalues();
@@ -163,6 +166,7 @@ void DesignState::Refactor() {
     inverse_[i] = cholesky_inverse_[i].transpose() * cholesky_inverse_[i];
     log_det_ += 2 * lower.diagonal().array().log().sum();
     trace_inverse_ += inverse_[i].trace();
+    sigma_sum_ += SigmaSum(inverse_[i]);
   }
 }
 
@@ -178,11 +182,13 @@ double DesignState::FromSpectrum(Criterion criterion, double log_det, double tra
     case Criterion::kO3: return std::sqrt(lambda_min);
     case Criterion::kO4: return lambda_max > 0 ? lambda_min / std::sqrt(lambda_max) : 0.0;
     case Criterion::kE: return lambda_min;
+    case Criterion::kS: return 0.0;  // not spectral: Value and the S branches compute it
   }
   return 0.0;
 }
 
 double DesignState::Value(Criterion criterion) const {
+  if (criterion == Criterion::kS) return full_rank_ && sigma_sum_ > 0 ? kNumParams / sigma_sum_ : 0.0;
   double lambda_min = std::numeric_limits<double>::infinity(), lambda_max = 0;
   for (int i = 0; i < kNumLegs; ++i) {
     lambda_min = std::min(lambda_min, eigenvalues_[i][0]);
@@ -197,7 +203,8 @@ void DesignState::ScoreAdditions(Criterion criterion, const CandidateRows& candi
                                  double* scores) const {
   const int n = end - begin;
   if (n <= 0) return;
-  const bool uses_inverse = criterion == Criterion::kO1 || criterion == Criterion::kD || criterion == Criterion::kA;
+  const bool uses_inverse = criterion == Criterion::kO1 || criterion == Criterion::kD ||
+                            criterion == Criterion::kA || criterion == Criterion::kS;
   if (uses_inverse && !full_rank_) {  // no factorisation to update: evaluate each candidate directly
     for (int j = 0; j < n; ++j) scores[j] = ValueAfterAdding(criterion, candidates.Rows(begin + j));
     return;
@@ -220,6 +227,11 @@ void DesignState::ScoreAdditions(Criterion criterion, const CandidateRows& candi
         scores[first + j] = FromSpectrum(criterion, log_det_ + std::log(growth[j]), 0, 0, 0, num_poses_ + 1);
       }
     }
+    return;
+  }
+  if (criterion == Criterion::kS) {
+    SigmaSumsAfterAdding(inverse_, candidates.legs, begin, n, scores);
+    for (int j = 0; j < n; ++j) scores[j] = scores[j] > 0 ? kNumParams / scores[j] : 0.0;
     return;
   }
   if (criterion == Criterion::kA) {
@@ -280,6 +292,11 @@ double DesignState::ValueAndRowGradient(Criterion criterion, const PoseRows& row
     const double value = FromSpectrum(criterion, 0, trace, 0, 0, m);
     for (JacobianRow& g : *gradient) g *= -kNumParams / (trace * trace);
     return value;
+  }
+  if (criterion == Criterion::kS && full_rank_) {
+    const double sum = SigmaSumAfterAddingWithGradient(inverse_, rows, gradient);
+    for (JacobianRow& g : *gradient) g *= -kNumParams / (sum * sum);
+    return kNumParams / sum;
   }
   // Eigenvalue criteria: dλ/dr = 2 (uᵀr) u for the leg holding the extreme eigenvalue.
   double lambda_min = std::numeric_limits<double>::infinity(), lambda_max = -1;

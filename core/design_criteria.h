@@ -8,11 +8,14 @@
 //            rᵀ M_i⁻¹ r = |L_i⁻¹ r|², L_i the Cholesky factor, for a whole
 //            candidate batch as one triangular solve
 //   A        tr (M + r rᵀ)⁻¹ = tr M⁻¹ - |M⁻¹ r|² / (1 + rᵀ M⁻¹ r)   (Sherman–Morrison)
+//   S        (M + r rᵀ)⁻¹_jj = (M⁻¹)_jj - u_j² / (1 + rᵀu), u = M⁻¹ r (sigma_criterion.h)
 //   O2-O4, E the extreme eigenvalues of M_i + r rᵀ are roots of the secular
 //            equation 1 + Σ_k z_k² / (λ_k - μ) = 0, z = Qᵀ r (Golub 1973)
 // Criteria (all maximised), with σ the 42 singular values of J_P:
 //   O1..O4  section 2 of the paper;  D = (Π σ²)^(1/42) = det(M)^(1/42);
-//   A = 42 / tr(M⁻¹);  E = λ_min(M) = σ_min².
+//   A = 42 / tr(M⁻¹);  E = λ_min(M) = σ_min²;
+//   S = 42 / Σ_j √(M⁻¹)_jj, the reciprocal of the mean parameter standard
+//       deviation (with noise-weighted rows, in 1 / robot unit).
 #pragma once
 
 #include <optional>
@@ -24,7 +27,7 @@
 
 namespace hexcal {
 
-enum class Criterion { kO1, kO2, kO3, kO4, kD, kA, kE };
+enum class Criterion { kO1, kO2, kO3, kO4, kD, kA, kE, kS };
 // The names of the criteria as users type them, in this order: the one table
 // ParseCriterion, CriterionName and every option form use.
 const std::vector<std::pair<std::string, Criterion>>& CriterionNames();
@@ -80,7 +83,7 @@ class DesignState {
   // Per leg: L⁻¹ (Cholesky), M⁻¹, eigenvectors and ascending eigenvalues.
   std::array<InfoBlock, kNumLegs> cholesky_inverse_, inverse_, eigenvectors_;
   std::array<Eigen::Matrix<double, kParamsPerLeg, 1>, kNumLegs> eigenvalues_;
-  double log_det_ = 0, trace_inverse_ = 0;
+  double log_det_ = 0, trace_inverse_ = 0, sigma_sum_ = 0;
 };
 
 // The quadratic forms q_ij = r_ijᵀ M_i⁻¹ r_ij of every candidate j, kept up to

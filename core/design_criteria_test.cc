@@ -11,7 +11,7 @@
 #include "core/candidates.h"
 #include "core/continuous_addfind.h"
 #include "core/observability.h"
-#include "core/optimal_design.h"
+#include "core/plan_certificate.h"
 #include "core/planning_model.h"
 #include "tests/robot_presets.h"
 #include "tests/test_support.h"
@@ -23,7 +23,7 @@ using ::hexcal::testing::Preset;
 using ::hexcal::testing::Uniform;
 
 constexpr Criterion kAll[] = {Criterion::kO1, Criterion::kO2, Criterion::kO3, Criterion::kO4,
-                              Criterion::kD,  Criterion::kA,  Criterion::kE};
+                              Criterion::kD,  Criterion::kA,  Criterion::kE,  Criterion::kS};
 
 // Random poses over the whole pose box (not the preset's central sampling box):
 // well-spread sets keep the finite-difference references accurate.
@@ -52,6 +52,18 @@ TEST(DesignCriteria, ValuesAgreeWithObservabilityIndices) {
   EXPECT_NEAR(state.Value(Criterion::kO3), o.o3, 1e-7 * o.o3);
   EXPECT_NEAR(state.Value(Criterion::kO4), o.o4, 1e-7 * o.o4);
   EXPECT_NEAR(state.Value(Criterion::kE), o.sigma_min * o.sigma_min, 1e-7 * o.sigma_min * o.sigma_min);
+  // S from the whole 42 x 42 information matrix, inverted densely (no per-leg blocks).
+  Eigen::MatrixXd information = Eigen::MatrixXd::Zero(kNumParams, kNumParams);
+  for (const PoseRows& pose_rows : rows) {
+    for (int i = 0; i < kNumLegs; ++i) {
+      Eigen::VectorXd full = Eigen::VectorXd::Zero(kNumParams);
+      full.segment<kParamsPerLeg>(kParamsPerLeg * i) = pose_rows[i].transpose();
+      information += full * full.transpose();
+    }
+  }
+  const Eigen::VectorXd variances = information.inverse().diagonal();
+  const double mean_sigma = variances.cwiseSqrt().mean();
+  EXPECT_NEAR(state.Value(Criterion::kS), 1 / mean_sigma, 1e-8 / mean_sigma);
 }
 
 // The batch scores (determinant lemma, Sherman–Morrison, secular equation) equal a
@@ -126,7 +138,9 @@ TEST(DesignCriteria, ContinuousGradientMatchesFiniteDifferences) {
                 CriterionAndGradient(model, state, criterion, minus, &unused)) / (2 * h);
       };
       for (int k = 0; k < 6; ++k) {
-        const double h = criterion == Criterion::kO1 || criterion == Criterion::kD || criterion == Criterion::kA ? 1e-5 : 1e-3;
+        const bool smooth = criterion == Criterion::kO1 || criterion == Criterion::kD || criterion == Criterion::kA ||
+                            criterion == Criterion::kS;
+        const double h = smooth ? 1e-5 : 1e-3;
         const double numeric = (4 * central(k, h) - central(k, 2 * h)) / 3;
         EXPECT_NEAR(gradient[k], numeric, 1e-5 * (std::abs(numeric) + 1e-3 * gradient.cwiseAbs().maxCoeff()))
             << CriterionName(criterion) << " weighted " << weighted << " k " << k;

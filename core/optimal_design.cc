@@ -11,16 +11,6 @@ namespace {
 
 constexpr double kP = kNumParams;
 
-// M_i(w) for the active candidates.
-std::array<InfoBlock, kNumLegs> Information(const CandidateRows& candidates, const Eigen::ArrayXd& w) {
-  std::array<InfoBlock, kNumLegs> blocks;
-  for (int i = 0; i < kNumLegs; ++i) {
-    const auto& r = candidates.legs[i];
-    blocks[i] = r * w.matrix().asDiagonal() * r.transpose();
-  }
-  return blocks;
-}
-
 bool Invert(const std::array<InfoBlock, kNumLegs>& blocks, std::array<InfoBlock, kNumLegs>* inverses,
             std::array<InfoBlock, kNumLegs>* cholesky_inverses, double* log_det) {
   *log_det = 0;
@@ -88,6 +78,15 @@ double ExchangeStep(const std::array<InfoBlock, kNumLegs>& inverses, const Candi
 
 }  // namespace
 
+std::array<InfoBlock, kNumLegs> DesignInformation(const CandidateRows& candidates, const Eigen::ArrayXd& w) {
+  std::array<InfoBlock, kNumLegs> blocks;
+  for (int i = 0; i < kNumLegs; ++i) {
+    const auto& r = candidates.legs[i];
+    blocks[i] = r * w.matrix().asDiagonal() * r.transpose();
+  }
+  return blocks;
+}
+
 double OptimalDesign::LogDetBound() const { return log_det + kP * std::log(max_variance / kP); }
 
 void VarianceFunction(const std::array<InfoBlock, kNumLegs>& inverses, const CandidateRows& candidates,
@@ -107,7 +106,7 @@ StatusOr<OptimalDesign> ComputeOptimalDesign(const CandidateRows& candidates, co
   if (count < kParamsPerLeg) return Status::Error("the optimal design needs at least 7 candidates");
 
   Eigen::ArrayXd w = Eigen::ArrayXd::Constant(count, 1.0 / count);
-  std::array<InfoBlock, kNumLegs> blocks = Information(candidates, w), inverses, cholesky_inverses;
+  std::array<InfoBlock, kNumLegs> blocks = DesignInformation(candidates, w), inverses, cholesky_inverses;
   OptimalDesign design;
   Eigen::ArrayXd d;
   for (design.iterations = 0; design.iterations < options.max_iterations; ++design.iterations) {
@@ -128,7 +127,7 @@ StatusOr<OptimalDesign> ComputeOptimalDesign(const CandidateRows& candidates, co
     // Multiplicative step: Σ w d = p, so the weights stay normalised.
     w *= d / kP;
     // Vertex exchanges: from the worst support point to the best candidate, while it pays.
-    blocks = Information(candidates, w);
+    blocks = DesignInformation(candidates, w);
     for (int exchange = 0; exchange < 8; ++exchange) {
       if (!Invert(blocks, &inverses, &cholesky_inverses, &design.log_det)) break;
       Eigen::Index worst = -1;
@@ -165,19 +164,6 @@ double DEfficiencyLowerBound(const std::array<InfoBlock, kNumLegs>& plan_blocks,
     log_det += 2 * InfoBlock(llt.matrixL()).diagonal().array().log().sum();
   }
   return std::exp((log_det - design.LogDetBound()) / kP);
-}
-
-StatusOr<PlanCertificate> CertifyPlan(const PlanningModel& model, const std::vector<Vector6d>& candidates,
-                                      const std::vector<Vector6d>& plan, const OptimalDesignOptions& options) {
-  CandidateRows rows;
-  rows.Resize(static_cast<int>(candidates.size()));
-  for (size_t j = 0; j < candidates.size(); ++j) rows.Set(static_cast<int>(j), model.Rows(candidates[j]));
-  StatusOr<OptimalDesign> design = ComputeOptimalDesign(rows, options);
-  if (!design.ok()) return design.status();
-  std::vector<PoseRows> plan_rows;
-  for (const Vector6d& pose : plan) plan_rows.push_back(model.Rows(pose));
-  const DesignState state = DesignState::FromRows(plan_rows);
-  return PlanCertificate{*design, DEfficiencyLowerBound(state.blocks(), state.num_poses(), *design)};
 }
 
 }  // namespace hexcal

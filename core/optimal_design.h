@@ -49,6 +49,9 @@ struct OptimalDesign {
 StatusOr<OptimalDesign> ComputeOptimalDesign(const CandidateRows& candidates, const OptimalDesignOptions& options = {},
                                              const JobHooks& hooks = {});
 
+// M_i(w) = Σ_j w_j r_ij r_ijᵀ for every leg.
+std::array<InfoBlock, kNumLegs> DesignInformation(const CandidateRows& candidates, const Eigen::ArrayXd& w);
+
 // d(x_j, w) for every candidate, given the per-leg inverses of M(w).
 void VarianceFunction(const std::array<InfoBlock, kNumLegs>& inverses, const CandidateRows& candidates,
                       Eigen::ArrayXd* variance);
@@ -58,14 +61,5 @@ void VarianceFunction(const std::array<InfoBlock, kNumLegs>& inverses, const Can
 double DEfficiencyLowerBound(const std::array<InfoBlock, kNumLegs>& plan_blocks, int num_poses,
                              const OptimalDesign& design);
 
-struct PlanCertificate {
-  OptimalDesign design;
-  double d_efficiency = 0;  // certified lower bound, in (0, 1]
-};
-
-// The design bound over `candidates` and the D-efficiency of `plan` against it
-// (both on the model's rows, so weighted when the model has a noise model).
-StatusOr<PlanCertificate> CertifyPlan(const PlanningModel& model, const std::vector<Vector6d>& candidates,
-                                      const std::vector<Vector6d>& plan, const OptimalDesignOptions& options = {});
 
 }  // namespace hexcal

@@ -186,11 +186,35 @@ void PlanPanel::Run() {
     StatusOr<workflow::PlanOutcome> plan =
         workflow::RunPlan(model, setup, "", context, live);
     if (!plan.ok()) return [this, s = plan.status()] { Finish(s, {}); };
-    return [this, result = plan->plan] { Finish(Status::Ok(), result); };
+    return [this, outcome = std::move(*plan)] { Finish(Status::Ok(), outcome); };
   });
 }
 
-void PlanPanel::Finish(const Status& status, const PlanResult& result) {
+namespace {
+
+// What the plan buys and how close to the best it is, under the indices line.
+QString PredictionText(const workflow::PlanOutcome& outcome) {
+  const workflow::PlanPrediction& p = outcome.prediction;
+  QString text;
+  if (p.valid) {
+    const QString unit = QString::fromStdString(outcome.length_unit);
+    text += QString("\nPredicted: parameter σ mean %1 (max %2), expected mean error %3; held-out FK error %4, %5.")
+                .arg(FormatLength(p.mean_sigma, unit), FormatLength(p.max_sigma, unit),
+                     FormatLength(p.mean_error, unit), FormatLength(p.heldout.position_rms, unit),
+                     FormatAngle(p.heldout.orientation_rms_deg));
+  }
+  if (const std::optional<PlanCertificate>& cert = outcome.certificate) {
+    text += QString("\nS-efficiency ≥ %1, D-efficiency ≥ %2 on the candidates.")
+                .arg(cert->s_efficiency, 0, 'f', 3)
+                .arg(cert->d_efficiency, 0, 'f', 3);
+  }
+  return text;
+}
+
+}  // namespace
+
+void PlanPanel::Finish(const Status& status, const workflow::PlanOutcome& outcome) {
+  const PlanResult& result = outcome.plan;
   if (status.cancelled()) return SetOutcome("cancelled: the plan is unchanged.");
   if (!status.ok()) {
     SetOutcome("failed: " + QString::fromStdString(status.message()));
@@ -215,7 +239,8 @@ void PlanPanel::Finish(const Status& status, const PlanResult& result) {
                  .arg(result.initial.o1, 0, 'g', 4)
                  .arg(result.final.o1, 0, 'g', 4)
                  .arg(result.initial.o3, 0, 'g', 4)
-                 .arg(result.final.o3, 0, 'g', 4));
+                 .arg(result.final.o3, 0, 'g', 4) +
+             PredictionText(outcome));
 }
 
 void PlanPanel::Cancel() {

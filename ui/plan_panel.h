@@ -11,6 +11,7 @@
 #include "charts/chart_spec.h"
 #include "core/ioops.h"
 #include "core/planning_model.h"
+#include "workflow/plan_step.h"
 #include "ui/session_state.h"
 
 class QLabel;
@@ -53,7 +54,7 @@ class PlanPanel : public QWidget {
 
  private:
   StatusOr<PlanningModel> Model() const;
-  void Finish(const Status& status, const PlanResult& result);
+  void Finish(const Status& status, const workflow::PlanOutcome& outcome);
   // One planner iteration on the live O1..O4 chart (log scale); iteration 0 starts it.
   void PlotIteration(const PlanIteration& step);
   void FillTable();

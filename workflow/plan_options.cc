@@ -62,8 +62,9 @@ Spec Choice(std::string key, std::string label, OptionType type, std::vector<std
 void AddCriteria(OptionTable<PlanSetup>* t) {
   t->push_back(Choice(
       "criterion", "Criterion", OptionType::kChoice, CriterionChoices(false),
-      "primary criterion of AddFind and RemoveFind (section 2): O1 maximises the product of singular values "
-      "(D-optimal), O2 the conditioning, O3 the smallest singular value, O4 the noise amplification",
+      "primary criterion of AddFind and RemoveFind: S minimises the predicted mean parameter standard deviation "
+      "(the default); section 2's O1 maximises the product of singular values (D-optimal), O2 the conditioning, "
+      "O3 the smallest singular value, O4 the noise amplification",
       [](const PlanSetup& s) { return std::string(CriterionName(s.planner.criterion)); },
       [](PlanSetup& s, const std::string& v) { s.planner.criterion = *ParseCriterion(v); }));
   t->push_back(Choice(
@@ -94,6 +95,9 @@ void AddSearch(OptionTable<PlanSetup>* t) {
                            "AddFind by SLSQP in the workspace; the candidates are only the starts",
                            [](PlanSetup& s) -> bool& { return s.planner.continuous; });
   t->push_back(continuous);
+  t->push_back(Number("polish", "Continuous polish", OptionType::kInteger, "iterations", 0, 100000,
+                      "continuous IOOPS iterations from the finite plan (SLSQP under every constraint); 0: none",
+                      [](PlanSetup& s) -> int& { return s.polish; }));
   t->push_back(Number("switch_probability", "Criterion switch", OptionType::kNumber, "probability", 0, 1,
                       "section 4.2: AddFind uses the secondary criterion with this probability",
                       [](PlanSetup& s) -> double& { return s.planner.criterion_switch_probability; }));
@@ -123,15 +127,22 @@ void AddSources(OptionTable<PlanSetup>* t) {
   t->push_back(Number("threads", "Scoring threads", OptionType::kInteger, "threads", 0, 1024,
                       "threads that score candidates; 0: every core",
                       [](PlanSetup& s) -> int& { return s.planner.threads; }));
-  t->push_back(Number("certificate", "D-optimality certificate", OptionType::kFlag, "", 0, 1,
-                      "compute the D-optimal design bound and the plan's D-efficiency (finite candidates)",
+  t->push_back(Number("certificate", "Optimality certificates", OptionType::kFlag, "", 0, 1,
+                      "compute the D- and S-optimal design bounds on the candidates and the plan's efficiencies",
                       [](PlanSetup& s) -> bool& { return s.certificate; }));
   t->push_back(Number("certificate_seconds", "Certificate time limit", OptionType::kNumber, "s", 0.1, 86400,
-                      "time limit of the design bound",
+                      "time limit of each design bound",
                       [](PlanSetup& s) -> double& { return s.certificate_seconds; }));
 }
 
 }  // namespace
+
+PlannerOptions DefaultPlannerOptions() {
+  PlannerOptions options;
+  options.criterion = Criterion::kS;
+  options.tabu = 4;
+  return options;
+}
 
 Status PlanSetup::Check() const {
   std::string error;

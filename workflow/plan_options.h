@@ -17,13 +17,22 @@
 
 namespace hexcal::workflow {
 
+// The defaults are the plan that calibrates best (docs/planner.md, "Defaults"):
+// the S criterion, random and boundary candidates pooled, Tabu 4, and a
+// continuous polish of the finite plan.
+PlannerOptions DefaultPlannerOptions();
+
 struct PlanSetup {
-  PlannerOptions planner;
-  std::vector<std::string> candidate_kinds = {"random"};  // pooled generated sets
+  PlannerOptions planner = DefaultPlannerOptions();
+  std::vector<std::string> candidate_kinds = {"random", "boundary"};  // pooled generated sets
   int candidate_count = 0;        // poses per random/uniform set; 0: 10000 (continuous 2000)
   std::string init = "random";    // random | uniform | boundary | a pose CSV file
   bool certificate = true;        // the D-optimal design bound (finite candidate sets)
   double certificate_seconds = 60;  // its time limit, seconds
+  // Continuous IOOPS iterations from the finite plan (its poses moved off the
+  // candidate grid by SLSQP under every constraint); 0: none. With `continuous`
+  // the finite plan is the start and the planner's own budget applies instead.
+  int polish = 20;
 
   // The checks no single option can make (IsValid of PlannerOptions and the
   // criterion switch without a secondary); names the options to change.

@@ -123,6 +123,32 @@ Status WriteHistoryCsv(const std::string& path, const PlanResult& plan) {
   return WriteCsv(path, {"iteration", "O1", "O2", "O3", "O4", "primary", "secondary", "exchanged"}, rows);
 }
 
+namespace {
+
+// What the plan buys, in the robot's unit: the lines under the indices.
+std::string FormatPrediction(const PlanOutcome& outcome) {
+  const PlanPrediction& p = outcome.prediction;
+  const std::string unit = " " + outcome.length_unit;
+  std::ostringstream out;
+  out << std::setprecision(3);
+  if (outcome.finite_primary) {
+    out << "  " << (outcome.setup.planner.continuous ? "continuous search" : "continuous polish") << " from the finite plan: "
+        << CriterionName(outcome.setup.planner.criterion) << " " << *outcome.finite_primary << " -> "
+        << outcome.plan.final_primary << "\n";
+  }
+  if (!p.valid) return out.str() + "  predicted error: none (a leg's parameters are not identified)\n";
+  out << "  predicted with noise ±" << outcome.noise.position << unit << ", ±" << outcome.noise.angle_deg << " deg, ±"
+      << outcome.noise.leg << unit << " (calibrate's unweighted fit):\n"
+      << "    parameter σ mean " << p.mean_sigma << unit << ", max " << p.max_sigma << unit
+      << "; expected mean |error| " << p.mean_error << unit << "\n"
+      << "    held-out FK error RMS " << p.heldout.position_rms << unit << ", " << p.heldout.orientation_rms_deg
+      << " deg (parameters alone " << p.from_parameters.position_rms << unit << ", "
+      << p.from_parameters.orientation_rms_deg << " deg)\n";
+  return out.str();
+}
+
+}  // namespace
+
 nlohmann::json ToJson(const PlanOutcome& outcome) {
   const PlannerOptions& options = outcome.setup.planner;
   const PlanResult& plan = outcome.plan;
@@ -141,12 +167,24 @@ nlohmann::json ToJson(const PlanOutcome& outcome) {
                       {"continuous", options.continuous},
                       {"out", outcome.out}};
   if (options.secondary) j["secondary"] = CriterionName(*options.secondary);
+  j["polish"] = outcome.setup.polish;
+  if (outcome.finite_primary) {
+    j["finite_criterion"] = *outcome.finite_primary;
+    j["finite_iterations"] = outcome.finite_iterations;
+  }
+  j["length_unit"] = outcome.length_unit;
+  j["predicted"] = ToJson(outcome.prediction, outcome.noise, /*weighted=*/false);
   if (const std::optional<PlanCertificate>& cert = outcome.certificate) {
     j["d_efficiency"] = cert->d_efficiency;
     j["gap"] = cert->design.gap;
     j["design_converged"] = cert->design.converged;
     j["design_support"] = cert->design.support;
     j["design_iterations"] = cert->design.iterations;
+    j["s_efficiency"] = cert->s_efficiency;
+    j["s_gap"] = cert->sigma_design.gap;
+    j["s_design_converged"] = cert->sigma_design.converged;
+    j["s_design_support"] = cert->sigma_design.support;
+    j["best_mean_sigma"] = cert->BestMeanSigma(static_cast<int>(plan.poses.size()));
   }
   return j;
 }
@@ -172,37 +210,116 @@ std::string FormatPlanSummary(const PlanOutcome& outcome) {
   if (s.contains("d_efficiency")) {
     out << "  D-efficiency >= " << std::setprecision(4) << s["d_efficiency"].get<double>() << " (design bound gap "
         << s["gap"].get<double>() << ")\n";
+    out << "  S-efficiency >= " << s["s_efficiency"].get<double>() << " (design bound gap " << s["s_gap"].get<double>()
+        << ")\n";
   }
+  out << FormatPrediction(outcome);
   if (!outcome.out.empty()) out << "written to " << outcome.out << "\n";
   return out.str();
 }
 
-StatusOr<PlanOutcome> RunPlan(const PlanningModel& model, const PlanSetup& setup, const std::string& candidates_file,
-                              const JobHooks& hooks, const PlanIterationObserver& on_iteration) {
+namespace {
+
+bool UsesS(const PlannerOptions& options) {
+  return options.criterion == Criterion::kS || options.secondary == Criterion::kS;
+}
+
+// The continuous phase's history after the finite one's: numbered on, its
+// iteration 0 (the finite plan again) left out.
+void AppendPhase(PlanResult second, PlanResult* first) {
+  const int offset = first->iterations;
+  for (size_t k = 1; k < second.history.size(); ++k) {
+    second.history[k].iteration += offset;
+    first->history.push_back(second.history[k]);
+  }
+  if (second.best_iteration > 0) first->best_iteration = offset + second.best_iteration;
+  first->poses = std::move(second.poses);
+  first->final = second.final;
+  first->final_primary = second.final_primary;
+  first->iterations = offset + second.iterations;
+  first->converged = second.converged;
+  first->seconds += second.seconds;
+}
+
+// Continuous IOOPS from the finite plan: `iterations` with the planner's
+// options (its budget when 0), starts drawn from the pool.
+Status ContinuousPhase(const PlanningModel& model, const PlanSetup& setup, int iterations, const JobHooks& hooks,
+                       const PlanIterationObserver& on_iteration, PlanOutcome* outcome) {
+  PlannerOptions options = setup.planner;
+  options.continuous = true;
+  options.iterations = iterations;
+  const int offset = outcome->plan.iterations;
+  PlanIterationObserver observer;
+  if (on_iteration) {
+    observer = [&](const PlanIteration& step) {
+      if (step.iteration == 0) return;
+      PlanIteration numbered = step;
+      numbered.iteration += offset;
+      on_iteration(numbered);
+    };
+  }
+  StatusOr<PlanResult> second = PlanPoses(model, outcome->pool.poses, outcome->plan.poses, options, hooks, observer);
+  if (!second.ok()) return second.status().AsFailure();
+  outcome->finite_primary = outcome->plan.final_primary;
+  outcome->finite_iterations = outcome->plan.iterations;
+  AppendPhase(std::move(*second), &outcome->plan);
+  return Status::Ok();
+}
+
+// The certificates on the pool plus the plan's own poses (a polished pose is
+// not in the pool), so that no efficiency can exceed 1.
+Status Certify(const PlanningModel& model, const PlanSetup& setup, const JobHooks& hooks, PlanOutcome* outcome) {
+  hooks.Stage("certificate");
+  OptimalDesignOptions design_options;
+  design_options.max_seconds = setup.certificate_seconds;
+  std::vector<Vector6d> candidates = outcome->pool.poses;
+  candidates.insert(candidates.end(), outcome->plan.poses.begin(), outcome->plan.poses.end());
+  StatusOr<PlanCertificate> cert = CertifyPlan(model, candidates, outcome->plan.poses, design_options);
+  if (!cert.ok()) return cert.status().AsFailure();
+  outcome->certificate = *cert;
+  return Status::Ok();
+}
+
+}  // namespace
+
+StatusOr<PlanOutcome> RunPlan(const PlanningModel& given_model, const PlanSetup& setup,
+                              const std::string& candidates_file, const JobHooks& hooks,
+                              const PlanIterationObserver& on_iteration) {
   if (Status s = setup.Check(); !s.ok()) return s;
-  const PlannerOptions& planner = setup.planner;
+  PlanningModel model = given_model;
+  if (!model.noise && UsesS(setup.planner)) model.noise = NoiseModel{};  // S is a σ: it needs a noise model
+  PlannerOptions finite = setup.planner;
+  finite.continuous = false;
+  if (setup.planner.continuous) finite.iterations = 0;  // the user's budget is the continuous phase's
   // Core's statuses carry the kind: a file the user named that is wrong, or a
   // robot without a pose box, is bad input; a generated set that cannot be had
   // (a box too tight) is a failed computation.
-  StatusOr<std::vector<Vector6d>> initial = InitialPoses(model, setup.init, planner.num_poses, planner.seed);
+  StatusOr<std::vector<Vector6d>> initial = InitialPoses(model, setup.init, finite.num_poses, finite.seed);
   if (!initial.ok()) return initial.status();
   hooks.Stage("candidates");
-  StatusOr<CandidatePool> pool =
-      BuildCandidatePool(model, candidates_file, setup.candidate_kinds, setup.candidate_count, planner.continuous,
-                         planner.seed, hooks.progress);
+  StatusOr<CandidatePool> pool = BuildCandidatePool(model, candidates_file, setup.candidate_kinds,
+                                                    setup.candidate_count, setup.planner.continuous, finite.seed,
+                                                    hooks.progress);
   if (!pool.ok()) return pool.status();
   hooks.Stage("planning");
-  StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, *initial, planner, hooks, on_iteration);
+  StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, *initial, finite, hooks, on_iteration);
   if (!plan.ok()) return plan.status().AsFailure();
-  PlanOutcome outcome{setup, std::move(*pool), std::move(*plan), std::nullopt, ""};
-  if (!planner.continuous && setup.certificate) {
-    hooks.Stage("certificate");
-    OptimalDesignOptions design_options;
-    design_options.max_seconds = setup.certificate_seconds;
-    StatusOr<PlanCertificate> cert = CertifyPlan(model, outcome.pool.poses, outcome.plan.poses, design_options);
-    if (!cert.ok()) return cert.status().AsFailure();
-    outcome.certificate = *cert;
+  PlanOutcome outcome{setup, std::move(*pool), std::move(*plan), std::nullopt, "", std::nullopt, 0, {}, {}};
+  const int continuous_iterations = setup.planner.continuous ? setup.planner.IterationBudget() : setup.polish;
+  if (continuous_iterations > 0) {
+    hooks.Stage(setup.planner.continuous ? "continuous" : "polishing");
+    if (Status s = ContinuousPhase(model, setup, continuous_iterations, hooks, on_iteration, &outcome); !s.ok()) {
+      return s;
+    }
   }
+  if (setup.certificate) {
+    if (Status s = Certify(model, setup, hooks, &outcome); !s.ok()) return s;
+  }
+  hooks.Stage("prediction");
+  outcome.length_unit = LengthUnitName(model.robot.length_unit);
+  outcome.noise = model.noise.value_or(NoiseModel{});
+  outcome.prediction = PredictPlanError(model.robot, outcome.plan.poses, outcome.noise, /*weighted=*/false,
+                                        ValidationPoses(model.robot));
   return outcome;
 }
 

@@ -18,8 +18,9 @@
 
 #include "core/ioops.h"
 #include "core/job_hooks.h"
-#include "core/optimal_design.h"
+#include "core/plan_certificate.h"
 #include "workflow/plan_options.h"
+#include "workflow/plan_prediction.h"
 
 namespace hexcal::workflow {
 
@@ -46,9 +47,15 @@ Status WriteHistoryCsv(const std::string& path, const PlanResult& plan);
 struct PlanOutcome {
   PlanSetup setup;
   CandidatePool pool;
-  PlanResult plan;
-  std::optional<PlanCertificate> certificate;  // finite candidates with setup.certificate
+  PlanResult plan;                             // both phases' history; the final plan
+  std::optional<PlanCertificate> certificate;  // with setup.certificate, on the pool and the plan's poses
   std::string out;                             // the plan CSV written, if any
+  // The finite phase's criterion and iterations, when a continuous phase followed it.
+  std::optional<double> finite_primary;
+  int finite_iterations = 0;
+  NoiseModel noise;                            // the prediction's (the model's, else the paper's)
+  PlanPrediction prediction;                   // for calibrate's default, unweighted
+  std::string length_unit;                     // the robot's, for the figures
 };
 
 // The summary `hexcal plan --json` prints.
@@ -56,9 +63,13 @@ nlohmann::json ToJson(const PlanOutcome& outcome);
 // The lines `hexcal plan` prints.
 std::string FormatPlanSummary(const PlanOutcome& outcome);
 
-// Pool, initial set, IOOPS and (finite sets) the certificate, on a model and
-// setup already resolved. Stages through hooks: "candidates", "planning",
-// "certificate". `on_iteration` sees each history entry as it is recorded.
+// Pool, initial set, IOOPS on the pool, then (polish, or `continuous`)
+// continuous IOOPS from that plan, the certificates and the prediction, on a
+// model and setup already resolved. The S criterion without a noise model
+// weights by the paper's noise levels. Stages through hooks: "candidates",
+// "planning", "polishing" or "continuous", "certificate", "prediction".
+// `on_iteration` sees each history entry as it is recorded, numbered on
+// through both phases.
 StatusOr<PlanOutcome> RunPlan(const PlanningModel& model, const PlanSetup& setup,
                               const std::string& candidates_file = "", const JobHooks& hooks = {},
                               const PlanIterationObserver& on_iteration = {});

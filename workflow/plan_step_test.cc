@@ -22,7 +22,9 @@ using hexcal::testing::WriteTextFile;
 PlanRequest SmallRequest(const TempDir& dir) {
   PlanRequest request;
   request.robot = "inria-left-hand";
-  request.planner_entries = {{"poses", "8"}, {"candidate_count", "300"}, {"iterations", "20"}};
+  // Random candidates only: the boundary set's homotopy FK would cost seconds per test.
+  request.planner_entries = {
+      {"poses", "8"}, {"candidate_count", "300"}, {"iterations", "20"}, {"candidate_kind", "random"}};
   request.out = dir.File("plan.csv");
   return request;
 }
@@ -84,14 +86,31 @@ TEST(PlanFromRequest, WritesThePlanAndHistory) {
   hooks.stage = [&](const std::string& stage) { stages.push_back(stage); };
   StatusOr<PlanOutcome> outcome = PlanFromRequest(request, hooks);
   ASSERT_TRUE(outcome.ok()) << outcome.status().message();
-  EXPECT_EQ(stages, (std::vector<std::string>{"candidates", "planning", "certificate"}));
+  EXPECT_EQ(stages, (std::vector<std::string>{"candidates", "planning", "polishing", "certificate", "prediction"}));
   StatusOr<CsvTable> plan = ReadCsv(request.out);
   ASSERT_TRUE(plan.ok());
   EXPECT_EQ(plan->rows.size(), 8u);
   EXPECT_GT(outcome->plan.final.o1, outcome->plan.initial.o1);
+  // The polish starts from the finite plan and keeps the best seen: never worse.
+  ASSERT_TRUE(outcome->finite_primary.has_value());
+  EXPECT_GE(outcome->plan.final_primary, *outcome->finite_primary);
+  EXPECT_EQ(outcome->plan.iterations, outcome->finite_iterations + 20);
+  StatusOr<CsvTable> history = ReadCsv(request.history);
+  ASSERT_TRUE(history.ok());
+  EXPECT_EQ(history->rows.size(), static_cast<size_t>(outcome->plan.iterations + 1));
   ASSERT_TRUE(outcome->certificate.has_value());
   EXPECT_GT(outcome->certificate->d_efficiency, 0.5);
-  EXPECT_EQ(ToJson(*outcome)["poses"], 8);
+  EXPECT_GT(outcome->certificate->s_efficiency, 0.5);
+  EXPECT_LE(outcome->certificate->s_efficiency, 1);
+  // The certificate's best mean σ bounds the plan's own predicted σ... of the
+  // weighted fit; the prediction is calibrate's unweighted one, which is no better.
+  ASSERT_TRUE(outcome->prediction.valid);
+  EXPECT_GE(outcome->prediction.mean_sigma, outcome->certificate->BestMeanSigma(8));
+  const nlohmann::json json = ToJson(*outcome);
+  EXPECT_EQ(json["poses"], 8);
+  EXPECT_EQ(json["criterion"], "S");
+  EXPECT_DOUBLE_EQ(json["predicted"]["mean_error"].get<double>(), outcome->prediction.mean_error);
+  EXPECT_EQ(json["length_unit"], "cm");
 }
 
 // Flags override the settings file, which overrides the defaults.
@@ -100,7 +119,7 @@ TEST(PlanFromRequest, SettingsFileThenEntries) {
   WriteTextFile(dir.File("plan.yaml"), "planner:\n  poses: 9\n  tabu: 2\n  certificate: false\nnoise:\n  leg: 0.002\n");
   PlanRequest request = SmallRequest(dir);
   request.settings = dir.File("plan.yaml");
-  request.planner_entries = {{"candidate_count", "300"}, {"iterations", "10"}, {"tabu", "3"}};
+  request.planner_entries = {{"candidate_count", "300"}, {"iterations", "10"}, {"tabu", "3"}, {"candidate_kind", "random"}};
   StatusOr<PlanOutcome> outcome = PlanFromRequest(request);
   ASSERT_TRUE(outcome.ok()) << outcome.status().message();
   EXPECT_EQ(outcome->setup.planner.num_poses, 9);

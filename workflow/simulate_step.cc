@@ -14,6 +14,7 @@
 #include "core/csv.h"
 #include "core/noise_model.h"
 #include "core/robot_io.h"
+#include "workflow/plan_prediction.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -111,28 +112,27 @@ StatusOr<std::vector<SimulationPoseSet>> ResolveSets(const Robot& robot, const S
   return sets;
 }
 
-nlohmann::json SetJson(const SetError& set) {
+nlohmann::json OptionalNumber(const std::optional<double>& value) {
+  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
+nlohmann::json SetJson(const SetError& set, const std::optional<double>& predicted = std::nullopt) {
   return {{"name", set.name},
+          {"predicted_mean", OptionalNumber(predicted)},
+          {"predicted_ratio", OptionalNumber(predicted ? std::optional<double>(set.mean / *predicted) : std::nullopt)},
           {"poses", set.poses},
           {"mean", set.mean},
           {"std", set.std},
-          {"ratio_to_random", set.ratio_to_random ? nlohmann::json(*set.ratio_to_random) : nlohmann::json(nullptr)},
+          {"ratio_to_random", OptionalNumber(set.ratio_to_random)},
           {"mean_estimate_error", set.mean_estimate_error},
           {"runs", set.runs},
           {"failed_runs", set.failed_runs}};
 }
 
-// Each key of NoiseModelOptions() with its value.
-nlohmann::json NoiseJson(const NoiseModel& noise) {
-  nlohmann::json json;
-  for (const OptionSpec<NoiseModel>& spec : NoiseModelOptions()) json[spec.key] = spec.get_number(noise);
-  return json;
-}
-
 nlohmann::json ResultJson(const Robot& robot, const SimulateRequest& cli, const SimulationResult& result,
-                          const std::optional<SweepResult>& sweep) {
+                          const std::optional<SweepResult>& sweep, const std::vector<std::optional<double>>& predicted) {
   nlohmann::json sets = nlohmann::json::array();
-  for (const SetError& set : result.sets) sets.push_back(SetJson(set));
+  for (size_t k = 0; k < result.sets.size(); ++k) sets.push_back(SetJson(result.sets[k], predicted.at(k)));
   nlohmann::json j = {{"before", {{"mean", result.before.mean}, {"std", result.before.std}}},
                       {"sets", sets},
                       {"robot", robot.name},
@@ -142,7 +142,7 @@ nlohmann::json ResultJson(const Robot& robot, const SimulateRequest& cli, const 
                       {"perturb", cli.study.perturb},
                       {"weighted", cli.study.calibration.weighted},
                       {"random_box", cli.random_box},
-                      {"noise", NoiseJson(cli.study.noise)}};
+                      {"noise", NoiseModelJson(cli.study.noise)}};
   if (sweep) {
     nlohmann::json points = nlohmann::json::array();
     for (const SweepPoint& point : sweep->points) {
@@ -156,9 +156,15 @@ nlohmann::json ResultJson(const Robot& robot, const SimulateRequest& cli, const 
 }
 
 void PrintSetRow(const std::string& name, const std::string& poses, double mean, double std,
-                 const std::optional<double>& ratio, std::ostream& out) {
+                 const std::optional<double>& predicted, const std::optional<double>& ratio, std::ostream& out) {
   char line[200];
   std::snprintf(line, sizeof line, "%-28s %6s %12.4g %12.4g", name.c_str(), poses.c_str(), mean, std);
+  out << line;
+  if (predicted) {
+    std::snprintf(line, sizeof line, " %12.4g", *predicted);
+  } else {
+    std::snprintf(line, sizeof line, " %12s", "-");
+  }
   out << line;
   if (ratio) {
     std::snprintf(line, sizeof line, " %12.3g", *ratio);
@@ -197,7 +203,8 @@ void PrintSweep(const SimulationResult& result, const SweepResult& sweep, const 
 }
 
 void PrintReport(const Robot& robot, const SimulateRequest& cli, const SimulationResult& result,
-                 const std::optional<SweepResult>& sweep, std::ostream& out) {
+                 const std::optional<SweepResult>& sweep, const std::vector<std::optional<double>>& predicted,
+                 std::ostream& out) {
   const char* unit = LengthUnitName(robot.length_unit);
   const SimulationOptions& study = cli.study;
   out << "section 7 study on robot " << robot.name << ": " << study.runs << " runs, seed " << study.seed << "\n"
@@ -207,11 +214,13 @@ void PrintReport(const Robot& robot, const SimulateRequest& cli, const Simulatio
       << " deg angles, ±" << study.noise.leg << " " << unit << " leg readings\n\n"
       << "error |P_est - P_true| over the 42 parameters and all runs (" << unit << ")\n";
   char line[200];
-  std::snprintf(line, sizeof line, "%-28s %6s %12s %12s %12s\n", "set", "poses", "mean", "std", "/ random");
+  std::snprintf(line, sizeof line, "%-28s %6s %12s %12s %12s %12s\n", "set", "poses", "mean", "std", "predicted",
+                "/ random");
   out << line;
-  PrintSetRow("before calibration", "-", result.before.mean, result.before.std, std::nullopt, out);
-  for (const SetError& set : result.sets) {
-    PrintSetRow(set.name, std::to_string(set.poses), set.mean, set.std, set.ratio_to_random, out);
+  PrintSetRow("before calibration", "-", result.before.mean, result.before.std, std::nullopt, std::nullopt, out);
+  for (size_t k = 0; k < result.sets.size(); ++k) {
+    const SetError& set = result.sets[k];
+    PrintSetRow(set.name, std::to_string(set.poses), set.mean, set.std, predicted.at(k), set.ratio_to_random, out);
   }
   for (const SetError& set : result.sets) {
     if (set.failed_runs > 0) {
@@ -236,6 +245,19 @@ Status WriteTable(const std::string& path, const SimulationResult& result, const
     }
   }
   return WriteCsv(path, {"study", "name", "poses", "mean", "std", "ratio_to_random"}, rows);
+}
+
+// The mean error each fixed set is predicted to give under the study's noise
+// and calibration (plan_prediction.h), for the table's "predicted" column.
+std::vector<std::optional<double>> PredictedMeans(const Robot& robot, const std::vector<SimulationPoseSet>& sets,
+                                                  const SimulationOptions& study) {
+  std::vector<std::optional<double>> predicted;
+  for (const SimulationPoseSet& set : sets) {
+    const PlanPrediction p = set.random ? PlanPrediction{}
+                                        : PredictPlanError(robot, set.poses, study.noise, study.calibration.weighted, {});
+    predicted.push_back(p.valid ? std::optional<double>(p.mean_error) : std::nullopt);
+  }
+  return predicted;
 }
 
 // The files `csv` and `plots` would replace: refused without `force`.
@@ -297,7 +319,7 @@ StatusOr<SimulateOutcome> RunSimulationStudy(SimulateRequest request, const JobH
   hooks.Stage("simulate (runs)");
   StatusOr<SimulationResult> result = Simulate(*robot, *sets, request.study, hooks);
   if (!result.ok()) return result.status();
-  SimulateOutcome outcome{request, *robot, std::move(*result), std::nullopt, {}, 0};
+  SimulateOutcome outcome{request, *robot, std::move(*result), std::nullopt, {}, 0, PredictedMeans(*robot, *sets, request.study)};
   if (sweep_range) {
     hooks.Stage("sweep (runs)");
     StatusOr<SweepResult> swept =
@@ -311,12 +333,12 @@ StatusOr<SimulateOutcome> RunSimulationStudy(SimulateRequest request, const JobH
 }
 
 nlohmann::json ToJson(const SimulateOutcome& outcome) {
-  return ResultJson(outcome.robot, outcome.request, outcome.result, outcome.sweep);
+  return ResultJson(outcome.robot, outcome.request, outcome.result, outcome.sweep, outcome.predicted_mean);
 }
 
 std::string FormatSimulateSummary(const SimulateOutcome& outcome) {
   std::ostringstream out;
-  PrintReport(outcome.robot, outcome.request, outcome.result, outcome.sweep, out);
+  PrintReport(outcome.robot, outcome.request, outcome.result, outcome.sweep, outcome.predicted_mean, out);
   if (!outcome.request.csv.empty()) out << "table written to " << outcome.request.csv << "\n";
   for (const std::string& figure : outcome.figures) out << "figure written to " << figure << "\n";
   out << "done in " << outcome.seconds << " s\n";

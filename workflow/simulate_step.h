@@ -42,6 +42,9 @@ struct SimulateOutcome {
   std::optional<SweepResult> sweep;
   std::vector<std::string> figures;  // files written under `plots`
   double seconds = 0;
+  // Per set, the mean error a fixed set is predicted to give (plan_prediction.h);
+  // none for random sets, whose poses change from run to run.
+  std::vector<std::optional<double>> predicted_mean;
 };
 
 // Stages through hooks: "simulate (runs)", then "sweep (runs)".

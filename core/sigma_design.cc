@@ -1,0 +1,142 @@
+#include "core/sigma_design.h"
+
+#include <Eigen/Cholesky>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "core/parallel.h"
+
+namespace hexcal {
+namespace {
+
+using Blocks = std::array<InfoBlock, kNumLegs>;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// Φ of the design and, per leg, S_i^-½ M_i⁻¹ (so that d = Σ_i |S_i^-½ M_i⁻¹ r_i|²).
+// False when a block is singular.
+bool SigmaFactors(const Blocks& blocks, Blocks* factors, double* sigma_sum) {
+  *sigma_sum = 0;
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Eigen::LLT<InfoBlock> llt(blocks[i]);
+    if (llt.info() != Eigen::Success) return false;
+    const InfoBlock inverse = llt.solve(InfoBlock::Identity());
+    if (!(inverse.diagonal().array() > 0).all()) return false;
+    const Eigen::Matrix<double, kParamsPerLeg, 1> sigma = inverse.diagonal().cwiseSqrt();
+    *sigma_sum += sigma.sum();
+    (*factors)[i] = sigma.cwiseSqrt().cwiseInverse().asDiagonal() * inverse;
+  }
+  return true;
+}
+
+double SigmaSumOf(const Blocks& blocks) {
+  Blocks unused;
+  double sum;
+  return SigmaFactors(blocks, &unused, &sum) ? sum : kInfinity;
+}
+
+void DirectionalFunction(const Blocks& factors, const CandidateRows& candidates, Eigen::ArrayXd* d, int threads) {
+  d->resize(candidates.size());
+  ParallelForBlocks(candidates.size(), 1024, threads, [&](int begin, int end) {
+    Eigen::Map<Eigen::ArrayXd> out(d->data() + begin, end - begin);
+    out.setZero();
+    for (int i = 0; i < kNumLegs; ++i) {
+      const Eigen::MatrixXd y = factors[i] * candidates.legs[i].middleCols(begin, end - begin);
+      out += y.colwise().squaredNorm().transpose().array();
+    }
+  });
+}
+
+// The weight δ in [0, max_step] moved from candidate l to candidate k that
+// minimises Φ, by golden-section search (Φ is convex along the segment); 0 if
+// no step lowers Φ.
+double SigmaExchangeStep(const Blocks& blocks, const CandidateRows& candidates, int k, int l, double max_step) {
+  auto phi = [&](double delta) {
+    Blocks moved = blocks;
+    for (int i = 0; i < kNumLegs; ++i) {
+      const auto rk = candidates.legs[i].col(k), rl = candidates.legs[i].col(l);
+      moved[i] += delta * (rk * rk.transpose() - rl * rl.transpose());
+    }
+    return SigmaSumOf(moved);
+  };
+  const double ratio = 0.5 * (std::sqrt(5.0) - 1);
+  double lo = 0, hi = max_step;
+  double x1 = hi - ratio * (hi - lo), x2 = lo + ratio * (hi - lo), f1 = phi(x1), f2 = phi(x2);
+  for (int iteration = 0; iteration < 40; ++iteration) {
+    if (f1 < f2) {
+      hi = x2, x2 = x1, f2 = f1, x1 = hi - ratio * (hi - lo), f1 = phi(x1);
+    } else {
+      lo = x1, x1 = x2, f1 = f2, x2 = lo + ratio * (hi - lo), f2 = phi(x2);
+    }
+  }
+  const double best = 0.5 * (lo + hi);
+  return phi(best) < phi(0) ? best : 0;
+}
+
+// Up to eight vertex exchanges: weight from the support point with the smallest
+// d to the candidate with the largest, while a step lowers Φ.
+void VertexExchanges(const CandidateRows& candidates, Eigen::ArrayXd d, int best, Eigen::ArrayXd* w) {
+  Blocks blocks = DesignInformation(candidates, *w);
+  for (int exchange = 0; exchange < 8; ++exchange) {
+    int worst = -1;
+    double worst_d = kInfinity;
+    for (int j = 0; j < candidates.size(); ++j) {
+      if ((*w)[j] > 0 && d[j] < worst_d) worst_d = d[j], worst = j;
+    }
+    if (worst < 0 || worst == best) return;
+    const double delta = SigmaExchangeStep(blocks, candidates, best, worst, (*w)[worst]);
+    if (delta <= 0) return;
+    (*w)[best] += delta;
+    (*w)[worst] -= delta;
+    for (int i = 0; i < kNumLegs; ++i) {
+      const auto rk = candidates.legs[i].col(best), rl = candidates.legs[i].col(worst);
+      blocks[i] += delta * (rk * rk.transpose() - rl * rl.transpose());
+    }
+    d[worst] = kInfinity;  // look for the next-worst support point
+  }
+}
+
+}  // namespace
+
+double SigmaDesign::SigmaSumBound() const { return max_d > 0 ? sigma_sum * std::sqrt(sigma_sum / max_d) : 0; }
+
+StatusOr<SigmaDesign> ComputeSigmaOptimalDesign(const CandidateRows& candidates, const OptimalDesignOptions& options,
+                                                const JobHooks& hooks) {
+  const auto start = std::chrono::steady_clock::now();
+  const int count = candidates.size();
+  if (count < kParamsPerLeg) return Status::Error("the optimal design needs at least 7 candidates");
+  Eigen::ArrayXd w = Eigen::ArrayXd::Constant(count, 1.0 / count), d;
+  SigmaDesign design;
+  Blocks factors;
+  for (design.iterations = 0; design.iterations < options.max_iterations; ++design.iterations) {
+    if (hooks.Cancelled()) return Status::Cancelled("optimal design cancelled");
+    if (!SigmaFactors(DesignInformation(candidates, w), &factors, &design.sigma_sum)) {
+      return Status::Error("the candidate set does not identify all 42 parameters (singular information)");
+    }
+    DirectionalFunction(factors, candidates, &d, options.threads);
+    Eigen::Index best;
+    design.max_d = d.maxCoeff(&best);
+    design.gap = design.max_d / design.sigma_sum - 1;
+    if (design.gap < options.gap_tolerance) {
+      design.converged = true;
+      break;
+    }
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (elapsed > options.max_seconds) break;
+    w *= (d / design.sigma_sum).sqrt();
+    w /= w.sum();
+    VertexExchanges(candidates, d, static_cast<int>(best), &w);
+  }
+  design.weights.assign(w.data(), w.data() + count);
+  design.support = static_cast<int>((w > 1e-8).count());
+  return design;
+}
+
+double SEfficiencyLowerBound(const std::array<InfoBlock, kNumLegs>& plan_blocks, int num_poses,
+                             const SigmaDesign& design) {
+  const double plan_sum = SigmaSumOf(plan_blocks);
+  if (!std::isfinite(plan_sum) || num_poses <= 0) return 0;
+  return design.SigmaSumBound() / (std::sqrt(static_cast<double>(num_poses)) * plan_sum);
+}
+
+}  // namespace hexcal

@@ -1,0 +1,111 @@
+// The S criterion's approximate design (sigma_design.h) against what its
+// theory says independently of the solver: at the optimum no move of weight
+// towards any candidate lowers Φ (checked by finite steps on Φ computed from
+// dense inverses), the bound is below Φ(w), and exact plans are no better
+// than the bound allows.
+#include "core/sigma_design.h"
+
+#include <gtest/gtest.h>
+
+#include "core/candidates.h"
+#include "core/planning_model.h"
+#include "core/sigma_criterion.h"
+#include "tests/robot_presets.h"
+
+namespace hexcal {
+namespace {
+
+using ::hexcal::testing::Preset;
+
+struct Problem {
+  PlanningModel model;
+  std::vector<Vector6d> poses;
+  CandidateRows rows;
+};
+
+// The boundary candidates (section 6.1) cost seconds of homotopy FK: made once.
+const std::vector<Vector6d>& BoundaryAndRandomPoses(const Robot& robot) {
+  static const std::vector<Vector6d> poses = [&] {
+    CandidateOptions options;
+    options.kind = CandidateKind::kBoundary;
+    std::vector<Vector6d> all = GenerateCandidates(robot, options)->poses;
+    options.kind = CandidateKind::kRandom;
+    options.count = 300;
+    options.seed = 4;
+    const std::vector<Vector6d> random = GenerateCandidates(robot, options)->poses;
+    all.insert(all.end(), random.begin(), random.end());
+    return all;
+  }();
+  return poses;
+}
+
+Problem BoundaryAndRandom(bool weighted) {
+  Problem p{{Preset("inria-left-hand"), std::nullopt, std::nullopt}, {}, {}};
+  if (weighted) p.model.noise = NoiseModel{};
+  p.poses = BoundaryAndRandomPoses(p.model.robot);
+  p.rows.Resize(static_cast<int>(p.poses.size()));
+  for (size_t j = 0; j < p.poses.size(); ++j) p.rows.Set(static_cast<int>(j), p.model.Rows(p.poses[j]));
+  return p;
+}
+
+// Φ(w) from dense inverses of M_i(w), independent of the solver's factorisations.
+double DensePhi(const CandidateRows& rows, const Eigen::ArrayXd& w) {
+  const std::array<InfoBlock, kNumLegs> blocks = DesignInformation(rows, w);
+  double sum = 0;
+  for (const InfoBlock& block : blocks) sum += SigmaSum(block.inverse());
+  return sum;
+}
+
+TEST(SigmaDesign, NoMoveTowardsACandidateImprovesTheOptimum) {
+  for (bool weighted : {false, true}) {
+    const Problem p = BoundaryAndRandom(weighted);
+    StatusOr<SigmaDesign> design = ComputeSigmaOptimalDesign(p.rows);
+    ASSERT_TRUE(design.ok()) << design.status().message();
+    EXPECT_TRUE(design->converged) << "gap " << design->gap << " after " << design->iterations;
+    const Eigen::ArrayXd w = Eigen::Map<const Eigen::ArrayXd>(design->weights.data(), design->weights.size());
+    EXPECT_NEAR(w.sum(), 1, 1e-12);
+    const double phi = DensePhi(p.rows, w);
+    EXPECT_NEAR(phi, design->sigma_sum, 1e-9 * phi);
+    // Directional derivative (Φ - d) / 2 >= -gap Φ / 2 in every direction: a
+    // step of α towards candidate j changes Φ by at least -α gap Φ / 2 + O(α²).
+    constexpr double kAlpha = 1e-4;
+    for (int j = 0; j < p.rows.size(); j += 7) {
+      Eigen::ArrayXd moved = (1 - kAlpha) * w;
+      moved[j] += kAlpha;
+      EXPECT_GE(DensePhi(p.rows, moved) - phi, -kAlpha * phi * (design->gap + 1e-3)) << "candidate " << j;
+    }
+    EXPECT_LE(design->SigmaSumBound(), phi);
+    EXPECT_GE(design->SigmaSumBound(), phi * (1 - design->gap));
+  }
+}
+
+TEST(SigmaDesign, ExactPlansAreNoBetterThanTheBound) {
+  const Problem p = BoundaryAndRandom(true);
+  StatusOr<SigmaDesign> design = ComputeSigmaOptimalDesign(p.rows);
+  ASSERT_TRUE(design.ok());
+  // Any N candidates, as an exact design, have Σσ √N >= Φ* >= the bound.
+  for (int first = 0; first + 18 <= p.rows.size(); first += 40) {
+    std::vector<PoseRows> plan;
+    for (int j = first; j < first + 18; ++j) plan.push_back(p.rows.Rows(j));
+    const DesignState state = DesignState::FromRows(plan);
+    if (!state.full_rank()) continue;
+    const double efficiency = SEfficiencyLowerBound(state.blocks(), 18, *design);
+    EXPECT_GT(efficiency, 0);
+    EXPECT_LE(efficiency, 1) << "plan from candidate " << first;
+  }
+}
+
+TEST(SigmaDesign, DoesNotDependOnTheThreadCount) {
+  const Problem p = BoundaryAndRandom(false);
+  OptimalDesignOptions options;
+  options.max_iterations = 30;
+  options.threads = 1;
+  StatusOr<SigmaDesign> one = ComputeSigmaOptimalDesign(p.rows, options);
+  options.threads = 3;
+  StatusOr<SigmaDesign> three = ComputeSigmaOptimalDesign(p.rows, options);
+  ASSERT_TRUE(one.ok() && three.ok());
+  EXPECT_EQ(one->weights, three->weights);
+}
+
+}  // namespace
+}  // namespace hexcal
