@@ -91,7 +91,7 @@ StatusOr<PlanResult> PlanDemo(const DemoRequest& request, const PlanningModel& m
                               int* candidates) {
   const std::vector<std::string> kinds =
       request.quick_plan ? std::vector<std::string>{"random"} : std::vector<std::string>{"random", "boundary"};
-  StatusOr<CandidatePool> pool = BuildCandidatePool(model, "", kinds, 2000, false, request.seed, hooks.progress);
+  StatusOr<CandidatePool> pool = BuildCandidatePool(model, "", kinds, 2000, false, request.seed, hooks);
   if (!pool.ok()) return pool.status().AsFailure();
   *candidates = static_cast<int>(pool->poses.size());
   StatusOr<std::vector<Vector6d>> initial = InitialPoses(model, "random", request.poses, request.seed);

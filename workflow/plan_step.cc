@@ -14,12 +14,12 @@ namespace hexcal::workflow {
 namespace {
 
 StatusOr<CandidateSet> Generate(const Robot& robot, CandidateKind kind, int count, uint64_t seed,
-                                const std::function<void(int, int)>& progress) {
+                                const JobHooks& hooks) {
   CandidateOptions options;
   options.kind = kind;
   options.count = count;
   options.seed = seed;
-  return GenerateCandidates(robot, options, {progress});
+  return GenerateCandidates(robot, options, hooks);
 }
 
 nlohmann::json IndicesOnly(const ObservabilityIndices& o) {
@@ -30,7 +30,7 @@ nlohmann::json IndicesOnly(const ObservabilityIndices& o) {
 
 StatusOr<CandidatePool> BuildCandidatePool(const PlanningModel& model, const std::string& file,
                                            const std::vector<std::string>& kinds, int count, bool continuous,
-                                           uint64_t seed, const std::function<void(int, int)>& progress) {
+                                           uint64_t seed, const JobHooks& hooks) {
   CandidatePool pool;
   pool.sources = nlohmann::json::array();
   std::vector<Vector6d> raw;
@@ -45,7 +45,7 @@ StatusOr<CandidatePool> BuildCandidatePool(const PlanningModel& model, const std
     for (size_t k = 0; k < names.size(); ++k) {
       const std::optional<CandidateKind> kind = ParseCandidateKind(names[k]);
       if (!kind) return Status::Error("--candidate-kind: '" + names[k] + "' is not random, uniform or boundary");
-      StatusOr<CandidateSet> set = Generate(model.robot, *kind, per_set, seed + 7919 * k, progress);
+      StatusOr<CandidateSet> set = Generate(model.robot, *kind, per_set, seed + 7919 * k, hooks);
       if (!set.ok()) return set.status();
       raw.insert(raw.end(), set->poses.begin(), set->poses.end());
       pool.sources.push_back({{"kind", names[k]}, {"count", set->poses.size()}});
@@ -299,7 +299,7 @@ StatusOr<PlanOutcome> RunPlan(const PlanningModel& given_model, const PlanSetup&
   hooks.Stage("candidates");
   StatusOr<CandidatePool> pool = BuildCandidatePool(model, candidates_file, setup.candidate_kinds,
                                                     setup.candidate_count, setup.planner.continuous, finite.seed,
-                                                    hooks.progress);
+                                                    hooks);
   if (!pool.ok()) return pool.status();
   hooks.Stage("planning");
   StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, *initial, finite, hooks, on_iteration);

@@ -32,10 +32,10 @@ struct CandidatePool {
 };
 
 // From a file, or pooled generated sets (default: one random set). Poses that
-// break a measurement constraint are dropped.
+// break a measurement constraint are dropped. hooks.cancel stops a generated set.
 StatusOr<CandidatePool> BuildCandidatePool(const PlanningModel& model, const std::string& file,
                                            const std::vector<std::string>& kinds, int count, bool continuous,
-                                           uint64_t seed, const std::function<void(int, int)>& progress);
+                                           uint64_t seed, const JobHooks& hooks);
 
 // N starting poses: random | uniform | boundary (N drawn from the boundary set) | a pose CSV.
 StatusOr<std::vector<Vector6d>> InitialPoses(const PlanningModel& model, const std::string& init, int count,

@@ -19,6 +19,7 @@ code=0
 "$hexcal" acquire --session "$s" --controller sim --camera sim 2>"$dir/err" || code=$?
 [ "$code" -eq 2 ] && grep -q "no plan in the session; run hexcal plan" "$dir/err"
 "$hexcal" plan --robot inria-left-hand --poses 16 --candidate-count 400 --seed 3 --no-certificate \
+  --candidate-kind random --criterion O1 --tabu 0 --polish 0 \
   --out "$s/plan.csv" >/dev/null
 
 # Bad URLs: bad input (2), naming the URL and what is accepted.

@@ -22,6 +22,7 @@ s=$dir/s
 "$hexcal" session init --robot inria-left-hand --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 \
   --noise-position 0.005 --noise-angle 0.02 --noise-leg 0.001 "$s" >/dev/null
 "$hexcal" plan --robot inria-left-hand --poses 16 --candidate-count 400 --seed 3 --no-certificate \
+  --candidate-kind random --criterion O1 --tabu 0 --polish 0 \
   --out "$s/plan.csv" >/dev/null
 
 start=$(date +%s.%N)

@@ -5,7 +5,8 @@ set -eu
 hexcal=$1
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
-args=(plan --robot inria-left-hand --poses 18 --candidate-count 400 --addfind-starts 100 --tabu 3 --iterations 30)
+args=(plan --robot inria-left-hand --poses 18 --candidate-kind random --candidate-count 400 --addfind-starts 100 --tabu 3
+      --iterations 30)
 "$hexcal" "${args[@]}" --seed 5 --out "$dir/a.csv" --json >"$dir/a.json"
 "$hexcal" "${args[@]}" --seed 5 --out "$dir/b.csv" --json >/dev/null
 cmp "$dir/a.csv" "$dir/b.csv"

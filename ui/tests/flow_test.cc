@@ -108,10 +108,13 @@ TEST(UiFlow, PlanMeasureCalibrateValidate) {
   PlanPanel* plan = window.Plan();
   plan->Options()->SetValue("poses", 8);
   plan->Options()->SetValue("candidate_count", 300);
+  plan->Options()->SetText("candidate_kind", "random");  // the boundary set's homotopy FK costs seconds
   plan->Options()->SetValue("iterations", 20);
   plan->Run();
   ASSERT_TRUE(WaitFor([&] { return !plan->Job()->Running(); }));
   EXPECT_TRUE(plan->LastOutcome().startsWith("done")) << plan->LastOutcome().toStdString();
+  EXPECT_TRUE(plan->LastOutcome().contains("expected mean error")) << plan->LastOutcome().toStdString();
+  EXPECT_TRUE(plan->LastOutcome().contains("S-efficiency ≥")) << plan->LastOutcome().toStdString();
   EXPECT_EQ(session.Plan().size(), 8u);
   EXPECT_EQ(plan->PoseTable()->rowCount(), 8);
   EXPECT_EQ(CsvRows(dir + "/plan.csv"), 8);
