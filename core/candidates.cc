@@ -5,6 +5,7 @@
 
 #include "core/constraints.h"
 #include "core/fk_homotopy.h"
+#include "core/parallel.h"
 
 namespace hexcal {
 namespace {
@@ -56,23 +57,32 @@ StatusOr<CandidateSet> SampleBox(const Robot& robot, const CandidateOptions& opt
   return set;
 }
 
+// The 64 min/max leg combinations are independent: FK of each on every core,
+// each combination's modes kept in its own slot and joined in order, so the set
+// does not depend on the thread count.
 StatusOr<CandidateSet> BoundaryCandidates(const Robot& robot, const JobHooks& hooks) {
+  constexpr int kCombinations = 64;
+  std::vector<StatusOr<FkAllResult>> modes(kCombinations, Status::Failed("not computed"));
+  const bool finished = ParallelFor(
+      kCombinations, 0,
+      [&](int combination, int /*worker*/) {
+        LegReadings readings;
+        for (int i = 0; i < kNumLegs; ++i) {
+          const Leg& leg = robot.legs[i];
+          readings[i] = (combination >> i) & 1 ? leg.stroke_max : leg.stroke_min;
+        }
+        modes[combination] = ForwardKinematicsAll(robot, readings);
+      },
+      hooks);
+  if (!finished) return Status::Cancelled("candidates: cancelled");
   CandidateSet set;
-  for (int combination = 0; combination < 64; ++combination) {
-    LegReadings readings;
-    for (int i = 0; i < kNumLegs; ++i) {
-      const Leg& leg = robot.legs[i];
-      readings[i] = (combination >> i) & 1 ? leg.stroke_max : leg.stroke_min;
-    }
+  for (const StatusOr<FkAllResult>& found : modes) {
+    if (!found.ok()) return found.status();
     ++set.draws;
-    StatusOr<FkAllResult> modes = ForwardKinematicsAll(robot, readings);
-    if (!modes.ok()) return modes.status();
-    set.real_modes += static_cast<int>(modes->poses.size());
-    for (const Pose& pose : modes->poses) {
+    set.real_modes += static_cast<int>(found->poses.size());
+    for (const Pose& pose : found->poses) {
       if (IsFeasible(robot, pose)) set.poses.push_back(robot.VectorFromPose(pose));
     }
-    if (hooks.Cancelled()) return Status::Cancelled("candidates: cancelled");
-    hooks.Progress(combination + 1, 64);
   }
   return set;
 }

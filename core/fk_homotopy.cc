@@ -13,7 +13,6 @@ namespace hexcal {
 namespace {
 
 constexpr int kGenericSolutionCount = 40;
-constexpr uint64_t kStartSystemSeed = 20050601;  // fixed: the start system is part of the method
 
 std::array<LegCoefficients, 6> CoefficientsAt(const StudyParameters& p) {
   std::array<LegCoefficients, 6> c;
@@ -206,10 +205,8 @@ FkAllResult CollectRealModes(const Robot& robot, const LegReadings& readings, co
   return result;
 }
 
-}  // namespace
-
-StartSystem SolveGenericInstance(uint64_t seed) {
-  std::mt19937_64 rng(seed);
+// The random generic instance of `seed`: attachment points, squared lengths and chart.
+StartSystem GenericInstance(std::mt19937_64& rng) {
   StartSystem system;
   for (int i = 0; i < 6; ++i) {
     for (int k = 0; k < 3; ++k) system.params.a[i][k] = RandomComplex(rng);
@@ -217,7 +214,20 @@ StartSystem SolveGenericInstance(uint64_t seed) {
     system.params.d2[i] = RandomComplex(rng);
   }
   for (int k = 0; k < 8; ++k) system.chart[k] = RandomComplex(rng);
+  return system;
+}
 
+// The solutions of the instance of kStartSystemSeed, from SolveGenericInstance
+// (FormatStartSolutions), as {re, im} pairs of the 8 Study unknowns.
+constexpr double kShippedSolutions[][8][2] = {
+#include "core/fk_start_solutions.inc"
+};
+
+}  // namespace
+
+StartSystem SolveGenericInstance(uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  StartSystem system = GenericInstance(rng);
   TrackerOptions options;
   options.min_step = 1e-9;
   for (int run = 0; run < 6 && static_cast<int>(system.solutions.size()) < kGenericSolutionCount; ++run) {
@@ -235,8 +245,43 @@ StartSystem SolveGenericInstance(uint64_t seed) {
   return system;
 }
 
+StartSystem ShippedStartSystem() {
+  std::mt19937_64 rng(kStartSystemSeed);
+  StartSystem system = GenericInstance(rng);
+  system.from_shipped_data = true;
+  // At s = 0 the total-degree homotopy is the instance's own system.
+  const TotalDegreeHomotopy instance(system.params, system.chart, 1.0);
+  for (const auto& shipped : kShippedSolutions) {
+    CVector8 z;
+    for (int k = 0; k < 8; ++k) z[k] = Complex(shipped[k][0], shipped[k][1]);
+    CVector8 refined = z;
+    const bool root = RefineAt(instance, 0.0, &refined, 4, 1e-13) && (refined - z).norm() < 1e-8 * (1 + z.norm());
+    if (!root || IsSpurious(refined) || ContainsNear(system.solutions, refined)) {
+      system.solutions.clear();
+      return system;
+    }
+    system.solutions.push_back(refined);
+  }
+  return system;
+}
+
+std::string FormatStartSolutions(const std::vector<CVector8>& solutions) {
+  std::ostringstream out;
+  out.precision(17);
+  for (const CVector8& z : solutions) {
+    out << "{";
+    for (int k = 0; k < 8; ++k) out << (k ? ", " : "") << "{" << z[k].real() << ", " << z[k].imag() << "}";
+    out << "},\n";
+  }
+  return out.str();
+}
+
 const StartSystem& GenericStartSystem() {
-  static const StartSystem system = SolveGenericInstance(kStartSystemSeed);
+  static const StartSystem system = [] {
+    StartSystem shipped = ShippedStartSystem();
+    if (static_cast<int>(shipped.solutions.size()) == kGenericSolutionCount) return shipped;
+    return SolveGenericInstance(kStartSystemSeed);
+  }();
   return system;
 }
 

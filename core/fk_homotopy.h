@@ -25,6 +25,7 @@
 #pragma once
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 #include "core/inverse_kinematics.h"
@@ -57,15 +58,25 @@ struct FkAllResult {
 StatusOr<FkAllResult> ForwardKinematicsAll(const Robot& robot, const LegReadings& readings,
                                            const FkAllOptions& options = {});
 
-// The generic complex instance and its 40 solutions, computed on first use.
+// The generic complex instance and its 40 solutions. Its parameters come from
+// a fixed seed; its solutions are shipped (core/fk_start_solutions.inc), each
+// checked by Newton on first use, so a process pays for no 128-path solve
+// (docs/kinematics.md); should any check fail, they are solved afresh.
 struct StartSystem {
   StudyParameters params;
   CVector8 chart;
   std::vector<CVector8> solutions;
-  int total_degree_runs = 0;  // runs of the 128-path homotopy it took
+  int total_degree_runs = 0;        // runs of the 128-path homotopy it took (0: shipped)
+  bool from_shipped_data = false;
 };
+constexpr uint64_t kStartSystemSeed = 20050601;  // fixed: the start system is part of the method
 const StartSystem& GenericStartSystem();
 // Solves a random generic instance from scratch (deterministic in seed).
 StartSystem SolveGenericInstance(uint64_t seed);
+// The shipped solutions checked against the instance of kStartSystemSeed;
+// empty solutions when a check fails.
+StartSystem ShippedStartSystem();
+// `solutions` as the text of core/fk_start_solutions.inc.
+std::string FormatStartSolutions(const std::vector<CVector8>& solutions);
 
 }  // namespace hexcal

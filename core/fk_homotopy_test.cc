@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <algorithm>
 #include <chrono>
 #include <fstream>
@@ -79,6 +81,23 @@ TEST(StudySystem, GenericStartSystemHas40DistinctRoots) {
       EXPECT_GT((z - start.solutions[m]).norm(), 1e-4 * (1 + z.norm())) << k << " vs " << m;
     }
   }
+}
+
+// The shipped start solutions are the instance's own: each a root found by a
+// fresh 128-path solve, none missing, and the process uses them.
+TEST(StudySystem, ShippedStartSolutionsAreTheSolvedOnes) {
+  const StartSystem shipped = ShippedStartSystem();
+  const StartSystem solved = SolveGenericInstance(kStartSystemSeed);
+  ASSERT_EQ(solved.solutions.size(), 40u);
+  ASSERT_EQ(shipped.solutions.size(), 40u) << "regenerate core/fk_start_solutions.inc as:\n"
+                                           << FormatStartSolutions(solved.solutions);
+  for (const CVector8& z : solved.solutions) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const CVector8& other : shipped.solutions) nearest = std::min(nearest, (z - other).norm());
+    EXPECT_LT(nearest, 1e-10 * (1 + z.norm()));
+  }
+  EXPECT_TRUE(GenericStartSystem().from_shipped_data);
+  EXPECT_EQ(GenericStartSystem().total_degree_runs, 0);
 }
 
 // StudyFromPose then StudyToComplexPose gives back R and t, real, and the Study quadric holds.
