@@ -259,6 +259,40 @@ void DesignState::ScoreAdditions(Criterion criterion, const CandidateRows& candi
   for (int j = 0; j < n; ++j) scores[j] = FromSpectrum(criterion, 0, 0, lambda_min[j], lambda_max[j], num_poses_ + 1);
 }
 
+bool IsEigenvalueCriterion(Criterion criterion) {
+  return criterion == Criterion::kO2 || criterion == Criterion::kO3 || criterion == Criterion::kO4 ||
+         criterion == Criterion::kE;
+}
+
+void DesignState::ScoreUpperBounds(Criterion criterion, const CandidateRows& candidates, int begin, int end,
+                                   double* bounds) const {
+  const int n = end - begin;
+  // λ_min' <= λ_2 of every leg, so a leg whose λ_1 is above the smallest λ_2
+  // cannot hold λ_min' and needs no dot product; λ_max' >= the top leg's
+  // λ_max + z_7² bounds it below with one leg.
+  double smallest_second = std::numeric_limits<double>::infinity();
+  int top_leg = 0;
+  for (int i = 0; i < kNumLegs; ++i) {
+    smallest_second = std::min(smallest_second, eigenvalues_[i][1]);
+    if (eigenvalues_[i][kParamsPerLeg - 1] > eigenvalues_[top_leg][kParamsPerLeg - 1]) top_leg = i;
+  }
+  Eigen::ArrayXd lambda_min = Eigen::ArrayXd::Constant(n, smallest_second);
+  for (int i = 0; i < kNumLegs; ++i) {
+    if (eigenvalues_[i][0] >= smallest_second) continue;
+    const Eigen::RowVectorXd z = eigenvectors_[i].col(0).transpose() * candidates.legs[i].middleCols(begin, n);
+    lambda_min = lambda_min.min(eigenvalues_[i][0] + z.array().square().transpose());
+  }
+  const Eigen::RowVectorXd z_top =
+      eigenvectors_[top_leg].col(kParamsPerLeg - 1).transpose() * candidates.legs[top_leg].middleCols(begin, n);
+  const Eigen::ArrayXd lambda_max = eigenvalues_[top_leg][kParamsPerLeg - 1] + z_top.array().square().transpose();
+  // The exact values come from iterative roots: a relative slack keeps the bound above them.
+  constexpr double kSlack = 1e-9;
+  for (int j = 0; j < n; ++j) {
+    bounds[j] = FromSpectrum(criterion, 0, 0, lambda_min[j] * (1 + kSlack), lambda_max[j] * (1 - kSlack),
+                             num_poses_ + 1) * (1 + kSlack);
+  }
+}
+
 double DesignState::ValueAfterAdding(Criterion criterion, const PoseRows& rows) const {
   std::array<InfoBlock, kNumLegs> blocks = blocks_;
   for (int i = 0; i < kNumLegs; ++i) blocks[i].noalias() += rows[i].transpose() * rows[i];

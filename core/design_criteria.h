@@ -61,6 +61,13 @@ class DesignState {
   void ScoreAdditions(Criterion criterion, const CandidateRows& candidates, int begin, int end,
                       double* scores) const;
   double ValueAfterAdding(Criterion criterion, const PoseRows& rows) const;
+  // For an eigenvalue criterion (O2, O3, O4, E): an upper bound of each
+  // candidate's ScoreAdditions value, from the interlacing and Rayleigh bounds
+  // of a rank-one update Λ + z zᵀ (z = Qᵀr):
+  //   λ_min' <= min(λ_2, λ_1 + z_1²),   λ_max' >= λ_max + z_7²
+  // a few dot products instead of twelve secular equations.
+  void ScoreUpperBounds(Criterion criterion, const CandidateRows& candidates, int begin, int end,
+                        double* bounds) const;
   // Criterion of the set plus one pose and its gradient w.r.t. that pose's six rows.
   double ValueAndRowGradient(Criterion criterion, const PoseRows& rows, PoseRows* gradient) const;
   // Criterion of the set without one of its poses (a downdate, recomputed).
@@ -111,6 +118,9 @@ class QuadraticFormCache {
   std::array<Eigen::ArrayXd, kNumLegs> q_;
   int updates_ = 0;
 };
+
+// O2, O3, O4 and E: the criteria on the extreme eigenvalues (secular equation).
+bool IsEigenvalueCriterion(Criterion criterion);
 
 // Smallest and largest eigenvalue of diag(lambda) + s z zᵀ, s = +1 or -1, lambda
 // ascending; by the secular equation, without forming the matrix.

@@ -40,20 +40,83 @@ ObservabilityIndices PaperIndices(const Robot& robot, const std::vector<PlanEntr
   return ComputeIndices(robot, poses);
 }
 
-// Index of the best entry: among the `keep` fraction best on `primary`, the best on `secondary`
-// (section 6.2), or simply the best on `primary`.
-int SelectBest(const std::vector<double>& primary, const std::vector<double>* secondary, double keep) {
+// The entries with a finite primary value, and how many of them the `keep`
+// fraction is.
+std::vector<int> FiniteEntries(const std::vector<double>& primary, double keep, size_t* kept) {
   std::vector<int> order;
   for (int j = 0; j < static_cast<int>(primary.size()); ++j) {
     if (primary[j] > kMinusInfinity) order.push_back(j);
   }
-  if (order.empty()) return -1;
-  auto by_primary = [&](int a, int b) { return primary[a] > primary[b]; };
-  if (!secondary) return *std::min_element(order.begin(), order.end(), by_primary);
-  const size_t kept = std::min(order.size(), std::max<size_t>(1, static_cast<size_t>(std::ceil(keep * order.size()))));
-  std::nth_element(order.begin(), order.begin() + (kept - 1), order.end(), by_primary);
-  return *std::max_element(order.begin(), order.begin() + kept,
-                           [&](int a, int b) { return (*secondary)[a] < (*secondary)[b]; });
+  *kept = std::min(order.size(), std::max<size_t>(1, static_cast<size_t>(std::ceil(keep * order.size()))));
+  return order;
+}
+
+// The `keep` fraction best on `primary` (section 6.2), in no particular order.
+std::vector<int> KeptOnPrimary(const std::vector<double>& primary, double keep) {
+  size_t kept;
+  std::vector<int> order = FiniteEntries(primary, keep, &kept);
+  if (order.empty()) return order;
+  std::nth_element(order.begin(), order.begin() + (kept - 1), order.end(),
+                   [&](int a, int b) { return primary[a] > primary[b]; });
+  order.resize(kept);
+  return order;
+}
+
+// Index of the best entry: among the `keep` fraction best on `primary`, the best on `secondary`
+// (section 6.2), or simply the best on `primary`.
+int SelectBest(const std::vector<double>& primary, const std::vector<double>* secondary, double keep) {
+  if (!secondary) {
+    size_t unused;
+    const std::vector<int> order = FiniteEntries(primary, keep, &unused);
+    if (order.empty()) return -1;
+    return *std::min_element(order.begin(), order.end(), [&](int a, int b) { return primary[a] > primary[b]; });
+  }
+  const std::vector<int> kept = KeptOnPrimary(primary, keep);
+  if (kept.empty()) return -1;
+  return *std::max_element(kept.begin(), kept.end(), [&](int a, int b) { return (*secondary)[a] < (*secondary)[b]; });
+}
+
+// SelectBest with an eigenvalue secondary (O2-O4, E), the same choice at a
+// fraction of the cost: the kept candidates in decreasing order of an upper
+// bound of the secondary (DesignState::ScoreUpperBounds), their secular
+// equations solved in batches only while a bound can still beat the best value
+// found. Ties go to the lower candidate index.
+int SelectBestScreened(const DesignState& state, Criterion secondary, const CandidateRows& scored,
+                       const std::vector<double>& primary, double keep, int threads) {
+  std::vector<int> kept = KeptOnPrimary(primary, keep);
+  if (kept.empty()) return -1;
+  std::vector<double> bounds(scored.size());
+  ParallelForBlocks(scored.size(), kScoreBlock, threads, [&](int begin, int end) {
+    state.ScoreUpperBounds(secondary, scored, begin, end, bounds.data() + begin);
+  });
+  const auto by_bound = [&](int a, int b) { return bounds[a] > bounds[b] || (bounds[a] == bounds[b] && a < b); };
+  constexpr int kBatch = 16;
+  CandidateRows batch;
+  std::array<double, kBatch> values;
+  int best = -1;
+  double best_value = kMinusInfinity;
+  auto evaluate = [&](const int* indices, int size) {
+    batch.Resize(size);
+    for (int k = 0; k < size; ++k) batch.Set(k, scored.Rows(indices[k]));
+    state.ScoreAdditions(secondary, batch, 0, size, values.data());
+    for (int k = 0; k < size; ++k) {
+      if (values[k] > best_value || (values[k] == best_value && indices[k] < best)) best_value = values[k], best = indices[k];
+    }
+  };
+  // The best bounds first; then only the candidates whose bound can still win,
+  // in decreasing order (a handful: sorting them all would cost more than the rest).
+  const int first = std::min<int>(kBatch, kept.size());
+  std::nth_element(kept.begin(), kept.begin() + (first - 1), kept.end(), by_bound);
+  evaluate(kept.data(), first);
+  std::vector<int> open;
+  for (size_t k = first; k < kept.size(); ++k) {
+    if (bounds[kept[k]] >= best_value) open.push_back(kept[k]);
+  }
+  std::sort(open.begin(), open.end(), by_bound);
+  for (size_t k = 0; k < open.size() && bounds[open[k]] >= best_value; k += kBatch) {
+    evaluate(open.data() + k, static_cast<int>(std::min<size_t>(kBatch, open.size() - k)));
+  }
+  return best;
 }
 
 Status CheckPlanInput(const std::vector<Vector6d>& candidates, const std::vector<Vector6d>& initial,
@@ -174,13 +237,17 @@ StatusOr<PlanEntry> AddFindFinite(Search& s, const AddCriteria& criteria) {
   } else {
     ScoreInParallel(s.state, criteria.add, scored, &s.primary_scores, s.options.threads);
   }
-  if (criteria.secondary) {
-    ScoreInParallel(s.state, *criteria.secondary, scored, &s.secondary_scores, s.options.threads);
-  }
   for (int k = 0; k < scored.size(); ++k) {
     if (s.in_plan[candidate_of(k)]) s.primary_scores[k] = kMinusInfinity;
   }
-  const int pick = SelectBest(s.primary_scores, criteria.secondary ? &s.secondary_scores : nullptr, s.options.keep);
+  int pick;
+  if (criteria.secondary && IsEigenvalueCriterion(*criteria.secondary)) {
+    pick = SelectBestScreened(s.state, *criteria.secondary, scored, s.primary_scores, s.options.keep,
+                              s.options.threads);
+  } else {
+    if (criteria.secondary) ScoreInParallel(s.state, *criteria.secondary, scored, &s.secondary_scores, s.options.threads);
+    pick = SelectBest(s.primary_scores, criteria.secondary ? &s.secondary_scores : nullptr, s.options.keep);
+  }
   if (pick < 0) return Status::Error("every candidate is already in the plan: the candidate set is too small");
   const int index = candidate_of(pick);
   s.in_plan[index] = 1;
