@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/parallel.h"
+#include "core/working_set_design.h"
 
 namespace hexcal {
 namespace {
@@ -99,8 +100,11 @@ void VarianceFunction(const std::array<InfoBlock, kNumLegs>& inverses, const Can
   }
 }
 
-StatusOr<OptimalDesign> ComputeOptimalDesign(const CandidateRows& candidates, const OptimalDesignOptions& options,
-                                             const JobHooks& hooks) {
+namespace {
+
+// The multiplicative algorithm with vertex exchanges on `candidates` themselves.
+StatusOr<OptimalDesign> SolveDOptimal(const CandidateRows& candidates, const OptimalDesignOptions& options,
+                                      const JobHooks& hooks) {
   const auto start = std::chrono::steady_clock::now();
   const int count = candidates.size();
   if (count < kParamsPerLeg) return Status::Error("the optimal design needs at least 7 candidates");
@@ -153,6 +157,35 @@ StatusOr<OptimalDesign> ComputeOptimalDesign(const CandidateRows& candidates, co
   design.weights.assign(w.data(), w.data() + count);
   design.support = static_cast<int>((w > 1e-8).count());
   return design;
+}
+
+// The design on `working` over every candidate (working_set_design.h): d is the
+// variance function, violating above p.
+double PriceD(const CandidateRows& all, const CandidateRows& working, OptimalDesign* design, Eigen::ArrayXd* d,
+              int threads) {
+  const Eigen::Map<const Eigen::ArrayXd> w(design->weights.data(), design->weights.size());
+  std::array<InfoBlock, kNumLegs> inverses, cholesky_inverses;
+  if (!Invert(DesignInformation(working, w), &inverses, &cholesky_inverses, &design->log_det)) {
+    design->gap = std::numeric_limits<double>::infinity();
+    return std::numeric_limits<double>::infinity();
+  }
+  ParallelVariance(cholesky_inverses, all, d, threads);
+  design->max_variance = d->maxCoeff();
+  design->gap = design->max_variance / kP - 1;
+  return kP;
+}
+
+}  // namespace
+
+StatusOr<OptimalDesign> ComputeOptimalDesign(const CandidateRows& candidates, const OptimalDesignOptions& options,
+                                             const JobHooks& hooks) {
+  OptimalDesign uniform;
+  uniform.weights.assign(candidates.size(), 1.0 / std::max(1, candidates.size()));
+  return SolveOnWorkingSet(
+      candidates, options, hooks, uniform, SolveDOptimal,
+      [&](const CandidateRows& all, const CandidateRows& working, OptimalDesign* design, Eigen::ArrayXd* d) {
+        return PriceD(all, working, design, d, options.threads);
+      });
 }
 
 double DEfficiencyLowerBound(const std::array<InfoBlock, kNumLegs>& plan_blocks, int num_poses,

@@ -20,9 +20,10 @@ struct PlanCertificate {
   double BestMeanSigma(int num_poses) const;
 };
 
-// Both design bounds over `candidates` and the plan's efficiencies against them
-// (on the model's rows, so weighted when the model has a noise model). Each
-// design gets the options' time limit.
+// Both design bounds over `candidates` and the plan's efficiencies against them:
+// D on the model's rows (weighted when the model has a noise model), S on rows
+// weighted by the model's noise or else the paper's levels, as the S criterion.
+// Each design gets the options' time limit.
 StatusOr<PlanCertificate> CertifyPlan(const PlanningModel& model, const std::vector<Vector6d>& candidates,
                                       const std::vector<Vector6d>& plan, const OptimalDesignOptions& options = {});
 

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/parallel.h"
+#include "core/working_set_design.h"
 
 namespace hexcal {
 namespace {
@@ -100,8 +101,11 @@ void VertexExchanges(const CandidateRows& candidates, Eigen::ArrayXd d, int best
 
 double SigmaDesign::SigmaSumBound() const { return max_d > 0 ? sigma_sum * std::sqrt(sigma_sum / max_d) : 0; }
 
-StatusOr<SigmaDesign> ComputeSigmaOptimalDesign(const CandidateRows& candidates, const OptimalDesignOptions& options,
-                                                const JobHooks& hooks) {
+namespace {
+
+// The multiplicative algorithm with vertex exchanges on `candidates` themselves.
+StatusOr<SigmaDesign> SolveSigmaOptimal(const CandidateRows& candidates, const OptimalDesignOptions& options,
+                                        const JobHooks& hooks) {
   const auto start = std::chrono::steady_clock::now();
   const int count = candidates.size();
   if (count < kParamsPerLeg) return Status::Error("the optimal design needs at least 7 candidates");
@@ -130,6 +134,35 @@ StatusOr<SigmaDesign> ComputeSigmaOptimalDesign(const CandidateRows& candidates,
   design.weights.assign(w.data(), w.data() + count);
   design.support = static_cast<int>((w > 1e-8).count());
   return design;
+}
+
+// The design on `working` over every candidate (working_set_design.h): d is
+// the directional function, violating above Φ.
+double PriceSigma(const CandidateRows& all, const CandidateRows& working, SigmaDesign* design, Eigen::ArrayXd* d,
+                  int threads) {
+  const Eigen::Map<const Eigen::ArrayXd> w(design->weights.data(), design->weights.size());
+  Blocks factors;
+  if (!SigmaFactors(DesignInformation(working, w), &factors, &design->sigma_sum)) {
+    design->gap = kInfinity;
+    return kInfinity;
+  }
+  DirectionalFunction(factors, all, d, threads);
+  design->max_d = d->maxCoeff();
+  design->gap = design->max_d / design->sigma_sum - 1;
+  return design->sigma_sum;
+}
+
+}  // namespace
+
+StatusOr<SigmaDesign> ComputeSigmaOptimalDesign(const CandidateRows& candidates, const OptimalDesignOptions& options,
+                                                const JobHooks& hooks) {
+  SigmaDesign uniform;
+  uniform.weights.assign(candidates.size(), 1.0 / std::max(1, candidates.size()));
+  return SolveOnWorkingSet(
+      candidates, options, hooks, uniform, SolveSigmaOptimal,
+      [&](const CandidateRows& all, const CandidateRows& working, SigmaDesign* design, Eigen::ArrayXd* d) {
+        return PriceSigma(all, working, design, d, options.threads);
+      });
 }
 
 double SEfficiencyLowerBound(const std::array<InfoBlock, kNumLegs>& plan_blocks, int num_poses,
