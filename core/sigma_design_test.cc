@@ -92,6 +92,45 @@ TEST(SigmaDesign, ExactPlansAreNoBetterThanTheBound) {
   }
 }
 
+// Above 2 048 candidates the designs are solved on a working set: their
+// optimality is still over every candidate, checked independently (dense
+// inverses, the variance function and finite steps towards candidates).
+TEST(SigmaDesign, WorkingSetDesignsAreOptimalOverEveryCandidate) {
+  Robot robot = Preset("inria-left-hand");
+  robot.limits.sampling_box.reset();
+  CandidateOptions options;
+  options.count = 4000;
+  options.seed = 8;
+  const std::vector<Vector6d> poses = GenerateCandidates(robot, options)->poses;
+  PlanningModel model{robot, NoiseModel{}, std::nullopt};
+  CandidateRows rows;
+  rows.Resize(static_cast<int>(poses.size()));
+  for (size_t j = 0; j < poses.size(); ++j) rows.Set(static_cast<int>(j), model.Rows(poses[j]));
+
+  StatusOr<OptimalDesign> d_design = ComputeOptimalDesign(rows);
+  ASSERT_TRUE(d_design.ok() && d_design->converged);
+  ASSERT_EQ(d_design->weights.size(), poses.size());
+  const Eigen::ArrayXd wd = Eigen::Map<const Eigen::ArrayXd>(d_design->weights.data(), d_design->weights.size());
+  std::array<InfoBlock, kNumLegs> inverses = DesignInformation(rows, wd);
+  for (InfoBlock& block : inverses) block = block.inverse().eval();
+  Eigen::ArrayXd variance;
+  VarianceFunction(inverses, rows, &variance);
+  EXPECT_LT(variance.maxCoeff(), kNumParams * (1 + 1e-4));
+
+  StatusOr<SigmaDesign> s_design = ComputeSigmaOptimalDesign(rows);
+  ASSERT_TRUE(s_design.ok() && s_design->converged);
+  const Eigen::ArrayXd w = Eigen::Map<const Eigen::ArrayXd>(s_design->weights.data(), s_design->weights.size());
+  EXPECT_NEAR(w.sum(), 1, 1e-12);
+  const double phi = DensePhi(rows, w);
+  EXPECT_NEAR(phi, s_design->sigma_sum, 1e-9 * phi);
+  constexpr double kAlpha = 1e-4;
+  for (int j = 0; j < rows.size(); j += 13) {
+    Eigen::ArrayXd moved = (1 - kAlpha) * w;
+    moved[j] += kAlpha;
+    EXPECT_GE(DensePhi(rows, moved) - phi, -kAlpha * phi * (s_design->gap + 1e-3)) << "candidate " << j;
+  }
+}
+
 TEST(SigmaDesign, DoesNotDependOnTheThreadCount) {
   const Problem p = SpreadCandidates(false);
   OptimalDesignOptions options;
