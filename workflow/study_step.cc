@@ -157,7 +157,7 @@ StatusOr<StudyOutcome> RunStudy(StudyRequest request, const JobHooks& hooks) {
 
   const auto subsets_start = std::chrono::steady_clock::now();
   StatusOr<SubsetStudyResult> result = RunSubsetStudy(session->nominal, session->measurements, request.study, hooks);
-  if (!result.ok()) return result.status().AsFailure();
+  if (!result.ok()) return result.status();  // bad options are bad input, a failed study a failure
   StudyOutcome outcome;
   outcome.subsets_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - subsets_start).count();
   outcome.request = request;
