@@ -175,15 +175,17 @@ SubsetOutcome EvaluateSubset(const Robot& nominal, const std::vector<Measurement
 StatusOr<SubsetStudyResult> RunSubsetStudy(const Robot& nominal, const std::vector<Measurement>& measurements,
                                            const SubsetStudyOptions& options, const JobHooks& hooks) {
   if (Status s = CheckStudyInput(measurements, options); !s.ok()) return s;
-  const PlanningModel model{nominal, std::nullopt, std::nullopt};  // the paper's unweighted J_P
+  const PlanningModel paper_model{nominal, std::nullopt, std::nullopt};  // the unweighted J_P of the indices
+  const PlanningModel selection_model{nominal, options.selection_noise, std::nullopt};
   std::vector<Vector6d> candidates;
-  std::vector<PoseRows> rows;
+  std::vector<PoseRows> rows, selection_rows;
   for (const Measurement& m : measurements) {
     candidates.push_back(m.pose);
-    rows.push_back(model.Rows(m.pose));
+    rows.push_back(paper_model.Rows(m.pose));
+    selection_rows.push_back(options.selection_noise ? selection_model.Rows(m.pose) : rows.back());
   }
   hooks.Stage("select (IOOPS)");
-  StatusOr<Selection> selection = SelectByIoops(model, candidates, rows, options, hooks);
+  StatusOr<Selection> selection = SelectByIoops(selection_model, candidates, selection_rows, options, hooks);
   if (!selection.ok()) return selection.status();
 
   const int total = static_cast<int>(measurements.size());

@@ -42,6 +42,10 @@ struct SubsetStudyOptions {
   // IOOPS runs from this many random initial subsets; the selection with the
   // best value of the criterion (the secondary when set) is kept.
   int selection_starts = 1;
+  // IOOPS's rows divided by the standard deviation of their residual under
+  // this noise model (planning_model.h, beyond the paper); none: the paper's
+  // unweighted J_P. The reported indices O1..O4 are always unweighted.
+  std::optional<NoiseModel> selection_noise;
   uint64_t seed = 1;  // of the initial subsets and the random subsets
   // Each subset's calibration. It runs single-threaded and without the
   // uncertainty report: the subsets are what is spread over the cores.

@@ -154,6 +154,7 @@ StatusOr<StudyOutcome> RunStudy(StudyRequest request, const JobHooks& hooks) {
   // calibrate --session's fit, without the outlier screening: each subset is
   // the paper's plain least squares, and 13 rows leave little to screen with.
   request.study.calibration = SessionCalibrationOptions(session->noise, OutlierScreening{});
+  if (request.weighted_selection) request.study.selection_noise = session->noise;
 
   const auto subsets_start = std::chrono::steady_clock::now();
   StatusOr<SubsetStudyResult> result = RunSubsetStudy(session->nominal, session->measurements, request.study, hooks);
@@ -187,6 +188,7 @@ nlohmann::json ToJson(const StudyOutcome& outcome) {
           {"criterion", CriterionName(study.criterion)},
           {"secondary", study.secondary ? nlohmann::json(CriterionName(*study.secondary)) : nullptr},
           {"starts", study.selection_starts},
+          {"weighted_selection", outcome.request.weighted_selection},
           {"seed", study.seed},
           {"selected", SelectedJson(outcome)},
           {"random", RandomJson(outcome)},
@@ -204,7 +206,8 @@ std::string FormatStudySummary(const StudyOutcome& outcome) {
   out << "section 8 study of session " << outcome.request.session << " (robot " << outcome.robot << "): "
       << result.measurements << " measured poses" << (outcome.unusable > 0 ? ", " + std::to_string(outcome.unusable) + " images without a usable board pose left out" : "") << "\n"
       << "selected: IOOPS on " << CriterionName(study.criterion)
-      << (study.secondary ? std::string(", secondary ") + CriterionName(*study.secondary) : "") << ", "
+      << (study.secondary ? std::string(", secondary ") + CriterionName(*study.secondary) : "")
+      << (outcome.request.weighted_selection ? " (rows weighted by the session's noise model)" : "") << ", "
       << study.select << " of the measured poses in " << result.selection_iterations << " iterations:";
   for (int j : result.selected.poses) out << " " << outcome.images[j];
   out << "\nrandom: " << result.random.size() << " subsets of " << study.select << ", seed " << study.seed

@@ -64,6 +64,8 @@ void AddStudyCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--starts", study.selection_starts, "IOOPS runs from random initial subsets; the best is kept")
       ->check(CountRange(1, 1000))
       ->capture_default_str();
+  sub->add_flag("--weighted-selection", options->request.weighted_selection,
+                "IOOPS weighs each row by its residual's standard deviation under the session's noise model");
   sub->add_option("--seed", study.seed, "seed of the IOOPS starts and the random subsets")->capture_default_str();
   sub->add_option("--threads", study.num_threads, "subsets at once (0 = every core)")
       ->check(CountRange(0, kMaxThreads))
