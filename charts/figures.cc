@@ -188,8 +188,8 @@ ChartSpec ValidationPerImageChart(const std::vector<ImageValidation>& images, Va
   return spec;
 }
 
-ChartSpec SubsetHistogramChart(const std::string& title, const std::string& x_label,
-                               const std::vector<double>& random, double selected, int bins) {
+ChartSpec SubsetHistogramChart(const std::string& title, const std::string& x_label, const std::vector<double>& random,
+                               double selected, int bins) {
   std::vector<double> values;
   for (double v : random)
     if (std::isfinite(v)) values.push_back(v);

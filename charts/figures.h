@@ -36,8 +36,8 @@ ChartSpec Fig15Chart(const SweepResult& sweep, const std::string& length_unit, b
 // outline of `bins` equal bins over [min, max] of the values and `selected`
 // (y: subsets per bin), with the selected subset's value as a dashed
 // vertical line. Non-finite values are left out.
-ChartSpec SubsetHistogramChart(const std::string& title, const std::string& x_label,
-                               const std::vector<double>& random, double selected, int bins = 40);
+ChartSpec SubsetHistogramChart(const std::string& title, const std::string& x_label, const std::vector<double>& random,
+                               double selected, int bins = 40);
 
 // --- Planning ---
 

@@ -78,8 +78,8 @@ StatusOr<std::vector<int>> DrawStart(const std::vector<PoseRows>& rows, int size
     if (DesignState::FromRows(RowsOfSubset(rows, start)).full_rank()) return start;
   }
   return Status::Failed("no " + std::to_string(size) + " of the " + std::to_string(rows.size()) +
-                        " measured poses drawn at random identify all 42 parameters (" +
-                        std::to_string(kStartDraws) + " draws): the poses are too alike");
+                        " measured poses drawn at random identify all 42 parameters (" + std::to_string(kStartDraws) +
+                        " draws): the poses are too alike");
 }
 
 struct Selection {
@@ -214,7 +214,8 @@ StatusOr<SubsetStudyResult> RunSubsetStudy(const Robot& nominal, const std::vect
   result.random.assign(std::make_move_iterator(outcomes.begin() + 1), std::make_move_iterator(outcomes.end()));
   for (size_t k = 0; k < result.random.size(); ++k) {
     if (result.random[k].ok) continue;
-    if (result.failed++ == 0) result.first_failure = "subset " + std::to_string(k + 1) + ": " + result.random[k].failure;
+    if (result.failed++ == 0)
+      result.first_failure = "subset " + std::to_string(k + 1) + ": " + result.random[k].failure;
   }
   if (result.failed == options.subsets)
     return Status::Failed("every random subset failed; first: " + result.first_failure);
@@ -223,12 +224,18 @@ StatusOr<SubsetStudyResult> RunSubsetStudy(const Robot& nominal, const std::vect
 
 const char* SubsetMetricName(SubsetMetric metric) {
   switch (metric) {
-    case SubsetMetric::kO1: return "O1";
-    case SubsetMetric::kO2: return "O2";
-    case SubsetMetric::kO3: return "O3";
-    case SubsetMetric::kO4: return "O4";
-    case SubsetMetric::kHeldOutPosition: return "heldout_position_rms";
-    case SubsetMetric::kHeldOutOrientation: return "heldout_orientation_rms";
+    case SubsetMetric::kO1:
+      return "O1";
+    case SubsetMetric::kO2:
+      return "O2";
+    case SubsetMetric::kO3:
+      return "O3";
+    case SubsetMetric::kO4:
+      return "O4";
+    case SubsetMetric::kHeldOutPosition:
+      return "heldout_position_rms";
+    case SubsetMetric::kHeldOutOrientation:
+      return "heldout_orientation_rms";
   }
   return "";
 }
@@ -239,12 +246,18 @@ bool HigherIsBetter(SubsetMetric metric) {
 
 double MetricValue(const SubsetOutcome& outcome, SubsetMetric metric) {
   switch (metric) {
-    case SubsetMetric::kO1: return outcome.indices.o1;
-    case SubsetMetric::kO2: return outcome.indices.o2;
-    case SubsetMetric::kO3: return outcome.indices.o3;
-    case SubsetMetric::kO4: return outcome.indices.o4;
-    case SubsetMetric::kHeldOutPosition: return outcome.heldout_position_rms;
-    case SubsetMetric::kHeldOutOrientation: return outcome.heldout_orientation_rms_deg;
+    case SubsetMetric::kO1:
+      return outcome.indices.o1;
+    case SubsetMetric::kO2:
+      return outcome.indices.o2;
+    case SubsetMetric::kO3:
+      return outcome.indices.o3;
+    case SubsetMetric::kO4:
+      return outcome.indices.o4;
+    case SubsetMetric::kHeldOutPosition:
+      return outcome.heldout_position_rms;
+    case SubsetMetric::kHeldOutOrientation:
+      return outcome.heldout_orientation_rms_deg;
   }
   return 0;
 }

@@ -127,8 +127,8 @@ TEST(SubsetStudy, WeightedSelectionWeighsTheRowsNotTheIndices) {
   const std::vector<Measurement> measurements = MeasuredPoses(nominal, NoiseModel{}, 64);
   int differ = 0;
   // Each noise source dominating in turn: position, angles, leg readings.
-  for (const NoiseModel& noise : {NoiseModel{0.05, 0.001, 0.0001}, NoiseModel{0.0001, 1.0, 0.0001},
-                                  NoiseModel{0.0001, 0.001, 0.05}}) {
+  for (const NoiseModel& noise :
+       {NoiseModel{0.05, 0.001, 0.0001}, NoiseModel{0.0001, 1.0, 0.0001}, NoiseModel{0.0001, 0.001, 0.05}}) {
     for (Criterion criterion : {Criterion::kO1, Criterion::kO4}) {
       SubsetStudyOptions options = SmallStudy();
       options.select = 13;

@@ -128,8 +128,8 @@ Status RecordDemo(const DemoRequest& request, const DemoScene& scene, const Plan
     if (!drawn.ok()) return drawn.status().AsFailure();
     held_out = std::move(*drawn);
   }
-  if (Status s = RecordDemoSession(scene, robot_name, kSimulatedCameraName, plan.poses, held_out, request.out,
-                                   hooks.progress);
+  if (Status s =
+          RecordDemoSession(scene, robot_name, kSimulatedCameraName, plan.poses, held_out, request.out, hooks.progress);
       !s.ok())
     return s.AsFailure();
   if (Status s = WritePlanCsv(SessionPaths(request.out).plan, model, plan.poses); !s.ok()) return s;
@@ -249,7 +249,8 @@ nlohmann::json ToJson(const DemoResult& r) {
   };
   const std::optional<ValidationSummary>& v = r.calibration.validation;  // none without held-out poses
   const nlohmann::json validation =
-      v ? nlohmann::json{{"before", pose_errors(v->before)}, {"after", pose_errors(v->after)}} : nlohmann::json(nullptr);
+      v ? nlohmann::json{{"before", pose_errors(v->before)}, {"after", pose_errors(v->after)}}
+        : nlohmann::json(nullptr);
   return {{"robot", r.robot},
           {"length_unit", r.length_unit},
           {"session", r.session},

@@ -67,8 +67,8 @@ struct DemoResult {
   std::string robot, length_unit, session;
   int poses = 0, held_out = 0, usable_images = 0;
   ObservabilityIndices random_indices, plan_indices;  // the random start set and the plan
-  int plan_candidates = 0, plan_iterations = 0;  // 0 with random_poses
-  bool random_poses = false;                     // the poses are random, not planned
+  int plan_candidates = 0, plan_iterations = 0;       // 0 with random_poses
+  bool random_poses = false;                          // the poses are random, not planned
   double error_mean = 0, error_max = 0;                  // calibrated − truth
   double nominal_error_mean = 0, nominal_error_max = 0;  // nominal − truth
   double within_3sigma = 0;                              // fraction of the parameters with a σ

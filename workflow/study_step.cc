@@ -18,19 +18,28 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr SubsetMetric kMetrics[] = {SubsetMetric::kO1, SubsetMetric::kO2,
-                                     SubsetMetric::kO3, SubsetMetric::kO4,
-                                     SubsetMetric::kHeldOutPosition, SubsetMetric::kHeldOutOrientation};
+constexpr SubsetMetric kMetrics[] = {SubsetMetric::kO1,
+                                     SubsetMetric::kO2,
+                                     SubsetMetric::kO3,
+                                     SubsetMetric::kO4,
+                                     SubsetMetric::kHeldOutPosition,
+                                     SubsetMetric::kHeldOutOrientation};
 
 // The figure of each metric in `--plots`: Fig. 18 per index, Fig. 19 per error.
 const char* FigureStem(SubsetMetric metric) {
   switch (metric) {
-    case SubsetMetric::kO1: return "fig18_o1";
-    case SubsetMetric::kO2: return "fig18_o2";
-    case SubsetMetric::kO3: return "fig18_o3";
-    case SubsetMetric::kO4: return "fig18_o4";
-    case SubsetMetric::kHeldOutPosition: return "fig19_position";
-    case SubsetMetric::kHeldOutOrientation: return "fig19_orientation";
+    case SubsetMetric::kO1:
+      return "fig18_o1";
+    case SubsetMetric::kO2:
+      return "fig18_o2";
+    case SubsetMetric::kO3:
+      return "fig18_o3";
+    case SubsetMetric::kO4:
+      return "fig18_o4";
+    case SubsetMetric::kHeldOutPosition:
+      return "fig19_position";
+    case SubsetMetric::kHeldOutOrientation:
+      return "fig19_orientation";
   }
   return "";
 }
@@ -38,9 +47,12 @@ const char* FigureStem(SubsetMetric metric) {
 // What a person reads for the metric, with its unit.
 std::string MetricLabel(SubsetMetric metric, const std::string& unit) {
   switch (metric) {
-    case SubsetMetric::kHeldOutPosition: return "held-out position RMS (" + unit + ")";
-    case SubsetMetric::kHeldOutOrientation: return "held-out orientation RMS (deg)";
-    default: return SubsetMetricName(metric);
+    case SubsetMetric::kHeldOutPosition:
+      return "held-out position RMS (" + unit + ")";
+    case SubsetMetric::kHeldOutOrientation:
+      return "held-out orientation RMS (deg)";
+    default:
+      return SubsetMetricName(metric);
   }
 }
 
@@ -85,21 +97,22 @@ Status WriteFigures(StudyOutcome* outcome) {
       std::to_string(result.random.size()) + " random " + std::to_string(outcome->request.study.select) + "-subsets";
   for (SubsetMetric metric : kMetrics) {
     const bool index = !IsError(metric);
-    const std::string title = std::string(index ? "Fig. 18: " : "Fig. 19: ") +
-                              MetricLabel(metric, outcome->length_unit) + ", " + subsets;
-    const charts::ChartSpec spec = charts::SubsetHistogramChart(title, MetricLabel(metric, outcome->length_unit),
-                                                                RandomValues(result, metric),
-                                                                SelectedValue(result, metric));
+    const std::string title =
+        std::string(index ? "Fig. 18: " : "Fig. 19: ") + MetricLabel(metric, outcome->length_unit) + ", " + subsets;
+    const charts::ChartSpec spec = charts::SubsetHistogramChart(
+        title, MetricLabel(metric, outcome->length_unit), RandomValues(result, metric), SelectedValue(result, metric));
     if (Status s = charts::WriteChartFiles(spec, directory, FigureStem(metric), &outcome->figures); !s.ok()) return s;
   }
   return Status::Ok();
 }
 
-nlohmann::json NumberOrNull(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr); }
+nlohmann::json NumberOrNull(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
 
 nlohmann::json DistributionJson(const Distribution& d) {
-  return {{"count", d.count}, {"min", d.min},   {"p5", d.p5},   {"p25", d.p25},   {"median", d.median},
-          {"p75", d.p75},     {"p95", d.p95},   {"max", d.max}, {"mean", d.mean}, {"std", d.std}};
+  return {{"count", d.count}, {"min", d.min}, {"p5", d.p5},   {"p25", d.p25},   {"median", d.median},
+          {"p75", d.p75},     {"p95", d.p95}, {"max", d.max}, {"mean", d.mean}, {"std", d.std}};
 }
 
 nlohmann::json SelectedJson(const StudyOutcome& outcome) {
@@ -136,7 +149,7 @@ nlohmann::json RandomJson(const StudyOutcome& outcome) {
 void PrintMetricRow(const StudyMetric& m, const std::string& unit, std::ostream& out) {
   char line[320];
   const Distribution& d = m.random;
-  std::snprintf(line, sizeof line, "%-31s %10.4g %10.4g %10.4g %10.4g %10.4g %10.4g %10.4g %10.4g %10.4g", 
+  std::snprintf(line, sizeof line, "%-31s %10.4g %10.4g %10.4g %10.4g %10.4g %10.4g %10.4g %10.4g %10.4g",
                 MetricLabel(m.metric, unit).c_str(), m.selected, d.min, d.p5, d.median, d.mean, d.std, d.p95, d.max,
                 m.percentile);
   out << line << (std::isfinite(m.selected) ? " %\n" : "\n");
@@ -203,8 +216,12 @@ std::string FormatStudySummary(const StudyOutcome& outcome) {
   const SubsetStudyResult& result = outcome.result;
   const int held_out = result.measurements - study.select;
   std::ostringstream out;
-  out << "section 8 study of session " << outcome.request.session << " (robot " << outcome.robot << "): "
-      << result.measurements << " measured poses" << (outcome.unusable > 0 ? ", " + std::to_string(outcome.unusable) + " images without a usable board pose left out" : "") << "\n"
+  out << "section 8 study of session " << outcome.request.session << " (robot " << outcome.robot
+      << "): " << result.measurements << " measured poses"
+      << (outcome.unusable > 0
+              ? ", " + std::to_string(outcome.unusable) + " images without a usable board pose left out"
+              : "")
+      << "\n"
       << "selected: IOOPS on " << CriterionName(study.criterion)
       << (study.secondary ? std::string(", secondary ") + CriterionName(*study.secondary) : "")
       << (outcome.request.weighted_selection ? " (rows weighted by the session's noise model)" : "") << ", "
@@ -214,8 +231,8 @@ std::string FormatStudySummary(const StudyOutcome& outcome) {
       << "; each calibrated from the nominal robot and validated by FK on the " << held_out
       << " poses it leaves out\n\n";
   char header[320];
-  std::snprintf(header, sizeof header, "%-31s %10s %10s %10s %10s %10s %10s %10s %10s %10s\n", "", "selected",
-                "min", "p5", "median", "mean", "std", "p95", "max", "beats");
+  std::snprintf(header, sizeof header, "%-31s %10s %10s %10s %10s %10s %10s %10s %10s %10s\n", "", "selected", "min",
+                "p5", "median", "mean", "std", "p95", "max", "beats");
   out << header;
   for (const StudyMetric& m : outcome.metrics) PrintMetricRow(m, outcome.length_unit, out);
   out << "\n";
@@ -236,9 +253,9 @@ std::string FormatStudySummary(const StudyOutcome& outcome) {
   }
   for (const std::string& figure : outcome.figures) out << "figure written to " << figure << "\n";
   char timing[200];
-  std::snprintf(timing, sizeof timing, "selection and %d calibrations and validations in %.2f s on %d %s; done in %.2f s\n",
-                study.subsets + 1, outcome.subsets_seconds, outcome.threads, outcome.threads == 1 ? "thread" : "threads",
-                outcome.seconds);
+  std::snprintf(timing, sizeof timing,
+                "selection and %d calibrations and validations in %.2f s on %d %s; done in %.2f s\n", study.subsets + 1,
+                outcome.subsets_seconds, outcome.threads, outcome.threads == 1 ? "thread" : "threads", outcome.seconds);
   out << timing;
   return out.str();
 }

@@ -22,8 +22,8 @@
 namespace hexcal::workflow {
 namespace {
 
-using ::testing::HasSubstr;
 using hexcal::testing::TempDir;
+using ::testing::HasSubstr;
 
 constexpr int kPoses = 16;
 

@@ -57,7 +57,9 @@ void AddStudyCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--select", study.select, "poses per subset (N; the paper's 13)")
       ->check(CountRange(kParamsPerLeg, 100000))
       ->required();
-  sub->add_option("--subsets", study.subsets, "random subsets (K)")->check(CountRange(1, 1000000))->capture_default_str();
+  sub->add_option("--subsets", study.subsets, "random subsets (K)")
+      ->check(CountRange(1, 1000000))
+      ->capture_default_str();
   sub->add_option("--criterion", options->criterion, "IOOPS's criterion (O1..O4, D, A, E; section 8 used O4)")
       ->capture_default_str();
   sub->add_option("--secondary", options->secondary, "section 6.2's secondary criterion (default: none)");
