@@ -106,6 +106,13 @@ Status WriteFigures(StudyOutcome* outcome) {
   return Status::Ok();
 }
 
+// As printf's %.4g.
+std::string FormatFigure(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value);
+  return text;
+}
+
 nlohmann::json NumberOrNull(double value) {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
@@ -145,14 +152,23 @@ nlohmann::json RandomJson(const StudyOutcome& outcome) {
   return random;
 }
 
-// "%-31s" then the selected value and the distribution's columns, one line.
+// The label, the selected value, the distribution's columns and the rank, one
+// line; "-" for the selected value and rank when its calibration failed.
 void PrintMetricRow(const StudyMetric& m, const std::string& unit, std::ostream& out) {
   char line[320];
   const Distribution& d = m.random;
-  std::snprintf(line, sizeof line, "%-31s %10.4g %10.4g %10.4g %10.4g %10.4g %10.4g %10.4g %10.4g %10.4g",
-                MetricLabel(m.metric, unit).c_str(), m.selected, d.min, d.p5, d.median, d.mean, d.std, d.p95, d.max,
-                m.percentile);
-  out << line << (std::isfinite(m.selected) ? " %\n" : "\n");
+  const bool known = std::isfinite(m.selected);
+  std::snprintf(line, sizeof line, "%-31s %10s %10.4g %10.4g %10.4g %10.4g %10.4g %10.4g %10.4g",
+                MetricLabel(m.metric, unit).c_str(), known ? FormatFigure(m.selected).c_str() : "-", d.min, d.p5,
+                d.median, d.mean, d.std, d.p95, d.max);
+  out << line;
+  if (known) {
+    std::snprintf(line, sizeof line, " %10.4g %%", m.percentile);
+    out << line;
+  } else {
+    out << "          -";
+  }
+  out << "\n";
 }
 
 }  // namespace
