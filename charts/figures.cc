@@ -1,5 +1,6 @@
 #include "charts/figures.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -184,6 +185,41 @@ ChartSpec ValidationPerImageChart(const std::vector<ImageValidation>& images, Va
   }
   spec.series.push_back(BarSeries("before", before));
   spec.series.push_back(BarSeries("after", after));
+  return spec;
+}
+
+ChartSpec SubsetHistogramChart(const std::string& title, const std::string& x_label, const std::vector<double>& random,
+                               double selected, int bins) {
+  std::vector<double> values;
+  for (double v : random)
+    if (std::isfinite(v)) values.push_back(v);
+  double lo = std::isfinite(selected) ? selected : 0, hi = lo;
+  for (double v : values) {
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  if (hi <= lo) hi = lo + 1;  // every value equal: one unit wide, the values in the first bin
+  bins = std::max(bins, 1);
+  const double width = (hi - lo) / bins;
+  std::vector<int> counts(bins, 0);
+  for (double v : values) ++counts[std::min(bins - 1, static_cast<int>((v - lo) / width))];
+  std::vector<ChartPoint> outline = {{lo, 0}};
+  int tallest = 0;
+  for (int k = 0; k < bins; ++k) {
+    outline.push_back({lo + k * width, static_cast<double>(counts[k])});
+    outline.push_back({lo + (k + 1) * width, static_cast<double>(counts[k])});
+    tallest = std::max(tallest, counts[k]);
+  }
+  outline.push_back({hi, 0});
+  ChartSpec spec;
+  spec.title = title;
+  spec.x = LinearAxis(x_label);
+  spec.y = LinearAxis("random subsets");
+  spec.series.push_back(LineSeries(std::to_string(values.size()) + " random subsets", outline));
+  if (std::isfinite(selected)) {
+    spec.series.push_back(
+        LineSeries("selected subset", {{selected, 0}, {selected, static_cast<double>(std::max(tallest, 1))}}, true));
+  }
   return spec;
 }
 

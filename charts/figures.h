@@ -30,6 +30,15 @@ ChartSpec Fig14Chart(const SimulationResult& result, const std::string& length_u
 // deviation) of |P_est - P_true| against the number of poses, log axis.
 ChartSpec Fig15Chart(const SweepResult& sweep, const std::string& length_unit, bool std_dev);
 
+// --- The section 8 study (core/subset_study.h) ---
+
+// Figs. 18, 19: the histogram of a quantity over the random subsets, as the
+// outline of `bins` equal bins over [min, max] of the values and `selected`
+// (y: subsets per bin), with the selected subset's value as a dashed
+// vertical line. Non-finite values are left out.
+ChartSpec SubsetHistogramChart(const std::string& title, const std::string& x_label, const std::vector<double>& random,
+                               double selected, int bins = 40);
+
 // --- Planning ---
 
 // Fig. 8: the reading of each leg at each pose of `plan` (x: pose 1..N, one

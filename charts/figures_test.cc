@@ -70,6 +70,23 @@ TEST(Fig14Chart, BarsOfBeforeAndEverySetWithTheirErrors) {
   EXPECT_LE(ComputeRanges(spec).y.min, 0.002);
 }
 
+TEST(SubsetHistogramChart, OutlineCountsEveryValueAndMarksTheSelected) {
+  // 4 bins over [0, 4]: 0.5 in the first, 1.5 in the second, 3.9 and 4 (the top edge) in the last; NaN left out.
+  const ChartSpec spec = SubsetHistogramChart("Fig. 19", "position (cm)", {0.5, 1.5, 3.9, 4.0, NAN}, 0.0, 4);
+  ExpectValid(spec);
+  ASSERT_EQ(spec.series.size(), 2u);
+  const std::vector<ChartPoint>& outline = spec.series[0].points;
+  ASSERT_EQ(outline.size(), 10u);  // (0, 0), two corners per bin, (4, 0)
+  std::vector<double> heights;
+  for (size_t k = 1; k + 1 < outline.size(); k += 2) heights.push_back(outline[k].y);
+  EXPECT_THAT(heights, ElementsAre(1, 1, 0, 2));
+  EXPECT_DOUBLE_EQ(outline[2].x, 1.0);
+  EXPECT_EQ(spec.series[0].name, "4 random subsets");
+  EXPECT_TRUE(spec.series[1].dashed);
+  EXPECT_DOUBLE_EQ(spec.series[1].points[0].x, 0.0);
+  EXPECT_DOUBLE_EQ(spec.series[1].points[1].y, 2.0);  // as tall as the tallest bin
+}
+
 TEST(Fig15Chart, OneLinePerSetAgainstThePoseCount) {
   SweepResult sweep;
   sweep.points = {{8, {Set("random", 8, 0.3, 0.2), Set("plan", 8, 0.01, 0.004)}},

@@ -185,6 +185,17 @@ Search::Search(const PlanningModel& model, const std::vector<Vector6d>& candidat
   cached = !options.continuous && starts >= count &&
            (options.criterion == Criterion::kO1 || options.criterion == Criterion::kD);
   if (cached && state.full_rank()) cache.Reset(state, rows);  // PlanPoses refuses a singular start
+  // An initial pose that is one of the candidates (a subset of measured poses,
+  // core/subset_study.h) is that candidate: AddFind must not add it a second time.
+  for (PlanEntry& entry : plan) {
+    for (int j = 0; j < count; ++j) {
+      if (!in_plan[j] && candidates[j] == entry.pose) {
+        entry.id = j;
+        in_plan[j] = 1;
+        break;
+      }
+    }
+  }
 }
 
 // The criteria of one AddFind: C_a is the primary criterion, or the secondary

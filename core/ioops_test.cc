@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <random>
 
 #include "core/candidates.h"
 #include "tests/robot_presets.h"
@@ -53,6 +54,29 @@ TEST_F(IoopsTest, BoundaryPlanReachesThePapersO2) {
   EXPECT_GT(plan->final.o3, 5 * plan->initial.o3);
   EXPECT_GT(plan->final.o4, 10 * plan->initial.o4);
   for (const Vector6d& pose : plan->poses) EXPECT_TRUE(model_.IsFeasible(pose));
+}
+
+// A start drawn from the candidates themselves (a subset of measured poses):
+// those poses are in the plan already and are never added a second time.
+TEST_F(IoopsTest, StartFromCandidatesNeverRepeatsAPose) {
+  const std::vector<Vector6d> measured = Generate(model_.robot, CandidateKind::kRandom, 30, 11);
+  std::mt19937_64 rng(4);
+  for (int draw = 0; draw < 12; ++draw) {
+    std::vector<Vector6d> shuffled = measured;
+    std::shuffle(shuffled.begin(), shuffled.end(), rng);
+    const std::vector<Vector6d> start(shuffled.begin(), shuffled.begin() + 9);
+    for (Criterion criterion : {Criterion::kO1, Criterion::kO4}) {
+      PlannerOptions options;
+      options.num_poses = 9;
+      options.criterion = criterion;
+      StatusOr<PlanResult> plan = PlanPoses(model_, measured, start, options);
+      if (!plan.ok()) continue;  // a start that does not identify every parameter
+      for (const Vector6d& candidate : measured) {
+        EXPECT_LE(std::count(plan->poses.begin(), plan->poses.end(), candidate), 1)
+            << CriterionName(criterion) << ", draw " << draw;
+      }
+    }
+  }
 }
 
 // DETMAX property: without Tabu, removing the pose just added is always possible, so the

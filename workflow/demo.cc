@@ -86,6 +86,19 @@ Status CompareWithTruth(const DemoScene& scene, const std::string& dir, DemoResu
   return Status::Ok();
 }
 
+// Step 1 with `random_poses`: N random feasible poses in the camera's view, as
+// a plan of no iterations (its indices those of the random set).
+StatusOr<PlanResult> RandomDemoPoses(const DemoRequest& request, const PlanningModel& model) {
+  StatusOr<std::vector<Vector6d>> poses = InitialPoses(model, "random", request.poses, request.seed);
+  if (!poses.ok()) return poses.status().AsFailure();
+  PlanResult plan;
+  plan.poses = std::move(*poses);
+  std::vector<Pose> at;
+  for (const Vector6d& pose : plan.poses) at.push_back(model.robot.PoseFromVector(pose));
+  plan.initial = plan.final = ComputeIndices(model.robot, at);
+  return plan;
+}
+
 // Step 1: IOOPS among random and boundary candidates in the camera's view.
 StatusOr<PlanResult> PlanDemo(const DemoRequest& request, const PlanningModel& model, const JobHooks& hooks,
                               int* candidates) {
@@ -109,14 +122,28 @@ StatusOr<PlanResult> PlanDemo(const DemoRequest& request, const PlanningModel& m
 // Step 2: the session folder, with the plan and its history as `hexcal plan` writes them.
 Status RecordDemo(const DemoRequest& request, const DemoScene& scene, const PlanningModel& model,
                   const PlanResult& plan, const std::string& robot_name, const JobHooks& hooks) {
-  StatusOr<std::vector<Vector6d>> held_out = InitialPoses(model, "random", request.holdout, request.seed + 1000);
-  if (!held_out.ok()) return held_out.status().AsFailure();
-  if (Status s = RecordDemoSession(scene, robot_name, kSimulatedCameraName, plan.poses, *held_out, request.out,
-                                   hooks.progress);
+  std::vector<Vector6d> held_out;
+  if (request.holdout > 0) {
+    StatusOr<std::vector<Vector6d>> drawn = InitialPoses(model, "random", request.holdout, request.seed + 1000);
+    if (!drawn.ok()) return drawn.status().AsFailure();
+    held_out = std::move(*drawn);
+  }
+  if (Status s =
+          RecordDemoSession(scene, robot_name, kSimulatedCameraName, plan.poses, held_out, request.out, hooks.progress);
       !s.ok())
     return s.AsFailure();
   if (Status s = WritePlanCsv(SessionPaths(request.out).plan, model, plan.poses); !s.ok()) return s;
+  if (request.random_poses) return Status::Ok();  // no planner iterations to record
   return WriteHistoryCsv((fs::path(request.out) / "plan_history.csv").string(), plan);
+}
+
+std::string PlanStepText(const DemoRequest& request) {
+  const std::string poses = std::to_string(request.poses);
+  if (request.random_poses) return "draw " + poses + " random feasible poses with the target in the camera's view";
+  return "plan " + poses +
+         (request.quick_plan ? " poses (IOOPS: O1, Tabu 4; quick) among random candidates"
+                             : " poses (IOOPS: O1, secondary O4, Tabu 4) among random and boundary candidates") +
+         " with the target in the camera's view";
 }
 
 std::string FormatPlanLine(int candidates, const PlanResult& plan) {
@@ -134,7 +161,8 @@ Status CalibrateAndCompare(const DemoRequest& request, const DemoScene& scene, S
   if (!calibration.ok()) return calibration.status();
   std::istringstream lines(FormatCalibrationSummary(*calibration));
   for (std::string line; std::getline(lines, line);) hooks.Note("      " + line);
-  if (!calibration->validation) return Status::Failed(CalibrationReportPath(request.out) + ": no validation section");
+  if (request.holdout > 0 && !calibration->validation)
+    return Status::Failed(CalibrationReportPath(request.out) + ": no validation section");
   result->calibration = *calibration;
   result->usable_images = calibration->usable_images();
 
@@ -155,8 +183,8 @@ Status DemoRequest::Check() const {
     return Status::Error("--poses must be between " + std::to_string(kMinDemoPoses) + " and " +
                          std::to_string(kMaxDemoPoses) + " (each pose is a rendered image)");
   }
-  if (holdout < 1 || holdout > kMaxDemoHoldout) {
-    return Status::Error("--holdout must be between 1 and " + std::to_string(kMaxDemoHoldout));
+  if (holdout < 0 || holdout > kMaxDemoHoldout) {
+    return Status::Error("--holdout must be between 0 and " + std::to_string(kMaxDemoHoldout));
   }
   return Status::Ok();
 }
@@ -186,14 +214,13 @@ StatusOr<DemoResult> RunDemo(const DemoRequest& request, const JobHooks& hooks) 
   result.poses = request.poses;
   result.held_out = request.holdout;
 
-  steps.Step("plan " + std::to_string(request.poses) +
-             (request.quick_plan ? " poses (IOOPS: O1, Tabu 4; quick) among random candidates"
-                                 : " poses (IOOPS: O1, secondary O4, Tabu 4) among random and boundary candidates") +
-             " with the target in the camera's view");
+  steps.Step(PlanStepText(request));
   const PlanningModel model{*nominal, std::nullopt, scene.view};
-  StatusOr<PlanResult> plan = PlanDemo(request, model, hooks, &result.plan_candidates);
+  StatusOr<PlanResult> plan =
+      request.random_poses ? RandomDemoPoses(request, model) : PlanDemo(request, model, hooks, &result.plan_candidates);
   if (!plan.ok()) return plan.status();
-  hooks.Note(FormatPlanLine(result.plan_candidates, *plan));
+  if (!request.random_poses) hooks.Note(FormatPlanLine(result.plan_candidates, *plan));
+  result.random_poses = request.random_poses;
   result.random_indices = plan->initial;
   result.plan_indices = plan->final;
   result.plan_iterations = plan->iterations;
@@ -217,16 +244,20 @@ nlohmann::json ToJson(const DemoResult& r) {
     if (p.sigma) row["error_over_sigma"] = *p.sigma > 0 ? nlohmann::json(p.error / *p.sigma) : nlohmann::json(nullptr);
     parameters.push_back(row);
   }
-  const ValidationSummary& v = *r.calibration.validation;
   const auto pose_errors = [](const PoseErrorStats& s) {
     return nlohmann::json{{"position_rms", s.position_rms}, {"orientation_rms", s.orientation_rms}};
   };
+  const std::optional<ValidationSummary>& v = r.calibration.validation;  // none without held-out poses
+  const nlohmann::json validation =
+      v ? nlohmann::json{{"before", pose_errors(v->before)}, {"after", pose_errors(v->after)}}
+        : nlohmann::json(nullptr);
   return {{"robot", r.robot},
           {"length_unit", r.length_unit},
           {"session", r.session},
           {"poses", r.poses},
           {"held_out", r.held_out},
           {"usable_images", r.usable_images},
+          {"random_poses", r.random_poses},
           {"plan", {{"random", IndicesJson(r.random_indices)}, {"selected", IndicesJson(r.plan_indices)}}},
           {"parameter_error",
            {{"mean", r.error_mean},
@@ -235,14 +266,13 @@ nlohmann::json ToJson(const DemoResult& r) {
             {"nominal_max", r.nominal_error_max}}},
           {"within_3sigma", r.within_3sigma},
           {"parameters", parameters},
-          {"validation", {{"before", pose_errors(v.before)}, {"after", pose_errors(v.after)}}},
+          {"validation", validation},
           {"report", r.report},
           {"seconds", r.seconds},
           {"verdict", r.verdict.ToJson()}};
 }
 
 std::string FormatDemoSummary(const DemoResult& r) {
-  const ValidationSummary& v = *r.calibration.validation;
   const char* unit = r.length_unit.c_str();
   char text[400];
   std::string out;
@@ -252,13 +282,18 @@ std::string FormatDemoSummary(const DemoResult& r) {
                 unit, r.error_mean, r.error_max, r.nominal_error_mean, r.nominal_error_max, 100 * r.within_3sigma,
                 r.with_sigma);
   out += text;
-  std::snprintf(text, sizeof text,
-                "held-out pose error (RMS over %d images, FK against the camera):\n"
-                "  before calibration: position %.4g %s, orientation %.4g deg\n"
-                "  after calibration:  position %.4g %s, orientation %.4g deg\n",
-                v.rows, v.before.position_rms, unit, v.before.orientation_rms, v.after.position_rms, unit,
-                v.after.orientation_rms);
-  out += text;
+  if (const std::optional<ValidationSummary>& v = r.calibration.validation) {
+    std::snprintf(text, sizeof text,
+                  "held-out pose error (RMS over %d images, FK against the camera):\n"
+                  "  before calibration: position %.4g %s, orientation %.4g deg\n"
+                  "  after calibration:  position %.4g %s, orientation %.4g deg\n",
+                  v->rows, v->before.position_rms, unit, v->before.orientation_rms, v->after.position_rms, unit,
+                  v->after.orientation_rms);
+    out += text;
+  } else {
+    out += "no held-out poses (--holdout 0): `hexcal study --session " + r.session +
+           " --select N` validates subsets on the poses they leave out\n";
+  }
   return out + r.verdict.ToText() + "report: " + r.report + "\ndone in " + FormatNumber(r.seconds) + " s\n";
 }
 

@@ -1,11 +1,13 @@
 // `hexcal demo` and the GUI's "Open demo session": the whole calibration
 // flow on a virtual robot and camera (docs/session.md, "hexcal demo"):
 //  1. plan N poses with IOOPS (O1 primary, O4 secondary, Tabu 4) among random
-//     and boundary candidates the camera can see;
+//     and boundary candidates the camera can see, or with `random_poses` draw
+//     N random feasible poses the camera sees (the paper's section 8 records
+//     64 such poses for `hexcal study`, study_step.h);
 //  2. record a session folder: a hidden true robot (nominal ± 0.5 mm on every
 //     parameter) at unknown camera and target frames, an image rendered at
 //     every pose (demo_scene.h) and noisy leg readings, plus random held-out
-//     poses;
+//     poses (none with holdout 0);
 //  3. measure → register → calibrate → validate (CalibrateSession);
 //  4. compare the calibrated parameters with the truth in the registered
 //     frames (the gauge, docs/session.md), and write results/report.html.
@@ -38,7 +40,7 @@ struct DemoRequest {
   std::string robot = "inria-left-hand";  // robot file or preset name
   std::string out = "hexcal-demo";        // the session folder to write
   int poses = 24;                         // planned calibration poses
-  int holdout = 8;                        // random poses kept out to validate
+  int holdout = 8;                        // random poses kept out to validate (0: none, no validation)
   uint64_t seed = 1;                      // of the truth, the candidates and the noise
   bool force = false;                     // replace an earlier demo in `out`
   // For tests that need a calibrated session, not the demo's figures: random
@@ -46,6 +48,10 @@ struct DemoRequest {
   // and O1 alone, no secondary criterion. Under the sanitizers the full plan
   // is about a minute.
   bool quick_plan = false;
+  // Record `poses` random feasible poses the camera sees instead of an IOOPS
+  // plan: the paper's section 8 measures 64 such poses and studies subsets of
+  // them (`hexcal study`).
+  bool random_poses = false;
 
   Status Check() const;
 };
@@ -61,7 +67,8 @@ struct DemoResult {
   std::string robot, length_unit, session;
   int poses = 0, held_out = 0, usable_images = 0;
   ObservabilityIndices random_indices, plan_indices;  // the random start set and the plan
-  int plan_candidates = 0, plan_iterations = 0;
+  int plan_candidates = 0, plan_iterations = 0;       // 0 with random_poses
+  bool random_poses = false;                          // the poses are random, not planned
   double error_mean = 0, error_max = 0;                  // calibrated − truth
   double nominal_error_mean = 0, nominal_error_max = 0;  // nominal − truth
   double within_3sigma = 0;                              // fraction of the parameters with a σ

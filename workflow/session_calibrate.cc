@@ -103,6 +103,20 @@ struct SplitRows {
   int unusable = 0;
 };
 
+// One image's board pose and covariance, scaled to the robot unit, with its readings.
+void AppendCameraRow(const SessionInputs& in, const LegsRow& row, const CameraPose& pose, double scale,
+                     CameraCalibrationInput* input) {
+  Pose camera_from_target = pose.camera_from_target;
+  camera_from_target.position *= scale;
+  input->camera_from_target.push_back(camera_from_target);
+  Matrix6d covariance = pose.covariance;  // to the robot unit
+  covariance.topRows<3>() *= scale;
+  covariance.leftCols<3>() *= scale;
+  input->camera_pose_covariance.push_back(covariance);
+  input->legs.push_back(row.legs);
+  input->fk_start.push_back(in.fk_start);
+}
+
 SplitRows SplitSessionRows(const SessionInputs& in, const CameraPoses& poses, double scale) {
   SplitRows split;
   for (const LegsRow& row : in.legs) {
@@ -115,15 +129,7 @@ SplitRows SplitSessionRows(const SessionInputs& in, const CameraPoses& poses, do
       split.held_out.push_back(&row);
       continue;
     }
-    Pose camera_from_target = pose.camera_from_target;
-    camera_from_target.position *= scale;
-    split.input.camera_from_target.push_back(camera_from_target);
-    Matrix6d covariance = pose.covariance;  // to the robot unit
-    covariance.topRows<3>() *= scale;
-    covariance.leftCols<3>() *= scale;
-    split.input.camera_pose_covariance.push_back(covariance);
-    split.input.legs.push_back(row.legs);
-    split.input.fk_start.push_back(in.fk_start);
+    AppendCameraRow(in, row, pose, scale, &split.input);
     split.calibration_rows.push_back(&row);
   }
   return split;
@@ -281,9 +287,16 @@ Status CheckInputsUnchanged(const std::string& dir, const ContentHashes& before)
                         "was: run again");
 }
 
-// Weighted by each image's own pose covariance and the model's reading
-// noise; σ at least the a priori one (calibration.h, UncertaintyScale);
-// readings screened for outliers against that noise (outlier_screening.h).
+// The session's noise model weighs the closure residuals of the registration.
+RegistrationOptions SessionRegistrationOptions(const NoiseModel& noise) {
+  RegistrationOptions registration;
+  registration.position_sigma = noise.PositionStdDev();
+  registration.angle_sigma_deg = RadToDeg(noise.AngleStdDevRad());
+  return registration;
+}
+
+}  // namespace
+
 CalibrationOptions SessionCalibrationOptions(const NoiseModel& noise, const OutlierScreening& outliers) {
   CalibrationOptions calibration;
   calibration.weighted = true;
@@ -292,8 +305,6 @@ CalibrationOptions SessionCalibrationOptions(const NoiseModel& noise, const Outl
   calibration.outliers = outliers;
   return calibration;
 }
-
-}  // namespace
 
 std::string ResolveSessionFile(const std::string& dir, const std::string& name) {
   std::error_code error;
@@ -328,9 +339,7 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   const double scale = MetresPerUnit(in->target.length_unit) / MetresPerUnit(in->nominal.length_unit);
   const SplitRows split = SplitSessionRows(*in, *poses, scale);
 
-  RegistrationOptions registration;
-  registration.position_sigma = in->config.noise.PositionStdDev();
-  registration.angle_sigma_deg = RadToDeg(in->config.noise.AngleStdDevRad());
+  const RegistrationOptions registration = SessionRegistrationOptions(in->config.noise);
   const CalibrationOptions calibration = SessionCalibrationOptions(in->config.noise, request.outliers);
   std::string options_error;
   if (!calibration.IsValid(&options_error)) return Status::Error(options_error);
@@ -353,6 +362,37 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   if (Status s = WriteCalibrationResults(dir, &*in, *result, calibration, report, *inputs); !s.ok())
     return s.AsFailure();
   return report;
+}
+
+StatusOr<MeasuredSession> LoadMeasuredSession(const std::string& dir, LockWait wait, const JobHooks& hooks) {
+  if (StatusOr<SessionConfig> config = LoadSessionConfig(dir); !config.ok()) return config.status();
+  StatusOr<SessionLock> lock = SessionLock::Acquire(dir, wait);  // measuring writes measurements.csv
+  if (!lock.ok()) return lock.status();
+  StatusOr<ContentHashes> inputs = HashSessionInputs(dir);
+  if (!inputs.ok()) return inputs.status();
+  StatusOr<SessionInputs> in = LoadSessionInputs(dir);
+  if (!in.ok()) return in.status();
+  StatusOr<CameraPoses> poses = MeasureSession(dir, *in, *inputs, hooks);
+  if (!poses.ok()) return poses.status();
+  const double scale = MetresPerUnit(in->target.length_unit) / MetresPerUnit(in->nominal.length_unit);
+  MeasuredSession session{in->nominal, in->config.noise, {}, {}, {}, 0};
+  CameraCalibrationInput input;
+  for (const LegsRow& row : in->legs) {
+    const CameraPose& pose = poses->at(row.image);
+    if (!pose.ok) {
+      ++session.unusable;
+      continue;
+    }
+    AppendCameraRow(*in, row, pose, scale, &input);
+    session.images.push_back(row.image);
+  }
+  const CalibrationOptions calibration = SessionCalibrationOptions(in->config.noise, OutlierScreening{true});
+  StatusOr<CameraCalibrationResult> registered = CalibrateFromCameraPoses(
+      in->nominal, input, SessionRegistrationOptions(in->config.noise), calibration, {nullptr, hooks.cancel});
+  if (!registered.ok()) return registered.status().AsFailure();
+  session.registration = registered->registration;
+  session.measurements = std::move(registered->measurements);
+  return session;
 }
 
 namespace {

@@ -14,6 +14,7 @@
 
 #include "core/job_hooks.h"
 #include "core/outlier_screening.h"
+#include "core/registration.h"
 #include "core/robot.h"
 #include "core/session.h"
 #include "core/session_lock.h"
@@ -51,6 +52,30 @@ struct SessionModels {
   Target target;
 };
 StatusOr<SessionModels> LoadSessionModels(const std::string& dir);
+
+// The options `calibrate --session` calibrates with: weighted by each image's
+// own pose covariance and the model's reading noise; σ at least the a priori
+// one (calibration.h, UncertaintyScale); readings screened for outliers
+// against that noise (outlier_screening.h).
+CalibrationOptions SessionCalibrationOptions(const NoiseModel& noise, const OutlierScreening& outliers);
+
+// Every row of a session with a usable board pose, held out or not, as
+// `hexcal study` (study_step.h) draws its subsets from: the images not yet
+// measured are measured (under the session lock, as calibrate --session
+// does); the frames are registered with the nominal robot on all of them
+// (CalibrateFromCameraPoses, the gauge of docs/session.md); each board pose
+// is mapped to base_from_platform = X·B·Y⁻¹ with its covariance. Writes
+// nothing but measurements.csv and its record.
+struct MeasuredSession {
+  Robot nominal;
+  NoiseModel noise;                       // session.yaml's
+  std::vector<std::string> images;        // the image of each measurement
+  std::vector<Measurement> measurements;  // base frame, robot unit, with the pose covariance
+  Registration registration;
+  int unusable = 0;  // rows without a usable board pose, left out
+};
+StatusOr<MeasuredSession> LoadMeasuredSession(const std::string& dir, LockWait wait = LockWait::kNo,
+                                              const JobHooks& hooks = {});
 
 // The lines `hexcal calibrate --session` prints: counts, closure before and
 // after, held-out validation, one warning per outlier reading, files written.

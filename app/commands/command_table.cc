@@ -12,6 +12,7 @@ constexpr CommandEntry kCommands[] = {
     {"calibrate", AddCalibrateCommand},
     {"validate", AddValidateCommand},
     {"simulate", AddSimulateCommand},
+    {"study", AddStudyCommand},
     {"target", AddTargetCommand},
     {"detect", AddDetectCommand},
     {"render", AddRenderCommand},

@@ -1,5 +1,5 @@
 // hexcal demo [--robot inria-left-hand|deltalab-table|FILE] [--out DIR] [--poses 24] [--holdout 8]
-//             [--seed 1] [--force] [--json]
+//             [--random-poses] [--seed 1] [--force] [--json]
 //
 // The whole calibration flow on a virtual robot and camera (workflow/demo.h,
 // docs/session.md).
@@ -37,9 +37,11 @@ void AddDemoCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--poses", request->poses, "planned calibration poses")
       ->check(CountRange(workflow::kMinDemoPoses, workflow::kMaxDemoPoses, "each pose is a rendered image"))
       ->capture_default_str();
-  sub->add_option("--holdout", request->holdout, "random poses kept out to validate")
-      ->check(CountRange(1, workflow::kMaxDemoHoldout, "each pose is a rendered image"))
+  sub->add_option("--holdout", request->holdout, "random poses kept out to validate (0: none)")
+      ->check(CountRange(0, workflow::kMaxDemoHoldout, "each pose is a rendered image"))
       ->capture_default_str();
+  sub->add_flag("--random-poses", request->random_poses,
+                "record --poses random feasible poses the camera sees instead of an IOOPS plan (for hexcal study)");
   sub->add_option("--seed", request->seed, "seed of the truth, the candidates and the noise")->capture_default_str();
   sub->add_flag("--force", request->force, "replace an earlier demo in --out");
   sub->add_flag("--json", *json, "print one JSON object on stdout (progress on stderr)");
