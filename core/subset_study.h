@@ -37,7 +37,7 @@ namespace hexcal {
 struct SubsetStudyOptions {
   int select = 13;                       // N, poses per subset: at least 7, fewer than the measurements
   int subsets = 6000;                    // K random subsets (the paper's 6000)
-  Criterion criterion = Criterion::kO4;  // IOOPS's primary criterion (section 8 optimised O4)
+  Criterion criterion = Criterion::kO1;  // IOOPS's primary criterion (section 8 optimised O4; docs/calibration.md)
   std::optional<Criterion> secondary;    // section 6.2's secondary criterion; none in section 8
   // IOOPS runs from this many random initial subsets; the selection with the
   // best value of the criterion (the secondary when set) is kept.

@@ -29,7 +29,7 @@ struct StudyRequest {
   // session's (SessionCalibrationOptions: weighted by each image's pose
   // covariance and the noise model) without the outlier screening.
   SubsetStudyOptions study;
-  bool weighted_selection = false;  // IOOPS weighs its rows by the session's noise model (selection_noise)
+  bool weighted_selection = true;  // IOOPS weighs its rows by the session's noise model (selection_noise)
   std::string plots;                // folder for the Fig. 18 and 19 histograms (SVG and PNG); may be empty
   bool force = false;               // replace figures already in `plots`
   LockWait wait = LockWait::kNo;    // for the session lock while images are measured

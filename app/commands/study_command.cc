@@ -1,4 +1,4 @@
-// hexcal study --session DIR --select N [--subsets 6000] [--criterion O4] [--secondary C] [--starts 1]
+// hexcal study --session DIR --select N [--subsets 6000] [--criterion O1] [--secondary C] [--starts 1]
 //   [--seed 1] [--threads T] [--plots DIR] [--force] [--wait] [--json]
 //
 // The section 8 study on a recorded session (workflow/study_step.h,
@@ -15,7 +15,7 @@ namespace {
 
 struct StudyCliOptions {
   workflow::StudyRequest request;
-  std::string criterion = "O4";
+  std::string criterion = "O1";
   std::string secondary;  // empty: none
   bool json = false, wait = false;
 };
@@ -60,14 +60,15 @@ void AddStudyCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--subsets", study.subsets, "random subsets (K)")
       ->check(CountRange(1, 1000000))
       ->capture_default_str();
-  sub->add_option("--criterion", options->criterion, "IOOPS's criterion (O1..O4, D, A, E; section 8 used O4)")
+  sub->add_option("--criterion", options->criterion, "IOOPS's criterion (O1..O4, D, A, E, S; section 8 used O4)")
       ->capture_default_str();
   sub->add_option("--secondary", options->secondary, "section 6.2's secondary criterion (default: none)");
   sub->add_option("--starts", study.selection_starts, "IOOPS runs from random initial subsets; the best is kept")
       ->check(CountRange(1, 1000))
       ->capture_default_str();
-  sub->add_flag("--weighted-selection", options->request.weighted_selection,
-                "IOOPS weighs each row by its residual's standard deviation under the session's noise model");
+  sub->add_flag("--weighted-selection,!--unweighted-selection", options->request.weighted_selection,
+                "IOOPS weighs each row by its residual's standard deviation under the session's noise model "
+                "(the default; --unweighted-selection: the paper's J_P)");
   sub->add_option("--seed", study.seed, "seed of the IOOPS starts and the random subsets")->capture_default_str();
   sub->add_option("--threads", study.num_threads, "subsets at once (0 = every core)")
       ->check(CountRange(0, kMaxThreads))

@@ -26,7 +26,7 @@ python3 - "$dir/a.json" <<'PY'
 import json, sys
 j = json.load(open(sys.argv[1]))
 assert j["measured"] == 18 and j["select"] == 9 and j["subsets"] == 200, j
-assert j["criterion"] == "O4" and j["secondary"] is None and j["weighted_selection"] is False
+assert j["criterion"] == "O1" and j["secondary"] is None and j["weighted_selection"] is True
 s, r = j["selected"], j["random"]
 assert len(s["poses"]) == 9 and len(s["images"]) == 9 and s["ok"]
 assert 0 <= s["percentile"] <= 100 and s["percentile"] == s["percentiles"]["heldout_position_rms"]
@@ -38,9 +38,11 @@ for key in ("O1", "O4", "heldout_position_rms", "heldout_orientation_rms"):
 assert s["heldout_position_rms"] > 0
 PY
 
+"$hexcal" study --session "$dir/session" --select 9 --subsets 20 --unweighted-selection --criterion O4 --json |
+  python3 -c 'import json,sys; j=json.load(sys.stdin); assert j["weighted_selection"] is False and j["criterion"] == "O4", j'
 "$hexcal" study --session "$dir/session" --select 9 --subsets 100 --criterion O1 --secondary O4 \
   --plots "$dir/plots" >"$dir/text"
-grep -q "^selected: IOOPS on O1, secondary O4, 9 of the measured poses" "$dir/text"
+grep -q "^selected: IOOPS on O1, secondary O4 (rows weighted by the session.s noise model), 9 of the measured poses" "$dir/text"
 grep -q "validates better than .* % of the random subsets" "$dir/text"
 grep -q "^held-out position RMS (cm) " "$dir/text"
 for figure in fig18_o1 fig18_o2 fig18_o3 fig18_o4 fig19_position fig19_orientation; do
