@@ -179,10 +179,8 @@ double PriceD(const CandidateRows& all, const CandidateRows& working, OptimalDes
 
 StatusOr<OptimalDesign> ComputeOptimalDesign(const CandidateRows& candidates, const OptimalDesignOptions& options,
                                              const JobHooks& hooks) {
-  OptimalDesign uniform;
-  uniform.weights.assign(candidates.size(), 1.0 / std::max(1, candidates.size()));
-  return SolveOnWorkingSet(
-      candidates, options, hooks, uniform, SolveDOptimal,
+  return SolveOnWorkingSet<OptimalDesign>(
+      candidates, options, hooks, SolveDOptimal,
       [&](const CandidateRows& all, const CandidateRows& working, OptimalDesign* design, Eigen::ArrayXd* d) {
         return PriceD(all, working, design, d, options.threads);
       });

@@ -156,10 +156,8 @@ double PriceSigma(const CandidateRows& all, const CandidateRows& working, SigmaD
 
 StatusOr<SigmaDesign> ComputeSigmaOptimalDesign(const CandidateRows& candidates, const OptimalDesignOptions& options,
                                                 const JobHooks& hooks) {
-  SigmaDesign uniform;
-  uniform.weights.assign(candidates.size(), 1.0 / std::max(1, candidates.size()));
-  return SolveOnWorkingSet(
-      candidates, options, hooks, uniform, SolveSigmaOptimal,
+  return SolveOnWorkingSet<SigmaDesign>(
+      candidates, options, hooks, SolveSigmaOptimal,
       [&](const CandidateRows& all, const CandidateRows& working, SigmaDesign* design, Eigen::ArrayXd* d) {
         return PriceSigma(all, working, design, d, options.threads);
       });

@@ -33,13 +33,14 @@ constexpr int kWorkingSetGrowth = 256;  // most violating candidates added per p
 
 template <typename Design, typename Solve, typename Price>
 StatusOr<Design> SolveOnWorkingSet(const CandidateRows& all, const OptimalDesignOptions& options,
-                                   const JobHooks& hooks, const Design& uniform, Solve solve, Price price) {
+                                   const JobHooks& hooks, Solve solve, Price price) {
   if (all.size() <= 4 * kWorkingSetStart) return solve(all, options, hooks);
   const auto start = std::chrono::steady_clock::now();
   Eigen::ArrayXd d;
   std::vector<int> working_set(all.size());
   std::iota(working_set.begin(), working_set.end(), 0);
-  Design design = uniform;  // uniform weights on every candidate: the first pricing
+  Design design;  // uniform weights on every candidate: the first pricing
+  design.weights.assign(all.size(), 1.0 / all.size());
   price(all, all, &design, &d);
   std::vector<char> member(all.size(), 0);
   working_set = LargestOutside(d, member, kWorkingSetStart, -1);

@@ -324,19 +324,43 @@ StatusOr<SessionModels> LoadSessionModels(const std::string& dir) {
   return SessionModels{std::move(*config), std::move(*robot), std::move(*camera), std::move(*target)};
 }
 
-StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& request, const JobHooks& hooks) {
-  const std::string& dir = request.session;
+namespace {
+
+// A session opened under its lock with every image measured: what calibrating
+// and the section 8 study both start from.
+struct OpenSession {
+  SessionLock lock;
+  ContentHashes hashes;
+  SessionInputs in;
+  CameraPoses poses;
+  double scale = 1;  // target unit per robot unit
+};
+
+StatusOr<OpenSession> OpenAndMeasure(const std::string& dir, LockWait wait, const JobHooks& hooks) {
   // "DIR/session.yaml: no such file" says more than the lock could.
   if (StatusOr<SessionConfig> config = LoadSessionConfig(dir); !config.ok()) return config.status();
-  StatusOr<SessionLock> lock = SessionLock::Acquire(dir, request.wait);
+  StatusOr<SessionLock> lock = SessionLock::Acquire(dir, wait);  // measuring writes measurements.csv
   if (!lock.ok()) return lock.status();
-  StatusOr<ContentHashes> inputs = HashSessionInputs(dir);
-  if (!inputs.ok()) return inputs.status();
+  StatusOr<ContentHashes> hashes = HashSessionInputs(dir);
+  if (!hashes.ok()) return hashes.status();
   StatusOr<SessionInputs> in = LoadSessionInputs(dir);
   if (!in.ok()) return in.status();
-  StatusOr<CameraPoses> poses = MeasureSession(dir, *in, *inputs, hooks);
+  StatusOr<CameraPoses> poses = MeasureSession(dir, *in, *hashes, hooks);
   if (!poses.ok()) return poses.status();
   const double scale = MetresPerUnit(in->target.length_unit) / MetresPerUnit(in->nominal.length_unit);
+  return OpenSession{std::move(*lock), std::move(*hashes), std::move(*in), std::move(*poses), scale};
+}
+
+}  // namespace
+
+StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& request, const JobHooks& hooks) {
+  const std::string& dir = request.session;
+  StatusOr<OpenSession> open = OpenAndMeasure(dir, request.wait, hooks);
+  if (!open.ok()) return open.status();
+  SessionInputs* in = &open->in;
+  const ContentHashes* inputs = &open->hashes;
+  const CameraPoses* poses = &open->poses;
+  const double scale = open->scale;
   const SplitRows split = SplitSessionRows(*in, *poses, scale);
 
   const RegistrationOptions registration = SessionRegistrationOptions(in->config.noise);
@@ -365,16 +389,11 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
 }
 
 StatusOr<MeasuredSession> LoadMeasuredSession(const std::string& dir, LockWait wait, const JobHooks& hooks) {
-  if (StatusOr<SessionConfig> config = LoadSessionConfig(dir); !config.ok()) return config.status();
-  StatusOr<SessionLock> lock = SessionLock::Acquire(dir, wait);  // measuring writes measurements.csv
-  if (!lock.ok()) return lock.status();
-  StatusOr<ContentHashes> inputs = HashSessionInputs(dir);
-  if (!inputs.ok()) return inputs.status();
-  StatusOr<SessionInputs> in = LoadSessionInputs(dir);
-  if (!in.ok()) return in.status();
-  StatusOr<CameraPoses> poses = MeasureSession(dir, *in, *inputs, hooks);
-  if (!poses.ok()) return poses.status();
-  const double scale = MetresPerUnit(in->target.length_unit) / MetresPerUnit(in->nominal.length_unit);
+  StatusOr<OpenSession> open = OpenAndMeasure(dir, wait, hooks);
+  if (!open.ok()) return open.status();
+  const SessionInputs* in = &open->in;
+  const CameraPoses* poses = &open->poses;
+  const double scale = open->scale;
   MeasuredSession session{in->nominal, in->config.noise, {}, {}, {}, 0};
   CameraCalibrationInput input;
   for (const LegsRow& row : in->legs) {

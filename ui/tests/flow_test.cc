@@ -91,6 +91,25 @@ int CsvRows(const QString& path) {
   return table.ok() ? static_cast<int>(table->rows.size()) : -1;
 }
 
+// Validate: before and after on the 4 held-out images, the verdict, exports.
+void CheckValidatePanel(ValidatePanel* validate, const QString& level, const QTemporaryDir& temp) {
+  EXPECT_EQ(validate->VerdictWidget()->LevelText(), level);
+  bool number = false;
+  // "0.0424 cm": the figure, then its unit.
+  const QString before_text = validate->SummaryTable()->item(0, 0)->text();
+  EXPECT_TRUE(before_text.endsWith(" cm")) << before_text.toStdString();
+  const double before = before_text.section(' ', 0, 0).toDouble(&number);
+  EXPECT_TRUE(number);
+  const double after = validate->SummaryTable()->item(0, 1)->text().section(' ', 0, 0).toDouble(&number);
+  EXPECT_TRUE(number);
+  EXPECT_GT(before, 0);
+  EXPECT_LT(after, before);  // the true robot differs from the nominal one
+  validate->ExportCalibratedRobot(temp.filePath("calibrated.yaml"));
+  EXPECT_TRUE(QFile::exists(temp.filePath("calibrated.yaml")));
+  validate->ExportHtmlReport(temp.filePath("report.html"));
+  EXPECT_TRUE(QFile::exists(temp.filePath("report.html")));
+}
+
 TEST(UiFlow, PlanMeasureCalibrateValidate) {
   QTemporaryDir temp;
   const QString dir = temp.filePath("session");
@@ -170,23 +189,7 @@ TEST(UiFlow, PlanMeasureCalibrateValidate) {
   const QString level = workflow::VerdictLevelName(workflow::MakeVerdict(session.Results()->report).level);
   EXPECT_EQ(calibrate->VerdictWidget()->LevelText(), level);
 
-  // Validate: before and after on the 4 held-out images.
-  ValidatePanel* validate = window.Validate();
-  EXPECT_EQ(validate->VerdictWidget()->LevelText(), level);
-  bool number = false;
-  // "0.0424 cm": the figure, then its unit.
-  const QString before_text = validate->SummaryTable()->item(0, 0)->text();
-  EXPECT_TRUE(before_text.endsWith(" cm")) << before_text.toStdString();
-  const double before = before_text.section(' ', 0, 0).toDouble(&number);
-  EXPECT_TRUE(number);
-  const double after = validate->SummaryTable()->item(0, 1)->text().section(' ', 0, 0).toDouble(&number);
-  EXPECT_TRUE(number);
-  EXPECT_GT(before, 0);
-  EXPECT_LT(after, before);  // the true robot differs from the nominal one
-  validate->ExportCalibratedRobot(temp.filePath("calibrated.yaml"));
-  EXPECT_TRUE(QFile::exists(temp.filePath("calibrated.yaml")));
-  validate->ExportHtmlReport(temp.filePath("report.html"));
-  EXPECT_TRUE(QFile::exists(temp.filePath("report.html")));
+  CheckValidatePanel(window.Validate(), level, temp);
 
   // An edited reading makes the calibration stale.
   QThread::msleep(1100);  // file times have a 1 s resolution on some file systems
