@@ -79,7 +79,7 @@ no_overwrite)
   ;;
 count_bounds)
   expect 2 "--poses: 100000 is outside \[8, 500\]" demo --poses 100000 --out demo
-  expect 2 "--holdout: 100000 is outside \[1, 500\]" demo --holdout 100000 --out demo
+  expect 2 "--holdout: 100000 is outside \[0, 500\]" demo --holdout 100000 --out demo
   expect 2 "--poses: -3 is outside" demo --poses -3 --out demo
   expect 2 "--count: 0 is outside" candidates $R --count 0 --out c.csv
   expect 2 "--count: 'many' is not a whole number" candidates $R --count many --out c.csv
