@@ -10,12 +10,14 @@
 // The measurements are platform poses in the base frame with their readings
 // (a session's board poses through the registered frames, registration.h).
 // The selection is IOOPS (ioops.h) with the measured poses as the finite
-// candidate set and the nominal robot's unweighted rows (the paper's J_P),
-// started from N measured poses drawn from the seed; section 8 optimised O4.
+// candidate set, started from N measured poses drawn from the seed, on the
+// nominal robot's rows: unweighted (the paper's J_P; section 8 optimised O4)
+// or divided by each residual's noise (selection_noise, the CLI's default
+// with O1: it validates better, docs/calibration.md).
 // The K random subsets are drawn from the seed before any work, so the
 // result does not depend on the thread count.
 //
-//   SubsetStudyOptions options;  // N = 13, K = 6000, O4 as in section 8
+//   SubsetStudyOptions options;  // N = 13, K = 6000, O1
 //   StatusOr<SubsetStudyResult> study = RunSubsetStudy(nominal, measurements, options, hooks);
 //   double beaten = PercentBeaten(RandomValues(*study, SubsetMetric::kHeldOutPosition),
 //                                 study->selected.heldout_position_rms, /*higher_is_better=*/false);
