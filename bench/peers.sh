@@ -17,12 +17,12 @@ hexcal=$1 peers=$2 rlib=${3:-/opt/rlib}
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 here=$(cd "$(dirname "$0")/.." && pwd)
-median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
+median() { sort -g | awk 'NF { v[++n] = $1 } END { print v[int((n + 1) / 2)] }'; }
 seconds() { local t0 t1; t0=$(date +%s.%N); "$@" >/dev/null 2>&1; t1=$(date +%s.%N); echo "$t1 - $t0" | bc -l; }
 report() {  # report NAME HEXCAL_TIMES PEER_TIMES
   local h p
   h=$(tr ' ' '\n' <<<"$2" | median) p=$(tr ' ' '\n' <<<"$3" | median)
-  printf '%-6s hexcal %8.3f s   peer %8.3f s   ratio %.3f\n' "$1" "$h" "$p" "$(echo "$h / $p" | bc -l)"
+  printf '%-6s hexcal %8.3f s   peer %8.3f s   ratio %.4f\n' "$1" "$h" "$p" "$(echo "$h / $p" | bc -l)"
 }
 
 # fk --all against phc -b.
