@@ -252,7 +252,7 @@ StatusOr<PlanEntry> AddFindFinite(Search& s, const AddCriteria& criteria) {
     if (s.in_plan[candidate_of(k)]) s.primary_scores[k] = kMinusInfinity;
   }
   int pick;
-  if (criteria.secondary && IsEigenvalueCriterion(*criteria.secondary)) {
+  if (criteria.secondary && s.options.screen_secondary && IsEigenvalueCriterion(*criteria.secondary)) {
     pick = SelectBestScreened(s.state, *criteria.secondary, scored, s.primary_scores, s.options.keep,
                               s.options.threads);
   } else {

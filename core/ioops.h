@@ -40,6 +40,10 @@ struct PlannerOptions {
   int removal_choices = 1;                // section 4.2: remove one of the r best at random
   uint64_t seed = 1;
   int threads = 0;                        // candidate scoring threads; 0: every core
+  // An eigenvalue secondary (O2-O4, E) is screened by upper bounds before its
+  // secular equations are solved; the choice is the same (ioops_test checks
+  // it against the plain scoring of every candidate, false).
+  bool screen_secondary = true;
 
   bool IsValid(std::string* error) const;
   int IterationBudget() const;

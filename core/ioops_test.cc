@@ -56,6 +56,25 @@ TEST_F(IoopsTest, BoundaryPlanReachesThePapersO2) {
   for (const Vector6d& pose : plan->poses) EXPECT_TRUE(model_.IsFeasible(pose));
 }
 
+// The screened secondary (bounds first, secular equations for few) makes the
+// same choices as scoring every candidate on it: the same plan, pose for pose.
+TEST_F(IoopsTest, ScreenedSecondaryChoosesAsThePlainScoring) {
+  std::vector<Vector6d> candidates = Generate(model_.robot, CandidateKind::kRandom, 1500, 78);
+  candidates.insert(candidates.end(), boundary_.begin(), boundary_.end());
+  for (Criterion secondary : {Criterion::kO2, Criterion::kO3, Criterion::kO4, Criterion::kE}) {
+    PlannerOptions options;
+    options.secondary = secondary;
+    options.tabu = 4;
+    options.iterations = 40;
+    StatusOr<PlanResult> screened = PlanPoses(model_, candidates, random18_, options);
+    options.screen_secondary = false;
+    StatusOr<PlanResult> plain = PlanPoses(model_, candidates, random18_, options);
+    ASSERT_TRUE(screened.ok() && plain.ok());
+    EXPECT_EQ(screened->poses, plain->poses) << CriterionName(secondary);
+    EXPECT_EQ(screened->best_iteration, plain->best_iteration) << CriterionName(secondary);
+  }
+}
+
 // A start drawn from the candidates themselves (a subset of measured poses):
 // those poses are in the plan already and are never added a second time.
 TEST_F(IoopsTest, StartFromCandidatesNeverRepeatsAPose) {
