@@ -142,7 +142,7 @@ struct Search {
   const std::vector<Vector6d>& candidates;  // Ω_d (fig. 2a), or the start list of fig. 2b
   const PlannerOptions& options;
   std::mt19937_64 rng;
-  CandidateRows rows;           // of every candidate
+  CandidateRows rows;           // of every candidate (finite search only)
   int64_t next_new_id = -1;     // ids of the poses that are not candidates: -1, -2, ...
   std::vector<PlanEntry> plan;  // Υ^N; Υ^{N+1} between AddFind and RemoveFind
   DesignState state;            // the information of `plan`
@@ -179,8 +179,10 @@ Search::Search(const PlanningModel& model, const std::vector<Vector6d>& candidat
       state(DesignState::FromRows(RowsOf(plan))),
       in_plan(candidates.size(), 0) {
   const int count = static_cast<int>(candidates.size());
-  rows.Resize(count);
-  for (int j = 0; j < count; ++j) rows.Set(j, model.Rows(candidates[j]));
+  if (!options.continuous) {  // the continuous AddFind only draws its starts from the candidates
+    rows.Resize(count);
+    for (int j = 0; j < count; ++j) rows.Set(j, model.Rows(candidates[j]));
+  }
   starts = options.addfind_starts > 0 ? options.addfind_starts : (options.continuous ? 40 : count);
   cached = !options.continuous && starts >= count &&
            (options.criterion == Criterion::kO1 || options.criterion == Criterion::kD);
