@@ -40,22 +40,20 @@ ObservabilityIndices PaperIndices(const Robot& robot, const std::vector<PlanEntr
   return ComputeIndices(robot, poses);
 }
 
-// The entries with a finite primary value, and how many of them the `keep`
-// fraction is.
-std::vector<int> FiniteEntries(const std::vector<double>& primary, double keep, size_t* kept) {
+// The entries with a finite primary value.
+std::vector<int> FiniteEntries(const std::vector<double>& primary) {
   std::vector<int> order;
   for (int j = 0; j < static_cast<int>(primary.size()); ++j) {
     if (primary[j] > kMinusInfinity) order.push_back(j);
   }
-  *kept = std::min(order.size(), std::max<size_t>(1, static_cast<size_t>(std::ceil(keep * order.size()))));
   return order;
 }
 
 // The `keep` fraction best on `primary` (section 6.2), in no particular order.
 std::vector<int> KeptOnPrimary(const std::vector<double>& primary, double keep) {
-  size_t kept;
-  std::vector<int> order = FiniteEntries(primary, keep, &kept);
+  std::vector<int> order = FiniteEntries(primary);
   if (order.empty()) return order;
+  const size_t kept = std::min(order.size(), std::max<size_t>(1, static_cast<size_t>(std::ceil(keep * order.size()))));
   std::nth_element(order.begin(), order.begin() + (kept - 1), order.end(),
                    [&](int a, int b) { return primary[a] > primary[b]; });
   order.resize(kept);
@@ -66,8 +64,7 @@ std::vector<int> KeptOnPrimary(const std::vector<double>& primary, double keep) 
 // (section 6.2), or simply the best on `primary`.
 int SelectBest(const std::vector<double>& primary, const std::vector<double>* secondary, double keep) {
   if (!secondary) {
-    size_t unused;
-    const std::vector<int> order = FiniteEntries(primary, keep, &unused);
+    const std::vector<int> order = FiniteEntries(primary);
     if (order.empty()) return -1;
     return *std::min_element(order.begin(), order.end(), [&](int a, int b) { return primary[a] > primary[b]; });
   }
