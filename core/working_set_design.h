@@ -16,7 +16,6 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <chrono>
-#include <numeric>
 #include <vector>
 
 #include "core/optimal_design.h"
@@ -37,13 +36,11 @@ StatusOr<Design> SolveOnWorkingSet(const CandidateRows& all, const OptimalDesign
   if (all.size() <= 4 * kWorkingSetStart) return solve(all, options, hooks);
   const auto start = std::chrono::steady_clock::now();
   Eigen::ArrayXd d;
-  std::vector<int> working_set(all.size());
-  std::iota(working_set.begin(), working_set.end(), 0);
   Design design;  // uniform weights on every candidate: the first pricing
   design.weights.assign(all.size(), 1.0 / all.size());
   price(all, all, &design, &d);
   std::vector<char> member(all.size(), 0);
-  working_set = LargestOutside(d, member, kWorkingSetStart, -1);
+  std::vector<int> working_set = LargestOutside(d, member, kWorkingSetStart, -1);
   int iterations = 0;
   while (true) {
     for (int j : working_set) member[j] = 1;
