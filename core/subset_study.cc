@@ -9,6 +9,7 @@
 #include <numeric>
 #include <random>
 
+#include "core/error_stats.h"
 #include "core/ioops.h"
 #include "core/parallel.h"
 #include "core/planning_model.h"
@@ -288,10 +289,9 @@ Distribution SummarizeDistribution(std::vector<double> values) {
   d.median = percentile(50);
   d.p75 = percentile(75);
   d.p95 = percentile(95);
-  d.mean = std::accumulate(values.begin(), values.end(), 0.0) / d.count;
-  double squares = 0;
-  for (double v : values) squares += (v - d.mean) * (v - d.mean);
-  d.std = d.count > 1 ? std::sqrt(squares / (d.count - 1)) : 0;
+  const ErrorStats stats = SummarizeErrors(values);  // mean and sample std
+  d.mean = stats.mean;
+  d.std = stats.std;
   return d;
 }
 
