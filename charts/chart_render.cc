@@ -194,6 +194,23 @@ StatusOr<std::string> ChartPng(const ChartSpec& spec) {
   return png.toStdString();
 }
 
+Status CheckChartFilesFree(const std::string& directory, const std::vector<std::string>& stems, bool force) {
+  for (const std::string& stem : stems) {
+    for (const char* extension : {".svg", ".png"}) {
+      const std::string path = (std::filesystem::path(directory) / (stem + extension)).string();
+      if (Status s = CheckOutputFree(path, force); !s.ok()) return s;
+    }
+  }
+  return Status::Ok();
+}
+
+Status CreatePlotsFolder(const std::string& directory) {
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error) return Status::IoError(directory + ": cannot create the plots folder: " + error.message());
+  return Status::Ok();
+}
+
 Status WriteChartFiles(const ChartSpec& spec, const std::string& directory, const std::string& stem,
                        std::vector<std::string>* written) {
   const std::filesystem::path base = std::filesystem::path(directory) / stem;

@@ -34,6 +34,12 @@ StatusOr<std::string> ChartSvgElement(const ChartSpec& spec);
 // PNG bytes of spec.width x spec.height pixels on white.
 StatusOr<std::string> ChartPng(const ChartSpec& spec);
 
+// Before a command writes figures: DIRECTORY/STEM.svg and .png for each stem
+// must not exist unless `force` (CheckOutputFree, core/atomic_file.h).
+Status CheckChartFilesFree(const std::string& directory, const std::vector<std::string>& stems, bool force);
+// A `--plots` folder, created if missing.
+Status CreatePlotsFolder(const std::string& directory);
+
 // Writes DIRECTORY/STEM.svg and DIRECTORY/STEM.png atomically (the folder
 // must exist) and appends each path written to `written`.
 Status WriteChartFiles(const ChartSpec& spec, const std::string& directory, const std::string& stem,

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <sstream>
 
 #include "charts/chart_render.h"
@@ -23,9 +22,7 @@ namespace {
 // (charts/figures.h) in DIR, created if missing.
 Status WriteFigures(const std::string& directory, const SimulationResult& result, const SweepResult* sweep,
                     const std::string& length_unit, std::vector<std::string>* written) {
-  std::error_code error;
-  std::filesystem::create_directories(directory, error);
-  if (error) return Status::IoError(directory + ": cannot create the plots folder: " + error.message());
+  if (Status s = charts::CreatePlotsFolder(directory); !s.ok()) return s;
   if (Status s = charts::WriteChartFiles(charts::Fig14Chart(result, length_unit), directory, "fig14", written);
       !s.ok()) {
     return s;
@@ -264,13 +261,7 @@ std::vector<std::optional<double>> PredictedMeans(const Robot& robot, const std:
 Status CheckOutputsFree(const SimulateRequest& request) {
   if (Status s = CheckOutputFree(request.csv, request.force); !s.ok()) return s;
   if (request.plots.empty()) return Status::Ok();
-  for (const char* name : {"fig14", "fig15_mean", "fig15_std"}) {
-    for (const char* extension : {".svg", ".png"}) {
-      const std::string path = (std::filesystem::path(request.plots) / (std::string(name) + extension)).string();
-      if (Status s = CheckOutputFree(path, request.force); !s.ok()) return s;
-    }
-  }
-  return Status::Ok();
+  return charts::CheckChartFilesFree(request.plots, {"fig14", "fig15_mean", "fig15_std"}, request.force);
 }
 
 Status CheckRequest(const SimulateRequest& request) {

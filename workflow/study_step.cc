@@ -3,20 +3,16 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <sstream>
 
 #include "charts/chart_render.h"
 #include "charts/figures.h"
-#include "core/atomic_file.h"
 #include "core/parallel.h"
 #include "workflow/json_forms.h"
 #include "workflow/session_calibrate.h"
 
 namespace hexcal::workflow {
 namespace {
-
-namespace fs = std::filesystem;
 
 constexpr SubsetMetric kMetrics[] = {SubsetMetric::kO1,
                                      SubsetMetric::kO2,
@@ -77,21 +73,15 @@ std::vector<StudyMetric> SummarizeMetrics(const SubsetStudyResult& result) {
 
 Status CheckFiguresFree(const StudyRequest& request) {
   if (request.plots.empty()) return Status::Ok();
-  for (SubsetMetric metric : kMetrics) {
-    for (const char* extension : {".svg", ".png"}) {
-      const std::string path = (fs::path(request.plots) / (std::string(FigureStem(metric)) + extension)).string();
-      if (Status s = CheckOutputFree(path, request.force); !s.ok()) return s;
-    }
-  }
-  return Status::Ok();
+  std::vector<std::string> stems;
+  for (SubsetMetric metric : kMetrics) stems.push_back(FigureStem(metric));
+  return charts::CheckChartFilesFree(request.plots, stems, request.force);
 }
 
 // --plots DIR: one histogram per metric (charts/figures.h), DIR created if missing.
 Status WriteFigures(StudyOutcome* outcome) {
   const std::string& directory = outcome->request.plots;
-  std::error_code error;
-  fs::create_directories(directory, error);
-  if (error) return Status::IoError(directory + ": cannot create the plots folder: " + error.message());
+  if (Status s = charts::CreatePlotsFolder(directory); !s.ok()) return s;
   const SubsetStudyResult& result = outcome->result;
   const std::string subsets =
       std::to_string(result.random.size()) + " random " + std::to_string(outcome->request.study.select) + "-subsets";
