@@ -13,25 +13,27 @@ namespace {
 
 constexpr double kMeanAbsOverSigma = 0.7978845608028654;  // √(2/π)
 
-double NominalReading(const Leg& leg, const Pose& pose) { return LegVector(leg, pose).norm() - leg.offset; }
-
 // C_i of every leg (see the header); false if a leg's information is singular.
 bool ParameterCovariances(const Robot& robot, const std::vector<Vector6d>& poses, const NoiseModel& noise,
                           bool weighted, std::array<InfoBlock, kNumLegs>* covariances) {
-  for (int i = 0; i < kNumLegs; ++i) {
-    InfoBlock information = InfoBlock::Zero(), scatter = InfoBlock::Zero();
-    for (const Vector6d& v : poses) {
-      const Pose pose = robot.PoseFromVector(v);
+  std::array<InfoBlock, kNumLegs> information, scatter;
+  for (int i = 0; i < kNumLegs; ++i) information[i].setZero(), scatter[i].setZero();
+  for (const Vector6d& v : poses) {
+    const Pose pose = robot.PoseFromVector(v);
+    const LegReadings readings = InverseKinematics(robot, pose);  // the nominal model's
+    for (int i = 0; i < kNumLegs; ++i) {
       const JacobianRow r = NominalJacobianRow(robot.legs[i], pose);
-      const double sd = ResidualStdDev(robot, i, v, NominalReading(robot.legs[i], pose), noise);
+      const double sd = ResidualStdDev(robot, i, v, readings[i], noise);
       const InfoBlock outer = r.transpose() * r;
-      information += weighted ? InfoBlock(outer / (sd * sd)) : outer;
-      scatter += sd * sd * outer;
+      information[i] += weighted ? InfoBlock(outer / (sd * sd)) : outer;
+      scatter[i] += sd * sd * outer;
     }
-    const Eigen::LLT<InfoBlock> llt(information);
+  }
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Eigen::LLT<InfoBlock> llt(information[i]);
     if (llt.info() != Eigen::Success) return false;
     const InfoBlock inverse = llt.solve(InfoBlock::Identity());
-    (*covariances)[i] = weighted ? inverse : InfoBlock(inverse * scatter * inverse);
+    (*covariances)[i] = weighted ? inverse : InfoBlock(inverse * scatter[i] * inverse);
   }
   return true;
 }
@@ -40,11 +42,11 @@ bool ParameterCovariances(const Robot& robot, const std::vector<Vector6d>& poses
 ExpectedPoseError SquaredParameterPoseError(const Robot& robot, const Vector6d& v,
                                             const std::array<InfoBlock, kNumLegs>& covariances) {
   const Pose pose = robot.PoseFromVector(v);
+  const LegReadings readings = InverseKinematics(robot, pose);
   Matrix6d g;
   Vector6d leg_variance;
   for (int i = 0; i < kNumLegs; ++i) {
-    const double reading = NominalReading(robot.legs[i], pose);
-    g.row(i) = ResidualMeasurementGradient(robot, i, v, reading).head<6>().transpose();
+    g.row(i) = ResidualMeasurementGradient(robot, i, v, readings[i]).head<6>().transpose();
     const JacobianRow r = NominalJacobianRow(robot.legs[i], pose);
     leg_variance[i] = r * covariances[i] * r.transpose();
   }
