@@ -20,25 +20,16 @@ namespace hexcal {
 namespace {
 
 using ::hexcal::testing::Preset;
+using ::hexcal::testing::SpreadFeasiblePoses;
 using ::hexcal::testing::Uniform;
 
 constexpr Criterion kAll[] = {Criterion::kO1, Criterion::kO2, Criterion::kO3, Criterion::kO4,
                               Criterion::kD,  Criterion::kA,  Criterion::kE,  Criterion::kS};
 
-// Random poses over the whole pose box (not the preset's central sampling box):
-// well-spread sets keep the finite-difference references accurate.
-std::vector<Vector6d> RandomPoses(Robot robot, int count, uint64_t seed) {
-  robot.limits.sampling_box.reset();
-  CandidateOptions options;
-  options.count = count;
-  options.seed = seed;
-  return GenerateCandidates(robot, options)->poses;
-}
-
 // O1..O4 from DesignState agree with observability.h (the paper's definitions).
 TEST(DesignCriteria, ValuesAgreeWithObservabilityIndices) {
   const PlanningModel model{Preset("inria-left-hand"), std::nullopt, std::nullopt};
-  const std::vector<Vector6d> poses = RandomPoses(model.robot, 18, 3);
+  const std::vector<Vector6d> poses = SpreadFeasiblePoses(model.robot, 18, 3);
   std::vector<PoseRows> rows;
   std::vector<Pose> as_poses;
   for (const Vector6d& v : poses) {
@@ -72,8 +63,8 @@ TEST(DesignCriteria, IncrementalScoresMatchRecomputation) {
   for (bool weighted : {false, true}) {
     PlanningModel model{Preset("inria-left-hand"), std::nullopt, std::nullopt};
     if (weighted) model.noise = NoiseModel{};
-    const std::vector<Vector6d> plan = RandomPoses(model.robot, 18, 5);
-    const std::vector<Vector6d> candidates = RandomPoses(model.robot, 200, 6);
+    const std::vector<Vector6d> plan = SpreadFeasiblePoses(model.robot, 18, 5);
+    const std::vector<Vector6d> candidates = SpreadFeasiblePoses(model.robot, 200, 6);
     std::vector<PoseRows> rows;
     for (const Vector6d& v : plan) rows.push_back(model.Rows(v));
     const DesignState state = DesignState::FromRows(rows);
@@ -101,9 +92,9 @@ TEST(DesignCriteria, UpperBoundsAreAboveTheExactScores) {
     PlanningModel model{Preset("inria-left-hand"), std::nullopt, std::nullopt};
     if (weighted) model.noise = NoiseModel{};
     std::vector<PoseRows> rows;
-    for (const Vector6d& v : RandomPoses(model.robot, 18, 21)) rows.push_back(model.Rows(v));
+    for (const Vector6d& v : SpreadFeasiblePoses(model.robot, 18, 21)) rows.push_back(model.Rows(v));
     const DesignState state = DesignState::FromRows(rows);
-    const std::vector<Vector6d> candidates = RandomPoses(model.robot, 500, 22);
+    const std::vector<Vector6d> candidates = SpreadFeasiblePoses(model.robot, 500, 22);
     CandidateRows batch;
     batch.Resize(static_cast<int>(candidates.size()));
     for (size_t j = 0; j < candidates.size(); ++j) batch.Set(static_cast<int>(j), model.Rows(candidates[j]));
@@ -149,9 +140,9 @@ TEST(DesignCriteria, ContinuousGradientMatchesFiniteDifferences) {
     PlanningModel model{Preset("inria-left-hand"), std::nullopt, std::nullopt};
     if (weighted) model.noise = NoiseModel{};
     std::vector<PoseRows> rows;
-    for (const Vector6d& v : RandomPoses(model.robot, 12, 9)) rows.push_back(model.Rows(v));
+    for (const Vector6d& v : SpreadFeasiblePoses(model.robot, 12, 9)) rows.push_back(model.Rows(v));
     const DesignState state = DesignState::FromRows(rows);
-    const Vector6d pose = RandomPoses(model.robot, 1, 10).front();
+    const Vector6d pose = SpreadFeasiblePoses(model.robot, 1, 10).front();
     for (Criterion criterion : kAll) {
       Vector6d gradient, unused;
       CriterionAndGradient(model, state, criterion, pose, &gradient);
@@ -184,7 +175,7 @@ TEST(OptimalDesign, SatisfiesTheEquivalenceTheorem) {
   CandidateOptions options;
   options.kind = CandidateKind::kBoundary;
   std::vector<Vector6d> candidates = GenerateCandidates(model.robot, options)->poses;
-  const std::vector<Vector6d> random = RandomPoses(model.robot, 150, 12);
+  const std::vector<Vector6d> random = SpreadFeasiblePoses(model.robot, 150, 12);
   candidates.insert(candidates.end(), random.begin(), random.end());
   CandidateRows rows;
   rows.Resize(static_cast<int>(candidates.size()));
@@ -208,7 +199,7 @@ TEST(OptimalDesign, SatisfiesTheEquivalenceTheorem) {
       EXPECT_NEAR(d[j], kNumParams, 0.01 * kNumParams) << "support point " << j;
     }
   }
-  StatusOr<PlanCertificate> random_plan = CertifyPlan(model, candidates, RandomPoses(model.robot, 18, 13));
+  StatusOr<PlanCertificate> random_plan = CertifyPlan(model, candidates, SpreadFeasiblePoses(model.robot, 18, 13));
   ASSERT_TRUE(random_plan.ok());
   EXPECT_GT(random_plan->d_efficiency, 0);
   EXPECT_LE(random_plan->d_efficiency, 1);
@@ -218,7 +209,7 @@ TEST(OptimalDesign, SatisfiesTheEquivalenceTheorem) {
 // the threads: the design is the same, bit for bit, on any number of threads.
 TEST(OptimalDesign, DoesNotDependOnTheThreadCount) {
   const PlanningModel model{Preset("inria-left-hand"), std::nullopt, std::nullopt};
-  const std::vector<Vector6d> candidates = RandomPoses(model.robot, 2500, 5);
+  const std::vector<Vector6d> candidates = SpreadFeasiblePoses(model.robot, 2500, 5);
   CandidateRows rows;
   rows.Resize(static_cast<int>(candidates.size()));
   for (size_t j = 0; j < candidates.size(); ++j) rows.Set(static_cast<int>(j), model.Rows(candidates[j]));

@@ -7,7 +7,6 @@
 
 #include <gtest/gtest.h>
 
-#include "core/candidates.h"
 #include "core/planning_model.h"
 #include "core/sigma_criterion.h"
 #include "tests/robot_presets.h"
@@ -16,6 +15,7 @@ namespace hexcal {
 namespace {
 
 using ::hexcal::testing::Preset;
+using ::hexcal::testing::SpreadFeasiblePoses;
 
 struct Problem {
   PlanningModel model;
@@ -23,16 +23,9 @@ struct Problem {
   CandidateRows rows;
 };
 
-// Random poses over the whole pose box (not the central sampling box): spread
-// candidates, as the boundary set would give, without its seconds of homotopy FK.
-const std::vector<Vector6d>& SpreadPoses(Robot robot) {
-  static const std::vector<Vector6d> poses = [&] {
-    robot.limits.sampling_box.reset();
-    CandidateOptions options;
-    options.count = 300;
-    options.seed = 4;
-    return GenerateCandidates(robot, options)->poses;
-  }();
+// Spread candidates, as the boundary set would give, without its seconds of homotopy FK.
+const std::vector<Vector6d>& SpreadPoses(const Robot& robot) {
+  static const std::vector<Vector6d> poses = SpreadFeasiblePoses(robot, 300, 4);
   return poses;
 }
 
@@ -96,12 +89,8 @@ TEST(SigmaDesign, ExactPlansAreNoBetterThanTheBound) {
 // optimality is still over every candidate, checked independently (dense
 // inverses, the variance function and finite steps towards candidates).
 TEST(SigmaDesign, WorkingSetDesignsAreOptimalOverEveryCandidate) {
-  Robot robot = Preset("inria-left-hand");
-  robot.limits.sampling_box.reset();
-  CandidateOptions options;
-  options.count = 4000;
-  options.seed = 8;
-  const std::vector<Vector6d> poses = GenerateCandidates(robot, options)->poses;
+  const Robot robot = Preset("inria-left-hand");
+  const std::vector<Vector6d> poses = SpreadFeasiblePoses(robot, 4000, 8);
   PlanningModel model{robot, NoiseModel{}, std::nullopt};
   CandidateRows rows;
   rows.Resize(static_cast<int>(poses.size()));

@@ -36,4 +36,11 @@ inline std::vector<Vector6d> RandomFeasiblePoses(const Robot& robot, int count, 
   return set.ok() ? set->poses : std::vector<Vector6d>{};
 }
 
+// The same over the robot's whole pose box, not its central sampling box:
+// spread sets, for well-conditioned plans and accurate finite differences.
+inline std::vector<Vector6d> SpreadFeasiblePoses(Robot robot, int count, uint64_t seed) {
+  robot.limits.sampling_box.reset();
+  return RandomFeasiblePoses(robot, count, seed);
+}
+
 }  // namespace hexcal::testing

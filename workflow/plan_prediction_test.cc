@@ -8,7 +8,6 @@
 #include <Eigen/Cholesky>
 #include <random>
 
-#include "core/candidates.h"
 #include "core/forward_kinematics.h"
 #include "core/simulation.h"
 #include "tests/robot_presets.h"
@@ -17,19 +16,11 @@ namespace hexcal::workflow {
 namespace {
 
 using ::hexcal::testing::Preset;
-
-// 18 poses spread over the pose box: a well-conditioned plan.
-std::vector<Vector6d> SpreadPoses(Robot robot, int count) {
-  robot.limits.sampling_box.reset();
-  CandidateOptions options;
-  options.count = count;
-  options.seed = 11;
-  return GenerateCandidates(robot, options)->poses;
-}
+using ::hexcal::testing::SpreadFeasiblePoses;
 
 TEST(PlanPrediction, MeanErrorMatchesTheMonteCarloStudy) {
   const Robot robot = Preset("inria-left-hand");
-  const std::vector<Vector6d> poses = SpreadPoses(robot, 18);
+  const std::vector<Vector6d> poses = SpreadFeasiblePoses(robot, 18, 11);
   for (bool weighted : {false, true}) {
     SimulationOptions options;
     options.runs = 400;
@@ -51,7 +42,7 @@ TEST(PlanPrediction, MeanErrorMatchesTheMonteCarloStudy) {
 // pose error over the draws is what the prediction says the parameters add.
 TEST(PlanPrediction, PoseErrorMatchesForwardKinematicsOfDrawnRobots) {
   const Robot robot = Preset("inria-left-hand");
-  const std::vector<Vector6d> poses = SpreadPoses(robot, 18);
+  const std::vector<Vector6d> poses = SpreadFeasiblePoses(robot, 18, 11);
   const std::vector<Vector6d> validation = ValidationPoses(robot);
   ASSERT_EQ(validation.size(), 200u);
   const NoiseModel noise{0.01, 0.1, 0.01};  // ten times the paper's: well above FK's tolerance
