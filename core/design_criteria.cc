@@ -1,12 +1,12 @@
 #include "core/design_criteria.h"
 
-#include "core/sigma_criterion.h"
-
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "core/sigma_criterion.h"
 
 namespace hexcal {
 namespace {

@@ -335,17 +335,13 @@ StatusOr<bool> Exchange(Search& s) {
 }
 
 // The best plan's unweighted indices (paper section 2) and primary criterion.
-void SetFinal(const PlanningModel& model, const PlannerOptions& options, const std::vector<Vector6d>& best,
+void SetFinal(const PlanningModel& model, const PlannerOptions& options, const std::vector<PlanEntry>& best,
               PlanResult* result) {
-  result->poses = best;
-  std::vector<PoseRows> best_rows;
-  std::vector<Pose> best_poses;
-  for (const Vector6d& pose : best) {
-    best_rows.push_back(model.Rows(pose));
-    best_poses.push_back(model.robot.PoseFromVector(pose));
-  }
-  result->final = ComputeIndices(model.robot, best_poses);
-  result->final_primary = DesignState::FromRows(best_rows).Value(options.criterion);
+  result->poses = PosesOf(best);
+  result->candidate_indices.clear();
+  for (const PlanEntry& entry : best) result->candidate_indices.push_back(std::max<int64_t>(entry.id, -1));
+  result->final = PaperIndices(model.robot, best);
+  result->final_primary = DesignState::FromRows(RowsOf(best)).Value(options.criterion);
 }
 
 }  // namespace
@@ -408,7 +404,7 @@ StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vec
   }
 
   const Criterion selection = options.secondary.value_or(options.criterion);
-  std::vector<Vector6d> best = PosesOf(search.plan);
+  std::vector<PlanEntry> best = search.plan;
   double best_value = search.state.Value(selection);
   PlanResult result;
   auto record = [&](int iteration, bool exchanged) {
@@ -433,7 +429,7 @@ StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vec
     result.iterations = iteration;
     if (const double value = search.state.Value(selection); value > best_value) {
       best_value = value;
-      best = PosesOf(search.plan);
+      best = search.plan;
       result.best_iteration = iteration;
     }
     record(iteration, *exchanged);

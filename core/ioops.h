@@ -59,6 +59,9 @@ struct PlanIteration {
 
 struct PlanResult {
   std::vector<Vector6d> poses;           // the best plan seen, N poses
+  // Per pose, its index in the candidates; -1 for a pose that is not one (a
+  // continuous AddFind's, or an initial pose that is no candidate).
+  std::vector<int64_t> candidate_indices;
   std::vector<PlanIteration> history;    // iteration 0 is the initial set
   ObservabilityIndices initial, final;   // unweighted indices (paper section 2)
   double initial_primary = 0, final_primary = 0;

@@ -94,6 +94,12 @@ TEST_F(IoopsTest, StartFromCandidatesNeverRepeatsAPose) {
         EXPECT_LE(std::count(plan->poses.begin(), plan->poses.end(), candidate), 1)
             << CriterionName(criterion) << ", draw " << draw;
       }
+      // Every pose is a candidate, and says which.
+      ASSERT_EQ(plan->candidate_indices.size(), plan->poses.size());
+      for (size_t k = 0; k < plan->poses.size(); ++k) {
+        ASSERT_GE(plan->candidate_indices[k], 0);
+        EXPECT_EQ(measured[plan->candidate_indices[k]], plan->poses[k]);
+      }
     }
   }
 }

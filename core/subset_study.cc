@@ -54,24 +54,6 @@ ObservabilityIndices IndicesOfSubset(const std::vector<PoseRows>& rows, const st
   return ComputeIndices(info);
 }
 
-// The measured poses a plan holds, as indices into `candidates` (IOOPS copies
-// the candidates' vectors, so they compare exactly); ascending.
-std::vector<int> IndicesOfPlan(const std::vector<Vector6d>& candidates, const std::vector<Vector6d>& plan) {
-  std::vector<char> used(candidates.size(), 0);
-  std::vector<int> indices;
-  for (const Vector6d& pose : plan) {
-    for (size_t j = 0; j < candidates.size(); ++j) {
-      if (!used[j] && candidates[j] == pose) {
-        used[j] = 1;
-        indices.push_back(static_cast<int>(j));
-        break;
-      }
-    }
-  }
-  std::sort(indices.begin(), indices.end());
-  return indices;
-}
-
 // An initial subset whose information matrices are all invertible (IOOPS refuses a singular start).
 StatusOr<std::vector<int>> DrawStart(const std::vector<PoseRows>& rows, int size, std::mt19937_64* rng) {
   for (int draw = 0; draw < kStartDraws; ++draw) {
@@ -110,7 +92,9 @@ StatusOr<Selection> SelectByIoops(const PlanningModel& model, const std::vector<
     planner.threads = options.num_threads;
     StatusOr<PlanResult> plan = PlanPoses(model, candidates, initial_poses, planner, {nullptr, hooks.cancel});
     if (!plan.ok()) return plan.status();
-    std::vector<int> chosen = IndicesOfPlan(candidates, plan->poses);
+    // A finite IOOPS started from candidates holds candidates only.
+    std::vector<int> chosen(plan->candidate_indices.begin(), plan->candidate_indices.end());
+    std::sort(chosen.begin(), chosen.end());
     const double value = DesignState::FromRows(RowsOfSubset(rows, chosen)).Value(judge);
     if (value > best_value) {
       best_value = value;

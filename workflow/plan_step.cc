@@ -234,6 +234,7 @@ void AppendPhase(PlanResult second, PlanResult* first) {
   }
   if (second.best_iteration > 0) first->best_iteration = offset + second.best_iteration;
   first->poses = std::move(second.poses);
+  first->candidate_indices = std::move(second.candidate_indices);
   first->final = second.final;
   first->final_primary = second.final_primary;
   first->iterations = offset + second.iterations;
