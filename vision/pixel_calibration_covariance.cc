@@ -1,0 +1,222 @@
+#include "vision/pixel_calibration_covariance.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <Eigen/SparseCore>
+#include <cmath>
+#include <cstdio>
+
+namespace hexcal {
+namespace {
+
+using Eigen::MatrixXd;
+using SparseRows = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+// The global blocks (legs, then the estimated camera and target blocks) and
+// the pose blocks, in the column order of the Jacobian.
+struct ColumnLayout {
+  std::vector<double*> blocks;
+  int global_columns = 0;
+  int poses = 0;
+};
+
+ColumnLayout Columns(const PixelFit& fit) {
+  ColumnLayout layout;
+  for (LegParameters& leg : *fit.legs) layout.blocks.push_back(leg.data());
+  layout.global_columns = kNumParams;
+  for (const EstimatedBlock& block : fit.estimated) {
+    if (!block.estimated) continue;
+    layout.blocks.push_back(block.data);
+    layout.global_columns += block.size;
+  }
+  for (Vector6d& pose : *fit.poses) layout.blocks.push_back(pose.data());
+  layout.poses = static_cast<int>(fit.poses->size());
+  return layout;
+}
+
+SparseRows JacobianAt(const PixelFit& fit, const ColumnLayout& layout, double* cost, int* rows) {
+  ceres::Problem::EvaluateOptions evaluate;
+  evaluate.parameter_blocks = layout.blocks;
+  ceres::CRSMatrix crs;
+  std::vector<double> residuals;
+  fit.problem->Evaluate(evaluate, cost, &residuals, nullptr, &crs);
+  *rows = crs.num_rows;
+  return Eigen::Map<const SparseRows>(crs.num_rows, crs.num_cols, static_cast<int>(crs.values.size()),
+                                      crs.rows.data(), crs.cols.data(), crs.values.data());
+}
+
+// (H_gg − Σ_j H_gj H_jj⁻¹ H_jg): the information of the global unknowns with
+// every pose eliminated; H = JᵀJ, each pose a 6×6 diagonal block.
+MatrixXd ReducedInformation(const SparseRows& jacobian, const ColumnLayout& layout) {
+  const Eigen::SparseMatrix<double> h = (jacobian.transpose() * jacobian).pruned();
+  const MatrixXd dense = MatrixXd(h);
+  const int g = layout.global_columns;
+  MatrixXd reduced = dense.topLeftCorner(g, g);
+  for (int j = 0; j < layout.poses; ++j) {
+    const int c = g + 6 * j;
+    const Eigen::Matrix<double, 6, 6> d = dense.block<6, 6>(c, c);
+    const MatrixXd b = dense.block(0, c, g, 6);
+    reduced -= b * d.ldlt().solve(b.transpose());
+  }
+  return reduced;
+}
+
+double ReprojectionRms(const PixelFit& fit, int* corners) {
+  const double focal = *fit.estimated[0].data, scale = *fit.estimated[2].data;
+  const double* principal = fit.estimated[1].data;
+  double sum = 0;
+  *corners = 0;
+  for (const TagCornersResidual& tag : fit.tags) {
+    TagCornersResidual plain = tag;
+    plain.whitening.setIdentity();
+    Eigen::Matrix<double, 8, 1> r = Eigen::Matrix<double, 8, 1>::Zero();
+    plain((*fit.poses)[tag.image].data(), &focal, principal, &scale, r.data());
+    sum += r.squaredNorm();
+    *corners += 4;
+  }
+  return *corners > 0 ? std::sqrt(sum / *corners) : 0;
+}
+
+// RMS of one leg's reading residuals, robot unit.
+double LegRms(const PixelFit& fit, int leg, double sigma) {
+  if (fit.leg_rows[leg].empty()) return 0;
+  ceres::Problem::EvaluateOptions evaluate;
+  evaluate.residual_blocks = fit.leg_rows[leg];
+  std::vector<double> residuals;
+  fit.problem->Evaluate(evaluate, nullptr, &residuals, nullptr, nullptr);
+  double sum = 0;
+  for (double r : residuals) sum += r * r;
+  return sigma * std::sqrt(sum / residuals.size());
+}
+
+}  // namespace
+
+namespace {
+
+// σ_min / σ_max of the information with every unknown scaled to unit
+// diagonal: 0 when a combination of unknowns is not seen by the data.
+double ScaledConditionInverse(const MatrixXd& information) {
+  const Eigen::VectorXd d = information.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+  const MatrixXd scaled = d.asDiagonal() * information * d.asDiagonal();
+  const Eigen::VectorXd eigen = Eigen::SelfAdjointEigenSolver<MatrixXd>(scaled).eigenvalues();
+  return eigen[0] > 0 ? eigen[0] / eigen[eigen.size() - 1] : 0;
+}
+
+void FillLegs(const PixelCalibrationInput& input, const PixelFit& fit, const MatrixXd& covariance,
+              const PixelCalibrationOptions& options, double variance_factor, CalibrationResult* calibration) {
+  ParameterVector estimates;
+  for (int i = 0; i < kNumLegs; ++i) {
+    LegCalibration& leg = calibration->legs[i];
+    leg.initial = LegParametersOf(input.nominal.legs[i]);
+    leg.estimate = (*fit.legs)[i];
+    estimates.segment<kParamsPerLeg>(kParamsPerLeg * i) = leg.estimate;
+    leg.has_uncertainty = true;
+    leg.covariance = covariance.block<kParamsPerLeg, kParamsPerLeg>(kParamsPerLeg * i, kParamsPerLeg * i);
+    leg.std_dev = leg.covariance.diagonal().cwiseSqrt();
+    leg.variance_factor = variance_factor;
+    leg.residual_rms = LegRms(fit, i, options.leg_sigma);
+    leg.rows_used = static_cast<int>(fit.leg_rows[i].size());
+    // The marginal information's square roots stand for J's singular values.
+    Eigen::VectorXd values = Eigen::SelfAdjointEigenSolver<InfoBlock>(leg.covariance.inverse()).eigenvalues();
+    for (int k = 0; k < kParamsPerLeg; ++k) leg.singular_values[k] = std::sqrt(std::max(0.0, values[kParamsPerLeg - 1 - k]));
+  }
+  calibration->robot = WithParameters(input.start, estimates);
+  calibration->num_measurements = static_cast<int>(input.images.size());
+}
+
+// The camera and target estimates with σ, in the order of the columns after the 42 parameters.
+void FillExtras(const PixelCalibrationInput& input, const PixelFit& fit, const MatrixXd& covariance,
+                PixelCalibrationResult* result) {
+  const Camera& file = input.camera;
+  const double focal = *fit.estimated[0].data;
+  result->camera = file;
+  result->camera.fx = focal * file.fx;
+  result->camera.fy = focal * file.fy;
+  result->camera.cx = fit.estimated[1].data[0];
+  result->camera.cy = fit.estimated[1].data[1];
+  result->target_scale = *fit.estimated[2].data;
+  int column = kNumParams;
+  for (const EstimatedBlock& block : fit.estimated) {
+    if (!block.estimated) continue;
+    const std::string name = block.name;
+    auto sigma = [&](int k) { return std::sqrt(covariance(column + k, column + k)); };
+    if (name == "focal") {
+      result->extras.push_back({"fx", file.fx, result->camera.fx, sigma(0) * file.fx});
+      result->extras.push_back({"fy", file.fy, result->camera.fy, sigma(0) * file.fy});
+    } else if (name == "principal") {
+      result->extras.push_back({"cx", file.cx, result->camera.cx, sigma(0)});
+      result->extras.push_back({"cy", file.cy, result->camera.cy, sigma(1)});
+    } else {
+      result->extras.push_back({"target_scale", 1.0, result->target_scale, sigma(0)});
+    }
+    column += block.size;
+  }
+}
+
+// The names of the global columns: "leg 1 ax", ..., then the estimated blocks'.
+std::vector<std::string> ColumnNames(const PixelFit& fit) {
+  std::vector<std::string> names;
+  for (int i = 0; i < kNumLegs; ++i)
+    for (int k = 0; k < kParamsPerLeg; ++k) names.push_back("leg " + std::to_string(i + 1) + " " + ParameterName(k));
+  for (const EstimatedBlock& block : fit.estimated) {
+    if (!block.estimated) continue;
+    if (std::string(block.name) == "focal") names.push_back("focal");
+    if (std::string(block.name) == "principal") names.insert(names.end(), {"cx", "cy"});
+    if (std::string(block.name) == "target_scale") names.push_back("target_scale");
+  }
+  return names;
+}
+
+// Pairs with an estimated camera or target quantity whose |correlation| > 0.95.
+std::vector<std::string> StrongCorrelations(const PixelFit& fit, const MatrixXd& covariance) {
+  const std::vector<std::string> names = ColumnNames(fit);
+  std::vector<std::string> lines;
+  for (int a = kNumParams; a < covariance.rows(); ++a) {
+    for (int b = 0; b < a; ++b) {
+      const double rho = covariance(a, b) / std::sqrt(covariance(a, a) * covariance(b, b));
+      if (std::abs(rho) <= 0.95) continue;
+      char text[32];
+      std::snprintf(text, sizeof text, "%.3f", rho);
+      lines.push_back(names[b] + " ~ " + names[a] + ": " + text);
+    }
+  }
+  return lines;
+}
+
+}  // namespace
+
+StatusOr<PixelCalibrationResult> SummarizePixelFit(const PixelCalibrationInput& input, const PixelFit& fit,
+                                                   const PixelCalibrationOptions& options) {
+  const ColumnLayout layout = Columns(fit);
+  double cost = 0;
+  int rows = 0;
+  const SparseRows jacobian = JacobianAt(fit, layout, &cost, &rows);
+  const MatrixXd information = ReducedInformation(jacobian, layout);
+  if (ScaledConditionInverse(information) < 1e-12) {
+    return Status::Failed(
+        "calibration from pixels: the data do not determine every estimated quantity (a singular information "
+        "matrix); estimate fewer camera quantities or add poses");
+  }
+  const int unknowns = layout.global_columns + 6 * layout.poses;
+  PixelCalibrationResult result;
+  result.variance_factor = rows > unknowns ? 2 * cost / (rows - unknowns) : 0;
+  const MatrixXd covariance =
+      information.ldlt().solve(MatrixXd::Identity(information.rows(), information.cols())) *
+      std::max(1.0, result.variance_factor);
+  FillLegs(input, fit, covariance, options, result.variance_factor, &result.calibration);
+  FillExtras(input, fit, covariance, &result);
+  result.strong_correlations = StrongCorrelations(fit, covariance);
+  result.reprojection_rms_px = ReprojectionRms(fit, &result.corners);
+  double leg_sum = 0;
+  int leg_count = 0;
+  for (int i = 0; i < kNumLegs; ++i) {
+    leg_sum += std::pow(result.calibration.legs[i].residual_rms, 2) * fit.leg_rows[i].size();
+    leg_count += static_cast<int>(fit.leg_rows[i].size());
+  }
+  result.leg_rows = leg_count;
+  result.leg_residual_rms = leg_count > 0 ? std::sqrt(leg_sum / leg_count) : 0;
+  return result;
+}
+
+}  // namespace hexcal
