@@ -48,7 +48,7 @@ StatusOr<std::vector<std::string>> ListImages(const std::string& folder_or_file)
 }
 
 ImageMeasurement MeasureImage(TagDetector& detector, const cv::Mat& gray, const Camera& camera, const Target& target,
-                              const BoardPoseOptions& options) {
+                              const BoardPoseOptions& options, bool keep_observation) {
   ImageMeasurement measurement;
   if (gray.cols != camera.width || gray.rows != camera.height) {
     measurement.pose.status = PoseStatus::kWrongSize;
@@ -61,6 +61,7 @@ ImageMeasurement MeasureImage(TagDetector& detector, const cv::Mat& gray, const 
   measurement.pose = EstimateBoardPose(camera, observation, options);
   measurement.rejected_tags = static_cast<int>(detections.rejected.size());
   measurement.foreign_tags = observation.foreign_tags;
+  if (keep_observation) measurement.observation = observation;
   if (measurement.pose.status == PoseStatus::kNoTarget && !detections.tags.empty()) {
     measurement.pose.message += " (" + std::to_string(observation.foreign_tags) + " tags of other targets)";
   }
@@ -89,7 +90,8 @@ StatusOr<std::vector<ImageMeasurement>> MeasureImages(const std::vector<std::str
           measurement.pose.status = PoseStatus::kUnreadable;
           measurement.pose.message = image.status().message();
         } else {
-          measurement = MeasureImage(*detectors[static_cast<size_t>(worker)], *image, camera, target, options.pose);
+          measurement = MeasureImage(*detectors[static_cast<size_t>(worker)], *image, camera, target, options.pose,
+                                     options.keep_observations);
         }
         measurement.file = file;
       },

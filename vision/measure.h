@@ -29,6 +29,7 @@ struct MeasureOptions {
   DetectorOptions detector;
   BoardPoseOptions pose;
   int threads = 2;  // images in parallel (each detector single-threaded), 0..64; 0: every core
+  bool keep_observations = false;  // keep each image's corners (ImageMeasurement::observation)
 
   bool IsValid(std::string* error) const;
 };
@@ -38,15 +39,18 @@ struct ImageMeasurement {
   BoardPose pose;         // pose.status / pose.message say what happened
   int rejected_tags = 0;  // weak decodes (decision margin, hamming)
   int foreign_tags = 0;   // tags not on the target
+  // The corners matched to the target, with MeasureOptions::keep_observations
+  // (the calibration from pixels, pixel_calibration.h).
+  std::optional<BoardObservation> observation;
 };
 
 // The PNG, JPEG and TIFF files of a folder (by extension, any case), sorted by
 // name; or the one file given. Error if the folder holds none.
 StatusOr<std::vector<std::string>> ListImages(const std::string& folder_or_file);
 
-// Measures one image already in memory.
+// Measures one image already in memory; `keep_observation` keeps its corners.
 ImageMeasurement MeasureImage(TagDetector& detector, const cv::Mat& gray, const Camera& camera, const Target& target,
-                              const BoardPoseOptions& options);
+                              const BoardPoseOptions& options, bool keep_observation = false);
 
 // Every file, in the order given; hooks.Progress(done, files) as images
 // finish; Status::Cancelled if hooks.cancel was raised.

@@ -83,14 +83,21 @@ struct PixelExtraEstimate {
   double sigma = 0;
 };
 
+// A correlation of two estimated quantities ("focal", "cx", "cy",
+// "target_scale", or a parameter "leg 3 az").
+struct PixelCorrelation {
+  std::string first, second;
+  double correlation = 0;
+};
+
 struct PixelCalibrationResult {
   CalibrationResult calibration;  // the 42 parameters with covariance, per leg
   Camera camera;                  // with the estimated intrinsics
   double target_scale = 1;        // estimated, or 1
   std::vector<PixelExtraEstimate> extras;
-  // Correlations among the extras and with the 42 parameters above 0.95 in
-  // magnitude, as "fx ~ target_scale: 0.97" lines: what the data cannot separate.
-  std::vector<std::string> strong_correlations;
+  // Correlations of the extras with each other and with the 42 parameters
+  // above 0.95 in magnitude: what the data can hardly separate.
+  std::vector<PixelCorrelation> strong_correlations;
   std::vector<Pose> base_from_platform;  // the fitted pose of every image
   int corners = 0, leg_rows = 0;
   double reprojection_rms_px = 0;  // unwhitened, over every corner

@@ -5,7 +5,6 @@
 #include <Eigen/LU>
 #include <Eigen/SparseCore>
 #include <cmath>
-#include <cstdio>
 
 namespace hexcal {
 namespace {
@@ -169,16 +168,13 @@ std::vector<std::string> ColumnNames(const PixelFit& fit) {
 }
 
 // Pairs with an estimated camera or target quantity whose |correlation| > 0.95.
-std::vector<std::string> StrongCorrelations(const PixelFit& fit, const MatrixXd& covariance) {
+std::vector<PixelCorrelation> StrongCorrelations(const PixelFit& fit, const MatrixXd& covariance) {
   const std::vector<std::string> names = ColumnNames(fit);
-  std::vector<std::string> lines;
+  std::vector<PixelCorrelation> lines;
   for (int a = kNumParams; a < covariance.rows(); ++a) {
     for (int b = 0; b < a; ++b) {
       const double rho = covariance(a, b) / std::sqrt(covariance(a, a) * covariance(b, b));
-      if (std::abs(rho) <= 0.95) continue;
-      char text[32];
-      std::snprintf(text, sizeof text, "%.3f", rho);
-      lines.push_back(names[b] + " ~ " + names[a] + ": " + text);
+      if (std::abs(rho) > 0.95) lines.push_back({names[b], names[a], rho});
     }
   }
   return lines;

@@ -177,7 +177,9 @@ nlohmann::json ToJson(const CalibrationReport& report) {
                                                                   {"screened", report.screening->screened}}
                                                  : nlohmann::json(nullptr)},
           {"outliers", OutliersJson(report.outliers)},
-          {"noise_model", NoiseJson(report.noise)}};
+          {"noise_model", NoiseJson(report.noise)},
+          {"method", report.from_pixels ? "from-pixels" : "two-stage"},
+          {"from_pixels", report.from_pixels ? ToJson(*report.from_pixels) : nlohmann::json(nullptr)}};
 }
 
 StatusOr<CalibrationReport> CalibrationReportFromJson(const nlohmann::json& json, const std::string& source) {
@@ -208,6 +210,8 @@ StatusOr<CalibrationReport> CalibrationReportFromJson(const nlohmann::json& json
   }
   OutliersFromJson(fields, &report);
   report.noise = NoiseFromJson(fields);
+  // Reports written before the calibration from pixels have no "from_pixels": two-stage.
+  if (fields.Has("from_pixels")) report.from_pixels = PixelFitSummaryFromJson(fields.Object("from_pixels"));
   if (!fields.status().ok()) return fields.status();
   return report;
 }

@@ -16,6 +16,7 @@
 #include "core/noise_model.h"
 #include "core/robot.h"
 #include "core/status.h"
+#include "workflow/pixel_fit_summary.h"
 
 namespace hexcal::workflow {
 
@@ -102,6 +103,8 @@ struct CalibrationReport {
   std::optional<OutlierScreeningSummary> screening;            // none in reports that predate it
   std::vector<OutlierReading> outliers;                        // by image, then leg
   std::optional<NoiseExpectation> noise;                       // none in reports that predate it
+  // The calibration from pixels (pixel_fit_summary.h); none for the two-stage one.
+  std::optional<PixelFitSummary> from_pixels;
 
   int usable_images() const { return images - unusable_images; }
 };

@@ -120,6 +120,24 @@ StatusOr<PlanResult> PlanDemo(const DemoRequest& request, const PlanningModel& m
 }
 
 // Step 2: the session folder, with the plan and its history as `hexcal plan` writes them.
+// --focal-error: the session's camera file (camera.yaml in the session, named
+// by session.yaml) has fx and fy off by that much; the images keep the truth.
+Status WriteWrongCamera(const DemoRequest& request, const Camera& truth) {
+  if (request.focal_error_percent == 0) return Status::Ok();
+  Camera wrong = truth;
+  wrong.fx *= 1 + request.focal_error_percent / 100;
+  wrong.fy *= 1 + request.focal_error_percent / 100;
+  CameraFileExtras extras;
+  extras.comment = "hexcal demo --focal-error " + FormatNumber(request.focal_error_percent) +
+                   ": fx and fy off by that many percent; the images were rendered with " + kSimulatedCameraName;
+  const std::string file = (fs::path(request.out) / "camera.yaml").string();
+  if (Status s = SaveCamera(wrong, file, extras); !s.ok()) return s;
+  StatusOr<SessionConfig> config = LoadSessionConfig(request.out);
+  if (!config.ok()) return config.status();
+  config->camera = "camera.yaml";
+  return SaveSessionConfig(request.out, *config);
+}
+
 Status RecordDemo(const DemoRequest& request, const DemoScene& scene, const PlanningModel& model,
                   const PlanResult& plan, const std::string& robot_name, const JobHooks& hooks) {
   std::vector<Vector6d> held_out;
@@ -133,6 +151,7 @@ Status RecordDemo(const DemoRequest& request, const DemoScene& scene, const Plan
       !s.ok())
     return s.AsFailure();
   if (Status s = WritePlanCsv(SessionPaths(request.out).plan, model, plan.poses); !s.ok()) return s;
+  if (Status s = WriteWrongCamera(request, scene.camera); !s.ok()) return s;
   if (request.random_poses) return Status::Ok();  // no planner iterations to record
   return WriteHistoryCsv((fs::path(request.out) / "plan_history.csv").string(), plan);
 }
@@ -156,8 +175,11 @@ std::string FormatPlanLine(int candidates, const PlanResult& plan) {
 // Steps 3-5 on the recorded folder: calibrate, compare, report.
 Status CalibrateAndCompare(const DemoRequest& request, const DemoScene& scene, StepLog* steps, const JobHooks& hooks,
                            DemoResult* result) {
-  steps->Step("measure the images, register the camera and target frames, calibrate, validate (calibrate --session)");
-  StatusOr<CalibrationReport> calibration = CalibrateSession({request.out}, hooks);
+  steps->Step(std::string("measure the images, register the camera and target frames, calibrate, validate ") +
+              (request.from_pixels ? "(calibrate --session --from-pixels)" : "(calibrate --session)"));
+  CalibrateSessionRequest calibrate{request.out};
+  calibrate.from_pixels.enabled = request.from_pixels;
+  StatusOr<CalibrationReport> calibration = CalibrateSession(calibrate, hooks);
   if (!calibration.ok()) return calibration.status();
   std::istringstream lines(FormatCalibrationSummary(*calibration));
   for (std::string line; std::getline(lines, line);) hooks.Note("      " + line);
@@ -186,6 +208,7 @@ Status DemoRequest::Check() const {
   if (holdout < 0 || holdout > kMaxDemoHoldout) {
     return Status::Error("--holdout must be between 0 and " + std::to_string(kMaxDemoHoldout));
   }
+  if (!(std::abs(focal_error_percent) <= 20)) return Status::Error("--focal-error must be between -20 and 20 (percent)");
   return Status::Ok();
 }
 
@@ -221,6 +244,8 @@ StatusOr<DemoResult> RunDemo(const DemoRequest& request, const JobHooks& hooks) 
   if (!plan.ok()) return plan.status();
   if (!request.random_poses) hooks.Note(FormatPlanLine(result.plan_candidates, *plan));
   result.random_poses = request.random_poses;
+  result.from_pixels = request.from_pixels;
+  result.focal_error_percent = request.focal_error_percent;
   result.random_indices = plan->initial;
   result.plan_indices = plan->final;
   result.plan_iterations = plan->iterations;
@@ -258,6 +283,8 @@ nlohmann::json ToJson(const DemoResult& r) {
           {"held_out", r.held_out},
           {"usable_images", r.usable_images},
           {"random_poses", r.random_poses},
+          {"from_pixels", r.from_pixels},
+          {"focal_error_percent", r.focal_error_percent},
           {"plan", {{"random", IndicesJson(r.random_indices)}, {"selected", IndicesJson(r.plan_indices)}}},
           {"parameter_error",
            {{"mean", r.error_mean},

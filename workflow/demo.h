@@ -52,6 +52,12 @@ struct DemoRequest {
   // plan: the paper's section 8 measures 64 such poses and studies subsets of
   // them (`hexcal study`).
   bool random_poses = false;
+  // Calibrate with `calibrate --session --from-pixels` (the focal length estimated).
+  bool from_pixels = false;
+  // The camera file given to the calibration has fx and fy off by this many
+  // percent (the renderer keeps the true ones): a focal error for the
+  // calibration to live with, or, from pixels, to estimate. Within ±20.
+  double focal_error_percent = 0;
 
   Status Check() const;
 };
@@ -69,6 +75,8 @@ struct DemoResult {
   ObservabilityIndices random_indices, plan_indices;  // the random start set and the plan
   int plan_candidates = 0, plan_iterations = 0;       // 0 with random_poses
   bool random_poses = false;                          // the poses are random, not planned
+  bool from_pixels = false;                           // calibrated from pixels
+  double focal_error_percent = 0;                     // of the calibration's camera file
   double error_mean = 0, error_max = 0;                  // calibrated − truth
   double nominal_error_mean = 0, nominal_error_max = 0;  // nominal − truth
   double within_3sigma = 0;                              // fraction of the parameters with a σ

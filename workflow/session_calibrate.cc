@@ -21,6 +21,7 @@
 #include "workflow/expected_error.h"
 #include "workflow/measure_step.h"
 #include "workflow/session_measure.h"
+#include "workflow/session_pixels.h"
 #include "workflow/session_results.h"
 
 namespace hexcal::workflow {
@@ -31,6 +32,7 @@ namespace fs = std::filesystem;
 constexpr const char* kUsedMeasurements = "calibration_measurements.csv";
 constexpr const char* kCalibratedRobot = "calibrated.yaml";
 constexpr const char* kReportJson = "report.json";
+constexpr const char* kFittedCamera = "camera.yaml";
 
 using CameraPose = SessionImagePose;
 using CameraPoses = std::map<std::string, SessionImagePose>;
@@ -250,7 +252,7 @@ CalibrationReport MakeReport(const std::string& dir, const SessionInputs& in, co
 // swapped in whole; then the registered frames into session.yaml.
 Status WriteCalibrationResults(const std::string& dir, SessionInputs* in, const CameraCalibrationResult& result,
                                const CalibrationOptions& calibration, const CalibrationReport& report,
-                               const ContentHashes& inputs) {
+                               const std::optional<Camera>& fitted_camera, const ContentHashes& inputs) {
   const SessionPaths paths(dir);
   StatusOr<StagedFolder> staged = StagedFolder::Begin(paths.results);
   if (!staged.ok()) return staged.status();
@@ -260,8 +262,15 @@ Status WriteCalibrationResults(const std::string& dir, SessionInputs* in, const 
   if (Status s = SaveCalibratedRobot(staged->File(kCalibratedRobot), result.calibration, calibration_inputs); !s.ok())
     return s;
   if (Status s = SaveCalibrationReport(staged->File(kReportJson), report); !s.ok()) return s;
+  std::vector<const char*> outputs = {kUsedMeasurements, kCalibratedRobot, kReportJson};
+  if (fitted_camera) {
+    CameraFileExtras extras;
+    extras.comment = "The intrinsics hexcal calibrate --session --from-pixels estimated (docs/calibration.md)";
+    if (Status s = SaveCamera(*fitted_camera, staged->File(kFittedCamera), extras); !s.ok()) return s;
+    outputs.push_back(kFittedCamera);
+  }
   ResultsManifest manifest{calibration_inputs.date, "calibrate --session", inputs, {}};
-  for (const char* name : {kUsedMeasurements, kCalibratedRobot, kReportJson}) {
+  for (const char* name : outputs) {
     StatusOr<std::string> hash = Sha256OfFile(staged->File(name), kMaxTableBytes);
     if (!hash.ok()) return hash.status();
     manifest.outputs[name] = *hash;
@@ -293,6 +302,70 @@ RegistrationOptions SessionRegistrationOptions(const NoiseModel& noise) {
   registration.position_sigma = noise.PositionStdDev();
   registration.angle_sigma_deg = RadToDeg(noise.AngleStdDevRad());
   return registration;
+}
+
+// --from-pixels: the images, readings and models the fit needs.
+SessionPixelSetup PixelSetup(const std::string& dir, const SessionInputs& in, const SplitRows& split, double scale) {
+  SessionPixelSetup setup{in.nominal, in.camera, in.target, scale, in.config.noise, {}, {}, split.input.legs};
+  const std::string images = SessionPaths(dir).images;
+  for (const LegsRow* row : split.calibration_rows) setup.calibration_images.push_back((fs::path(images) / row->image).string());
+  for (const LegsRow* row : split.held_out) setup.held_out_images.push_back((fs::path(images) / row->image).string());
+  return setup;
+}
+
+// The two-stage figures the report compares the calibration from pixels with.
+TwoStageComparison TwoStageFigures(const CameraCalibrationResult& result,
+                                   const std::optional<ValidationSummary>& validation) {
+  TwoStageComparison two;
+  if (validation) {
+    two.held_out_position_rms = validation->after.position_rms;
+    two.held_out_orientation_rms_deg = validation->after.orientation_rms;
+  }
+  two.mean_parameter_sigma = result.calibration.StdDevs().mean();
+  return two;
+}
+
+// The camera poses X·B'·Y⁻¹ of the images, B' from the fitted camera; where
+// a board pose failed, the two-stage row is kept.
+void MapFittedPoses(const Robot& nominal, const Registration& frames, const std::vector<std::optional<Pose>>& poses,
+                    std::vector<Measurement>* rows) {
+  for (size_t j = 0; j < rows->size(); ++j) {
+    if (poses[j]) (*rows)[j].pose = nominal.VectorFromPose(BaseFromPlatform(frames, *poses[j]));
+  }
+}
+
+// What the calibration from pixels adds to the report and to results/.
+struct PixelOutcome {
+  PixelFitSummary summary;
+  std::optional<Camera> camera;  // with the estimated intrinsics; none when they were kept
+};
+
+// The two-stage result replaced by the calibration from pixels: its
+// parameters, its fitted poses (calibration_measurements.csv), the closure
+// and held-out validation with the board poses of the fitted camera.
+StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const SessionInputs& in, const SplitRows& split,
+                                          double scale, const FromPixelsRequest& request, const JobHooks& hooks,
+                                          CameraCalibrationResult* result, std::vector<Measurement>* held_out,
+                                          std::optional<ValidationSummary>* validation) {
+  StatusOr<SessionPixelFit> fit = FitSessionFromPixels(PixelSetup(dir, in, split, scale), *result, request, hooks);
+  if (!fit.ok()) return fit.status().cancelled() ? fit.status() : fit.status().AsFailure();
+  const TwoStageComparison two_stage = TwoStageFigures(*result, *validation);
+  result->calibration = fit->fit.calibration;
+  std::vector<Measurement> camera_rows = result->measurements;
+  MapFittedPoses(in.nominal, result->registration, fit->calibration_poses, &camera_rows);
+  StatusOr<ValidationReport> closure = Validate(result->calibration.robot, camera_rows);
+  if (!closure.ok()) return closure.status().AsFailure();
+  result->calibrated_position_rms = closure->position.rms;
+  result->calibrated_angle_rms_deg = closure->orientation_deg.rms;
+  for (size_t j = 0; j < result->measurements.size(); ++j)
+    result->measurements[j].pose = in.nominal.VectorFromPose(fit->fit.base_from_platform[j]);
+  MapFittedPoses(in.nominal, result->registration, fit->held_out_poses, held_out);
+  StatusOr<std::optional<ValidationSummary>> again = ValidateHeldOut(in, split.held_out, *held_out, *result);
+  if (!again.ok()) return again.status();
+  *validation = *again;
+  const bool intrinsics = request.focal || request.principal_point;
+  return PixelOutcome{SummarizeSessionPixelFit(*fit, two_stage),
+                      intrinsics ? std::optional<Camera>(fit->fit.camera) : std::nullopt};
 }
 
 }  // namespace
@@ -371,19 +444,28 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   StatusOr<CameraCalibrationResult> result =
       CalibrateFromCameraPoses(in->nominal, split.input, registration, calibration, hooks);
   if (!result.ok()) return result.status().AsFailure();
-  const std::vector<Measurement> held_out = HeldOutMeasurements(*in, *poses, split.held_out, *result, scale);
+  std::vector<Measurement> held_out = HeldOutMeasurements(*in, *poses, split.held_out, *result, scale);
   StatusOr<std::optional<ValidationSummary>> validation = ValidateHeldOut(*in, split.held_out, held_out, *result);
   if (!validation.ok()) return validation.status();
+  std::optional<PixelOutcome> from_pixels;
+  if (request.from_pixels.enabled) {
+    StatusOr<PixelOutcome> fit = ApplyFromPixels(dir, *in, split, scale, request.from_pixels, hooks, &*result,
+                                                 &held_out, &*validation);
+    if (!fit.ok()) return fit.status();
+    from_pixels = *fit;
+  }
 
   CalibrationReport report = MakeReport(dir, *in, split, *result);
   report.validation = *validation;
+  if (from_pixels) report.from_pixels = from_pixels->summary;
   report.noise = ExpectedNoise(*in, held_out, result->calibration.robot);
   if (request.outliers.enabled) {
     report.screening = OutlierScreeningSummary{request.outliers.threshold, request.outliers.keep,
                                                report.calibration_images >= kMinRowsToScreen};
   }
   if (Status s = CheckInputsUnchanged(dir, *inputs); !s.ok()) return s;
-  if (Status s = WriteCalibrationResults(dir, &*in, *result, calibration, report, *inputs); !s.ok())
+  const std::optional<Camera> fitted_camera = from_pixels ? from_pixels->camera : std::nullopt;
+  if (Status s = WriteCalibrationResults(dir, &*in, *result, calibration, report, fitted_camera, *inputs); !s.ok())
     return s.AsFailure();
   return report;
 }
@@ -468,6 +550,7 @@ std::string FormatCalibrationSummary(const CalibrationReport& report) {
         << ", " << v.before.orientation_rms << "; after " << v.after.position_rms << ", " << v.after.orientation_rms
         << "\n";
   }
+  if (report.from_pixels) out << FormatPixelFitSummary(*report.from_pixels, unit);
   out << OutlierLines(report);
   out << "wrote " << report.calibrated_robot << ", " << CalibrationReportPath(report.session) << ", frames in "
       << SessionPaths(report.session).config << "\n";

@@ -22,6 +22,7 @@
 #include "vision/camera.h"
 #include "vision/target.h"
 #include "workflow/calibration_report.h"
+#include "workflow/session_pixels.h"
 
 namespace hexcal::workflow {
 
@@ -33,6 +34,9 @@ struct CalibrateSessionRequest {
   // Every leg reading is screened against the noise model (core/outlier_screening.h);
   // outliers are left out of their leg's fit unless `keep`.
   OutlierScreening outliers = {/*enabled=*/true};
+  // Then the calibration from pixels, started from the two-stage one
+  // (session_pixels.h); its figures replace the two-stage ones.
+  FromPixelsRequest from_pixels;
 };
 
 // Stages reported through hooks.stage: "measure (images)", then "register and

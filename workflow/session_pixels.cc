@@ -1,0 +1,146 @@
+#include "workflow/session_pixels.h"
+
+#include <algorithm>
+
+#include "vision/board_pose.h"
+#include "vision/measure.h"
+
+namespace hexcal::workflow {
+namespace {
+
+// The corners of every image, detected again; an image whose board no longer
+// fits is nullopt (it had a usable pose, so this only happens when the image
+// changed under a writer that ignores the lock).
+StatusOr<std::vector<std::optional<BoardObservation>>> ObserveImages(const std::vector<std::string>& files,
+                                                                     const Camera& camera, const Target& target,
+                                                                     const JobHooks& hooks) {
+  MeasureOptions options;
+  options.keep_observations = true;
+  StatusOr<std::vector<ImageMeasurement>> measured = MeasureImages(files, camera, target, options, hooks);
+  if (!measured.ok()) return measured.status();
+  std::vector<std::optional<BoardObservation>> observations;
+  for (ImageMeasurement& m : *measured) {
+    if (m.pose.status == PoseStatus::kOk && m.observation) {
+      observations.push_back(std::move(m.observation));
+    } else {
+      observations.push_back(std::nullopt);
+    }
+  }
+  return observations;
+}
+
+// camera_from_target in the robot unit from the corners, with the fitted
+// camera and the target's points scaled by the fitted scale.
+std::optional<Pose> BoardPoseWith(const Camera& camera, double target_scale, double target_to_robot,
+                                  BoardObservation observation) {
+  for (Eigen::Vector3d& p : observation.target_points) p *= target_scale;
+  const BoardPose board = EstimateBoardPose(camera, observation, BoardPoseOptions{});
+  if (!board.has_pose) return std::nullopt;
+  Pose pose = board.camera_from_target;
+  pose.position *= target_to_robot;
+  return pose;
+}
+
+PixelCalibrationInput FitInput(const SessionPixelSetup& setup, const CameraCalibrationResult& two_stage,
+                               const std::vector<std::optional<BoardObservation>>& seen) {
+  PixelCalibrationInput input{setup.nominal,
+                              two_stage.calibration.robot,
+                              setup.camera,
+                              setup.target_to_robot,
+                              two_stage.registration.base_from_camera,
+                              two_stage.registration.platform_from_target,
+                              {}};
+  for (size_t j = 0; j < seen.size(); ++j) {
+    PixelImage image;
+    image.observation = *seen[j];
+    image.legs = setup.calibration_legs[j];
+    image.base_from_platform = setup.nominal.PoseFromVector(two_stage.measurements[j].pose);
+    for (int i = 0; i < kNumLegs; ++i) {
+      for (const RowOutlier& o : two_stage.calibration.legs[i].outliers)
+        if (o.excluded && o.measurement == static_cast<int>(j)) image.leg_excluded[i] = true;
+    }
+    input.images.push_back(image);
+  }
+  return input;
+}
+
+}  // namespace
+
+StatusOr<FromPixelsRequest> ParsePixelEstimates(const std::string& list) {
+  FromPixelsRequest request;
+  request.enabled = true;
+  request.focal = false;
+  if (list == "none") return request;
+  size_t start = 0;
+  while (start <= list.size()) {
+    const size_t end = std::min(list.find(',', start), list.size());
+    const std::string word = list.substr(start, end - start);
+    if (word == "focal") {
+      request.focal = true;
+    } else if (word == "principal") {
+      request.principal_point = true;
+    } else if (word == "scale") {
+      request.target_scale = true;
+    } else {
+      return Status::Error("--estimate: '" + word.substr(0, 40) +
+                           "' is not one of focal, principal, scale (comma-separated), or none");
+    }
+    start = end + 1;
+  }
+  return request;
+}
+
+StatusOr<SessionPixelFit> FitSessionFromPixels(const SessionPixelSetup& setup,
+                                               const CameraCalibrationResult& two_stage,
+                                               const FromPixelsRequest& request, const JobHooks& hooks) {
+  hooks.Stage("detect corners again (calibration from pixels)");
+  StatusOr<std::vector<std::optional<BoardObservation>>> seen =
+      ObserveImages(setup.calibration_images, setup.camera, setup.target, hooks);
+  if (!seen.ok()) return seen.status();
+  StatusOr<std::vector<std::optional<BoardObservation>>> held_out =
+      ObserveImages(setup.held_out_images, setup.camera, setup.target, hooks);
+  if (!held_out.ok()) return held_out.status();
+  for (size_t j = 0; j < seen->size(); ++j) {
+    if (!(*seen)[j]) {
+      return Status::Failed(setup.calibration_images[j] +
+                            ": its corners no longer give a board pose (the image changed while calibrating?); run "
+                            "again");
+    }
+  }
+  PixelCalibrationOptions options;
+  options.estimate_focal = request.focal;
+  options.estimate_principal_point = request.principal_point;
+  options.estimate_target_scale = request.target_scale;
+  options.leg_sigma = setup.noise.LegStdDev();
+  hooks.Stage("calibrate from pixels");
+  StatusOr<PixelCalibrationResult> fit = CalibrateFromPixels(FitInput(setup, two_stage, *seen), options, hooks);
+  if (!fit.ok()) return fit.status();
+  SessionPixelFit result{std::move(*fit), {}, {}};
+  auto pose_of = [&](const std::optional<BoardObservation>& observation) {
+    return observation ? BoardPoseWith(result.fit.camera, result.fit.target_scale, setup.target_to_robot, *observation)
+                       : std::nullopt;
+  };
+  for (const std::optional<BoardObservation>& o : *seen) result.calibration_poses.push_back(pose_of(o));
+  for (const std::optional<BoardObservation>& o : *held_out) result.held_out_poses.push_back(pose_of(o));
+  return result;
+}
+
+PixelFitSummary SummarizeSessionPixelFit(const SessionPixelFit& session, const TwoStageComparison& two_stage) {
+  const PixelCalibrationResult& fit = session.fit;
+  PixelFitSummary summary;
+  summary.images = static_cast<int>(fit.base_from_platform.size());
+  summary.corners = fit.corners;
+  summary.leg_rows = fit.leg_rows;
+  summary.reprojection_rms_px = fit.reprojection_rms_px;
+  summary.leg_residual_rms = fit.leg_residual_rms;
+  summary.variance_factor = fit.variance_factor;
+  summary.iterations = fit.iterations;
+  for (const PixelExtraEstimate& e : fit.extras) summary.estimated.push_back({e.name, e.file_value, e.estimate, e.sigma});
+  for (const PixelCorrelation& c : fit.strong_correlations)
+    summary.strong_correlations.push_back({c.first, c.second, c.correlation});
+  summary.two_stage = two_stage;
+  summary.mean_parameter_sigma = fit.calibration.StdDevs().mean();
+  return summary;
+}
+
+}  // namespace hexcal::workflow

@@ -1,0 +1,68 @@
+// `calibrate --session DIR --from-pixels`: the calibration from pixels
+// (vision/pixel_calibration.h) run on a session after its two-stage
+// calibration, which gives it the registered frames (the gauge), the start
+// values and the screened-out readings (docs/calibration.md, "Calibration
+// from pixels").
+//
+// The images' corners are detected again (measurements.csv keeps poses, not
+// corners); with estimated intrinsics or target scale, the held-out images'
+// board poses are estimated again with them, so that the validation uses the
+// camera the calibration found.
+//
+//   StatusOr<SessionPixelFit> fit = FitSessionFromPixels(setup, two_stage, FromPixelsRequest{true}, hooks);
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/job_hooks.h"
+#include "core/noise_model.h"
+#include "core/registration.h"
+#include "core/status.h"
+#include "vision/camera.h"
+#include "vision/pixel_calibration.h"
+#include "vision/target.h"
+#include "workflow/pixel_fit_summary.h"
+
+namespace hexcal::workflow {
+
+struct FromPixelsRequest {
+  bool enabled = false;          // false: the two-stage calibration alone
+  bool focal = true;             // estimate a common scale of fx and fy
+  bool principal_point = false;  // estimate cx, cy
+  bool target_scale = false;     // estimate the printed board's scale
+};
+
+// The camera and target quantities to estimate from a comma-separated list
+// of "focal", "principal", "scale" or the single word "none" (the flag
+// --estimate); the request comes back enabled. Bad input names the word.
+StatusOr<FromPixelsRequest> ParsePixelEstimates(const std::string& list);
+
+// What the fit needs of the session: the images in the order of the
+// two-stage calibration's measurements, and the held-out ones.
+struct SessionPixelSetup {
+  Robot nominal;
+  Camera camera;
+  Target target;
+  double target_to_robot = 1;  // robot unit per target unit
+  NoiseModel noise;            // session.yaml's: the readings' σ
+  std::vector<std::string> calibration_images, held_out_images;  // paths
+  std::vector<LegReadings> calibration_legs;
+};
+
+struct SessionPixelFit {
+  PixelCalibrationResult fit;
+  // camera_from_target of every image (robot unit) from its corners with the
+  // fitted camera and target scale; nullopt where the board pose fails.
+  std::vector<std::optional<Pose>> calibration_poses, held_out_poses;
+};
+
+StatusOr<SessionPixelFit> FitSessionFromPixels(const SessionPixelSetup& setup,
+                                               const CameraCalibrationResult& two_stage,
+                                               const FromPixelsRequest& request, const JobHooks& hooks = {});
+
+// The summary for report.json, with the two-stage figures to compare.
+PixelFitSummary SummarizeSessionPixelFit(const SessionPixelFit& fit, const TwoStageComparison& two_stage);
+
+}  // namespace hexcal::workflow
