@@ -176,7 +176,7 @@ std::string FormatPlanLine(int candidates, const PlanResult& plan) {
 Status CalibrateAndCompare(const DemoRequest& request, const DemoScene& scene, StepLog* steps, const JobHooks& hooks,
                            DemoResult* result) {
   steps->Step(std::string("measure the images, register the camera and target frames, calibrate, validate ") +
-              (request.from_pixels ? "(calibrate --session --from-pixels)" : "(calibrate --session)"));
+              (request.from_pixels ? "(calibrate --session)" : "(calibrate --session --two-stage)"));
   CalibrateSessionRequest calibrate{request.out};
   calibrate.from_pixels.enabled = request.from_pixels;
   StatusOr<CalibrationReport> calibration = CalibrateSession(calibrate, hooks);

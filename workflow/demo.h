@@ -52,8 +52,9 @@ struct DemoRequest {
   // plan: the paper's section 8 measures 64 such poses and studies subsets of
   // them (`hexcal study`).
   bool random_poses = false;
-  // Calibrate with `calibrate --session --from-pixels` (the focal length estimated).
-  bool from_pixels = false;
+  // false: calibrate with `calibrate --session --two-stage`; true, the
+  // default: from pixels, the focal length estimated.
+  bool from_pixels = true;
   // The camera file given to the calibration has fx and fy off by this many
   // percent (the renderer keeps the true ones): a focal error for the
   // calibration to live with, or, from pixels, to estimate. Within ±20.

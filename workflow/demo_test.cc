@@ -56,7 +56,8 @@ TEST_F(DemoSession, CalibratesCloserToTheTruth) {
   EXPECT_GE(result_->within_3sigma, 0.9);
   ASSERT_TRUE(result_->calibration.validation.has_value());
   EXPECT_LT(result_->calibration.validation->after.position_rms, result_->calibration.validation->before.position_rms);
-  EXPECT_EQ(notes_.size(), 11u);  // 5 steps, the plan line, 5 calibration lines
+  // 5 steps, the plan line, 10 calibration lines (5 of them from pixels: fit, fx, fy, σ, two-stage validation)
+  EXPECT_EQ(notes_.size(), 16u);
   EXPECT_THAT(notes_.front(), HasSubstr("[1/5 "));
   EXPECT_TRUE(std::filesystem::exists(result_->report));
 }
@@ -75,9 +76,33 @@ TEST_F(DemoSession, RecalibrationIsRepeatable) {
   hooks.stage = [&](const std::string& stage) { stages.push_back(stage); };
   StatusOr<CalibrationReport> again = CalibrateSession({Session()}, hooks);
   ASSERT_TRUE(again.ok()) << again.status().message();
-  EXPECT_EQ(stages, std::vector<std::string>{"register and calibrate"});  // nothing left to measure
+  const std::vector<std::string> expected = {"register and calibrate", "detect corners again (calibration from pixels)",
+                                             "calibrate from pixels"};
+  EXPECT_EQ(stages, expected);  // nothing left to measure
   for (size_t k = 0; k < again->parameters.size(); ++k)
     EXPECT_NEAR(again->parameters[k].estimate, result_->calibration.parameters[k].estimate, 1e-7);  // solver tolerance
+}
+
+// The default calibration is from pixels; --two-stage gives the other one,
+// and both are honest about the truth's 3σ on the demo.
+TEST_F(DemoSession, CalibratesFromPixelsByDefaultAndTwoStageOnRequest) {
+  ASSERT_TRUE(result_->calibration.from_pixels.has_value());
+  const PixelFitSummary& pixels = *result_->calibration.from_pixels;
+  EXPECT_EQ(ToJson(result_->calibration)["method"], "from-pixels");
+  ASSERT_EQ(pixels.estimated.size(), 2u);  // fx, fy
+  EXPECT_NEAR(pixels.estimated[0].estimate, pixels.estimated[0].file_value, 5 * pixels.estimated[0].sigma);
+  EXPECT_LT(pixels.reprojection_rms_px, 0.2);
+  EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(Session()) / "results" / "camera.yaml"));
+  CalibrateSessionRequest two_stage{Session()};
+  two_stage.from_pixels.enabled = false;
+  StatusOr<CalibrationReport> poses_only = CalibrateSession(two_stage);
+  ASSERT_TRUE(poses_only.ok()) << poses_only.status().message();
+  EXPECT_FALSE(poses_only->from_pixels.has_value());
+  EXPECT_EQ(ToJson(*poses_only)["method"], "two-stage");
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::path(Session()) / "results" / "camera.yaml"));
+  EXPECT_NEAR(poses_only->closure_position_rms, result_->calibration.closure_position_rms,
+              result_->calibration.closure_position_rms);
+  ASSERT_TRUE(CalibrateSession({Session()}).ok());  // back to the default for the other tests
 }
 
 TEST_F(DemoSession, CancelReturnsCancelledAndKeepsResults) {

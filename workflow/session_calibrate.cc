@@ -341,8 +341,9 @@ struct PixelOutcome {
 };
 
 // The two-stage result replaced by the calibration from pixels: its
-// parameters, its fitted poses (calibration_measurements.csv), the closure
-// and held-out validation with the board poses of the fitted camera.
+// parameters, and the closure and held-out validation with the board poses of
+// the fitted camera. calibration_measurements.csv keeps the rows of the
+// two-stage fit (the session camera's board poses in the base frame).
 StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const SessionInputs& in, const SplitRows& split,
                                           double scale, const FromPixelsRequest& request, const JobHooks& hooks,
                                           CameraCalibrationResult* result, std::vector<Measurement>* held_out,
@@ -350,15 +351,16 @@ StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const SessionInpu
   StatusOr<SessionPixelFit> fit = FitSessionFromPixels(PixelSetup(dir, in, split, scale), *result, request, hooks);
   if (!fit.ok()) return fit.status().cancelled() ? fit.status() : fit.status().AsFailure();
   const TwoStageComparison two_stage = TwoStageFigures(*result, *validation);
-  result->calibration = fit->fit.calibration;
+  CalibrationResult calibration = fit->fit.calibration;
+  // The fit left out the readings the two-stage screening excluded: they stay named.
+  for (int i = 0; i < kNumLegs; ++i) calibration.legs[i].outliers = result->calibration.legs[i].outliers;
+  result->calibration = std::move(calibration);
   std::vector<Measurement> camera_rows = result->measurements;
   MapFittedPoses(in.nominal, result->registration, fit->calibration_poses, &camera_rows);
   StatusOr<ValidationReport> closure = Validate(result->calibration.robot, camera_rows);
   if (!closure.ok()) return closure.status().AsFailure();
   result->calibrated_position_rms = closure->position.rms;
   result->calibrated_angle_rms_deg = closure->orientation_deg.rms;
-  for (size_t j = 0; j < result->measurements.size(); ++j)
-    result->measurements[j].pose = in.nominal.VectorFromPose(fit->fit.base_from_platform[j]);
   MapFittedPoses(in.nominal, result->registration, fit->held_out_poses, held_out);
   StatusOr<std::optional<ValidationSummary>> again = ValidateHeldOut(in, split.held_out, *held_out, *result);
   if (!again.ok()) return again.status();
@@ -449,10 +451,21 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   if (!validation.ok()) return validation.status();
   std::optional<PixelOutcome> from_pixels;
   if (request.from_pixels.enabled) {
-    StatusOr<PixelOutcome> fit = ApplyFromPixels(dir, *in, split, scale, request.from_pixels, hooks, &*result,
-                                                 &held_out, &*validation);
-    if (!fit.ok()) return fit.status();
-    from_pixels = *fit;
+    CameraCalibrationResult pixels = *result;
+    std::vector<Measurement> pixels_held_out = held_out;
+    std::optional<ValidationSummary> pixels_validation = *validation;
+    StatusOr<PixelOutcome> fit = ApplyFromPixels(dir, *in, split, scale, request.from_pixels, hooks, &pixels,
+                                                 &pixels_held_out, &pixels_validation);
+    if (fit.ok()) {
+      *result = std::move(pixels);
+      held_out = std::move(pixels_held_out);
+      *validation = std::move(pixels_validation);
+      from_pixels = *fit;
+    } else if (fit.status().cancelled() || !request.from_pixels.fall_back) {
+      return fit.status();
+    } else {
+      hooks.Note("warning: " + fit.status().message() + "; kept the two-stage calibration (--two-stage skips it)");
+    }
   }
 
   CalibrationReport report = MakeReport(dir, *in, split, *result);

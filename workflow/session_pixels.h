@@ -27,8 +27,15 @@
 
 namespace hexcal::workflow {
 
+// The calibration from pixels is the default: on the demo scenes it is at
+// least as accurate as the two-stage one, and removes an error of the focal
+// length that the two-stage one cannot (docs/calibration.md).
 struct FromPixelsRequest {
-  bool enabled = false;          // false: the two-stage calibration alone
+  bool enabled = true;           // false: the two-stage calibration alone (--two-stage)
+  // When the fit fails (e.g. the focal length is not identifiable from the
+  // poses), keep the two-stage calibration with a note; false (--from-pixels
+  // given explicitly): the failure is the calibration's.
+  bool fall_back = true;
   bool focal = true;             // estimate a common scale of fx and fy
   bool principal_point = false;  // estimate cx, cy
   bool target_scale = false;     // estimate the printed board's scale
@@ -36,7 +43,7 @@ struct FromPixelsRequest {
 
 // The camera and target quantities to estimate from a comma-separated list
 // of "focal", "principal", "scale" or the single word "none" (the flag
-// --estimate); the request comes back enabled. Bad input names the word.
+// --estimate); the request comes back enabled, falling back. Bad input names the word.
 StatusOr<FromPixelsRequest> ParsePixelEstimates(const std::string& list);
 
 // What the fit needs of the session: the images in the order of the

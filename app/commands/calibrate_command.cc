@@ -1,7 +1,7 @@
 // hexcal calibrate --robot R --measurements M.csv --out calibrated.yaml [--force]
 //   [--loss none|huber|cauchy] [--loss-scale s]
 //   [--weighted [--noise-position p] [--noise-angle a] [--noise-leg l]] [--json]
-// hexcal calibrate --session DIR [--from-pixels [--estimate focal,principal,scale|none]]
+// hexcal calibrate --session DIR [--two-stage | --from-pixels] [--estimate focal,principal,scale|none]
 //   [--keep-outliers] [--outlier-threshold Z] [--json]
 //   (workflow/session_calibrate.h)
 #include <cmath>
@@ -24,7 +24,7 @@ namespace {
 
 struct CalibrateCliOptions {
   std::string robot, measurements, out, session, loss = "none", estimate = "focal";
-  bool from_pixels = false;
+  bool from_pixels = false, two_stage = false;
   double loss_scale = 1.0;
   bool weighted = false, force = false, json = false, wait = false;
   std::shared_ptr<OptionEntries> noise = std::make_shared<OptionEntries>();  // --noise-* over the defaults
@@ -37,11 +37,11 @@ int RunCalibrateSession(const CalibrateCliOptions& cli, std::ostream& out, std::
   request.wait = cli.wait ? LockWait::kForever : LockWait::kNo;
   if (Status s = ApplyOptionEntries(OutlierScreeningOptions(), *cli.outliers, &request.outliers, "outliers"); !s.ok())
     return ReportError(err, "calibrate", s);
-  if (cli.from_pixels) {
-    StatusOr<workflow::FromPixelsRequest> estimates = workflow::ParsePixelEstimates(cli.estimate);
-    if (!estimates.ok()) return ReportError(err, "calibrate", estimates.status());
-    request.from_pixels = *estimates;
-  }
+  StatusOr<workflow::FromPixelsRequest> estimates = workflow::ParsePixelEstimates(cli.estimate);
+  if (!estimates.ok()) return ReportError(err, "calibrate", estimates.status());
+  request.from_pixels = *estimates;
+  request.from_pixels.enabled = !cli.two_stage;
+  request.from_pixels.fall_back = !cli.from_pixels;
   TerminalJob job("", &err);  // notes ("measuring 32 images: the camera changed ...") on stderr
   StatusOr<workflow::CalibrationReport> report = workflow::CalibrateSession(request, job.hooks());
   if (!report.ok()) return ReportError(err, "calibrate", report.status());
@@ -224,15 +224,22 @@ void AddCalibrateCommand(CLI::App& app, int* exit_code) {
   // Outlier screening of the session's readings (docs/calibration.md, "Outliers").
   for (const OptionSpec<OutlierScreening>& spec : OutlierScreeningOptions())
     AddOneOptionFlag(sub, spec, options->outliers, "")->needs(session);
+  // The calibration from pixels is the default (docs/calibration.md).
   CLI::Option* from_pixels =
       sub->add_flag("--from-pixels", options->from_pixels,
-                    "then fit the parameters to the tag corners themselves (docs/calibration.md)")
+                    "fit the parameters to the tag corners (the default) and fail if that fails, instead of keeping "
+                    "the two-stage calibration")
           ->needs(session);
+  CLI::Option* two_stage = sub->add_flag("--two-stage", options->two_stage,
+                                         "only fit the legs to the board poses (no calibration from pixels)")
+                               ->needs(session)
+                               ->excludes(from_pixels);
   sub->add_option("--estimate", options->estimate,
-                  "with --from-pixels: camera and target quantities to estimate, comma-separated: focal, principal, "
-                  "scale; or none")
+                  "camera and target quantities the calibration from pixels estimates, comma-separated: focal, "
+                  "principal, scale; or none")
       ->capture_default_str()
-      ->needs(from_pixels);
+      ->needs(session)
+      ->excludes(two_stage);
   sub->add_flag("--json", options->json, "print one JSON object on stdout");
   sub->add_flag("--wait", options->wait,
                 "when another program writes the session, wait for it instead of stopping (exit 3)")

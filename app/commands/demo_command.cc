@@ -1,5 +1,5 @@
 // hexcal demo [--robot inria-left-hand|deltalab-table|FILE] [--out DIR] [--poses 24] [--holdout 8]
-//             [--random-poses] [--from-pixels] [--focal-error PERCENT] [--seed 1] [--force] [--json]
+//             [--random-poses] [--from-pixels | --two-stage] [--focal-error PERCENT] [--seed 1] [--force] [--json]
 //
 // The whole calibration flow on a virtual robot and camera (workflow/demo.h,
 // docs/session.md).
@@ -42,8 +42,9 @@ void AddDemoCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   sub->add_flag("--random-poses", request->random_poses,
                 "record --poses random feasible poses the camera sees instead of an IOOPS plan (for hexcal study)");
-  sub->add_flag("--from-pixels", request->from_pixels,
-                "calibrate from the tag corners themselves, estimating the focal length (calibrate --from-pixels)");
+  sub->add_flag("--from-pixels,!--two-stage", request->from_pixels,
+                "calibrate from the tag corners, estimating the focal length (the default), or --two-stage: fit the "
+                "legs to the board poses only");
   sub->add_option("--focal-error", request->focal_error_percent,
                   "give the calibration a camera file whose focal length is off by this many percent (-20..20); "
                   "the images keep the true one")
