@@ -83,6 +83,7 @@ bool PixelCalibrationOptions::IsValid(std::string* error) const {
   if (!(leg_sigma > 0) || !std::isfinite(leg_sigma)) return fail("leg_sigma must be positive");
   if (!(corner_sigma_px > 0) || !std::isfinite(corner_sigma_px)) return fail("corner_sigma_px must be positive");
   if (max_iterations < 1) return fail("max_iterations must be at least 1");
+  if (!(leg_cauchy_scale >= 0) || !std::isfinite(leg_cauchy_scale)) return fail("leg_cauchy_scale must be 0 or more");
   if (num_threads < 0) return fail("num_threads must be 0 (every core) or more");
   return true;
 }
@@ -134,9 +135,12 @@ void AddLegResiduals(const PixelCalibrationInput& input, const PixelCalibrationO
   for (int i = 0; i < kNumLegs; ++i) {
     if (input.images[j].leg_excluded[i]) continue;
     auto* cost = new LegReadingResidual{input.images[j].legs[i], options.leg_sigma};
+    ceres::LossFunction* loss =
+        options.leg_cauchy_scale > 0 ? new ceres::CauchyLoss(options.leg_cauchy_scale) : nullptr;
     fit->leg_rows[i].push_back(
-        problem->AddResidualBlock(new ceres::AutoDiffCostFunction<LegReadingResidual, 1, 7, 6>(cost), nullptr,
+        problem->AddResidualBlock(new ceres::AutoDiffCostFunction<LegReadingResidual, 1, 7, 6>(cost), loss,
                                   unknowns->legs[i].data(), unknowns->poses[j].data()));
+    fit->leg_images[i].push_back(j);
   }
 }
 

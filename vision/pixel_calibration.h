@@ -50,6 +50,9 @@ struct PixelCalibrationOptions {
   bool estimate_target_scale = false;     // the printed board's scale
   double leg_sigma = 0.001;               // standard deviation of a leg reading, robot unit (> 0)
   double corner_sigma_px = 0.1;           // of a corner without an edge-fit covariance, pixels (> 0)
+  // > 0: a Cauchy loss of this many σ_L on the leg residuals, so that one
+  // wrong reading cannot pull the fit (the screening pass; 0: least squares).
+  double leg_cauchy_scale = 0;
   int max_iterations = 100;               // Levenberg–Marquardt iterations
   int num_threads = 0;                    // 0: every core
 
@@ -99,6 +102,9 @@ struct PixelCalibrationResult {
   // above 0.95 in magnitude: what the data can hardly separate.
   std::vector<PixelCorrelation> strong_correlations;
   std::vector<Pose> base_from_platform;  // the fitted pose of every image
+  // Per image and leg: z = −r = ((l + L) − |A b − a|) / σ_L at the fit
+  // (positive: the reading is longer than the pose implies); NaN where excluded.
+  std::vector<LegReadings> leg_z;
   int corners = 0, leg_rows = 0;
   double reprojection_rms_px = 0;  // unwhitened, over every corner
   double leg_residual_rms = 0;     // robot unit, over every leg reading used

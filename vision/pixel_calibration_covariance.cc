@@ -77,16 +77,33 @@ double ReprojectionRms(const PixelFit& fit, int* corners) {
   return *corners > 0 ? std::sqrt(sum / *corners) : 0;
 }
 
-// RMS of one leg's reading residuals, robot unit.
-double LegRms(const PixelFit& fit, int leg, double sigma) {
-  if (fit.leg_rows[leg].empty()) return 0;
+// One leg's reading residuals r (in σ_L), in the order of fit.leg_rows[leg].
+std::vector<double> LegResiduals(const PixelFit& fit, int leg) {
+  if (fit.leg_rows[leg].empty()) return {};
   ceres::Problem::EvaluateOptions evaluate;
   evaluate.residual_blocks = fit.leg_rows[leg];
+  evaluate.apply_loss_function = false;
   std::vector<double> residuals;
   fit.problem->Evaluate(evaluate, nullptr, &residuals, nullptr, nullptr);
+  return residuals;
+}
+
+// RMS of one leg's reading residuals, robot unit.
+double LegRms(const PixelFit& fit, int leg, double sigma) {
+  const std::vector<double> residuals = LegResiduals(fit, leg);
   double sum = 0;
   for (double r : residuals) sum += r * r;
-  return sigma * std::sqrt(sum / residuals.size());
+  return residuals.empty() ? 0 : sigma * std::sqrt(sum / residuals.size());
+}
+
+// z = −r of every reading used, NaN for the others.
+std::vector<LegReadings> LegZ(const PixelFit& fit, int images) {
+  std::vector<LegReadings> z(images, LegReadings::Constant(std::nan("")));
+  for (int i = 0; i < kNumLegs; ++i) {
+    const std::vector<double> r = LegResiduals(fit, i);
+    for (size_t k = 0; k < r.size(); ++k) z[fit.leg_images[i][k]][i] = -r[k];
+  }
+  return z;
 }
 
 }  // namespace
@@ -211,6 +228,7 @@ StatusOr<PixelCalibrationResult> SummarizePixelFit(const PixelCalibrationInput& 
     leg_count += static_cast<int>(fit.leg_rows[i].size());
   }
   result.leg_rows = leg_count;
+  result.leg_z = LegZ(fit, static_cast<int>(input.images.size()));
   result.leg_residual_rms = leg_count > 0 ? std::sqrt(leg_sum / leg_count) : 0;
   return result;
 }

@@ -29,6 +29,7 @@ struct PixelFit {
   std::vector<EstimatedBlock> estimated;
   std::vector<TagCornersResidual> tags;  // copies, to measure the unwhitened reprojection error
   std::array<std::vector<ceres::ResidualBlockId>, kNumLegs> leg_rows;
+  std::array<std::vector<int>, kNumLegs> leg_images;  // the image of each of leg_rows
 };
 
 // The result without the fields the solve itself fills (poses, camera,

@@ -345,16 +345,14 @@ struct PixelOutcome {
 // the fitted camera. calibration_measurements.csv keeps the rows of the
 // two-stage fit (the session camera's board poses in the base frame).
 StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const SessionInputs& in, const SplitRows& split,
-                                          double scale, const FromPixelsRequest& request, const JobHooks& hooks,
-                                          CameraCalibrationResult* result, std::vector<Measurement>* held_out,
-                                          std::optional<ValidationSummary>* validation) {
-  StatusOr<SessionPixelFit> fit = FitSessionFromPixels(PixelSetup(dir, in, split, scale), *result, request, hooks);
+                                       double scale, const CalibrateSessionRequest& request, const JobHooks& hooks,
+                                       CameraCalibrationResult* result, std::vector<Measurement>* held_out,
+                                       std::optional<ValidationSummary>* validation) {
+  StatusOr<SessionPixelFit> fit =
+      FitSessionFromPixels(PixelSetup(dir, in, split, scale), *result, request.from_pixels, request.outliers, hooks);
   if (!fit.ok()) return fit.status().cancelled() ? fit.status() : fit.status().AsFailure();
   const TwoStageComparison two_stage = TwoStageFigures(*result, *validation);
-  CalibrationResult calibration = fit->fit.calibration;
-  // The fit left out the readings the two-stage screening excluded: they stay named.
-  for (int i = 0; i < kNumLegs; ++i) calibration.legs[i].outliers = result->calibration.legs[i].outliers;
-  result->calibration = std::move(calibration);
+  result->calibration = fit->fit.calibration;  // with its own screening's outliers
   std::vector<Measurement> camera_rows = result->measurements;
   MapFittedPoses(in.nominal, result->registration, fit->calibration_poses, &camera_rows);
   StatusOr<ValidationReport> closure = Validate(result->calibration.robot, camera_rows);
@@ -365,7 +363,7 @@ StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const SessionInpu
   StatusOr<std::optional<ValidationSummary>> again = ValidateHeldOut(in, split.held_out, *held_out, *result);
   if (!again.ok()) return again.status();
   *validation = *again;
-  const bool intrinsics = request.focal || request.principal_point;
+  const bool intrinsics = request.from_pixels.focal || request.from_pixels.principal_point;
   return PixelOutcome{SummarizeSessionPixelFit(*fit, two_stage),
                       intrinsics ? std::optional<Camera>(fit->fit.camera) : std::nullopt};
 }
@@ -454,7 +452,7 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
     CameraCalibrationResult pixels = *result;
     std::vector<Measurement> pixels_held_out = held_out;
     std::optional<ValidationSummary> pixels_validation = *validation;
-    StatusOr<PixelOutcome> fit = ApplyFromPixels(dir, *in, split, scale, request.from_pixels, hooks, &pixels,
+    StatusOr<PixelOutcome> fit = ApplyFromPixels(dir, *in, split, scale, request, hooks, &pixels,
                                                  &pixels_held_out, &pixels_validation);
     if (fit.ok()) {
       *result = std::move(pixels);

@@ -1,6 +1,7 @@
 #include "workflow/session_pixels.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "vision/board_pose.h"
 #include "vision/measure.h"
@@ -55,13 +56,44 @@ PixelCalibrationInput FitInput(const SessionPixelSetup& setup, const CameraCalib
     image.observation = *seen[j];
     image.legs = setup.calibration_legs[j];
     image.base_from_platform = setup.nominal.PoseFromVector(two_stage.measurements[j].pose);
-    for (int i = 0; i < kNumLegs; ++i) {
-      for (const RowOutlier& o : two_stage.calibration.legs[i].outliers)
-        if (o.excluded && o.measurement == static_cast<int>(j)) image.leg_excluded[i] = true;
-    }
     input.images.push_back(image);
   }
   return input;
+}
+
+// The readings of a robust fit beyond the screening threshold, per leg
+// (core/outlier_screening.h's rule on the z of the fit from pixels).
+std::array<std::vector<RowOutlier>, kNumLegs> ScreenReadings(const PixelCalibrationResult& robust,
+                                                             const OutlierScreening& screening, double sigma) {
+  std::array<std::vector<RowOutlier>, kNumLegs> outliers;
+  for (int i = 0; i < kNumLegs; ++i) {
+    std::vector<double> z;
+    for (const LegReadings& row : robust.leg_z) z.push_back(row[i]);
+    if (static_cast<int>(z.size()) < kMinRowsToScreen) continue;
+    const double bar = screening.threshold * std::max(1.0, RobustScatter(z, kParamsPerLeg));
+    for (size_t j = 0; j < z.size(); ++j) {
+      if (std::abs(z[j]) > bar) outliers[i].push_back({static_cast<int>(j), z[j] * sigma, z[j], !screening.keep});
+    }
+  }
+  return outliers;
+}
+
+// The fit with the readings screened: robust first, then least squares
+// without the outliers (or with them, `keep`), which are named in its legs.
+StatusOr<PixelCalibrationResult> ScreenedFit(PixelCalibrationInput input, PixelCalibrationOptions options,
+                                             const OutlierScreening& screening, const JobHooks& hooks) {
+  if (!screening.enabled) return CalibrateFromPixels(input, options, hooks);
+  options.leg_cauchy_scale = kScreeningCauchyScale;
+  StatusOr<PixelCalibrationResult> robust = CalibrateFromPixels(input, options, hooks);
+  if (!robust.ok()) return robust.status();
+  const auto outliers = ScreenReadings(*robust, screening, options.leg_sigma);
+  for (int i = 0; i < kNumLegs; ++i)
+    for (const RowOutlier& o : outliers[i]) input.images[o.measurement].leg_excluded[i] = o.excluded;
+  options.leg_cauchy_scale = 0;
+  StatusOr<PixelCalibrationResult> fit = CalibrateFromPixels(input, options, hooks);
+  if (!fit.ok()) return fit.status();
+  for (int i = 0; i < kNumLegs; ++i) fit->calibration.legs[i].outliers = outliers[i];
+  return fit;
 }
 
 }  // namespace
@@ -92,7 +124,8 @@ StatusOr<FromPixelsRequest> ParsePixelEstimates(const std::string& list) {
 
 StatusOr<SessionPixelFit> FitSessionFromPixels(const SessionPixelSetup& setup,
                                                const CameraCalibrationResult& two_stage,
-                                               const FromPixelsRequest& request, const JobHooks& hooks) {
+                                               const FromPixelsRequest& request, const OutlierScreening& screening,
+                                               const JobHooks& hooks) {
   hooks.Stage("detect corners again (calibration from pixels)");
   StatusOr<std::vector<std::optional<BoardObservation>>> seen =
       ObserveImages(setup.calibration_images, setup.camera, setup.target, hooks);
@@ -113,7 +146,7 @@ StatusOr<SessionPixelFit> FitSessionFromPixels(const SessionPixelSetup& setup,
   options.estimate_target_scale = request.target_scale;
   options.leg_sigma = setup.noise.LegStdDev();
   hooks.Stage("calibrate from pixels");
-  StatusOr<PixelCalibrationResult> fit = CalibrateFromPixels(FitInput(setup, two_stage, *seen), options, hooks);
+  StatusOr<PixelCalibrationResult> fit = ScreenedFit(FitInput(setup, two_stage, *seen), options, screening, hooks);
   if (!fit.ok()) return fit.status();
   SessionPixelFit result{std::move(*fit), {}, {}};
   auto pose_of = [&](const std::optional<BoardObservation>& observation) {

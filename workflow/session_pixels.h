@@ -18,6 +18,7 @@
 
 #include "core/job_hooks.h"
 #include "core/noise_model.h"
+#include "core/outlier_screening.h"
 #include "core/registration.h"
 #include "core/status.h"
 #include "vision/camera.h"
@@ -65,9 +66,17 @@ struct SessionPixelFit {
   std::vector<std::optional<Pose>> calibration_poses, held_out_poses;
 };
 
+// With `screening` enabled, the leg readings are screened on the fit from
+// pixels itself, as the two-stage fit screens them (core/outlier_screening.h):
+// a first fit with a Cauchy loss of 3 σ_L on the readings, then a reading is
+// an outlier of leg i when |z| > threshold · max(1, ŝ_i); the final least
+// squares fit leaves the outliers out unless `keep`. The two-stage fit's own
+// flags are not used: a camera error (a wrong focal length) makes it flag
+// correct readings that the fit from pixels explains.
 StatusOr<SessionPixelFit> FitSessionFromPixels(const SessionPixelSetup& setup,
                                                const CameraCalibrationResult& two_stage,
-                                               const FromPixelsRequest& request, const JobHooks& hooks = {});
+                                               const FromPixelsRequest& request, const OutlierScreening& screening,
+                                               const JobHooks& hooks = {});
 
 // The summary for report.json, with the two-stage figures to compare.
 PixelFitSummary SummarizeSessionPixelFit(const SessionPixelFit& fit, const TwoStageComparison& two_stage);

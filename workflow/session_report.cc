@@ -17,6 +17,7 @@
 #include "core/session_lock.h"
 #include "workflow/calibration_report.h"
 #include "workflow/calibration_verdict.h"
+#include "workflow/pixel_report_section.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_results.h"
 
@@ -215,6 +216,7 @@ StatusOr<std::string> SessionReportHtml(const std::string& dir) {
           Figure(reg.position_rms) + " " + Escape(unit) + ", " + Figure(reg.angle_rms_deg) +
           "&deg;; with the calibrated robot: " + Figure(report.closure_position_rms) + " " + Escape(unit) + ", " +
           Figure(report.closure_angle_rms_deg) + "&deg;.</p>\n";
+  html += CalibrationMethodSection(report);
 
   const std::vector<double> rms = MeasurementRms(paths.measurements);
   if (!rms.empty()) html += "<h2>Measurements</h2>\n" + ChartHtml(charts::MeasurementRmsChart(rms));
