@@ -76,11 +76,12 @@ StatusOr<SessionInputs> LoadSessionInputs(const std::string& dir) {
 // The camera pose of every image with readings, measured where
 // measurements.csv has no valid row (session_measure.h).
 StatusOr<CameraPoses> MeasureSession(const std::string& dir, const SessionInputs& in, const ContentHashes& inputs,
-                                     const JobHooks& hooks) {
+                                     const JobHooks& hooks, std::map<std::string, BoardObservation>* observations) {
   std::vector<std::string> images;
   for (const LegsRow& row : in.legs) images.push_back(row.image);
   MeasureSessionOptions options;
   options.known_hashes = &inputs;
+  options.keep_observations = observations != nullptr;
   StatusOr<SessionMeasurements> measured = MeasureSessionImages(dir, images, in.camera, in.target, options, hooks);
   if (!measured.ok()) return measured.status();
   std::map<std::string, int> counts;
@@ -94,6 +95,7 @@ StatusOr<CameraPoses> MeasureSession(const std::string& dir, const SessionInputs
     if (ok < 3) return Status::Error(dir + ": " + diagnosis);
     hooks.Note("warning: " + diagnosis);
   }
+  if (observations != nullptr) *observations = std::move(measured->observations);
   return measured->poses;
 }
 
@@ -304,10 +306,24 @@ RegistrationOptions SessionRegistrationOptions(const NoiseModel& noise) {
   return registration;
 }
 
+// A session opened under its lock with every image measured: what calibrating
+// and the section 8 study both start from.
+struct OpenSession {
+  SessionLock lock;
+  ContentHashes hashes;
+  SessionInputs in;
+  CameraPoses poses;
+  double scale = 1;  // target unit per robot unit
+  // The corners of the images measured by this run (`keep_observations`), by file name.
+  std::map<std::string, BoardObservation> observations;
+};
+
 // --from-pixels: the images, readings and models the fit needs.
-SessionPixelSetup PixelSetup(const std::string& dir, const SessionInputs& in, const SplitRows& split, double scale) {
-  SessionPixelSetup setup{in.nominal, in.camera, in.target, scale, in.config.noise, {}, {}, split.input.legs};
+SessionPixelSetup PixelSetup(const std::string& dir, const SessionInputs& in, const SplitRows& split, double scale,
+                             const std::map<std::string, BoardObservation>& observations) {
+  SessionPixelSetup setup{in.nominal, in.camera, in.target, scale, in.config.noise, {}, {}, split.input.legs, {}};
   const std::string images = SessionPaths(dir).images;
+  for (const auto& [image, seen] : observations) setup.known_observations[(fs::path(images) / image).string()] = seen;
   for (const LegsRow* row : split.calibration_rows) setup.calibration_images.push_back((fs::path(images) / row->image).string());
   for (const LegsRow* row : split.held_out) setup.held_out_images.push_back((fs::path(images) / row->image).string());
   return setup;
@@ -344,12 +360,14 @@ struct PixelOutcome {
 // parameters, and the closure and held-out validation with the board poses of
 // the fitted camera. calibration_measurements.csv keeps the rows of the
 // two-stage fit (the session camera's board poses in the base frame).
-StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const SessionInputs& in, const SplitRows& split,
-                                       double scale, const CalibrateSessionRequest& request, const JobHooks& hooks,
+StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const OpenSession& open, const SplitRows& split,
+                                       const CalibrateSessionRequest& request, const JobHooks& hooks,
                                        CameraCalibrationResult* result, std::vector<Measurement>* held_out,
                                        std::optional<ValidationSummary>* validation) {
+  const SessionInputs& in = open.in;
   StatusOr<SessionPixelFit> fit =
-      FitSessionFromPixels(PixelSetup(dir, in, split, scale), *result, request.from_pixels, request.outliers, hooks);
+      FitSessionFromPixels(PixelSetup(dir, in, split, open.scale, open.observations), *result, request.from_pixels,
+                           request.outliers, hooks);
   if (!fit.ok()) return fit.status().cancelled() ? fit.status() : fit.status().AsFailure();
   const TwoStageComparison two_stage = TwoStageFigures(*result, *validation);
   result->calibration = fit->fit.calibration;  // with its own screening's outliers
@@ -399,17 +417,8 @@ StatusOr<SessionModels> LoadSessionModels(const std::string& dir) {
 
 namespace {
 
-// A session opened under its lock with every image measured: what calibrating
-// and the section 8 study both start from.
-struct OpenSession {
-  SessionLock lock;
-  ContentHashes hashes;
-  SessionInputs in;
-  CameraPoses poses;
-  double scale = 1;  // target unit per robot unit
-};
-
-StatusOr<OpenSession> OpenAndMeasure(const std::string& dir, LockWait wait, const JobHooks& hooks) {
+StatusOr<OpenSession> OpenAndMeasure(const std::string& dir, LockWait wait, const JobHooks& hooks,
+                                     bool keep_observations = false) {
   // "DIR/session.yaml: no such file" says more than the lock could.
   if (StatusOr<SessionConfig> config = LoadSessionConfig(dir); !config.ok()) return config.status();
   StatusOr<SessionLock> lock = SessionLock::Acquire(dir, wait);  // measuring writes measurements.csv
@@ -418,17 +427,19 @@ StatusOr<OpenSession> OpenAndMeasure(const std::string& dir, LockWait wait, cons
   if (!hashes.ok()) return hashes.status();
   StatusOr<SessionInputs> in = LoadSessionInputs(dir);
   if (!in.ok()) return in.status();
-  StatusOr<CameraPoses> poses = MeasureSession(dir, *in, *hashes, hooks);
+  std::map<std::string, BoardObservation> observations;
+  StatusOr<CameraPoses> poses = MeasureSession(dir, *in, *hashes, hooks, keep_observations ? &observations : nullptr);
   if (!poses.ok()) return poses.status();
   const double scale = MetresPerUnit(in->target.length_unit) / MetresPerUnit(in->nominal.length_unit);
-  return OpenSession{std::move(*lock), std::move(*hashes), std::move(*in), std::move(*poses), scale};
+  return OpenSession{std::move(*lock), std::move(*hashes), std::move(*in), std::move(*poses), scale,
+                     std::move(observations)};
 }
 
 }  // namespace
 
 StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& request, const JobHooks& hooks) {
   const std::string& dir = request.session;
-  StatusOr<OpenSession> open = OpenAndMeasure(dir, request.wait, hooks);
+  StatusOr<OpenSession> open = OpenAndMeasure(dir, request.wait, hooks, request.from_pixels.enabled);
   if (!open.ok()) return open.status();
   SessionInputs* in = &open->in;
   const ContentHashes* inputs = &open->hashes;
@@ -452,7 +463,7 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
     CameraCalibrationResult pixels = *result;
     std::vector<Measurement> pixels_held_out = held_out;
     std::optional<ValidationSummary> pixels_validation = *validation;
-    StatusOr<PixelOutcome> fit = ApplyFromPixels(dir, *in, split, scale, request, hooks, &pixels,
+    StatusOr<PixelOutcome> fit = ApplyFromPixels(dir, *open, split, request, hooks, &pixels,
                                                  &pixels_held_out, &pixels_validation);
     if (fit.ok()) {
       *result = std::move(pixels);

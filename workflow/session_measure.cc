@@ -190,10 +190,13 @@ StatusOr<SessionMeasurements> MeasureSessionImages(const std::string& dir, const
   hooks.Stage("measure (images)");
   std::vector<std::string> files;
   for (const std::string& image : plan.to_measure) files.push_back((fs::path(paths.images) / image).string());
-  StatusOr<std::vector<ImageMeasurement>> measured = MeasureImages(files, camera, target, MeasureOptions{}, hooks);
+  MeasureOptions measure;
+  measure.keep_observations = options.keep_observations;
+  StatusOr<std::vector<ImageMeasurement>> measured = MeasureImages(files, camera, target, measure, hooks);
   if (!measured.ok()) return measured.status();
   for (ImageMeasurement m : *measured) {
     m.file = fs::path(m.file).filename().string();
+    if (m.observation && m.pose.status == PoseStatus::kOk) result.observations[m.file] = std::move(*m.observation);
     result.poses[m.file] = SessionImagePose{m.pose.status == PoseStatus::kOk, PoseStatusName(m.pose.status),
                                             m.pose.camera_from_target, m.pose.covariance_vector};
     cells.push_back(ImageMeasurementRow(m));

@@ -19,6 +19,7 @@
 #include "core/session_lock.h"
 #include "core/status.h"
 #include "vision/camera.h"
+#include "vision/detection.h"
 #include "vision/target.h"
 
 namespace hexcal::workflow {
@@ -37,6 +38,10 @@ struct SessionMeasurements {
   // Why rows were measured again, e.g. "the camera changed since measuring";
   // empty when only new images were measured.
   std::string remeasure_reason;
+  // With MeasureSessionOptions::keep_observations: the corners of the images
+  // this call measured (the calibration from pixels then need not detect them
+  // again), by image file name.
+  std::map<std::string, BoardObservation> observations;
 };
 
 struct MeasureSessionOptions {
@@ -44,6 +49,7 @@ struct MeasureSessionOptions {
   // Hashes of the inputs already computed (HashSessionInputs, session_results.h):
   // used instead of reading the camera, target and images again.
   const std::map<std::string, std::string>* known_hashes = nullptr;
+  bool keep_observations = false;  // fill SessionMeasurements::observations
 };
 
 // Measures the images (file names in DIR/images/) that have no valid row and

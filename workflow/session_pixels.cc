@@ -9,23 +9,32 @@
 namespace hexcal::workflow {
 namespace {
 
-// The corners of every image, detected again; an image whose board no longer
-// fits is nullopt (it had a usable pose, so this only happens when the image
-// changed under a writer that ignores the lock).
-StatusOr<std::vector<std::optional<BoardObservation>>> ObserveImages(const std::vector<std::string>& files,
-                                                                     const Camera& camera, const Target& target,
-                                                                     const JobHooks& hooks) {
+// The corners of every image: those detected earlier in this run, the others
+// detected again. An image whose board no longer fits is nullopt (it had a
+// usable pose, so this only happens when the image changed under a writer
+// that ignores the lock).
+StatusOr<std::vector<std::optional<BoardObservation>>> ObserveImages(
+    const std::vector<std::string>& files, const std::map<std::string, BoardObservation>& known,
+    const Camera& camera, const Target& target, const JobHooks& hooks) {
+  std::vector<std::string> to_detect;
+  for (const std::string& file : files)
+    if (known.count(file) == 0) to_detect.push_back(file);
   MeasureOptions options;
   options.keep_observations = true;
-  StatusOr<std::vector<ImageMeasurement>> measured = MeasureImages(files, camera, target, options, hooks);
-  if (!measured.ok()) return measured.status();
+  std::map<std::string, BoardObservation> detected;
+  if (!to_detect.empty()) {
+    StatusOr<std::vector<ImageMeasurement>> measured = MeasureImages(to_detect, camera, target, options, hooks);
+    if (!measured.ok()) return measured.status();
+    for (ImageMeasurement& m : *measured)
+      if (m.pose.status == PoseStatus::kOk && m.observation) detected[m.file] = std::move(*m.observation);
+  }
   std::vector<std::optional<BoardObservation>> observations;
-  for (ImageMeasurement& m : *measured) {
-    if (m.pose.status == PoseStatus::kOk && m.observation) {
-      observations.push_back(std::move(m.observation));
-    } else {
-      observations.push_back(std::nullopt);
-    }
+  for (const std::string& file : files) {
+    const auto k = known.find(file);
+    const auto d = detected.find(file);
+    observations.push_back(k != known.end()   ? std::optional<BoardObservation>(k->second)
+                           : d != detected.end() ? std::optional<BoardObservation>(d->second)
+                                                 : std::nullopt);
   }
   return observations;
 }
@@ -126,12 +135,12 @@ StatusOr<SessionPixelFit> FitSessionFromPixels(const SessionPixelSetup& setup,
                                                const CameraCalibrationResult& two_stage,
                                                const FromPixelsRequest& request, const OutlierScreening& screening,
                                                const JobHooks& hooks) {
-  hooks.Stage("detect corners again (calibration from pixels)");
+  hooks.Stage("corners (calibration from pixels)");
   StatusOr<std::vector<std::optional<BoardObservation>>> seen =
-      ObserveImages(setup.calibration_images, setup.camera, setup.target, hooks);
+      ObserveImages(setup.calibration_images, setup.known_observations, setup.camera, setup.target, hooks);
   if (!seen.ok()) return seen.status();
   StatusOr<std::vector<std::optional<BoardObservation>>> held_out =
-      ObserveImages(setup.held_out_images, setup.camera, setup.target, hooks);
+      ObserveImages(setup.held_out_images, setup.known_observations, setup.camera, setup.target, hooks);
   if (!held_out.ok()) return held_out.status();
   for (size_t j = 0; j < seen->size(); ++j) {
     if (!(*seen)[j]) {

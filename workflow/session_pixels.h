@@ -12,6 +12,7 @@
 //   StatusOr<SessionPixelFit> fit = FitSessionFromPixels(setup, two_stage, FromPixelsRequest{true}, hooks);
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,6 +58,9 @@ struct SessionPixelSetup {
   NoiseModel noise;            // session.yaml's: the readings' σ
   std::vector<std::string> calibration_images, held_out_images;  // paths
   std::vector<LegReadings> calibration_legs;
+  // Corners already detected in this run (session_measure.h), by image path:
+  // those images are not detected again.
+  std::map<std::string, BoardObservation> known_observations;
 };
 
 struct SessionPixelFit {
