@@ -62,12 +62,20 @@ bool Varies(const std::vector<double>& values) {
   return *high - *low > 1e-9 * std::max(1.0, std::abs(*high));
 }
 
-// Does one cause, of the size that explains k_z, leave the lateral slope observed?
-bool CauseFits(const BiasSignature& signature, double depth_slope, double depth_slope_se, const LateralSlope& lateral) {
+// Does one cause, of the size that explains k_z, leave the x and y scale
+// slopes observed? χ² of both, each with its own standard error and that of
+// k_z carried through the ratio.
+bool CauseFits(const BiasSignature& signature, const CameraFrameResiduals& r) {
   if (std::abs(signature.depth_slope) < 1e-6) return false;  // it leaves no depth slope to explain
-  const double ratio = signature.lateral_slope / signature.depth_slope;
-  const double se = std::hypot(lateral.se, ratio * depth_slope_se);
-  return std::abs(lateral.slope - ratio * depth_slope) <= kBiasSignificance * se;
+  const AxisResiduals& z = r.axes[2];
+  double chi_square = 0;
+  for (int a = 0; a < 2; ++a) {
+    const double ratio = (a == 0 ? signature.x_slope : signature.y_slope) / signature.depth_slope;
+    const double variance = std::pow(r.axes[a].scale_slope_se, 2) + std::pow(ratio * z.depth_slope_se, 2);
+    if (variance <= 0) return false;
+    chi_square += std::pow(r.axes[a].scale_slope - ratio * z.depth_slope, 2) / variance;
+  }
+  return chi_square <= kBiasChiSquare2;
 }
 
 std::string Percent(double fraction) {
@@ -89,16 +97,17 @@ StatusOr<CameraFrameResiduals> ComputeCameraFrameResiduals(const Robot& calibrat
   std::array<std::vector<double>, 3> delta, position;
   for (size_t j = 0; j < legs.size(); ++j) {
     if (std::find(left_out.begin(), left_out.end(), static_cast<int>(j)) != left_out.end()) continue;
-    const Pose& measured = camera_from_target[j];
-    StatusOr<LocalFkResult> fk = ForwardKinematicsLocal(calibrated, legs[j], BaseFromPlatform(registration, measured));
+    const Pose measured = BaseFromPlatform(registration, camera_from_target[j]);  // A'_j
+    StatusOr<LocalFkResult> fk = ForwardKinematicsLocal(calibrated, legs[j], measured);
     if (!fk.ok()) {
       ++result.fk_failed;  // a diagnosis, not the calibration: counted, not fatal
       continue;
     }
-    const Pose predicted = Compose(Compose(camera_from_base, fk->pose), registration.platform_from_target);
+    const Eigen::Vector3d residual = camera_from_base.rotation * (fk->pose.position - measured.position);
+    const Eigen::Vector3d platform_in_camera = camera_from_base * measured.position;
     for (int a = 0; a < 3; ++a) {
-      delta[a].push_back(predicted.position[a] - measured.position[a]);
-      position[a].push_back(measured.position[a]);
+      delta[a].push_back(residual[a]);
+      position[a].push_back(platform_in_camera[a]);
     }
   }
   result.images = static_cast<int>(delta[2].size());
@@ -107,7 +116,7 @@ StatusOr<CameraFrameResiduals> ComputeCameraFrameResiduals(const Robot& calibrat
                          " images with a converged FK, at least 3 needed");
   for (int a = 0; a < 3; ++a)
     if (!Varies(position[a]))
-      return Status::Error("camera-frame residuals: the targets do not move along camera axis " +
+      return Status::Error("camera-frame residuals: the platform does not move along camera axis " +
                            std::string(1, "xyz"[a]));
   result.depth_min = *std::min_element(position[2].begin(), position[2].end());
   result.depth_max = *std::max_element(position[2].begin(), position[2].end());
@@ -115,24 +124,18 @@ StatusOr<CameraFrameResiduals> ComputeCameraFrameResiduals(const Robot& calibrat
   return result;
 }
 
-LateralSlope CombinedLateralSlope(const CameraFrameResiduals& residuals) {
-  const AxisResiduals &x = residuals.axes[0], &y = residuals.axes[1];
-  if (x.scale_slope_se <= 0 || y.scale_slope_se <= 0) return {(x.scale_slope + y.scale_slope) / 2, 0};
-  const double wx = 1 / (x.scale_slope_se * x.scale_slope_se), wy = 1 / (y.scale_slope_se * y.scale_slope_se);
-  return {(wx * x.scale_slope + wy * y.scale_slope) / (wx + wy), 1 / std::sqrt(wx + wy)};
+double SignificanceBound(int dof) {
+  // t ≈ z + g1/ν + g2/ν² + g3/ν³ + g4/ν⁴ (Abramowitz and Stegun 26.7.5), z = 3.
+  const double z = kBiasSignificance, z2 = z * z;
+  const double g1 = (z2 + 1) * z / 4;
+  const double g2 = ((5 * z2 + 16) * z2 + 3) * z / 96;
+  const double g3 = (((3 * z2 + 19) * z2 + 17) * z2 - 15) * z / 384;
+  const double g4 = ((((79 * z2 + 776) * z2 + 1482) * z2 - 1920) * z2 - 945) * z / 92160;
+  const double v = std::max(dof, 1);
+  return z + g1 / v + g2 / (v * v) + g3 / (v * v * v) + g4 / (v * v * v * v);
 }
 
 namespace {
-
-// The camera poses with every depth (focal length) or every position (target
-// scale) scaled by 1 + error.
-std::vector<Pose> Scaled(std::vector<Pose> camera_from_target, bool lateral_too, double error) {
-  for (Pose& pose : camera_from_target) {
-    pose.position.z() *= 1 + error;
-    if (lateral_too) pose.position.head<2>() *= 1 + error;
-  }
-  return camera_from_target;
-}
 
 StatusOr<CameraFrameResiduals> CalibratedResiduals(const Robot& nominal, const CameraCalibrationInput& input,
                                                    const RegistrationOptions& registration_options,
@@ -158,27 +161,44 @@ CameraCalibrationInput Without(const CameraCalibrationInput& input, const std::v
 
 }  // namespace
 
+BiasCauseModels ScalingBiasModels() {
+  const auto scaled = [](bool lateral_too) {
+    return [lateral_too](std::vector<Pose> camera_from_target, double error) -> StatusOr<std::vector<Pose>> {
+      for (Pose& pose : camera_from_target) {
+        pose.position.z() *= 1 + error;
+        if (lateral_too) pose.position.head<2>() *= 1 + error;
+      }
+      return camera_from_target;
+    };
+  };
+  return {scaled(false), scaled(true)};
+}
+
 StatusOr<BiasSignatures> SimulateBiasSignatures(const Robot& nominal, const CameraCalibrationInput& input,
                                                 const std::vector<int>& left_out,
                                                 const RegistrationOptions& registration_options,
-                                                CalibrationOptions calibration_options) {
+                                                CalibrationOptions calibration_options, const BiasCauseModels& models) {
   // Small enough to stay linear, far above the solver's tolerance.
   constexpr double kProbe = 1e-3;
   calibration_options.outliers.enabled = false;
   calibration_options.compute_uncertainty = false;
-  CameraCalibrationInput probe = Without(input, left_out);
-  StatusOr<CameraFrameResiduals> base = CalibratedResiduals(nominal, probe, registration_options, calibration_options);
+  const CameraCalibrationInput kept = Without(input, left_out);
+  StatusOr<CameraFrameResiduals> base = CalibratedResiduals(nominal, kept, registration_options, calibration_options);
   if (!base.ok()) return base.status();
-  const LateralSlope base_lateral = CombinedLateralSlope(*base);
   BiasSignatures signatures;
-  for (bool lateral_too : {false, true}) {
-    probe.camera_from_target = Scaled(Without(input, left_out).camera_from_target, lateral_too, kProbe);
+  for (bool focal : {true, false}) {
+    CameraCalibrationInput probe = kept;
+    StatusOr<std::vector<Pose>> moved_poses =
+        (focal ? models.focal_length : models.target_scale)(kept.camera_from_target, kProbe);
+    if (!moved_poses.ok()) return moved_poses.status();
+    probe.camera_from_target = std::move(*moved_poses);
     StatusOr<CameraFrameResiduals> moved =
         CalibratedResiduals(nominal, probe, registration_options, calibration_options);
     if (!moved.ok()) return moved.status();
-    BiasSignature& signature = lateral_too ? signatures.target_scale : signatures.focal_length;
+    BiasSignature& signature = focal ? signatures.focal_length : signatures.target_scale;
     signature.depth_slope = (moved->axes[2].depth_slope - base->axes[2].depth_slope) / kProbe;
-    signature.lateral_slope = (CombinedLateralSlope(*moved).slope - base_lateral.slope) / kProbe;
+    signature.x_slope = (moved->axes[0].scale_slope - base->axes[0].scale_slope) / kProbe;
+    signature.y_slope = (moved->axes[1].scale_slope - base->axes[1].scale_slope) / kProbe;
   }
   return signatures;
 }
@@ -189,8 +209,8 @@ CameraFrameFinding DiagnoseCameraFrameBias(const CameraFrameResiduals& residuals
   const AxisResiduals& z = residuals.axes[2];
   // The registration absorbs a constant offset along the axis, so a mean
   // alone is rare; a depth slope is what a scale error leaves.
-  const bool offset = std::abs(z.t) > kBiasSignificance;
-  finding.grows_with_depth = std::abs(z.depth_slope) > kBiasSignificance * z.depth_slope_se;
+  const bool offset = std::abs(z.t) > SignificanceBound(residuals.images - 1);
+  finding.grows_with_depth = std::abs(z.depth_slope) > SignificanceBound(residuals.images - 2) * z.depth_slope_se;
   finding.optical_axis_bias = offset || finding.grows_with_depth;
   if (!finding.optical_axis_bias) return finding;
   finding.text = "a bias along the optical axis";
@@ -200,9 +220,8 @@ CameraFrameFinding DiagnoseCameraFrameBias(const CameraFrameResiduals& residuals
     return finding;
   }
   const BiasSignatures signatures = residuals.signatures.value_or(BiasSignatures{});
-  const LateralSlope lateral = CombinedLateralSlope(residuals);
-  const bool focal = CauseFits(signatures.focal_length, z.depth_slope, z.depth_slope_se, lateral);
-  const bool scale = CauseFits(signatures.target_scale, z.depth_slope, z.depth_slope_se, lateral);
+  const bool focal = CauseFits(signatures.focal_length, residuals);
+  const bool scale = CauseFits(signatures.target_scale, residuals);
   if (focal == scale) {
     finding.cause = BiasCause::kUndetermined;
     finding.text += focal ? "; points to the focal length or the target's scale (the lateral slopes cannot tell)"
