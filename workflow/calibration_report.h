@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/camera_frame_residuals.h"
 #include "core/noise_model.h"
 #include "core/robot.h"
 #include "core/status.h"
@@ -102,6 +103,10 @@ struct CalibrationReport {
   std::optional<OutlierScreeningSummary> screening;            // none in reports that predate it
   std::vector<OutlierReading> outliers;                        // by image, then leg
   std::optional<NoiseExpectation> noise;                       // none in reports that predate it
+  // FK of the calibrated robot against the camera, in the camera frame, over
+  // the calibration images (docs/calibration.md, "Bias along the optical
+  // axis"); none in reports that predate it or when it could not be computed.
+  std::optional<CameraFrameResiduals> camera_frame_residuals;
 
   int usable_images() const { return images - unusable_images; }
 };

@@ -18,6 +18,7 @@
 #include "core/staged_folder.h"
 #include "core/validation.h"
 #include "vision/measure.h"
+#include "workflow/camera_frame_diagnosis.h"
 #include "workflow/expected_error.h"
 #include "workflow/measure_step.h"
 #include "workflow/session_measure.h"
@@ -378,6 +379,9 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   CalibrationReport report = MakeReport(dir, *in, split, *result);
   report.validation = *validation;
   report.noise = ExpectedNoise(*in, held_out, result->calibration.robot);
+  report.camera_frame_residuals =
+      SessionCameraFrameResiduals(in->nominal, split.input, *result, registration, calibration,
+                                  SessionBiasModels(in->camera, in->target, scale), hooks);
   if (request.outliers.enabled) {
     report.screening = OutlierScreeningSummary{request.outliers.threshold, request.outliers.keep,
                                                report.calibration_images >= kMinRowsToScreen};
@@ -468,6 +472,7 @@ std::string FormatCalibrationSummary(const CalibrationReport& report) {
         << ", " << v.before.orientation_rms << "; after " << v.after.position_rms << ", " << v.after.orientation_rms
         << "\n";
   }
+  if (report.camera_frame_residuals) out << FormatCameraFrameLine(*report.camera_frame_residuals, unit) << "\n";
   out << OutlierLines(report);
   out << "wrote " << report.calibrated_robot << ", " << CalibrationReportPath(report.session) << ", frames in "
       << SessionPaths(report.session).config << "\n";
