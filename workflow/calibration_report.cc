@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "core/atomic_file.h"
+#include "workflow/camera_frame_diagnosis.h"
 #include "workflow/json_fields.h"
 #include "workflow/json_forms.h"
 
@@ -141,6 +142,69 @@ std::optional<NoiseExpectation> NoiseFromJson(JsonFields& fields) {
   return noise;
 }
 
+nlohmann::json AxisJson(const AxisResiduals& axis) {
+  return {{"mean", axis.mean},
+          {"std", axis.std_dev},
+          {"standard_error", axis.standard_error},
+          {"t", axis.t},
+          {"depth_slope", axis.depth_slope},
+          {"depth_slope_se", axis.depth_slope_se},
+          {"scale_slope", axis.scale_slope},
+          {"scale_slope_se", axis.scale_slope_se}};
+}
+
+AxisResiduals AxisFromJson(JsonFields fields) {
+  return {fields.Number("mean"),        fields.Number("std"),           fields.Number("standard_error"),
+          fields.Number("t"),           fields.Number("depth_slope"),   fields.Number("depth_slope_se"),
+          fields.Number("scale_slope"), fields.Number("scale_slope_se")};
+}
+
+nlohmann::json SignatureJson(const BiasSignature& s) {
+  return {{"depth_slope", s.depth_slope}, {"x_slope", s.x_slope}, {"y_slope", s.y_slope}};
+}
+
+BiasSignature SignatureFromJson(JsonFields fields) {
+  return {fields.Number("depth_slope"), fields.Number("x_slope"), fields.Number("y_slope")};
+}
+
+// "finding" follows from the figures (CameraFrameFindingText): written for
+// the reader of the file, not read back.
+nlohmann::json CameraFrameJson(const std::optional<CameraFrameResiduals>& r) {
+  if (!r) return nullptr;
+  nlohmann::json axes;
+  for (int a = 0; a < 3; ++a) axes[std::string(1, "xyz"[a])] = AxisJson(r->axes[a]);
+  const nlohmann::json signatures = r->signatures
+                                        ? nlohmann::json{{"focal_length", SignatureJson(r->signatures->focal_length)},
+                                                         {"target_scale", SignatureJson(r->signatures->target_scale)}}
+                                        : nlohmann::json(nullptr);
+  return {{"images", r->images},
+          {"fk_failed", r->fk_failed},
+          {"depth_min", r->depth_min},
+          {"depth_max", r->depth_max},
+          {"axes", axes},
+          {"signatures", signatures},
+          {"finding", CameraFrameFindingText(*r)}};
+}
+
+// Reports written before the diagnosis have no "camera_frame_residuals".
+std::optional<CameraFrameResiduals> CameraFrameFromJson(JsonFields& fields) {
+  if (!fields.Has("camera_frame_residuals")) return std::nullopt;
+  JsonFields c = fields.Object("camera_frame_residuals");
+  CameraFrameResiduals r;
+  r.images = c.Int("images");
+  r.fk_failed = c.Int("fk_failed");
+  r.depth_min = c.Number("depth_min");
+  r.depth_max = c.Number("depth_max");
+  JsonFields axes = c.Object("axes");
+  for (int a = 0; a < 3; ++a) r.axes[a] = AxisFromJson(axes.Object(std::string(1, "xyz"[a])));
+  if (c.Has("signatures")) {
+    JsonFields s = c.Object("signatures");
+    r.signatures =
+        BiasSignatures{SignatureFromJson(s.Object("focal_length")), SignatureFromJson(s.Object("target_scale"))};
+  }
+  return r;
+}
+
 // Reports written before the screening have neither key: read as none.
 void OutliersFromJson(JsonFields& fields, CalibrationReport* report) {
   if (fields.Has("outlier_screening")) {
@@ -179,7 +243,8 @@ nlohmann::json ToJson(const CalibrationReport& report) {
           {"outliers", OutliersJson(report.outliers)},
           {"noise_model", NoiseJson(report.noise)},
           {"method", report.from_pixels ? "from-pixels" : "two-stage"},
-          {"from_pixels", report.from_pixels ? ToJson(*report.from_pixels) : nlohmann::json(nullptr)}};
+          {"from_pixels", report.from_pixels ? ToJson(*report.from_pixels) : nlohmann::json(nullptr)},
+          {"camera_frame_residuals", CameraFrameJson(report.camera_frame_residuals)}};
 }
 
 StatusOr<CalibrationReport> CalibrationReportFromJson(const nlohmann::json& json, const std::string& source) {
@@ -212,6 +277,7 @@ StatusOr<CalibrationReport> CalibrationReportFromJson(const nlohmann::json& json
   report.noise = NoiseFromJson(fields);
   // Reports written before the calibration from pixels have no "from_pixels": two-stage.
   if (fields.Has("from_pixels")) report.from_pixels = PixelFitSummaryFromJson(fields.Object("from_pixels"));
+  report.camera_frame_residuals = CameraFrameFromJson(fields);
   if (!fields.status().ok()) return fields.status();
   return report;
 }

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/camera_frame_residuals.h"
 #include "core/noise_model.h"
 #include "core/robot.h"
 #include "core/status.h"
@@ -105,6 +106,10 @@ struct CalibrationReport {
   std::optional<NoiseExpectation> noise;                       // none in reports that predate it
   // The calibration from pixels (pixel_fit_summary.h); none for the two-stage one.
   std::optional<PixelFitSummary> from_pixels;
+  // FK of the calibrated robot against the camera, in the camera frame, over
+  // the calibration images (docs/calibration.md, "Bias along the optical
+  // axis"); none in reports that predate it or when it could not be computed.
+  std::optional<CameraFrameResiduals> camera_frame_residuals;
 
   int usable_images() const { return images - unusable_images; }
 };

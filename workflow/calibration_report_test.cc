@@ -13,11 +13,12 @@
 namespace hexcal::workflow {
 namespace {
 
-using ::testing::HasSubstr;
 using hexcal::testing::ReadTextFile;
 using hexcal::testing::SourceDir;
 using hexcal::testing::TempDir;
 using hexcal::testing::WriteTextFile;
+using ::testing::HasSubstr;
+using ::testing::Not;
 
 CalibrationReport SampleReport() {
   CalibrationReport report;
@@ -98,6 +99,68 @@ TEST(CalibrationReport, ReportsWithoutOutlierKeysLoad) {
   EXPECT_FALSE(read->screening.has_value());
 }
 
+CalibrationReport ReportWithCameraFrameResiduals(bool signatures) {
+  CalibrationReport report = SampleReport();
+  report.images = 27;
+  report.calibration_images = 24;
+  CameraFrameResiduals r;
+  r.images = 24;
+  r.fk_failed = 1;
+  r.depth_min = 66.5;
+  r.depth_max = 71.25;
+  r.axes[0] = {0.00003, 0.003, 0.0011, 0.027, 0.0001, 0.0004, -0.00002, 0.0003};
+  r.axes[1] = {-0.0002, 0.0025, 0.00094, -0.21, -0.0002, 0.0004, 0.00005, 0.0003};
+  r.axes[2] = {0.0123, 0.0024, 0.0009, 13.7, -0.0049, 0.0004, -0.0049, 0.0004};
+  if (signatures) r.signatures = BiasSignatures{{-0.78, 0.02, -0.03}, {-0.8, -0.25, -0.2}};
+  report.camera_frame_residuals = r;
+  return report;
+}
+
+TEST(CalibrationReport, CameraFrameResidualsRoundTrip) {
+  for (bool signatures : {false, true}) {
+    const nlohmann::json json = ToJson(ReportWithCameraFrameResiduals(signatures));
+    StatusOr<CalibrationReport> read = CalibrationReportFromJson(json, "report.json");
+    ASSERT_TRUE(read.ok()) << read.status().message();
+    EXPECT_EQ(ToJson(*read), json);
+    ASSERT_TRUE(read->camera_frame_residuals.has_value());
+    const CameraFrameResiduals& r = *read->camera_frame_residuals;
+    EXPECT_EQ(r.images, 24);
+    EXPECT_EQ(r.fk_failed, 1);
+    EXPECT_EQ(r.depth_max, 71.25);
+    EXPECT_EQ(r.axes[2].t, 13.7);
+    EXPECT_EQ(r.axes[1].scale_slope, 0.00005);
+    EXPECT_EQ(r.signatures.has_value(), signatures);
+    if (signatures) {
+      EXPECT_EQ(r.signatures->target_scale.y_slope, -0.2);
+    }
+    EXPECT_EQ(json["camera_frame_residuals"]["axes"]["z"]["std"], 0.0024);
+    EXPECT_THAT(json["camera_frame_residuals"]["finding"].get<std::string>(),
+                HasSubstr("a bias along the optical axis; points to the focal length"));
+  }
+}
+
+// Reports written before the diagnosis have no key (and a null one reads as none).
+TEST(CalibrationReport, ReportsWithoutCameraFrameResidualsLoad) {
+  nlohmann::json json = ToJson(SampleReport());
+  EXPECT_TRUE(json["camera_frame_residuals"].is_null());
+  StatusOr<CalibrationReport> null_key = CalibrationReportFromJson(json, "report.json");
+  ASSERT_TRUE(null_key.ok()) << null_key.status().message();
+  EXPECT_FALSE(null_key->camera_frame_residuals.has_value());
+  json.erase("camera_frame_residuals");
+  StatusOr<CalibrationReport> old = CalibrationReportFromJson(json, "report.json");
+  ASSERT_TRUE(old.ok()) << old.status().message();
+  EXPECT_FALSE(old->camera_frame_residuals.has_value());
+  EXPECT_THAT(FormatCalibrationSummary(*old), Not(HasSubstr("camera-frame residuals")));
+}
+
+TEST(CalibrationReport, SummaryHasTheCameraFrameLine) {
+  EXPECT_THAT(FormatCalibrationSummary(ReportWithCameraFrameResiduals(false)),
+              HasSubstr("\ncamera-frame residuals (cm, 24 images, mean ± standard error; robot − camera): x +0.0000 ± "
+                        "0.0011, y -0.00020 ± 0.00094, z +0.01230 ± 0.00090 (t = +13.7, depth slope -0.490 % ± "
+                        "0.040 %): a bias along the optical axis; points to the focal length (camera depths about "
+                        "0.49 % too long)\n"));
+}
+
 TEST(CalibrationReport, SummaryNamesEachOutlier) {
   const std::string excluded = FormatCalibrationSummary(ReportWithOutliers(false));
   EXPECT_THAT(excluded, HasSubstr("outlier: img_007.png (legs.csv line 9) leg 3: residual 1.002 cm = 48.12 sigma; "
@@ -144,6 +207,12 @@ TEST(CalibrationReport, WrongDocumentsNameTheKey) {
   json = ToJson(ReportWithOutliers(false));
   json["outliers"][1]["excluded"] = "yes";
   EXPECT_THAT(ErrorOf(json.dump()), HasSubstr("key 'outliers[1].excluded': expected true or false"));
+  json = ToJson(ReportWithCameraFrameResiduals(true));
+  json["camera_frame_residuals"]["axes"]["z"]["t"] = "x";
+  EXPECT_THAT(ErrorOf(json.dump()), HasSubstr("key 'camera_frame_residuals.axes.z.t': expected a finite number"));
+  json = ToJson(ReportWithCameraFrameResiduals(true));
+  json["camera_frame_residuals"]["signatures"].erase("focal_length");
+  EXPECT_THAT(ErrorOf(json.dump()), HasSubstr("key 'camera_frame_residuals.signatures.focal_length': missing"));
 }
 
 TEST(CalibrationReport, SaveAndLoad) {

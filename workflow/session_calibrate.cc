@@ -18,6 +18,7 @@
 #include "core/staged_folder.h"
 #include "core/validation.h"
 #include "vision/measure.h"
+#include "workflow/camera_frame_diagnosis.h"
 #include "workflow/expected_error.h"
 #include "workflow/measure_step.h"
 #include "workflow/session_measure.h"
@@ -354,6 +355,10 @@ void MapFittedPoses(const Robot& nominal, const Registration& frames, const std:
 struct PixelOutcome {
   PixelFitSummary summary;
   std::optional<Camera> camera;  // with the estimated intrinsics; none when they were kept
+  Camera fitted_camera;          // the camera the fit ended with (the file's when kept)
+  double target_scale = 1;       // the target's fitted scale
+  // camera_from_target of each calibration image (robot unit) with them.
+  std::vector<std::optional<Pose>> camera_poses;
 };
 
 // The two-stage result replaced by the calibration from pixels: its
@@ -383,7 +388,8 @@ StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const OpenSession
   *validation = *again;
   const bool intrinsics = request.from_pixels.focal || request.from_pixels.principal_point;
   return PixelOutcome{SummarizeSessionPixelFit(*fit, two_stage),
-                      intrinsics ? std::optional<Camera>(fit->fit.camera) : std::nullopt};
+                      intrinsics ? std::optional<Camera>(fit->fit.camera) : std::nullopt, fit->fit.camera,
+                      fit->fit.target_scale, fit->calibration_poses};
 }
 
 }  // namespace
@@ -435,6 +441,28 @@ StatusOr<OpenSession> OpenAndMeasure(const std::string& dir, LockWait wait, cons
                      std::move(observations)};
 }
 
+// The bias diagnosis (camera_frame_diagnosis.h) with the camera the
+// calibration ended with: the board poses of the fitted camera and target
+// scale after a calibration from pixels, the session's otherwise.
+std::optional<CameraFrameResiduals> CameraFrameDiagnosis(const SessionInputs& in, const SplitRows& split,
+                                                         double scale, const CameraCalibrationResult& result,
+                                                         const std::optional<PixelOutcome>& from_pixels,
+                                                         const CalibrationOptions& calibration,
+                                                         const JobHooks& hooks) {
+  CameraCalibrationInput input = split.input;
+  Camera camera = in.camera;
+  double robot_per_target_unit = scale;
+  if (from_pixels) {
+    for (size_t j = 0; j < input.camera_from_target.size(); ++j)
+      if (from_pixels->camera_poses[j]) input.camera_from_target[j] = *from_pixels->camera_poses[j];
+    camera = from_pixels->fitted_camera;
+    robot_per_target_unit *= from_pixels->target_scale;
+  }
+  return SessionCameraFrameResiduals(in.nominal, input, result, SessionRegistrationOptions(in.config.noise),
+                                     calibration,
+                                     SessionBiasModels(camera, in.target, robot_per_target_unit), hooks);
+}
+
 }  // namespace
 
 StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& request, const JobHooks& hooks) {
@@ -481,6 +509,7 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   report.validation = *validation;
   if (from_pixels) report.from_pixels = from_pixels->summary;
   report.noise = ExpectedNoise(*in, held_out, result->calibration.robot);
+  report.camera_frame_residuals = CameraFrameDiagnosis(*in, split, scale, *result, from_pixels, calibration, hooks);
   if (request.outliers.enabled) {
     report.screening = OutlierScreeningSummary{request.outliers.threshold, request.outliers.keep,
                                                report.calibration_images >= kMinRowsToScreen};
@@ -573,6 +602,7 @@ std::string FormatCalibrationSummary(const CalibrationReport& report) {
         << "\n";
   }
   if (report.from_pixels) out << FormatPixelFitSummary(*report.from_pixels, unit);
+  if (report.camera_frame_residuals) out << FormatCameraFrameLine(*report.camera_frame_residuals, unit) << "\n";
   out << OutlierLines(report);
   out << "wrote " << report.calibrated_robot << ", " << CalibrationReportPath(report.session) << ", frames in "
       << SessionPaths(report.session).config << "\n";

@@ -1,6 +1,7 @@
 #include "workflow/session_report.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -18,6 +19,7 @@
 #include "workflow/calibration_report.h"
 #include "workflow/calibration_verdict.h"
 #include "workflow/pixel_report_section.h"
+#include "workflow/camera_frame_diagnosis.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_results.h"
 
@@ -183,6 +185,34 @@ std::string OutlierSection(const CalibrationReport& report) {
   return html + "</table>\n";
 }
 
+// FK of the calibrated robot against the camera, per camera axis, and the
+// finding (docs/calibration.md, "Bias along the optical axis").
+std::string CameraFrameSection(const CalibrationReport& report) {
+  if (!report.camera_frame_residuals) return "";
+  const CameraFrameResiduals& r = *report.camera_frame_residuals;
+  const std::string u = Escape(report.length_unit);
+  std::string html =
+      "<h2>Camera-frame residuals</h2><p>Where the calibrated robot puts the platform (FK from the readings) minus "
+      "where the camera saw it, in the camera frame (z along the optical axis, away from the camera), over " +
+      std::to_string(r.images) + " calibration images, platform depths " + Figure(r.depth_min) + " to " +
+      Figure(r.depth_max) + " " + u + ". Slopes are unit-free: the residual's change per " + u +
+      " of depth, and per " + u + " of the axis's own coordinate.</p>\n<table><tr><th>axis</th><th>mean (" + u +
+      ")</th><th>std (" + u + ")</th><th>standard error (" + u +
+      ")</th><th>t</th><th>slope with depth (%)</th><th>slope with the axis (%)</th></tr>\n";
+  for (int a = 0; a < 3; ++a) {
+    const AxisResiduals& axis = r.axes[a];
+    html += "<tr><td>" + std::string(1, "xyz"[a]) + "</td><td>" + FixedLike(axis.mean, axis.standard_error) +
+            "</td><td>" + Figure(axis.std_dev) + "</td><td>" + Figure(axis.standard_error) + "</td><td>" +
+            FixedLike(axis.t, 1) + "</td><td>" + FixedLike(100 * axis.depth_slope, 100 * axis.depth_slope_se) +
+            " &plusmn; " + FixedLike(100 * axis.depth_slope_se, 100 * axis.depth_slope_se, false) + "</td><td>" +
+            FixedLike(100 * axis.scale_slope, 100 * axis.scale_slope_se) + " &plusmn; " +
+            FixedLike(100 * axis.scale_slope_se, 100 * axis.scale_slope_se, false) + "</td></tr>\n";
+  }
+  std::string finding = CameraFrameFindingText(r);
+  if (!finding.empty()) finding[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(finding[0])));
+  return html + "</table><p><b>" + Escape(finding) + ".</b></p>\n";
+}
+
 }  // namespace
 
 StatusOr<std::string> SessionReportHtml(const std::string& dir) {
@@ -228,6 +258,7 @@ StatusOr<std::string> SessionReportHtml(const std::string& dir) {
     html += "<h2>Validation</h2>\n" + ChartHtml(charts::ValidationSummaryChart(errors, unit));
   }
 
+  html += CameraFrameSection(report);
   html += OutlierSection(report);
   html += ResidualSection(paths, *nominal);
   std::vector<charts::ParameterChange> changes;

@@ -15,6 +15,8 @@ for robot in inria-left-hand deltalab-table; do
   out=$dir/$robot
   "$hexcal" demo --robot "$robot" --poses 14 --holdout 4 --seed 3 --out "$out" --json >"$dir/summary.json" 2>"$dir/log"
   grep -q "\[5/5" "$dir/log"  # progress of every step
+  # The virtual camera has no bias (docs/calibration.md, "Bias along the optical axis").
+  grep -q "camera-frame residuals (.*, 14 images, .*): no bias along the optical axis" "$dir/log"
   python3 - "$dir/summary.json" <<'PY'
 import json, sys
 s = json.load(open(sys.argv[1]))
@@ -28,7 +30,7 @@ assert s["usable_images"] == 18, s["usable_images"]
 PY
   report=$out/results/report.html
   [ "$(grep -c '<svg' "$report")" -eq 5 ]
-  for section in Plan Registration Measurements Validation Residuals "Calibrated parameters"; do
+  for section in Plan Registration Measurements Validation "Camera-frame residuals" Residuals "Calibrated parameters"; do
     grep -q "<h2>$section" "$report"
   done
   [ -s "$out/truth/robot.yaml" ] && [ -s "$out/plan.csv" ] && [ "$(ls "$out/images" | wc -l)" -eq 18 ]
