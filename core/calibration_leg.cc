@@ -1,3 +1,4 @@
+#include "core/ceres_cancel.h"
 #include "core/calibration_leg.h"
 
 #include <Eigen/SVD>
@@ -112,17 +113,6 @@ std::unique_ptr<ceres::LossFunction> MakeLoss(const CalibrationOptions& options,
   return std::make_unique<CauchyLoss>(scale);
 }
 
-class CancelCallback final : public ceres::IterationCallback {
- public:
-  explicit CancelCallback(const JobHooks& hooks) : hooks_(hooks) {}
-  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
-    return hooks_.Cancelled() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
-  }
-
- private:
-  const JobHooks& hooks_;
-};
-
 ceres::Solver::Options SolverOptions(const CalibrationOptions& options) {
   ceres::Solver::Options solver;
   solver.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
@@ -213,7 +203,7 @@ StatusOr<LegCalibration> CalibrateLeg(int leg, const LegData& data, const LegPar
                              parameters.data());
   }
   ceres::Solver::Options solver = SolverOptions(options);
-  CancelCallback cancel_callback(hooks);
+  CeresCancelCallback cancel_callback(hooks);
   if (hooks.cancel != nullptr) solver.callbacks.push_back(&cancel_callback);
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);

@@ -59,9 +59,7 @@ CameraCalibrationInput MakeInput(const Robot& truth, const Robot& nominal, const
 // when they grow with depth, the signatures of the two causes.
 CameraFrameResiduals CalibrateAndDiagnose(const Robot& nominal, const CameraCalibrationInput& input) {
   NoiseModel noise{kPositionNoise, kAngleNoiseDeg, kLegNoise};
-  RegistrationOptions registration;
-  registration.position_sigma = noise.PositionStdDev();
-  registration.angle_sigma_deg = RadToDeg(noise.AngleStdDevRad());
+  const RegistrationOptions registration = RegistrationOptionsFromNoise(noise);
   CalibrationOptions calibration;
   calibration.weighted = true;
   calibration.noise = noise;

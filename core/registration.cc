@@ -13,6 +13,13 @@
 
 namespace hexcal {
 
+RegistrationOptions RegistrationOptionsFromNoise(const NoiseModel& noise) {
+  RegistrationOptions options;
+  options.position_sigma = noise.PositionStdDev();
+  options.angle_sigma_deg = RadToDeg(noise.AngleStdDevRad());
+  return options;
+}
+
 Pose Compose(const Pose& a_from_b, const Pose& b_from_c) {
   Pose a_from_c;
   a_from_c.rotation = a_from_b.rotation * b_from_c.rotation;

@@ -43,6 +43,7 @@
 #include "core/calibration.h"
 #include "core/job_hooks.h"
 #include "core/measurements.h"
+#include "core/noise_model.h"
 #include "core/pose.h"
 #include "core/robot.h"
 #include "core/status.h"
@@ -61,6 +62,10 @@ struct RegistrationOptions {
 
   bool IsValid(std::string* error) const;
 };
+
+// The refinement weighted by a noise model's position and angle standard
+// deviations (what a session calibrates with, docs/session.md).
+RegistrationOptions RegistrationOptionsFromNoise(const NoiseModel& noise);
 
 struct Registration {
   Pose base_from_camera;      // X

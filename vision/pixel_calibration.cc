@@ -9,6 +9,7 @@
 #include <memory>
 #include <thread>
 
+#include "core/ceres_cancel.h"
 #include "core/registration.h"
 #include "vision/pixel_calibration_cost.h"
 #include "vision/pixel_calibration_covariance.h"
@@ -17,17 +18,6 @@ namespace hexcal {
 namespace {
 
 constexpr int kMinImages = 7;  // as Calibrate: 7 parameters per leg
-
-class CancelCallback final : public ceres::IterationCallback {
- public:
-  explicit CancelCallback(const JobHooks& hooks) : hooks_(hooks) {}
-  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
-    return hooks_.Cancelled() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
-  }
-
- private:
-  const JobHooks& hooks_;
-};
 
 Status CheckInput(const PixelCalibrationInput& input, const PixelCalibrationOptions& options) {
   std::string error;
@@ -184,7 +174,7 @@ StatusOr<PixelCalibrationResult> CalibrateFromPixels(const PixelCalibrationInput
   }
   FixUnestimated(options, &unknowns, &problem);
   ceres::Solver::Options solver = SolverOptions(options, &unknowns);
-  CancelCallback cancel(hooks);
+  CeresCancelCallback cancel(hooks);
   if (hooks.cancel != nullptr) solver.callbacks.push_back(&cancel);
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);

@@ -116,9 +116,7 @@ CameraCalibrationResult TwoStage(const Scene& scene, const Camera& camera) {
     input.fk_start.push_back(scene.poses[j]);
   }
   const NoiseModel noise;  // the paper's levels, as the scene's legs
-  RegistrationOptions registration;
-  registration.position_sigma = noise.PositionStdDev();
-  registration.angle_sigma_deg = RadToDeg(noise.AngleStdDevRad());
+  const RegistrationOptions registration = RegistrationOptionsFromNoise(noise);
   CalibrationOptions calibration;
   calibration.weighted = true;
   calibration.noise = noise;

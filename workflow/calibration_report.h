@@ -61,7 +61,7 @@ struct LegFit {
   std::string termination;
   // σ_max/σ_min of the leg's weighted identification Jacobian at the
   // estimate; none in reports older than the verdict (calibration_verdict.h).
-  std::optional<double> condition_number;
+  std::optional<double> condition_number = std::nullopt;
 };
 
 // A leg reading that failed the outlier screening (core/outlier_screening.h).

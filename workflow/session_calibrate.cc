@@ -300,12 +300,7 @@ Status CheckInputsUnchanged(const std::string& dir, const ContentHashes& before)
 }
 
 // The session's noise model weighs the closure residuals of the registration.
-RegistrationOptions SessionRegistrationOptions(const NoiseModel& noise) {
-  RegistrationOptions registration;
-  registration.position_sigma = noise.PositionStdDev();
-  registration.angle_sigma_deg = RadToDeg(noise.AngleStdDevRad());
-  return registration;
-}
+RegistrationOptions SessionRegistrationOptions(const NoiseModel& noise) { return RegistrationOptionsFromNoise(noise); }
 
 // A session opened under its lock with every image measured: what calibrating
 // and the section 8 study both start from.

@@ -36,7 +36,7 @@ struct CalibrateSessionRequest {
   OutlierScreening outliers = {/*enabled=*/true};
   // Then the calibration from pixels, started from the two-stage one
   // (session_pixels.h); its figures replace the two-stage ones.
-  FromPixelsRequest from_pixels;
+  FromPixelsRequest from_pixels = {};
 };
 
 // Stages reported through hooks.stage: "measure (images)", then "register and
