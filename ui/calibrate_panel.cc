@@ -22,6 +22,8 @@
 #include "ui/quantity_format.h"
 #include "ui/verdict_view.h"
 #include "workflow/calibration_verdict.h"
+#include "workflow/camera_frame_diagnosis.h"
+#include "workflow/pixel_fit_summary.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_results.h"
 
@@ -32,6 +34,19 @@ namespace fs = std::filesystem;
 
 std::string ResultsFile(const SessionState& session, const char* name) {
   return (fs::path(session.Paths().results) / name).string();
+}
+
+// The lines `hexcal calibrate --session` prints for the calibration from
+// pixels and the camera-frame residuals, as HTML lines.
+QString MethodLines(const workflow::CalibrationReport& report) {
+  std::string text = report.from_pixels ? workflow::FormatPixelFitSummary(*report.from_pixels, report.length_unit)
+                                        : "two-stage calibration (legs fitted to the board poses)\n";
+  if (report.camera_frame_residuals)
+    text += workflow::FormatCameraFrameLine(*report.camera_frame_residuals, report.length_unit) + "\n";
+  QString html;
+  for (const QString& line : QString::fromStdString(text).split('\n', Qt::SkipEmptyParts))
+    html += "<br>" + line.toHtmlEscaped();
+  return html;
 }
 
 // Sorts by the number it holds, whatever its text.
@@ -193,6 +208,7 @@ void CalibratePanel::Refresh() {
                         .arg(FormatLength(reg.position_rms, unit).toHtmlEscaped(), FormatAngle(reg.angle_rms_deg),
                              FormatLength(report.closure_position_rms, unit).toHtmlEscaped(),
                              FormatAngle(report.closure_angle_rms_deg)) +
+                    MethodLines(report) +
                     (session_->ResultsNote().isEmpty()
                          ? QString()
                          : "<br><b>Stale:</b> " + session_->ResultsNote().toHtmlEscaped()));

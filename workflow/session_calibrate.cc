@@ -357,9 +357,9 @@ struct PixelOutcome {
 };
 
 // The two-stage result replaced by the calibration from pixels: its
-// parameters, and the closure and held-out validation with the board poses of
-// the fitted camera. calibration_measurements.csv keeps the rows of the
-// two-stage fit (the session camera's board poses in the base frame).
+// parameters, and the closure, held-out validation and the rows of
+// calibration_measurements.csv with the board poses of the fitted camera
+// (X·B'·Y⁻¹), which the residual charts compare the calibrated robot with.
 StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const OpenSession& open, const SplitRows& split,
                                        const CalibrateSessionRequest& request, const JobHooks& hooks,
                                        CameraCalibrationResult* result, std::vector<Measurement>* held_out,
@@ -377,6 +377,7 @@ StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const OpenSession
   if (!closure.ok()) return closure.status().AsFailure();
   result->calibrated_position_rms = closure->position.rms;
   result->calibrated_angle_rms_deg = closure->orientation_deg.rms;
+  result->measurements = std::move(camera_rows);  // calibration_measurements.csv: with the fitted camera
   MapFittedPoses(in.nominal, result->registration, fit->held_out_poses, held_out);
   StatusOr<std::optional<ValidationSummary>> again = ValidateHeldOut(in, split.held_out, *held_out, *result);
   if (!again.ok()) return again.status();

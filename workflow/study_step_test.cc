@@ -56,10 +56,14 @@ class StudySession : public ::testing::Test {
 };
 TempDir* StudySession::dir_ = nullptr;
 
-// With nothing held out, calibrate --session registered and mapped every
-// image as the study does: results/calibration_measurements.csv holds the same rows
-// (calibrate measured the images in memory, the study reads measurements.csv).
+// With nothing held out, calibrate --session --two-stage registered and
+// mapped every image as the study does: results/calibration_measurements.csv
+// holds the same rows (calibrate measured the images in memory, the study
+// reads measurements.csv). The study calibrates its subsets two-stage.
 TEST_F(StudySession, MeasuredPosesAreThoseCalibrateIdentifiedFrom) {
+  CalibrateSessionRequest two_stage{Session()};
+  two_stage.from_pixels.enabled = false;
+  ASSERT_TRUE(CalibrateSession(two_stage).ok());
   StatusOr<MeasuredSession> session = LoadMeasuredSession(Session());
   ASSERT_TRUE(session.ok()) << session.status().message();
   StatusOr<std::vector<Measurement>> used = LoadMeasurements(Session() + "/results/calibration_measurements.csv");
