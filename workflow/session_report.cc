@@ -19,6 +19,7 @@
 #include "workflow/calibration_verdict.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_results.h"
+#include "workflow/study_report_section.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -225,6 +226,7 @@ StatusOr<std::string> SessionReportHtml(const std::string& dir) {
                                           v.after.orientation_rms};
     html += "<h2>Validation</h2>\n" + ChartHtml(charts::ValidationSummaryChart(errors, unit));
   }
+  html += StudyReportSection(dir);  // the section 8 study, when study/ holds one
 
   html += OutlierSection(report);
   html += ResidualSection(paths, *nominal);
