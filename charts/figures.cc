@@ -223,11 +223,11 @@ ChartSpec SubsetHistogramChart(const std::string& title, const std::string& x_la
   return spec;
 }
 
-ChartSpec StudyMetricChart(SubsetMetric metric, const std::vector<double>& random, double selected, int subsets,
-                           int select, const std::string& length_unit) {
+ChartSpec StudyMetricChart(SubsetMetric metric, const std::vector<double>& random, double selected, int select,
+                           const std::string& length_unit) {
   const std::string label = SubsetMetricLabel(metric, length_unit);
-  const std::string title = std::string(HigherIsBetter(metric) ? "Fig. 18: " : "Fig. 19: ") + label + ", " +
-                            std::to_string(subsets) + " random " + std::to_string(select) + "-subsets";
+  const std::string title =
+      std::string(HigherIsBetter(metric) ? "Fig. 18: " : "Fig. 19: ") + label + ", N = " + std::to_string(select);
   return SubsetHistogramChart(title, label, random, selected);
 }
 

@@ -40,11 +40,12 @@ ChartSpec Fig15Chart(const SweepResult& sweep, const std::string& length_unit, b
 ChartSpec SubsetHistogramChart(const std::string& title, const std::string& x_label, const std::vector<double>& random,
                                double selected, int bins = 40);
 // The study's figure of one metric: Fig. 18 for an index, Fig. 19 for a
-// held-out error, titled with the `subsets` random `select`-subsets it drew.
+// held-out error, titled with the subset size N = `select` (the legend
+// counts the random subsets; a title short enough for a GUI chart).
 // `hexcal study --plots`, the session's study/ folder, the HTML report and
 // the GUI's study view all draw this one.
-ChartSpec StudyMetricChart(SubsetMetric metric, const std::vector<double>& random, double selected, int subsets,
-                           int select, const std::string& length_unit);
+ChartSpec StudyMetricChart(SubsetMetric metric, const std::vector<double>& random, double selected, int select,
+                           const std::string& length_unit);
 
 // --- Planning ---
 

@@ -88,11 +88,12 @@ TEST(SubsetHistogramChart, OutlineCountsEveryValueAndMarksTheSelected) {
 }
 
 TEST(StudyMetricChart, Fig18ForAnIndexFig19ForAHeldOutError) {
-  const ChartSpec index = StudyMetricChart(SubsetMetric::kO1, {1, 2, 3}, 2.5, 3, 13, "cm");
-  EXPECT_EQ(index.title, "Fig. 18: O1, 3 random 13-subsets");
+  const ChartSpec index = StudyMetricChart(SubsetMetric::kO1, {1, 2, 3}, 2.5, 13, "cm");
+  EXPECT_EQ(index.title, "Fig. 18: O1, N = 13");
+  EXPECT_EQ(index.series[0].name, "3 random subsets");
   EXPECT_EQ(index.x.label, "O1");
-  const ChartSpec error = StudyMetricChart(SubsetMetric::kHeldOutPosition, {0.1, 0.2}, NAN, 5, 13, "cm");
-  EXPECT_EQ(error.title, "Fig. 19: held-out position RMS (cm), 5 random 13-subsets");
+  const ChartSpec error = StudyMetricChart(SubsetMetric::kHeldOutPosition, {0.1, 0.2}, NAN, 13, "cm");
+  EXPECT_EQ(error.title, "Fig. 19: held-out position RMS (cm), N = 13");
   EXPECT_EQ(error.x.label, "held-out position RMS (cm)");
   EXPECT_EQ(error.series.size(), 1u);  // no selected value: no dashed line
 }

@@ -98,7 +98,7 @@ std::string Figures(const SessionStudy& study) {
   for (SubsetMetric metric : kReportOrder) {
     html += (shown++ % 2 == 0 ? "<div style=\"display:flex;gap:8px\">" : "") + cell;
     html += ChartHtml(charts::StudyMetricChart(metric, study.RandomValuesOf(metric), r.Metric(metric).selected,
-                                               r.random_count, r.select, r.length_unit));
+                                               r.select, r.length_unit));
     html += shown % 2 == 0 ? "</div></div>\n" : "</div>";
   }
   return html;

@@ -176,9 +176,9 @@ const char* StudyFigureStem(SubsetMetric metric) {
 Status WriteStudyFigures(const StudyOutcome& outcome, const std::string& directory, std::vector<std::string>* written) {
   const SubsetStudyResult& result = outcome.result;
   for (SubsetMetric metric : kSubsetMetrics) {
-    const charts::ChartSpec spec = charts::StudyMetricChart(
-        metric, RandomValues(result, metric), SelectedValue(result, metric), static_cast<int>(result.random.size()),
-        outcome.request.study.select, outcome.length_unit);
+    const charts::ChartSpec spec =
+        charts::StudyMetricChart(metric, RandomValues(result, metric), SelectedValue(result, metric),
+                                 outcome.request.study.select, outcome.length_unit);
     if (Status s = charts::WriteChartFiles(spec, directory, StudyFigureStem(metric), written); !s.ok()) return s;
   }
   return Status::Ok();
