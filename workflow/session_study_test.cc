@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <future>
+#include <thread>
 
 #include "core/session.h"
 #include "tests/test_support.h"
@@ -124,6 +126,31 @@ TEST_F(KeptStudy, NoSaveLeavesTheSessionAlone) {
   EXPECT_TRUE(run->saved.empty());
   EXPECT_FALSE(fs::exists(StudyFolderPath(session)));
   EXPECT_TRUE(ToJson(*run)["saved"].is_null());
+}
+
+// Another writer holds the session: nothing is written, and the caller hears "busy".
+TEST_F(KeptStudy, IsNotWrittenWhileAnotherWriterHoldsTheSession) {
+  const std::string session = CopyOfSession();
+  StudyRequest request = SmallStudy(session);
+  request.save = false;
+  StatusOr<StudyOutcome> run = RunStudy(request);
+  ASSERT_TRUE(run.ok()) << run.status().message();
+  std::promise<bool> locked;
+  std::promise<void> release;
+  std::thread writer([&] {  // the lock is re-entrant per thread: another thread is another writer
+    StatusOr<SessionLock> lock = SessionLock::Acquire(session, LockWait::kNo);
+    locked.set_value(lock.ok());
+    release.get_future().wait();
+  });
+  EXPECT_TRUE(locked.get_future().get());
+  const Status saved = SaveSessionStudy(&*run, LockWait::kNo);
+  release.set_value();
+  writer.join();
+  EXPECT_EQ(saved.kind(), StatusKind::kBusy) << saved.message();
+  EXPECT_FALSE(fs::exists(StudyFolderPath(session)));
+  EXPECT_TRUE(run->saved.empty());
+  ASSERT_TRUE(SaveSessionStudy(&*run, LockWait::kNo).ok());  // free again
+  EXPECT_TRUE(HasSessionStudy(session));
 }
 
 TEST_F(KeptStudy, ChangedInputsMakeItStaleAndTheReportSaysSo) {
