@@ -223,4 +223,12 @@ ChartSpec SubsetHistogramChart(const std::string& title, const std::string& x_la
   return spec;
 }
 
+ChartSpec StudyMetricChart(SubsetMetric metric, const std::vector<double>& random, double selected, int select,
+                           const std::string& length_unit) {
+  const std::string label = SubsetMetricLabel(metric, length_unit);
+  const std::string title =
+      std::string(HigherIsBetter(metric) ? "Fig. 18: " : "Fig. 19: ") + label + ", N = " + std::to_string(select);
+  return SubsetHistogramChart(title, label, random, selected);
+}
+
 }  // namespace hexcal::charts

@@ -18,6 +18,7 @@
 #include "core/measurements.h"
 #include "core/robot.h"
 #include "core/simulation.h"
+#include "core/subset_study.h"
 
 namespace hexcal::charts {
 
@@ -38,6 +39,13 @@ ChartSpec Fig15Chart(const SweepResult& sweep, const std::string& length_unit, b
 // vertical line. Non-finite values are left out.
 ChartSpec SubsetHistogramChart(const std::string& title, const std::string& x_label, const std::vector<double>& random,
                                double selected, int bins = 40);
+// The study's figure of one metric: Fig. 18 for an index, Fig. 19 for a
+// held-out error, titled with the subset size N = `select` (the legend
+// counts the random subsets; a title short enough for a GUI chart).
+// `hexcal study --plots`, the session's study/ folder, the HTML report and
+// the GUI's study view all draw this one.
+ChartSpec StudyMetricChart(SubsetMetric metric, const std::vector<double>& random, double selected, int select,
+                           const std::string& length_unit);
 
 // --- Planning ---
 

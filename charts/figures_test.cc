@@ -87,6 +87,17 @@ TEST(SubsetHistogramChart, OutlineCountsEveryValueAndMarksTheSelected) {
   EXPECT_DOUBLE_EQ(spec.series[1].points[1].y, 2.0);  // as tall as the tallest bin
 }
 
+TEST(StudyMetricChart, Fig18ForAnIndexFig19ForAHeldOutError) {
+  const ChartSpec index = StudyMetricChart(SubsetMetric::kO1, {1, 2, 3}, 2.5, 13, "cm");
+  EXPECT_EQ(index.title, "Fig. 18: O1, N = 13");
+  EXPECT_EQ(index.series[0].name, "3 random subsets");
+  EXPECT_EQ(index.x.label, "O1");
+  const ChartSpec error = StudyMetricChart(SubsetMetric::kHeldOutPosition, {0.1, 0.2}, NAN, 13, "cm");
+  EXPECT_EQ(error.title, "Fig. 19: held-out position RMS (cm), N = 13");
+  EXPECT_EQ(error.x.label, "held-out position RMS (cm)");
+  EXPECT_EQ(error.series.size(), 1u);  // no selected value: no dashed line
+}
+
 TEST(Fig15Chart, OneLinePerSetAgainstThePoseCount) {
   SweepResult sweep;
   sweep.points = {{8, {Set("random", 8, 0.3, 0.2), Set("plan", 8, 0.01, 0.004)}},

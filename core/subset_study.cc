@@ -225,6 +225,17 @@ const char* SubsetMetricName(SubsetMetric metric) {
   return "";
 }
 
+std::string SubsetMetricLabel(SubsetMetric metric, const std::string& length_unit) {
+  switch (metric) {
+    case SubsetMetric::kHeldOutPosition:
+      return "held-out position RMS (" + length_unit + ")";
+    case SubsetMetric::kHeldOutOrientation:
+      return "held-out orientation RMS (deg)";
+    default:
+      return SubsetMetricName(metric);
+  }
+}
+
 bool HigherIsBetter(SubsetMetric metric) {
   return metric != SubsetMetric::kHeldOutPosition && metric != SubsetMetric::kHeldOutOrientation;
 }

@@ -93,7 +93,16 @@ SubsetOutcome EvaluateSubset(const Robot& nominal, const std::vector<Measurement
                              const std::vector<int>& poses, const CalibrationOptions& calibration);
 
 enum class SubsetMetric { kO1, kO2, kO3, kO4, kHeldOutPosition, kHeldOutOrientation };
+// Every metric, in that order: the rows of the study's summary (Figs. 18, 19).
+constexpr SubsetMetric kSubsetMetrics[] = {SubsetMetric::kO1,
+                                           SubsetMetric::kO2,
+                                           SubsetMetric::kO3,
+                                           SubsetMetric::kO4,
+                                           SubsetMetric::kHeldOutPosition,
+                                           SubsetMetric::kHeldOutOrientation};
 const char* SubsetMetricName(SubsetMetric metric);  // "O1", ..., "heldout_position_rms", "heldout_orientation_rms"
+// What a person reads: "O1", ..., "held-out position RMS (cm)", "held-out orientation RMS (deg)".
+std::string SubsetMetricLabel(SubsetMetric metric, const std::string& length_unit);
 bool HigherIsBetter(SubsetMetric metric);           // the indices; the errors are better lower
 double MetricValue(const SubsetOutcome& outcome, SubsetMetric metric);
 // The metric over the random subsets that are ok (the indices over every random subset).

@@ -1,6 +1,7 @@
 // hexcal-gui [SESSION]
 // hexcal-gui --demo          opens the demo session (made by `hexcal demo` the first time)
-// hexcal-gui --screenshot FILE [--panel robot|plan|acquire|measure|calibrate|validate] [--size 1280x720] [SESSION]
+// hexcal-gui --screenshot FILE [--panel robot|plan|acquire|measure|calibrate|validate|study] [--size 1280x720]
+// [SESSION]
 //   renders the window for SESSION to a PNG and exits (tests, docs/gui.md).
 // hexcal-gui --controller sim --camera sim SESSION   connects the Acquire step's devices at start
 #include <QVTKOpenGLNativeWidget.h>
@@ -26,7 +27,10 @@ int main(int argc, char** argv) {
   parser.setApplicationDescription("hexcal-gui: plan, measure, calibrate and validate a hexapod");
   parser.addHelpOption();
   parser.addOption({"screenshot", "Render the window to FILE (PNG) and exit.", "FILE"});
-  parser.addOption({"panel", "Panel to show: robot, plan, acquire, measure, calibrate, validate.", "NAME"});
+  parser.addOption(
+      {"panel",
+       "Panel to show: robot, plan, acquire, measure, calibrate, validate, study (the Validate step's study tab).",
+       "NAME"});
   parser.addOption({"size", "Window size for --screenshot, WIDTHxHEIGHT (default 1280x720).", "WxH", "1280x720"});
   parser.addOption({"controller", "Acquire step: connect this controller at start (sim, none).", "URL"});
   parser.addOption({"camera", "Acquire step: connect this camera at start (sim, v4l2:N, file:PATH).", "URL"});
@@ -42,7 +46,7 @@ int main(int argc, char** argv) {
     return 2;
   if (parser.isSet("panel") && !window.ShowPanelNamed(parser.value("panel"))) {
     std::cerr << "hexcal-gui: --panel: '" << parser.value("panel").toStdString()
-              << "' is not robot, plan, acquire, measure, calibrate or validate\n";
+              << "' is not robot, plan, acquire, measure, calibrate, validate or study\n";
     return 2;
   }
   const QStringList size = parser.value("size").split('x');

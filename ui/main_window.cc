@@ -96,6 +96,12 @@ bool MainWindow::OpenSession(const QString& dir) {
 void MainWindow::ShowStep(Step step) { steps_->setCurrentRow(static_cast<int>(step)); }
 
 bool MainWindow::ShowPanelNamed(const QString& name) {
+  // "study": the Validate step's section 8 study tab.
+  if (name.compare("study", Qt::CaseInsensitive) == 0) {
+    ShowStep(Step::kValidate);
+    validate_->ShowStudyTab();
+    return true;
+  }
   for (int k = 0; k < kNumSteps; ++k)
     if (name.compare(StepName(static_cast<Step>(k)), Qt::CaseInsensitive) == 0) {
       ShowStep(static_cast<Step>(k));

@@ -60,10 +60,14 @@ void SessionState::Watch() {
 }
 
 // Every step's state at once, from the files' contents (workflow/session_status.h);
-// results/ comes back loaded for the panels, hashed once.
+// results/ and study/ come back loaded for the panels, the inputs hashed once.
 void SessionState::LoadStatus() {
-  StatusOr<workflow::SessionStatus> status = workflow::ReadSessionStatus(dir_.toStdString(), &results_);
+  const std::string dir = dir_.toStdString();
+  StatusOr<workflow::ContentHashes> inputs = Status::Error("not hashed");
+  StatusOr<workflow::SessionStatus> status = workflow::ReadSessionStatus(dir, &results_, &inputs);
   status_ = status.ok() ? std::optional<workflow::SessionStatus>(*status) : std::nullopt;
+  study_ = workflow::HasSessionStudy(dir) ? workflow::LoadSessionStudy(dir, inputs.ok() ? &*inputs : nullptr)
+                                          : StatusOr<workflow::SessionStudy>(Status::Error(kNoStudyYet));
 }
 
 std::string SessionState::Resolve(const std::string& name) const {

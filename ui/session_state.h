@@ -26,6 +26,7 @@
 #include "workflow/session_edits.h"
 #include "workflow/session_results.h"
 #include "workflow/session_status.h"
+#include "workflow/session_study.h"
 
 namespace hexcal::ui {
 
@@ -36,6 +37,9 @@ using StepState = workflow::StepStatus;
 enum class Step { kRobot, kPlan, kAcquire, kMeasure, kCalibrate, kValidate };
 constexpr int kNumSteps = 6;
 const char* StepName(Step step);  // "Robot", "Plan", "Acquire", ...
+
+// Study() of a session without study/.
+constexpr const char* kNoStudyYet = "No section 8 study yet: run it here (or hexcal study).";
 
 class SessionState : public QObject {
   Q_OBJECT
@@ -86,6 +90,10 @@ class SessionState : public QObject {
   // results/ as loaded at the last reload (workflow/session_results.h), read
   // once per reload for every panel: hashing the images is not free.
   const StatusOr<workflow::SessionResults>& Results() const { return results_; }
+  // study/ as loaded at the last reload (workflow/session_study.h), stale or
+  // not by the same input hashes; an error says there is none yet, or why it
+  // does not load.
+  const StatusOr<workflow::SessionStudy>& Study() const { return study_; }
   // Points the session at another camera file (intrinsics step).
   workflow::EditOutcome SetCamera(const std::string& camera_name, bool overwrite = false);
 
@@ -112,6 +120,7 @@ class SessionState : public QObject {
   QString legs_error_;
   std::optional<workflow::SessionStatus> status_;  // none when the status could not be read
   StatusOr<workflow::SessionResults> results_ = Status::Error("No results yet: run the Calibrate step.");
+  StatusOr<workflow::SessionStudy> study_ = Status::Error(kNoStudyYet);
   QFileSystemWatcher watcher_;
   QTimer reload_timer_;  // folds a burst of changes (an atomic write is several) into one reload
 };

@@ -8,16 +8,18 @@
 #include <QLabel>
 #include <QPushButton>
 #include <QRegularExpression>
+#include <QTabWidget>
 #include <QTableWidget>
 #include <QVBoxLayout>
-#include <filesystem>
 #include <array>
 #include <cmath>
+#include <filesystem>
 
 #include "charts/figures.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
 #include "ui/quantity_format.h"
+#include "ui/study_view.h"
 #include "ui/verdict_view.h"
 #include "workflow/calibration_verdict.h"
 #include "workflow/session_report.h"
@@ -59,14 +61,23 @@ ValidatePanel::ValidatePanel(SessionState* session, QWidget* parent) : QWidget(p
   auto* charts = new QHBoxLayout;
   charts->addWidget(position_chart_);
   charts->addWidget(orientation_chart_);
+  auto* validation = new QWidget;
+  auto* validation_layout = new QVBoxLayout(validation);
+  validation_layout->addWidget(verdict_);
+  validation_layout->addWidget(status_);
+  validation_layout->addWidget(summary_);
+  validation_layout->addLayout(charts, 1);
+  study_ = new StudyView(session_);
+  tabs_ = new QTabWidget;
+  tabs_->addTab(validation, "Held-out validation");
+  tabs_->addTab(study_, "Section 8 study");
   auto* layout = new QVBoxLayout(this);
-  layout->addWidget(verdict_);
-  layout->addWidget(status_);
-  layout->addWidget(summary_);
-  layout->addLayout(charts, 1);
+  layout->addWidget(tabs_, 1);
   layout->addLayout(buttons);
   connect(session_, &SessionState::Changed, this, &ValidatePanel::Refresh);
 }
+
+void ValidatePanel::ShowStudyTab() { tabs_->setCurrentWidget(study_); }
 
 void ValidatePanel::Refresh() {
   for (int r = 0; r < 4; ++r)

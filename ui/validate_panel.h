@@ -1,7 +1,9 @@
-// Validate/Report step: the verdict on the calibration (ui/verdict_view.h), the held-out images' errors before (nominal robot)
+// Validate/Report step, two tabs: the verdict on the calibration
+// (ui/verdict_view.h) with the held-out images' errors before (nominal robot)
 // and after calibration, overall and per image (forward kinematics from the
-// readings against the camera pose, from results/report.json); export of the
-// calibrated robot file and of the HTML report (`hexcal report`).
+// readings against the camera pose, from results/report.json); and the
+// section 8 study of the session's poses (ui/study_view.h). Below both,
+// export of the calibrated robot file and of the HTML report (`hexcal report`).
 #pragma once
 
 #include <QWidget>
@@ -10,6 +12,7 @@
 #include "workflow/calibration_report.h"
 
 class QLabel;
+class QTabWidget;
 class QTableWidget;
 namespace QtCharts {
 class QChartView;
@@ -17,6 +20,7 @@ class QChartView;
 
 namespace hexcal::ui {
 
+class StudyView;
 class VerdictView;
 
 class ValidatePanel : public QWidget {
@@ -25,6 +29,8 @@ class ValidatePanel : public QWidget {
   ValidatePanel(SessionState* session, QWidget* parent = nullptr);
   QTableWidget* SummaryTable() const { return summary_; }
   VerdictView* VerdictWidget() const { return verdict_; }
+  StudyView* Study() const { return study_; }
+  void ShowStudyTab();
 
  public slots:
   void Refresh();
@@ -40,6 +46,8 @@ class ValidatePanel : public QWidget {
   QLabel* status_;
   QTableWidget* summary_;
   QtCharts::QChartView *position_chart_, *orientation_chart_;
+  QTabWidget* tabs_;
+  StudyView* study_;  // the section 8 study (ui/study_view.h)
 };
 
 }  // namespace hexcal::ui

@@ -112,6 +112,34 @@ std::vector<double> JsonFields::Numbers(const std::string& key, size_t count) {
   return values;
 }
 
+std::vector<int> JsonFields::Ints(const std::string& key) {
+  std::vector<int> values;
+  const nlohmann::json* field = Field(key, "a list of whole numbers");
+  if (field == nullptr) return values;
+  for (const nlohmann::json& value : field->is_array() ? *field : nlohmann::json::array({nullptr})) {
+    if (!value.is_number_integer()) {
+      Fail(key, "expected a list of whole numbers");
+      return {};
+    }
+    values.push_back(value.get<int>());
+  }
+  return values;
+}
+
+std::vector<std::string> JsonFields::Strings(const std::string& key) {
+  std::vector<std::string> values;
+  const nlohmann::json* field = Field(key, "a list of strings");
+  if (field == nullptr) return values;
+  for (const nlohmann::json& value : field->is_array() ? *field : nlohmann::json::array({nullptr})) {
+    if (!value.is_string()) {
+      Fail(key, "expected a list of strings");
+      return {};
+    }
+    values.push_back(value.get<std::string>());
+  }
+  return values;
+}
+
 JsonFields JsonFields::Object(const std::string& key) {
   const nlohmann::json* field = Field(key, "an object");
   if (field != nullptr && !field->is_object()) {

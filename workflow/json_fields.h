@@ -29,6 +29,8 @@ class JsonFields {
   bool Bool(const std::string& key);
   std::string String(const std::string& key);
   std::vector<double> Numbers(const std::string& key, size_t count);  // exactly `count`
+  std::vector<int> Ints(const std::string& key);                      // any length
+  std::vector<std::string> Strings(const std::string& key);           // any length
   bool Has(const std::string& key) const;  // present and not null
   // Nested readers share the first error with this one.
   JsonFields Object(const std::string& key);

@@ -523,7 +523,7 @@ StatusOr<MeasuredSession> LoadMeasuredSession(const std::string& dir, LockWait w
   const SessionInputs* in = &open->in;
   const CameraPoses* poses = &open->poses;
   const double scale = open->scale;
-  MeasuredSession session{in->nominal, in->config.noise, {}, {}, {}, 0};
+  MeasuredSession session{in->nominal, in->config.noise, {}, {}, {}, 0, open->hashes};
   CameraCalibrationInput input;
   for (const LegsRow& row : in->legs) {
     const CameraPose& pose = poses->at(row.image);

@@ -23,6 +23,7 @@
 #include "vision/target.h"
 #include "workflow/calibration_report.h"
 #include "workflow/session_pixels.h"
+#include "workflow/session_results.h"
 
 namespace hexcal::workflow {
 
@@ -77,6 +78,7 @@ struct MeasuredSession {
   std::vector<Measurement> measurements;  // base frame, robot unit, with the pose covariance
   Registration registration;
   int unusable = 0;  // rows without a usable board pose, left out
+  ContentHashes inputs;  // the session's inputs as they were read, under the lock (HashSessionInputs)
 };
 StatusOr<MeasuredSession> LoadMeasuredSession(const std::string& dir, LockWait wait = LockWait::kNo,
                                               const JobHooks& hooks = {});

@@ -22,6 +22,7 @@
 #include "workflow/camera_frame_diagnosis.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_results.h"
+#include "workflow/study_report_section.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -257,6 +258,7 @@ StatusOr<std::string> SessionReportHtml(const std::string& dir) {
                                           v.after.orientation_rms};
     html += "<h2>Validation</h2>\n" + ChartHtml(charts::ValidationSummaryChart(errors, unit));
   }
+  html += StudyReportSection(dir);  // the section 8 study, when study/ holds one
 
   html += CameraFrameSection(report);
   html += OutlierSection(report);

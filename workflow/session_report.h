@@ -3,7 +3,8 @@
 // paper), measurement quality per image, the registration, the calibration
 // residuals before and after, the calibrated parameters with σ and their
 // change from nominal, the held-out validation before and after, and the
-// camera-frame residuals with their bias finding (camera_frame_diagnosis.h). Charts
+// camera-frame residuals with their bias finding (camera_frame_diagnosis.h),
+// and the section 8 study when the session keeps one (study_report_section.h). Charts
 // are inline SVG of the figures in charts/figures.h (chart_render.h); nothing
 // is fetched. Draws with Qt: call on the thread that owns the QApplication.
 //

@@ -31,18 +31,6 @@ StatusOr<std::string> HashConfigInputs(const std::string& dir, const SessionConf
                    "\nnoise: " + NoiseModelText(config.noise) + "\n");
 }
 
-Status ReadHashes(const nlohmann::json& json, const char* key, const std::string& source, ContentHashes* out) {
-  const auto found = json.find(key);
-  if (found == json.end() || !found->is_object()) return Status::Error(source + ": " + key + ": missing or not an object");
-  for (const auto& [name, hash] : found->items()) {
-    if (!hash.is_string() || hash.get<std::string>().size() != 64) {
-      return Status::Error(source + ": " + key + "." + name + ": not a SHA-256 hex digest");
-    }
-    (*out)[name] = hash.get<std::string>();
-  }
-  return Status::Ok();
-}
-
 // Every output of the manifest has the hash it had when the run published it.
 Status CheckOutputs(const std::string& dir, const ResultsManifest& manifest) {
   const std::string results = SessionPaths(dir).results;
@@ -64,6 +52,19 @@ Status CheckOutputs(const std::string& dir, const ResultsManifest& manifest) {
 }
 
 }  // namespace
+
+Status ReadContentHashes(const nlohmann::json& json, const char* key, const std::string& source, ContentHashes* out) {
+  const auto found = json.find(key);
+  if (found == json.end() || !found->is_object())
+    return Status::Error(source + ": " + key + ": missing or not an object");
+  for (const auto& [name, hash] : found->items()) {
+    if (!hash.is_string() || hash.get<std::string>().size() != 64) {
+      return Status::Error(source + ": " + key + "." + name + ": not a SHA-256 hex digest");
+    }
+    (*out)[name] = hash.get<std::string>();
+  }
+  return Status::Ok();
+}
 
 StatusOr<std::string> HashSessionFile(const std::string& dir, const std::string& name) {
   const std::string resolved = ResolveSessionFile(dir, name);
@@ -97,8 +98,8 @@ StatusOr<ResultsManifest> ParseResultsManifest(const std::string& text, const st
   manifest.command = fields.String("command");
   if (!fields.status().ok()) return fields.status();
   if (format != kManifestFormat) return Status::Error(source + ": format " + std::to_string(format) + " is not 1");
-  if (Status s = ReadHashes(*json, "inputs", source, &manifest.inputs); !s.ok()) return s;
-  if (Status s = ReadHashes(*json, "outputs", source, &manifest.outputs); !s.ok()) return s;
+  if (Status s = ReadContentHashes(*json, "inputs", source, &manifest.inputs); !s.ok()) return s;
+  if (Status s = ReadContentHashes(*json, "outputs", source, &manifest.outputs); !s.ok()) return s;
   return manifest;
 }
 

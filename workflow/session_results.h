@@ -10,6 +10,7 @@
 #pragma once
 
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,8 @@ StatusOr<std::string> HashSessionFile(const std::string& session_dir, const std:
 
 // The hashes of everything a calibration of the session reads.
 StatusOr<ContentHashes> HashSessionInputs(const std::string& session_dir);
+// Reads `json[key]`, an object of name → SHA-256 hex digest, into `out`.
+Status ReadContentHashes(const nlohmann::json& json, const char* key, const std::string& source, ContentHashes* out);
 // The names whose hash differs between two sets, or that only one set has.
 std::vector<std::string> DifferingNames(const ContentHashes& a, const ContentHashes& b);
 

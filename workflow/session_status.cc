@@ -159,7 +159,8 @@ StatusOr<SessionStatus> ReadSessionStatus(const std::string& dir) {
   return ReadSessionStatus(dir, &results);
 }
 
-StatusOr<SessionStatus> ReadSessionStatus(const std::string& dir, StatusOr<SessionResults>* results) {
+StatusOr<SessionStatus> ReadSessionStatus(const std::string& dir, StatusOr<SessionResults>* results,
+                                          StatusOr<ContentHashes>* inputs) {
   *results = Status::Error("No results yet: run the Calibrate step.");
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   if (!config.ok()) return config.status();
@@ -176,6 +177,7 @@ StatusOr<SessionStatus> ReadSessionStatus(const std::string& dir, StatusOr<Sessi
   // reports its own error.
   const StatusOr<ContentHashes> hashes = HashSessionInputs(dir);
   const ContentHashes* known = hashes.ok() ? &*hashes : nullptr;
+  if (inputs != nullptr) *inputs = hashes;
   status.steps.push_back(MeasureStep(dir, rows, known));
   ResultSteps(dir, known, &status, results);
   return status;

@@ -35,8 +35,11 @@ struct SessionStatus {
 // Reads only; a session whose session.yaml does not load is an error.
 StatusOr<SessionStatus> ReadSessionStatus(const std::string& session_dir);
 // The same, also handing back results/ as it was loaded to judge it (or why
-// not), so that a caller showing the results does not hash every input twice.
-StatusOr<SessionStatus> ReadSessionStatus(const std::string& session_dir, StatusOr<SessionResults>* results);
+// not), and the session's input hashes (HashSessionInputs) when `inputs` is
+// given, so that a caller showing the results or the study
+// (session_study.h) does not hash every input twice.
+StatusOr<SessionStatus> ReadSessionStatus(const std::string& session_dir, StatusOr<SessionResults>* results,
+                                          StatusOr<ContentHashes>* inputs = nullptr);
 nlohmann::json ToJson(const SessionStatus& status);
 std::string FormatSessionStatus(const SessionStatus& status);
 

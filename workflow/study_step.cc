@@ -7,50 +7,13 @@
 
 #include "charts/chart_render.h"
 #include "charts/figures.h"
+#include "core/calibration_file.h"
 #include "core/parallel.h"
-#include "workflow/json_forms.h"
 #include "workflow/session_calibrate.h"
+#include "workflow/session_study.h"
 
 namespace hexcal::workflow {
 namespace {
-
-constexpr SubsetMetric kMetrics[] = {SubsetMetric::kO1,
-                                     SubsetMetric::kO2,
-                                     SubsetMetric::kO3,
-                                     SubsetMetric::kO4,
-                                     SubsetMetric::kHeldOutPosition,
-                                     SubsetMetric::kHeldOutOrientation};
-
-// The figure of each metric in `--plots`: Fig. 18 per index, Fig. 19 per error.
-const char* FigureStem(SubsetMetric metric) {
-  switch (metric) {
-    case SubsetMetric::kO1:
-      return "fig18_o1";
-    case SubsetMetric::kO2:
-      return "fig18_o2";
-    case SubsetMetric::kO3:
-      return "fig18_o3";
-    case SubsetMetric::kO4:
-      return "fig18_o4";
-    case SubsetMetric::kHeldOutPosition:
-      return "fig19_position";
-    case SubsetMetric::kHeldOutOrientation:
-      return "fig19_orientation";
-  }
-  return "";
-}
-
-// What a person reads for the metric, with its unit.
-std::string MetricLabel(SubsetMetric metric, const std::string& unit) {
-  switch (metric) {
-    case SubsetMetric::kHeldOutPosition:
-      return "held-out position RMS (" + unit + ")";
-    case SubsetMetric::kHeldOutOrientation:
-      return "held-out orientation RMS (deg)";
-    default:
-      return SubsetMetricName(metric);
-  }
-}
 
 bool IsError(SubsetMetric metric) { return !HigherIsBetter(metric); }
 
@@ -62,7 +25,7 @@ double SelectedValue(const SubsetStudyResult& result, SubsetMetric metric) {
 
 std::vector<StudyMetric> SummarizeMetrics(const SubsetStudyResult& result) {
   std::vector<StudyMetric> metrics;
-  for (SubsetMetric metric : kMetrics) {
+  for (SubsetMetric metric : kSubsetMetrics) {
     const std::vector<double> values = RandomValues(result, metric);
     const double selected = SelectedValue(result, metric);
     const double percentile = std::isfinite(selected) ? PercentBeaten(values, selected, HigherIsBetter(metric)) : 0;
@@ -74,26 +37,15 @@ std::vector<StudyMetric> SummarizeMetrics(const SubsetStudyResult& result) {
 Status CheckFiguresFree(const StudyRequest& request) {
   if (request.plots.empty()) return Status::Ok();
   std::vector<std::string> stems;
-  for (SubsetMetric metric : kMetrics) stems.push_back(FigureStem(metric));
+  for (SubsetMetric metric : kSubsetMetrics) stems.push_back(StudyFigureStem(metric));
   return charts::CheckChartFilesFree(request.plots, stems, request.force);
 }
 
-// --plots DIR: one histogram per metric (charts/figures.h), DIR created if missing.
-Status WriteFigures(StudyOutcome* outcome) {
+// --plots DIR: the figures, DIR created if missing.
+Status WritePlots(StudyOutcome* outcome) {
   const std::string& directory = outcome->request.plots;
   if (Status s = charts::CreatePlotsFolder(directory); !s.ok()) return s;
-  const SubsetStudyResult& result = outcome->result;
-  const std::string subsets =
-      std::to_string(result.random.size()) + " random " + std::to_string(outcome->request.study.select) + "-subsets";
-  for (SubsetMetric metric : kMetrics) {
-    const bool index = !IsError(metric);
-    const std::string title =
-        std::string(index ? "Fig. 18: " : "Fig. 19: ") + MetricLabel(metric, outcome->length_unit) + ", " + subsets;
-    const charts::ChartSpec spec = charts::SubsetHistogramChart(
-        title, MetricLabel(metric, outcome->length_unit), RandomValues(result, metric), SelectedValue(result, metric));
-    if (Status s = charts::WriteChartFiles(spec, directory, FigureStem(metric), &outcome->figures); !s.ok()) return s;
-  }
-  return Status::Ok();
+  return WriteStudyFigures(*outcome, directory, &outcome->figures);
 }
 
 // As printf's %.4g.
@@ -103,45 +55,6 @@ std::string FormatFigure(double value) {
   return text;
 }
 
-nlohmann::json NumberOrNull(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
-
-nlohmann::json DistributionJson(const Distribution& d) {
-  return {{"count", d.count}, {"min", d.min}, {"p5", d.p5},   {"p25", d.p25},   {"median", d.median},
-          {"p75", d.p75},     {"p95", d.p95}, {"max", d.max}, {"mean", d.mean}, {"std", d.std}};
-}
-
-nlohmann::json SelectedJson(const StudyOutcome& outcome) {
-  const SubsetOutcome& selected = outcome.result.selected;
-  nlohmann::json images = nlohmann::json::array();
-  for (int j : selected.poses) images.push_back(outcome.images[j]);
-  nlohmann::json percentiles;
-  for (const StudyMetric& m : outcome.metrics) {
-    percentiles[SubsetMetricName(m.metric)] = std::isfinite(m.selected) ? nlohmann::json(m.percentile) : nullptr;
-  }
-  return {{"poses", selected.poses},
-          {"images", images},
-          {"iterations", outcome.result.selection_iterations},
-          {"ok", selected.ok},
-          {"failure", selected.ok ? nlohmann::json(nullptr) : nlohmann::json(selected.failure)},
-          {"indices", IndicesJson(selected.indices)},
-          {"heldout_position_rms", NumberOrNull(SelectedValue(outcome.result, SubsetMetric::kHeldOutPosition))},
-          {"heldout_orientation_rms", NumberOrNull(SelectedValue(outcome.result, SubsetMetric::kHeldOutOrientation))},
-          {"heldout_fk_failed", selected.heldout_fk_failed},
-          {"percentile", percentiles[SubsetMetricName(SubsetMetric::kHeldOutPosition)]},
-          {"percentiles", percentiles}};
-}
-
-nlohmann::json RandomJson(const StudyOutcome& outcome) {
-  const SubsetStudyResult& result = outcome.result;
-  nlohmann::json random = {{"count", result.random.size()},
-                           {"failed", result.failed},
-                           {"first_failure", result.failed > 0 ? nlohmann::json(result.first_failure) : nullptr}};
-  for (const StudyMetric& m : outcome.metrics) random[SubsetMetricName(m.metric)] = DistributionJson(m.random);
-  return random;
-}
-
 // The label, the selected value, the distribution's columns and the rank, one
 // line; "-" for the selected value and rank when its calibration failed.
 void PrintMetricRow(const StudyMetric& m, const std::string& unit, std::ostream& out) {
@@ -149,7 +62,7 @@ void PrintMetricRow(const StudyMetric& m, const std::string& unit, std::ostream&
   const Distribution& d = m.random;
   const bool known = std::isfinite(m.selected);
   std::snprintf(line, sizeof line, "%-31s %10s %10.4g %10.4g %10.4g %10.4g %10.4g %10.4g %10.4g",
-                MetricLabel(m.metric, unit).c_str(), known ? FormatFigure(m.selected).c_str() : "-", d.min, d.p5,
+                SubsetMetricLabel(m.metric, unit).c_str(), known ? FormatFigure(m.selected).c_str() : "-", d.min, d.p5,
                 d.median, d.mean, d.std, d.p95, d.max);
   out << line;
   if (known) {
@@ -188,33 +101,87 @@ StatusOr<StudyOutcome> RunStudy(StudyRequest request, const JobHooks& hooks) {
   outcome.result = std::move(*result);
   outcome.metrics = SummarizeMetrics(outcome.result);
   outcome.threads = ParallelWorkers(request.study.subsets + 1, request.study.num_threads);
+  outcome.inputs = std::move(session->inputs);
   if (!request.plots.empty()) {
-    if (Status s = WriteFigures(&outcome); !s.ok()) return s.AsFailure();
+    if (Status s = WritePlots(&outcome); !s.ok()) return s.AsFailure();
   }
   outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  outcome.created = CurrentUtcTimestamp();
+  if (request.save) {
+    // A study of minutes is not thrown away for a writer holding the lock a moment.
+    const LockWait wait = request.wait == LockWait::kForever ? LockWait::kForever : LockWait::kBriefly;
+    if (Status s = SaveSessionStudy(&outcome, wait); !s.ok()) return s;
+  }
   return outcome;
 }
 
-nlohmann::json ToJson(const StudyOutcome& outcome) {
+StudyRecord MakeStudyRecord(const StudyOutcome& outcome) {
   const SubsetStudyOptions& study = outcome.request.study;
-  return {{"session", outcome.request.session},
-          {"robot", outcome.robot},
-          {"length_unit", outcome.length_unit},
-          {"measured", outcome.result.measurements},
-          {"unusable", outcome.unusable},
-          {"select", study.select},
-          {"subsets", study.subsets},
-          {"criterion", CriterionName(study.criterion)},
-          {"secondary", study.secondary ? nlohmann::json(CriterionName(*study.secondary)) : nullptr},
-          {"starts", study.selection_starts},
-          {"weighted_selection", outcome.request.weighted_selection},
-          {"seed", study.seed},
-          {"selected", SelectedJson(outcome)},
-          {"random", RandomJson(outcome)},
-          {"figures", outcome.figures},
-          {"threads", outcome.threads},
-          {"subsets_seconds", outcome.subsets_seconds},
-          {"seconds", outcome.seconds}};
+  const SubsetStudyResult& result = outcome.result;
+  StudyRecord r;
+  r.created = outcome.created;
+  r.session = outcome.request.session;
+  r.robot = outcome.robot;
+  r.length_unit = outcome.length_unit;
+  r.measured = result.measurements;
+  r.unusable = outcome.unusable;
+  r.select = study.select;
+  r.subsets = study.subsets;
+  r.starts = study.selection_starts;
+  r.criterion = study.criterion;
+  r.secondary = study.secondary;
+  r.weighted_selection = outcome.request.weighted_selection;
+  r.seed = study.seed;
+  r.selected = {result.selected.poses,
+                {},
+                result.selection_iterations,
+                result.selected.ok,
+                result.selected.failure,
+                result.selected.indices,
+                result.selected.heldout_fk_failed};
+  for (int j : result.selected.poses) r.selected.images.push_back(outcome.images[j]);
+  r.random_count = static_cast<int>(result.random.size());
+  r.random_failed = result.failed;
+  r.first_failure = result.first_failure;
+  r.metrics = outcome.metrics;
+  r.figures = outcome.figures;
+  r.threads = outcome.threads;
+  r.subsets_seconds = outcome.subsets_seconds;
+  r.seconds = outcome.seconds;
+  r.inputs = outcome.inputs;
+  r.saved = outcome.saved;
+  return r;
+}
+
+nlohmann::json ToJson(const StudyOutcome& outcome) { return ToJson(MakeStudyRecord(outcome)); }
+
+const char* StudyFigureStem(SubsetMetric metric) {
+  switch (metric) {
+    case SubsetMetric::kO1:
+      return "fig18_o1";
+    case SubsetMetric::kO2:
+      return "fig18_o2";
+    case SubsetMetric::kO3:
+      return "fig18_o3";
+    case SubsetMetric::kO4:
+      return "fig18_o4";
+    case SubsetMetric::kHeldOutPosition:
+      return "fig19_position";
+    case SubsetMetric::kHeldOutOrientation:
+      return "fig19_orientation";
+  }
+  return "";
+}
+
+Status WriteStudyFigures(const StudyOutcome& outcome, const std::string& directory, std::vector<std::string>* written) {
+  const SubsetStudyResult& result = outcome.result;
+  for (SubsetMetric metric : kSubsetMetrics) {
+    const charts::ChartSpec spec =
+        charts::StudyMetricChart(metric, RandomValues(result, metric), SelectedValue(result, metric),
+                                 outcome.request.study.select, outcome.length_unit);
+    if (Status s = charts::WriteChartFiles(spec, directory, StudyFigureStem(metric), written); !s.ok()) return s;
+  }
+  return Status::Ok();
 }
 
 std::string FormatStudySummary(const StudyOutcome& outcome) {
@@ -242,22 +209,14 @@ std::string FormatStudySummary(const StudyOutcome& outcome) {
   out << header;
   for (const StudyMetric& m : outcome.metrics) PrintMetricRow(m, outcome.length_unit, out);
   out << "\n";
-  if (result.selected.ok) {
-    char line[200];
-    std::snprintf(line, sizeof line,
-                  "the selected subset validates better than %.1f %% of the random subsets on the held-out position "
-                  "RMS, %.1f %% on the orientation RMS\n",
-                  outcome.metrics[4].percentile, outcome.metrics[5].percentile);
-    out << line;
-  } else {
-    out << "warning: the selected subset could not be calibrated: " << result.selected.failure << "\n";
-  }
+  out << StudyRankSentence(MakeStudyRecord(outcome)) << "\n";
   if (result.failed > 0) {
     out << "warning: " << result.failed << " of " << result.random.size()
         << " random subsets could not be calibrated or validated and are not in the error statistics; first: "
         << result.first_failure << "\n";
   }
   for (const std::string& figure : outcome.figures) out << "figure written to " << figure << "\n";
+  if (!outcome.saved.empty()) out << "study kept in " << outcome.saved << " (hexcal report shows it)\n";
   char timing[200];
   std::snprintf(timing, sizeof timing,
                 "selection and %d calibrations and validations in %.2f s on %d %s; done in %.2f s\n", study.subsets + 1,

@@ -5,11 +5,12 @@
 // and validated by FK on the poses it leaves out (core/subset_study.h);
 // the distributions of O1..O4 (Fig. 18) and of the held-out position and
 // orientation RMS (Fig. 19, Table 5), and where the selected subset ranks.
+// The result is kept in the session's study/ folder (session_study.h).
 //
 //   StudyRequest request;
 //   request.session = "run1";
 //   request.study.select = 13;
-//   StatusOr<StudyOutcome> study = RunStudy(request, hooks);
+//   StatusOr<StudyOutcome> study = RunStudy(request, hooks);  // also writes run1/study/
 //   if (study.ok()) std::cout << FormatStudySummary(*study);
 #pragma once
 
@@ -20,6 +21,7 @@
 #include "core/job_hooks.h"
 #include "core/session_lock.h"
 #include "core/subset_study.h"
+#include "workflow/study_record.h"
 
 namespace hexcal::workflow {
 
@@ -32,17 +34,11 @@ struct StudyRequest {
   bool weighted_selection = true;  // IOOPS weighs its rows by the session's noise model (selection_noise)
   std::string plots;                // folder for the Fig. 18 and 19 histograms (SVG and PNG); may be empty
   bool force = false;               // replace figures already in `plots`
-  LockWait wait = LockWait::kNo;    // for the session lock while images are measured
-};
-
-// One quantity of Figs. 18-19 / Table 5: the selected subset's value, its
-// distribution over the random subsets, and the percentage of random subsets
-// the selected one beats (higher indices, lower held-out errors; ties half).
-struct StudyMetric {
-  SubsetMetric metric;
-  double selected = 0;
-  Distribution random;
-  double percentile = 0;
+  LockWait wait = LockWait::kNo;    // for the session lock while images are measured and study/ is written
+  // Keep the result in the session's study/ folder (SaveSessionStudy,
+  // session_study.h). It draws figures with Qt: a caller off the Qt thread
+  // (the GUI's worker) sets false and saves on the GUI thread.
+  bool save = true;
 };
 
 struct StudyOutcome {
@@ -56,16 +52,28 @@ struct StudyOutcome {
   double subsets_seconds = 0;        // the selection and the K + 1 calibrations and validations
   double seconds = 0;                // the whole study, measuring included
   int threads = 0;                   // the threads the subsets ran on
+  ContentHashes inputs;              // the session's inputs as the study read them
+  std::string created;               // UTC, when the study ended
+  std::string saved;                 // the study folder written (session_study.h); empty: not kept
 };
 
 // Stages through hooks: those of the measure step when images are new, then
 // "select (IOOPS)" and "calibrate and validate subsets" (progress: subsets).
 StatusOr<StudyOutcome> RunStudy(StudyRequest request, const JobHooks& hooks = {});
 
-// {"session", "robot", "length_unit", "measured", "unusable", "select", "subsets", "criterion", "secondary",
-//  "seed", "selected": {"percentile", "percentiles", "indices", "heldout_position_rms", ...},
-//  "random": {"count", "failed", "first_failure", "O1": {distribution}, ...}, "figures", "seconds", ...}
+// The outcome as its record (study_record.h), the form it is printed and kept in.
+StudyRecord MakeStudyRecord(const StudyOutcome& outcome);
+// ToJson(MakeStudyRecord(outcome)): {"format", "created", "session", "robot", "length_unit", "measured",
+//  "unusable", "select", "subsets", "criterion", ..., "selected": {"percentile", "percentiles", "indices",
+//  "heldout_position_rms", ...}, "random": {"count", "failed", "O1": {distribution}, ...}, "inputs", "saved", ...}
 nlohmann::json ToJson(const StudyOutcome& outcome);
 std::string FormatStudySummary(const StudyOutcome& outcome);
+
+// The figure of each metric, as --plots and study/ hold it: "fig18_o1" ... "fig19_orientation".
+const char* StudyFigureStem(SubsetMetric metric);
+// Writes DIRECTORY/STEM.svg and .png for every metric (charts/figures.h,
+// StudyMetricChart) and appends the paths to `written`. The folder must
+// exist. Draws with Qt: on the thread that owns the QApplication.
+Status WriteStudyFigures(const StudyOutcome& outcome, const std::string& directory, std::vector<std::string>* written);
 
 }  // namespace hexcal::workflow

@@ -18,6 +18,7 @@
 #include "tests/test_support.h"
 #include "workflow/demo.h"
 #include "workflow/session_calibrate.h"
+#include "workflow/study_options.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -122,7 +123,7 @@ TEST_F(StudySession, SameNumbersWhateverTheThreadsAndFiguresWritten) {
   ASSERT_TRUE(one.ok() && two.ok());
   nlohmann::json a = ToJson(*one), b = ToJson(*two);
   for (nlohmann::json* j : {&a, &b}) {
-    for (const char* key : {"seconds", "subsets_seconds", "threads", "figures"}) j->erase(key);
+    for (const char* key : {"seconds", "subsets_seconds", "threads", "figures", "created"}) j->erase(key);
   }
   EXPECT_EQ(a.dump(), b.dump());
   EXPECT_EQ(two->figures.size(), 12u);  // six histograms, SVG and PNG
@@ -146,6 +147,32 @@ TEST_F(StudySession, BadRequestsAreBadInput) {
   study = RunStudy(request);
   ASSERT_FALSE(study.ok());
   EXPECT_THAT(study.status().message(), HasSubstr("session.yaml"));
+}
+
+// The option table makes the flags, the GUI form and the docs table: docs/cli.md
+// carries the table it generates.
+TEST(StudyOptions, SetTheRequestAndTheDocsListEveryOption) {
+  StudyRequest request;
+  ASSERT_TRUE(ApplyOptionEntries(StudyOptions(),
+                                 {{"select", "9"},
+                                  {"criterion", "O4"},
+                                  {"secondary", "A"},
+                                  {"unweighted_selection", "true"},
+                                  {"seed", "7"},
+                                  {"subsets", "50"}},
+                                 &request, "study")
+                  .ok());
+  EXPECT_EQ(request.study.select, 9);
+  EXPECT_EQ(request.study.criterion, Criterion::kO4);
+  EXPECT_EQ(request.study.secondary, Criterion::kA);
+  EXPECT_FALSE(request.weighted_selection);
+  EXPECT_EQ(request.study.seed, 7u);
+  EXPECT_EQ(request.study.subsets, 50);
+  EXPECT_THAT(ApplyOptionEntries(StudyOptions(), {{"select", "6"}}, &request, "study").message(),
+              HasSubstr("study.select: must be at least 7 poses, got 6"));
+  const std::string docs = hexcal::testing::ReadTextFile((hexcal::testing::SourceDir() / "docs" / "cli.md").string());
+  const std::string table = OptionsMarkdownTable(StudyOptions());
+  EXPECT_NE(docs.find(table), std::string::npos) << "docs/cli.md needs this table:\n" << table;
 }
 
 }  // namespace

@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # screenshot_test.sh HEXCAL_GUI SESSIONS: `hexcal-gui --screenshot` writes a PNG of
 # every panel of the calibrated session at 1280x720 — no panel needs a wider or
-# taller window (the Acquire panel connected to the sim devices) — and refuses
+# taller window (the Acquire panel connected to the sim devices; `study`, the
+# Validate step's study tab) — and refuses
 # a bad panel, size or folder.
 set -eu
 gui=$1 sessions=$2
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
-for panel in robot plan acquire measure calibrate validate; do
+for panel in robot plan acquire measure calibrate validate study; do
   devices=()
   [ "$panel" = acquire ] && devices=(--controller sim --camera sim)
   "$gui" --screenshot "$dir/$panel.png" --panel "$panel" --size 1280x720 "${devices[@]}" "$sessions/calibrated"
