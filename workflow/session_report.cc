@@ -18,6 +18,7 @@
 #include "core/session_lock.h"
 #include "workflow/calibration_report.h"
 #include "workflow/calibration_verdict.h"
+#include "workflow/html_text.h"
 #include "workflow/pixel_report_section.h"
 #include "workflow/camera_frame_diagnosis.h"
 #include "workflow/session_calibrate.h"
@@ -29,20 +30,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string Escape(const std::string& text) {
-  std::string escaped;
-  for (char c : text) {
-    if (c == '<')
-      escaped += "&lt;";
-    else if (c == '>')
-      escaped += "&gt;";
-    else if (c == '&')
-      escaped += "&amp;";
-    else
-      escaped += c;
-  }
-  return escaped;
-}
+std::string Escape(const std::string& text) { return HtmlEscape(text); }
 
 // 4 significant digits.
 std::string Figure(double value) {

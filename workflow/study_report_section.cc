@@ -6,6 +6,7 @@
 
 #include "charts/chart_render.h"
 #include "charts/figures.h"
+#include "workflow/html_text.h"
 #include "workflow/session_study.h"
 
 namespace hexcal::workflow {
@@ -19,20 +20,7 @@ constexpr SubsetMetric kReportOrder[] = {SubsetMetric::kHeldOutPosition,
                                          SubsetMetric::kO3,
                                          SubsetMetric::kO4};
 
-std::string Escape(const std::string& text) {
-  std::string escaped;
-  for (char c : text) {
-    if (c == '<')
-      escaped += "&lt;";
-    else if (c == '>')
-      escaped += "&gt;";
-    else if (c == '&')
-      escaped += "&amp;";
-    else
-      escaped += c;
-  }
-  return escaped;
-}
+std::string Escape(const std::string& text) { return HtmlEscape(text); }
 
 // 4 significant digits, as the report's other tables; "–" for no value.
 std::string Figure(double value) {
