@@ -13,9 +13,11 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 
+#include "core/parallel.h"
 #include "vision/board_pose.h"
 #include "vision/intrinsics.h"
 #include "vision/measure.h"
@@ -102,6 +104,51 @@ void BM_ThroughputMeasureBatch(benchmark::State& state) {
   state.SetLabel("images/s: read PNG, detect, edge fit, pose; " + std::to_string(state.range(0)) + " workers");
 }
 BENCHMARK(BM_ThroughputMeasureBatch)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The library at its best on both cores, against `hexcal measure`'s batch, in
+// the same run: the library detects the 24 in-memory images with two workers
+// of one single-threaded detector each (the library's own threads scale worse),
+// measure reads, detects, edge-fits and poses the 24 PNG files with two
+// workers. Five rounds, alternated; the medians and their ratio (measure /
+// library, above 1 is faster; docs/performance.md).
+double MedianOf(std::vector<double> values) { return Percentile(std::move(values), 0.5); }
+
+template <typename Work>
+double SecondsOf(Work work) {
+  const auto start = std::chrono::steady_clock::now();
+  work();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void BM_MeasureAgainstLibrary(benchmark::State& state) {
+  const ImageSet& set = Images();
+  constexpr int kWorkers = 2, kRounds = 5;
+  DetectorOptions single;
+  single.threads = 1;
+  std::vector<std::unique_ptr<TagDetector>> library;
+  for (int w = 0; w < kWorkers; ++w) library.push_back(TagDetector::Create(single).value());
+  MeasureOptions options;
+  options.threads = kWorkers;
+  const double images = static_cast<double>(set.files.size());
+  std::vector<double> library_rate, measure_rate;
+  for (auto _ : state) {
+    for (int round = 0; round < kRounds; ++round) {
+      library_rate.push_back(images / SecondsOf([&] {
+        ParallelFor(static_cast<int>(set.images.size()), kWorkers, [&](int k, int worker) {
+          benchmark::DoNotOptimize(library[static_cast<size_t>(worker)]->DetectWithLibraryOnly(set.images[static_cast<size_t>(k)]));
+        });
+      }));
+      measure_rate.push_back(images / SecondsOf([&] {
+        benchmark::DoNotOptimize(MeasureImages(set.files, Sim(), DefaultTarget(), options));
+      }));
+    }
+  }
+  state.counters["library_img_s"] = MedianOf(library_rate);
+  state.counters["measure_img_s"] = MedianOf(measure_rate);
+  state.counters["ratio"] = MedianOf(measure_rate) / MedianOf(library_rate);
+  state.SetLabel("measure (PNG files) / library detection (in memory), 2 workers each, medians of 5");
+}
+BENCHMARK(BM_MeasureAgainstLibrary)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 
 void BM_Render(benchmark::State& state) {
   const Renderer renderer(Sim(), DefaultTarget(), RenderOptions{});

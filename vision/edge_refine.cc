@@ -20,6 +20,7 @@ constexpr double kMinCellPx = 3.5;
 constexpr double kMaxHalfWidthPx = 4.0;  // of the band across an edge
 constexpr double kMinHalfWidthPx = 1.2;
 constexpr double kMinContrast = 5;  // grey levels
+constexpr double kFinalTolerancePx = 1e-4;  // the last edge fit's step; edges are good to ~1e-3 px
 
 struct BandPixel {
   Eigen::Vector2d q;  // ideal pixel, relative to the edge's midpoint
@@ -40,8 +41,22 @@ std::string FormatPx(double value) {
   return out.str();
 }
 
-double NormalCdf(double z) { return 0.5 * std::erfc(-z * 0.7071067811865476); }
-double NormalPdf(double z) { return 0.3989422804014327 * std::exp(-0.5 * z * z); }
+// The standard normal density φ(z) and distribution Φ(z) from one exponential:
+// Φ(−|z|) = ½ erfc(|z|/√2) by Abramowitz & Stegun 7.1.26 (erfc(x) ≈ t P(t) e^(−x²),
+// t = 1/(1 + p x), absolute error under 1.5e-7), whose e^(−x²) is 2.5066 φ(z).
+// An error of 1e-7 of the contrast is far below a grey level; erfc and exp
+// were a third of the whole measurement's time (docs/vision.md).
+struct NormalValues {
+  double cdf, pdf;
+};
+NormalValues Normal(double z) {
+  constexpr double kInvSqrt2Pi = 0.3989422804014327, kSqrt2Pi = 2.5066282746310002;
+  const double pdf = kInvSqrt2Pi * std::exp(-0.5 * z * z);
+  const double t = 1 / (1 + 0.3275911 * 0.7071067811865476 * std::abs(z));
+  const double poly = t * (0.254829592 + t * (-0.284496736 + t * (1.421413741 + t * (-1.453152027 + t * 1.061405429))));
+  const double lower_tail = 0.5 * poly * kSqrt2Pi * pdf;  // Φ(−|z|)
+  return {z >= 0 ? 1 - lower_tail : lower_tail, pdf};
+}
 
 // Ideal coordinates of pixel (u, v), or NaN.
 Eigen::Vector2d IdealAt(const IdealPixelMap* ideal, int u, int v) {
@@ -98,17 +113,10 @@ class EdgeModel {
   explicit EdgeModel(const EdgeParams& x)
       : x_(x), n_(std::cos(x[kAngle]), std::sin(x[kAngle])), n_dot_(-n_.y(), n_.x()) {}
 
-  double Value(const BandPixel& px) const {
-    const double d = n_.dot(px.q) - x_[kOffset], s = x_[kBlur], z = d / s;
-    const double a = x_[kBlack] + x_[kBlackSlope] * px.t, b = x_[kContrast] + x_[kContrastSlope] * px.t;
-    const double u = a + b * NormalCdf(z);
-    return u + x_[kShading] * (d * u + s * b * NormalPdf(z));
-  }
-
   double ValueAndRow(const BandPixel& px, EdgeParams* row) const {
     const double d = n_.dot(px.q) - x_[kOffset], s = x_[kBlur], z = d / s, c = x_[kShading];
     const double a = x_[kBlack] + x_[kBlackSlope] * px.t, b = x_[kContrast] + x_[kContrastSlope] * px.t;
-    const double cdf = NormalCdf(z), pdf = NormalPdf(z);
+    const auto [cdf, pdf] = Normal(z);
     const double u = a + b * cdf;
     const double d_a = 1 + c * d;                       // dI/dA
     const double d_b = cdf + c * (d * cdf + s * pdf);   // dI/dB
@@ -123,76 +131,65 @@ class EdgeModel {
   Eigen::Vector2d n_, n_dot_;
 };
 
-double Cost(const std::vector<BandPixel>& band, const EdgeParams& x) {
-  const EdgeModel model(x);
+// The band's sum of squared residuals at x, with JᵀJ and Jᵀr for every
+// parameter but the shading c (its row and column made trivial: it is held fixed).
+struct Linearisation {
   double cost = 0;
-  for (const BandPixel& px : band) {
-    const double r = model.Value(px) - px.value;
-    cost += r * r;
-  }
-  return cost;
-}
+  EdgeMatrix jtj = EdgeMatrix::Zero();
+  EdgeParams jtr = EdgeParams::Zero();
+};
 
-// JᵀJ and Jᵀr of the band at x.
-void NormalEquations(const std::vector<BandPixel>& band, const EdgeParams& x, EdgeMatrix* jtj, EdgeParams* jtr) {
+Linearisation Linearise(const std::vector<BandPixel>& band, const EdgeParams& x) {
   const EdgeModel model(x);
-  jtj->setZero();
-  jtr->setZero();
+  Linearisation at;
   EdgeParams row;
   for (const BandPixel& px : band) {
     const double r = model.ValueAndRow(px, &row) - px.value;
-    jtj->noalias() += row * row.transpose();
-    *jtr += row * r;
+    row[kShading] = 0;
+    at.cost += r * r;
+    at.jtj.noalias() += row * row.transpose();
+    at.jtr += row * r;
   }
-}
-
-// JᵀJ and Jᵀr with the shading c held fixed (its row and column made trivial).
-void NormalEquationsFixedShading(const std::vector<BandPixel>& band, const EdgeParams& x, EdgeMatrix* jtj,
-                                 EdgeParams* jtr) {
-  NormalEquations(band, x, jtj, jtr);
-  jtj->row(kShading).setZero();
-  jtj->col(kShading).setZero();
-  (*jtj)(kShading, kShading) = 1;
-  (*jtr)[kShading] = 0;
+  at.jtj(kShading, kShading) = 1;
+  return at;
 }
 
 // Levenberg–Marquardt from x over every parameter but the shading c, which
-// the tag as a whole determines (RefineTagCorners); false when the fit is not
-// a clean edge.
+// the tag as a whole determines (RefineTagCorners), until a step moves the
+// edge by under `tolerance_px` (and 1e-6 rad). Each trial point is linearised
+// once: when it is accepted, that linearisation serves the next step.
 // Returns why the fit is not used, or "" when it is.
-std::string FitEdge(const std::vector<BandPixel>& band, double half_width, EdgeParams& x, EdgeFit* fit) {
+std::string FitEdge(const std::vector<BandPixel>& band, double half_width, double tolerance_px, EdgeParams& x,
+                    EdgeFit* fit) {
   if (band.size() < 16) return "only " + std::to_string(band.size()) + " pixels in its band";
   const double initial_angle = x[kAngle];
-  double cost = Cost(band, x), lambda = 1e-3;
-  EdgeMatrix jtj;
-  EdgeParams jtr;
+  double lambda = 1e-3;
+  Linearisation at = Linearise(band, x);
   for (int iteration = 0; iteration < 40; ++iteration) {
-    NormalEquationsFixedShading(band, x, &jtj, &jtr);
     bool improved = false;
     EdgeParams step = EdgeParams::Zero();
     while (lambda < 1e8) {
-      EdgeMatrix damped = jtj;
+      EdgeMatrix damped = at.jtj;
       damped.diagonal() *= 1 + lambda;
-      step = -damped.ldlt().solve(jtr);
+      step = -damped.ldlt().solve(at.jtr);
       EdgeParams next = x + step;
       next[kBlur] = std::max(next[kBlur], 0.05);
-      const double next_cost = Cost(band, next);
-      if (next_cost < cost) {
+      Linearisation trial = Linearise(band, next);
+      if (trial.cost < at.cost) {
         x = next;
-        cost = next_cost;
+        at = trial;
         lambda = std::max(1e-7, lambda * 0.2);
         improved = true;
         break;
       }
       lambda *= 10;
     }
-    // 1e-4 px and 1e-6 rad: far below the noise of any edge (~1e-3 px).
-    if (!improved || (std::abs(step[kOffset]) < 1e-4 && std::abs(step[kAngle]) < 1e-6)) break;
+    if (!improved || (std::abs(step[kOffset]) < tolerance_px && std::abs(step[kAngle]) < 1e-6)) break;
   }
   // Covariance at the minimum: σ² (JᵀJ)⁻¹, the marginal block of (θ, ρ).
-  NormalEquationsFixedShading(band, x, &jtj, &jtr);
+  const double cost = at.cost;
   const double variance = cost / static_cast<double>(band.size() - (x.size() - 1));
-  const EdgeMatrix covariance = variance * jtj.inverse();
+  const EdgeMatrix covariance = variance * at.jtj.inverse();
 
   fit->angle = x[kAngle];
   fit->offset = x[kOffset];
@@ -255,7 +252,10 @@ std::string FitEdgeTwice(const cv::Mat& gray, const IdealPixelMap* ideal, const 
       x[kBlack] = dark / dark_count;
       x[kContrast] = bright / bright_count - x[kBlack];
     }
-    if (std::string why = FitEdge(edge->band, edge->half_width, x, &edge->fit); !why.empty()) return why;
+    // Both passes only place the band and start the last fit (RefineTagCorners):
+    // to a hundredth of a pixel, the first to a twentieth.
+    const double tolerance_px = pass == 0 ? 0.05 : 0.01;
+    if (std::string why = FitEdge(edge->band, edge->half_width, tolerance_px, x, &edge->fit); !why.empty()) return why;
     if (std::abs(x[kOffset]) > edge->half_width) {
       return "moved " + FormatPx(std::abs(x[kOffset])) + " px, out of its band";
     }
@@ -373,7 +373,7 @@ std::optional<RefinedTag> RefineTagCorners(const cv::Mat& gray, const IdealPixel
   for (size_t k = 0; k < 4; ++k) {
     EdgeState& edge = edges[k];
     edge.x[kShading] = gradient.dot(Eigen::Vector2d(std::cos(edge.x[kAngle]), std::sin(edge.x[kAngle])));
-    if (std::string why = FitEdge(edge.band, edge.half_width, edge.x, &edge.fit); !why.empty()) {
+    if (std::string why = FitEdge(edge.band, edge.half_width, kFinalTolerancePx, edge.x, &edge.fit); !why.empty()) {
       return fail("edge " + std::to_string(k) + " with lighting: " + why);
     }
     tag.edges[k] = edge.fit;
