@@ -35,9 +35,9 @@ struct SessionConfig {
   std::string target;  // target file or name, as LoadTarget takes it
   // Set by the registration step (core/registration.h), robot unit; the robot's
   // Euler convention in the file.
-  std::optional<Pose> base_from_camera;
-  std::optional<Pose> platform_from_target;
-  NoiseModel noise;  // pose and reading noise, robot unit and degrees
+  std::optional<Pose> base_from_camera{};
+  std::optional<Pose> platform_from_target{};
+  NoiseModel noise{};  // pose and reading noise, robot unit and degrees
 
   bool IsValid(std::string* error) const;
 };

@@ -45,6 +45,13 @@ class Status {
   StatusKind kind() const { return kind_; }
   const std::string& message() const { return message_; }
 
+  // The same error, its message after `prefix` (e.g. the file it is about).
+  Status Prefixed(const std::string& prefix) const {
+    Status prefixed = *this;
+    if (!ok()) prefixed.message_ = prefix + message_;
+    return prefixed;
+  }
+
   // The same error as a failed computation: for a step whose input was
   // accepted but whose work did not succeed (a cancel stays a cancel).
   Status AsFailure() const {

@@ -13,7 +13,6 @@
 #include <QProgressBar>
 #include <QPushButton>
 #include <array>
-#include <opencv2/imgcodecs.hpp>
 
 #include "core/inverse_kinematics.h"
 #include "ui/acquire_panel.h"
@@ -21,6 +20,7 @@
 #include "ui/error_dialog.h"
 #include "ui/image_view.h"
 #include "ui/quantity_format.h"
+#include "vision/image_codecs.h"
 #include "workflow/acquire_step.h"
 #include "workflow/readings_table.h"
 #include "workflow/session_edits.h"
@@ -147,10 +147,10 @@ void AcquirePanel::CapturePose(const std::optional<LegReadings>& typed) {
   const Target target = *session_->SessionTarget();
   job_->Start("grabbing", [this, rig = rig_, camera, target, index, typed](const JobContext&) -> GuiContinuation {
     StatusOr<cv::Mat> frame = rig->camera->Grab(kGrabTimeout);
-    std::vector<uchar> png;
-    if (frame.ok() && !cv::imencode(".png", *frame, png)) frame = Status::Failed("the frame could not be encoded");
+    StatusOr<std::string> png = frame.ok() ? EncodePng(*frame) : StatusOr<std::string>(frame.status());
+    if (!png.ok()) frame = png.status();
     const OverlayResult overlay = frame.ok() ? DetectAndDraw(*frame, camera, target) : OverlayResult{};
-    const std::string bytes(png.begin(), png.end());
+    const std::string bytes = png.ok() ? *png : std::string();
     const Status grabbed = frame.ok() ? Status::Ok() : frame.status();
     return [this, grabbed, overlay, bytes, index, typed] {
       if (!grabbed.ok()) return Recorded(index, grabbed);

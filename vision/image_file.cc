@@ -1,12 +1,12 @@
 #include "vision/image_file.h"
 
 #include <locale>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "vision/image_codecs.h"
 #include "vision/image_header.h"
 
 namespace hexcal {
@@ -96,18 +96,10 @@ StatusOr<cv::Mat> DecodeGrayImage(const std::string& bytes, const std::string& s
   if (bytes.empty()) return Status::Error(source + ": empty file");
   const ImageHeader header = ReadImageHeader(bytes);
   if (const Status checked = CheckImageHeader(header, source); !checked.ok()) return checked;
-  cv::Mat decoded;
-  try {
-    // imdecode only reads the buffer; the const_cast is what cv::Mat's constructor needs.
-    // IMREAD_UNCHANGED: every channel and bit as stored, orientation not applied.
-    const cv::Mat buffer(1, static_cast<int>(bytes.size()), CV_8U, const_cast<char*>(bytes.data()));
-    decoded = cv::imdecode(buffer, cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception& e) {
-    return Status::Error(source + ": cannot decode: " + e.msg);
-  } catch (const std::exception& e) {  // e.g. std::bad_alloc for a header claiming a huge image
-    return Status::Error(source + ": cannot decode: " + e.what());
-  }
-  if (decoded.empty()) return Status::Error(source + ": cannot decode: corrupt, truncated or not an image");
+  // Every channel and bit as stored, orientation not applied.
+  StatusOr<cv::Mat> image = DecodeImage(bytes);
+  if (!image.ok()) return Status(image.status()).Prefixed(source + ": ");
+  const cv::Mat& decoded = *image;
   if (decoded.channels() > 4 || (decoded.depth() != CV_8U && decoded.depth() != CV_16U && decoded.depth() != CV_32F)) {
     return Status::Error(source + ": cannot decode: " + std::to_string(decoded.channels()) +
                          " channels of an unsupported sample type (8-bit, 16-bit or float grey or colour are read)");

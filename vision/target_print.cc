@@ -6,12 +6,12 @@
 #include <cmath>
 #include <cstdint>
 #include <locale>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/csv.h"
+#include "vision/image_codecs.h"
 #include "vision/tag_family.h"
 
 namespace hexcal {
@@ -300,9 +300,9 @@ StatusOr<std::string> TargetPng(const Target& target, double dpi) {
   }
   PngCanvas canvas(page_w, page_h, dpi);
   DrawTarget(target, kPageMarginMm, kPageMarginMm, canvas);
-  std::vector<uint8_t> bytes;
-  if (!cv::imencode(".png", canvas.Render(), bytes)) return Status::Error("PNG encoding failed");
-  return WithResolution(std::string(bytes.begin(), bytes.end()), dpi);
+  StatusOr<std::string> bytes = EncodePng(canvas.Render());
+  if (!bytes.ok()) return bytes.status();
+  return WithResolution(*bytes, dpi);
 }
 
 Status WriteTargetPrint(const Target& target, const std::string& path, double dpi) {

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <set>
 #include <sstream>
 
@@ -12,6 +11,7 @@
 #include "core/csv.h"
 #include "core/robot_io.h"
 #include "core/session.h"
+#include "vision/image_codecs.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_edits.h"
 #include "workflow/sim_world.h"
@@ -52,13 +52,6 @@ Status RemoveImageWithoutRow(const std::string& dir, const std::string& image, c
     return Status::IoError(path.string() + ": cannot remove an image left without its row: " + error.message());
   hooks.Note("images/" + image + " had no row in legs.csv (an interrupted capture): recording it again");
   return Status::Ok();
-}
-
-// The frame as PNG bytes (lossless: the corners are measured in it).
-StatusOr<std::string> EncodePng(const cv::Mat& frame, const std::string& image) {
-  std::vector<uint8_t> png;
-  if (!cv::imencode(".png", frame, png)) return Status::Failed(image + ": the frame could not be encoded as PNG");
-  return std::string(png.begin(), png.end());
 }
 
 // Move, settle, grab, read: the device half of AcquirePose.
@@ -193,8 +186,8 @@ StatusOr<PoseRecord> AcquirePose(const std::string& dir, int pose_index, const V
   record.holdout = options.holdout_every > 0 && pose_index % options.holdout_every == options.holdout_every - 1;
   cv::Mat frame;
   if (Status s = DriveAndCapture(pose, controller, camera, options, hooks, &frame, &record.readings); !s.ok()) return s;
-  StatusOr<std::string> png = EncodePng(frame, record.image);
-  if (!png.ok()) return png.status();
+  StatusOr<std::string> png = EncodePng(frame);  // lossless: the corners are measured in it
+  if (!png.ok()) return png.status().Prefixed(record.image + ": ");
 
   StatusOr<SessionLock> lock = SessionLock::Acquire(dir, options.wait);
   if (!lock.ok()) return lock.status();

@@ -88,9 +88,9 @@ struct AcquireRequest {
   std::string session;
   std::string controller = "sim";  // URL, workflow/controller.h
   std::string camera = "sim";      // URL, workflow/frame_source.h
-  std::string poses;               // pose CSV; empty: SESSION/plan.csv
+  std::string poses{};             // pose CSV; empty: SESSION/plan.csv
   uint64_t seed = 1;               // of the sim world's truth and noise
-  AcquireOptions options;
+  AcquireOptions options{};
 };
 
 struct AcquireResult {

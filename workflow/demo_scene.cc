@@ -2,7 +2,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <random>
 
 #include "core/atomic_file.h"
@@ -13,6 +12,7 @@
 #include "core/robot_io.h"
 #include "core/session.h"
 #include "core/simulation.h"
+#include "vision/image_codecs.h"
 #include "vision/renderer.h"
 #include "workflow/controller.h"
 
@@ -132,10 +132,9 @@ Status RecordDemoSession(const DemoScene& scene, const std::string& robot_name, 
             Compose(Inverse(scene.base_from_camera), scene.truth.PoseFromVector(poses[j])), scene.platform_from_target);
         camera_from_target.position *= to_target_unit;
         const RenderedView view = renderer.Render(camera_from_target, j);
-        std::vector<uint8_t> png;
-        cv::imencode(".png", view.image, png);
-        written[j] = WriteFileAtomically((fs::path(paths.images) / ImageName(j)).string(),
-                                         std::string(png.begin(), png.end()));
+        StatusOr<std::string> png = EncodePng(view.image);
+        written[j] = png.ok() ? WriteFileAtomically((fs::path(paths.images) / ImageName(j)).string(), *png)
+                              : png.status();
       },
       {progress});
   for (const Status& s : written)

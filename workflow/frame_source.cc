@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "vision/image_codecs.h"
 #include "workflow/sim_world.h"
 
 #ifdef HEXCAL_HAVE_ARAVIS
@@ -58,13 +58,13 @@ class StillImageSource final : public FrameSource {
 // camera is too slow, rather than getting a frame from the wrong moment.
 class CaptureSource final : public FrameSource {
  public:
-  CaptureSource(std::string url, std::unique_ptr<cv::VideoCapture> capture, bool is_device)
+  CaptureSource(std::string url, std::unique_ptr<VideoStream> capture, bool is_device)
       : url_(std::move(url)), capture_(std::move(capture)), is_device_(is_device) {}
 
   StatusOr<cv::Mat> Grab(std::chrono::milliseconds timeout) override {
     const auto start = std::chrono::steady_clock::now();
     cv::Mat frame;
-    const bool read = capture_->read(frame);
+    const bool read = capture_->Read(&frame);
     const double waited_ms = MillisecondsSince(start);
     if (!read && !is_device_)
       return Status::Failed(url_ + ": end of the video after " + std::to_string(frames_) + " frames");
@@ -78,24 +78,24 @@ class CaptureSource final : public FrameSource {
   }
 
   std::string Describe() const override {
-    return url_ + " (" + std::to_string(static_cast<int>(capture_->get(cv::CAP_PROP_FRAME_WIDTH))) + "x" +
-           std::to_string(static_cast<int>(capture_->get(cv::CAP_PROP_FRAME_HEIGHT))) + ", " +
-           capture_->getBackendName() + ")";
+    return url_ + " (" + std::to_string(static_cast<int>(capture_->Get(cv::CAP_PROP_FRAME_WIDTH))) + "x" +
+           std::to_string(static_cast<int>(capture_->Get(cv::CAP_PROP_FRAME_HEIGHT))) + ", " +
+           capture_->BackendName() + ")";
   }
 
   Status SetExposure(double microseconds) override {
     // V4L2's exposure_absolute is in units of 100 µs.
-    if (is_device_ && capture_->set(cv::CAP_PROP_EXPOSURE, microseconds / 100)) return Status::Ok();
+    if (is_device_ && capture_->Set(cv::CAP_PROP_EXPOSURE, microseconds / 100)) return Status::Ok();
     return FrameSource::SetExposure(microseconds);
   }
   Status SetGain(double decibels) override {
-    if (is_device_ && capture_->set(cv::CAP_PROP_GAIN, decibels)) return Status::Ok();
+    if (is_device_ && capture_->Set(cv::CAP_PROP_GAIN, decibels)) return Status::Ok();
     return FrameSource::SetGain(decibels);
   }
 
  private:
   std::string url_;
-  std::unique_ptr<cv::VideoCapture> capture_;
+  std::unique_ptr<VideoStream> capture_;
   bool is_device_;
   int frames_ = 0;
 };
@@ -113,24 +113,24 @@ StatusOr<std::unique_ptr<FrameSource>> OpenFile(const std::string& url, const st
   std::error_code error;
   if (!fs::is_regular_file(path, error)) return Status::Error(url + ": " + path + ": no such file");
   if (IsStillImage(path)) {
-    cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
-    if (image.empty()) return Status::Error(url + ": " + path + ": not an image OpenCV can read");
-    return std::unique_ptr<FrameSource>(std::make_unique<StillImageSource>(url, image));
+    StatusOr<cv::Mat> image = ReadImageFile(path);
+    if (!image.ok()) return image.status().Prefixed(url + ": ");
+    return std::unique_ptr<FrameSource>(std::make_unique<StillImageSource>(url, *image));
   }
-  auto capture = std::make_unique<cv::VideoCapture>(path);
-  if (!capture->isOpened()) return Status::Error(url + ": " + path + ": not a video OpenCV can read");
-  return std::unique_ptr<FrameSource>(std::make_unique<CaptureSource>(url, std::move(capture), false));
+  StatusOr<std::unique_ptr<VideoStream>> capture = OpenVideoFile(path);
+  if (!capture.ok()) return capture.status().Prefixed(url + ": ");
+  return std::unique_ptr<FrameSource>(std::make_unique<CaptureSource>(url, std::move(*capture), false));
 }
 
 StatusOr<std::unique_ptr<FrameSource>> OpenV4l2(const std::string& url, const std::string& device) {
   const bool digits = !device.empty() && device.size() <= 3 &&
                       std::all_of(device.begin(), device.end(), [](unsigned char c) { return std::isdigit(c); });
   if (!digits) return BadUrl(url, "expected a device number after 'v4l2:' (v4l2:0 is /dev/video0)");
-  auto capture = std::make_unique<cv::VideoCapture>(std::stoi(device), cv::CAP_V4L2);
-  if (!capture->isOpened())
+  StatusOr<std::unique_ptr<VideoStream>> capture = OpenVideoDevice(std::stoi(device), cv::CAP_V4L2);
+  if (!capture.ok())
     return Status::IoError(url + ": cannot open /dev/video" + device +
                            " (not connected, no permission, or used by another program)");
-  return std::unique_ptr<FrameSource>(std::make_unique<CaptureSource>(url, std::move(capture), true));
+  return std::unique_ptr<FrameSource>(std::make_unique<CaptureSource>(url, std::move(*capture), true));
 }
 
 }  // namespace

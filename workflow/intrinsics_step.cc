@@ -2,10 +2,10 @@
 
 #include <cmath>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "vision/image_codecs.h"
 #include "vision/intrinsics_diagnosis.h"
 #include "vision/measure.h"
 
@@ -30,9 +30,9 @@ StatusOr<IntrinsicsOutcome> CalibrateCameraFromFiles(const std::vector<std::stri
   if (Status s = CheckIntrinsicsFit(*result, target, options.max_rms_px); !s.ok()) return s;
   if (Status s = SaveCamera(result->camera, out, ExtrasOf(*result)); !s.ok()) return s.AsFailure();
   if (!coverage.empty()) {
-    std::vector<uint8_t> png;
-    cv::imencode(".png", CoverageImage(*result), png);
-    if (Status s = WriteFileAtomically(coverage, std::string(png.begin(), png.end())); !s.ok()) return s.AsFailure();
+    StatusOr<std::string> png = EncodePng(CoverageImage(*result));
+    if (!png.ok()) return png.status().AsFailure();
+    if (Status s = WriteFileAtomically(coverage, *png); !s.ok()) return s.AsFailure();
   }
   return IntrinsicsOutcome{std::move(*result), out, coverage, static_cast<int>(files.size())};
 }

@@ -55,7 +55,7 @@ struct PlanOutcome {
   int finite_iterations = 0;
   NoiseModel noise;                            // the prediction's (the model's, else the paper's)
   PlanPrediction prediction;                   // for calibrate's default, unweighted
-  std::string length_unit;                     // the robot's, for the figures
+  std::string length_unit{};                   // the robot's, for the figures
 };
 
 // The summary `hexcal plan --json` prints.

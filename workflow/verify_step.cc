@@ -6,7 +6,6 @@
 #include <iomanip>
 #include <sstream>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "core/atomic_file.h"
@@ -15,6 +14,7 @@
 #include "core/robot_io.h"
 #include "core/session.h"
 #include "vision/board_pose.h"
+#include "vision/image_codecs.h"
 #include "vision/measure.h"
 #include "workflow/acquire_step.h"
 #include "workflow/session_calibrate.h"
@@ -64,11 +64,11 @@ void CompareWithCommanded(const CheckInputs& in, const BoardPose& board, PoseChe
 }
 
 Status KeepFrame(const std::string& folder, int index, const cv::Mat& frame) {
-  std::vector<uint8_t> png;
-  if (!cv::imencode(".png", frame, png)) return Status::Failed("a frame could not be encoded as PNG");
+  StatusOr<std::string> png = EncodePng(frame);
+  if (!png.ok()) return png.status();
   char name[32];
   std::snprintf(name, sizeof name, "check_%04d.png", index);
-  return WriteFileAtomically((std::filesystem::path(folder) / name).string(), std::string(png.begin(), png.end()));
+  return WriteFileAtomically((std::filesystem::path(folder) / name).string(), *png);
 }
 
 // One pose: move, settle, grab, measure, compare. Device errors are the pose's.

@@ -32,11 +32,11 @@ struct VerifyRequest {
   std::string session;
   std::string controller = "sim";  // URL, workflow/controller.h
   std::string camera = "sim";      // URL, workflow/frame_source.h
-  std::string poses;               // pose CSV (x,y,z,q1,q2,q3); empty: SESSION/plan.csv
+  std::string poses{};             // pose CSV (x,y,z,q1,q2,q3); empty: SESSION/plan.csv
   double settle_seconds = 0.5;     // after each move, before the frame
   int grab_timeout_ms = 5000;
   uint64_t seed = 1;               // of the sim world (sim URLs only)
-  std::string images_out;          // a folder to keep each frame in (check_000k.png); empty: none
+  std::string images_out{};        // a folder to keep each frame in (check_000k.png); empty: none
 };
 
 struct PoseCheck {

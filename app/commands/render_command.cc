@@ -4,13 +4,13 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <opencv2/imgcodecs.hpp>
 
 #include "app/commands/cli_common.h"
 #include "app/commands/command_table.h"
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/parallel.h"
+#include "vision/image_codecs.h"
 #include "vision/renderer.h"
 
 namespace hexcal::cli {
@@ -63,10 +63,10 @@ int RunRender(const RenderCliOptions& cli, std::ostream& out, std::ostream& err)
               [&](int index, int) {
                 const Pose pose = PoseFromVector((*vectors)[static_cast<size_t>(index)], EulerConvention::kXYZ);
                 RenderedView view = renderer.Render(pose, static_cast<uint64_t>(index));
-                std::vector<uint8_t> png;
-                cv::imencode(".png", view.image, png);
-                written[static_cast<size_t>(index)] = WriteFileAtomically(
-                    (folder / ViewName(static_cast<size_t>(index))).string(), std::string(png.begin(), png.end()));
+                StatusOr<std::string> png = EncodePng(view.image);
+                written[static_cast<size_t>(index)] =
+                    png.ok() ? WriteFileAtomically((folder / ViewName(static_cast<size_t>(index))).string(), *png)
+                             : png.status();
                 view.image.release();
                 views[static_cast<size_t>(index)] = std::move(view);
               },

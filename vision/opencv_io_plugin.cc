@@ -1,0 +1,83 @@
+// The module hexcal_opencv_io: the only code that links OpenCV's imgcodecs and
+// videoio (image_codecs.h says why). Every OpenCV exception stays in here.
+#include "vision/opencv_io_plugin.h"
+
+#include <exception>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
+
+namespace hexcal {
+namespace {
+
+// Runs `call`; "" when it returns normally, else what it threw.
+template <typename Call>
+std::string Catching(Call call) {
+  try {
+    call();
+    return "";
+  } catch (const cv::Exception& e) {
+    return e.msg;
+  } catch (const std::exception& e) {  // e.g. std::bad_alloc for a header claiming a huge image
+    return e.what();
+  }
+}
+
+class CaptureStream final : public VideoStream {
+ public:
+  explicit CaptureStream(std::unique_ptr<cv::VideoCapture> capture) : capture_(std::move(capture)) {}
+  bool Read(cv::Mat* frame) override { return capture_->read(*frame); }
+  double Get(int property) const override { return capture_->get(property); }
+  bool Set(int property, double value) override { return capture_->set(property, value); }
+  std::string BackendName() const override { return capture_->getBackendName(); }
+
+ private:
+  std::unique_ptr<cv::VideoCapture> capture_;
+};
+
+// The stream `make` opens, or nullptr with why not.
+template <typename Make>
+VideoStream* OpenWith(Make make, std::string* error) {
+  std::unique_ptr<cv::VideoCapture> capture;
+  const std::string thrown = Catching([&] { capture = make(); });
+  if (!thrown.empty() || !capture->isOpened()) {
+    *error = thrown.empty() ? "cannot be opened" : thrown;
+    return nullptr;
+  }
+  return new CaptureStream(std::move(capture));
+}
+
+std::string Decode(const std::string& bytes, int flags, cv::Mat* image) {
+  // imdecode only reads the buffer; the const_cast is what cv::Mat's constructor needs.
+  const cv::Mat buffer(1, static_cast<int>(bytes.size()), CV_8U, const_cast<char*>(bytes.data()));
+  return Catching([&] { *image = cv::imdecode(buffer, flags); });
+}
+
+std::string Encode(const std::string& extension, const cv::Mat& image, std::string* bytes) {
+  std::vector<uchar> encoded;
+  bool done = false;
+  std::string error = Catching([&] { done = cv::imencode(extension, image, encoded); });
+  if (error.empty() && !done) return "OpenCV cannot encode it as " + extension;
+  bytes->assign(encoded.begin(), encoded.end());
+  return error;
+}
+
+std::string Read(const std::string& path, int flags, cv::Mat* image) {
+  return Catching([&] { *image = cv::imread(path, flags); });
+}
+
+VideoStream* OpenFile(const std::string& path, std::string* error) {
+  return OpenWith([&] { return std::make_unique<cv::VideoCapture>(path); }, error);
+}
+
+VideoStream* OpenDevice(int index, int api, std::string* error) {
+  return OpenWith([&] { return std::make_unique<cv::VideoCapture>(index, api); }, error);
+}
+
+}  // namespace
+}  // namespace hexcal
+
+extern "C" __attribute__((visibility("default"))) const hexcal::OpenCvIoPlugin* hexcal_opencv_io_plugin() {
+  static const hexcal::OpenCvIoPlugin plugin = {hexcal::kOpenCvIoPluginVersion, hexcal::Decode, hexcal::Encode,
+                                                hexcal::Read, hexcal::OpenFile, hexcal::OpenDevice};
+  return &plugin;
+}
