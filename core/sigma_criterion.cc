@@ -22,9 +22,13 @@ double SigmaSum(const InfoBlock& inverse) {
 void SigmaSumsAfterAdding(const std::array<InfoBlock, kNumLegs>& inverses,
                           const std::array<Eigen::Matrix<double, kParamsPerLeg, Eigen::Dynamic>, kNumLegs>& candidates,
                           int begin, int n, double* sums) {
-  // In chunks that stay in cache rather than 7 x n temporaries.
+  // In chunks that stay in cache rather than 7 x n temporaries. The square
+  // roots run along the chunk, parameter by parameter, so that they vectorise
+  // (this file is built with -fno-math-errno: SafeSqrt never sees a negative);
+  // each candidate's sum still adds its 7 terms in order, then the legs in order.
   constexpr int kChunk = 256;
   Eigen::Matrix<double, kParamsPerLeg, kChunk> u;
+  std::array<double, kChunk> scale, leg_sum;
   for (int first = 0; first < n; first += kChunk) {
     const int size = std::min(kChunk, n - first);
     double* out = sums + first;
@@ -32,13 +36,17 @@ void SigmaSumsAfterAdding(const std::array<InfoBlock, kNumLegs>& inverses,
     for (int i = 0; i < kNumLegs; ++i) {
       const auto r = candidates[i].middleCols(begin + first, size);
       u.leftCols(size).noalias() = inverses[i] * r;
-      const Vector7d diagonal = inverses[i].diagonal();
-      for (int c = 0; c < size; ++c) {
-        const double scale = 1 / (1 + r.col(c).dot(u.col(c)));
-        double leg_sum = 0;
-        for (int j = 0; j < kParamsPerLeg; ++j) leg_sum += SafeSqrt(diagonal[j] - u(j, c) * u(j, c) * scale);
-        out[c] += leg_sum;
+      for (int c = 0; c < size; ++c) scale[c] = 1 / (1 + r.col(c).dot(u.col(c)));
+      std::fill(leg_sum.begin(), leg_sum.begin() + size, 0.0);
+      for (int j = 0; j < kParamsPerLeg; ++j) {
+        const double diagonal = inverses[i](j, j);
+        const double* u_j = u.data() + j;  // u(j, c) = u_j[kParamsPerLeg * c]
+        for (int c = 0; c < size; ++c) {
+          const double u_jc = u_j[kParamsPerLeg * c];
+          leg_sum[c] += SafeSqrt(diagonal - u_jc * u_jc * scale[c]);
+        }
       }
+      for (int c = 0; c < size; ++c) out[c] += leg_sum[c];
     }
   }
 }
