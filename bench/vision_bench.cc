@@ -135,7 +135,8 @@ void BM_MeasureAgainstLibrary(benchmark::State& state) {
     for (int round = 0; round < kRounds; ++round) {
       library_rate.push_back(images / SecondsOf([&] {
         ParallelFor(static_cast<int>(set.images.size()), kWorkers, [&](int k, int worker) {
-          benchmark::DoNotOptimize(library[static_cast<size_t>(worker)]->DetectWithLibraryOnly(set.images[static_cast<size_t>(k)]));
+          TagDetector& detector = *library[static_cast<size_t>(worker)];
+          benchmark::DoNotOptimize(detector.DetectWithLibraryOnly(set.images[static_cast<size_t>(k)]));
         });
       }));
       measure_rate.push_back(images / SecondsOf([&] {
