@@ -65,8 +65,13 @@ std::string Read(const std::string& path, int flags, cv::Mat* image) {
   return Catching([&] { *image = cv::imread(path, flags); });
 }
 
+// Through FFmpeg, then GStreamer. Not every backend: when a file opens with
+// neither, OpenCV would go on to probe for cameras (its gPhoto2 backend
+// enumerates the USB bus), which is slow and never a file's reader.
 VideoStream* OpenFile(const std::string& path, std::string* error) {
-  return OpenWith([&] { return std::make_unique<cv::VideoCapture>(path); }, error);
+  VideoStream* stream = OpenWith([&] { return std::make_unique<cv::VideoCapture>(path, cv::CAP_FFMPEG); }, error);
+  if (!stream) stream = OpenWith([&] { return std::make_unique<cv::VideoCapture>(path, cv::CAP_GSTREAMER); }, error);
+  return stream;
 }
 
 VideoStream* OpenDevice(int index, int api, std::string* error) {
