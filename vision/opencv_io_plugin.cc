@@ -61,10 +61,6 @@ std::string Encode(const std::string& extension, const cv::Mat& image, std::stri
   return error;
 }
 
-std::string Read(const std::string& path, int flags, cv::Mat* image) {
-  return Catching([&] { *image = cv::imread(path, flags); });
-}
-
 // Through FFmpeg, then GStreamer. Not every backend: when a file opens with
 // neither, OpenCV would go on to probe for cameras (its gPhoto2 backend
 // enumerates the USB bus), which is slow and never a file's reader.
@@ -83,6 +79,6 @@ VideoStream* OpenDevice(int index, int api, std::string* error) {
 
 extern "C" __attribute__((visibility("default"))) const hexcal::OpenCvIoPlugin* hexcal_opencv_io_plugin() {
   static const hexcal::OpenCvIoPlugin plugin = {hexcal::kOpenCvIoPluginVersion, hexcal::Decode, hexcal::Encode,
-                                                hexcal::Read, hexcal::OpenFile, hexcal::OpenDevice};
+                                                hexcal::OpenFile, hexcal::OpenDevice};
   return &plugin;
 }

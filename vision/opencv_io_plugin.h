@@ -16,13 +16,12 @@ struct OpenCvIoPlugin {
   int version;  // kOpenCvIoPluginVersion of the plugin's build
   std::string (*decode)(const std::string& bytes, int flags, cv::Mat* image);
   std::string (*encode)(const std::string& extension, const cv::Mat& image, std::string* bytes);
-  std::string (*read)(const std::string& path, int flags, cv::Mat* image);
   // nullptr and `error` set when the file or device cannot be opened.
   VideoStream* (*open_video_file)(const std::string& path, std::string* error);
   VideoStream* (*open_video_device)(int index, int api, std::string* error);
 };
 
-constexpr int kOpenCvIoPluginVersion = 1;
+constexpr int kOpenCvIoPluginVersion = 2;
 
 }  // namespace hexcal
 
