@@ -57,11 +57,13 @@ StatusOr<CandidateSet> SampleBox(const Robot& robot, const CandidateOptions& opt
   return set;
 }
 
-// The 64 min/max leg combinations are independent: FK of each on every core,
-// each combination's modes kept in its own slot and joined in order, so the set
-// does not depend on the thread count.
+// The 64 min/max leg combinations: one FK family (fk_homotopy.h) solved once,
+// then each combination from it on every core, each combination's modes kept
+// in its own slot and joined in order, so the set does not depend on the thread count.
 StatusOr<CandidateSet> BoundaryCandidates(const Robot& robot, const JobHooks& hooks) {
   constexpr int kCombinations = 64;
+  StatusOr<FkFamily> family = FkFamily::ForRobot(robot);
+  if (!family.ok()) return family.status();
   std::vector<StatusOr<FkAllResult>> modes(kCombinations, Status::Failed("not computed"));
   const bool finished = ParallelFor(
       kCombinations, 0,
@@ -71,7 +73,7 @@ StatusOr<CandidateSet> BoundaryCandidates(const Robot& robot, const JobHooks& ho
           const Leg& leg = robot.legs[i];
           readings[i] = (combination >> i) & 1 ? leg.stroke_max : leg.stroke_min;
         }
-        modes[combination] = ForwardKinematicsAll(robot, readings);
+        modes[combination] = family->Solve(readings);
       },
       hooks);
   if (!finished) return Status::Cancelled("candidates: cancelled");

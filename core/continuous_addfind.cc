@@ -3,6 +3,9 @@
 #include <nlopt.hpp>
 
 #include <limits>
+#include <optional>
+
+#include "core/parallel.h"
 
 namespace hexcal {
 namespace {
@@ -56,9 +59,41 @@ double CriterionAndGradient(const PlanningModel& model, const DesignState& state
   return value;
 }
 
+namespace {
+
+// The local maximisation from one start: its optimum when that is feasible.
+std::optional<ContinuousResult> MaximiseFrom(const PlanningModel& model, const DesignState& state, Criterion criterion,
+                                             const Vector6d& start, const std::vector<double>& lower,
+                                             const std::vector<double>& upper, unsigned constraint_count,
+                                             int max_evaluations) {
+  SearchContext context{&model, &state, criterion};
+  nlopt::opt optimizer(nlopt::LD_SLSQP, 6);
+  optimizer.set_lower_bounds(lower);
+  optimizer.set_upper_bounds(upper);
+  optimizer.set_max_objective(Objective, &context);
+  optimizer.add_inequality_mconstraint(Constraints, &context, std::vector<double>(constraint_count, 1e-9));
+  optimizer.set_xtol_rel(1e-9);
+  optimizer.set_ftol_rel(1e-10);
+  optimizer.set_maxeval(max_evaluations);
+  std::vector<double> x(start.data(), start.data() + 6);
+  for (int k = 0; k < 6; ++k) x[k] = std::min(std::max(x[k], lower[k]), upper[k]);
+  double value = 0;
+  try {
+    optimizer.optimize(x, value);
+  } catch (const std::exception&) {
+    // SLSQP stops with roundoff or a failed line search now and then; x holds its last iterate.
+  }
+  const Vector6d pose = ToVector(x.data());
+  if (!pose.allFinite() || !model.IsFeasible(pose)) return std::nullopt;
+  Vector6d unused;
+  return ContinuousResult{pose, CriterionAndGradient(model, state, criterion, pose, &unused)};
+}
+
+}  // namespace
+
 std::vector<ContinuousResult> ContinuousAddFind(const PlanningModel& model, const DesignState& state,
                                                 Criterion criterion, const std::vector<Vector6d>& starts,
-                                                int max_evaluations) {
+                                                int max_evaluations, int threads) {
   std::vector<ContinuousResult> results;
   if (starts.empty()) return results;
   const unsigned constraint_count = static_cast<unsigned>(model.Margins(starts.front(), false).size());
@@ -71,28 +106,14 @@ std::vector<ContinuousResult> ContinuousAddFind(const PlanningModel& model, cons
       }
     }
   }
-  for (const Vector6d& start : starts) {
-    SearchContext context{&model, &state, criterion};
-    nlopt::opt optimizer(nlopt::LD_SLSQP, 6);
-    optimizer.set_lower_bounds(lower);
-    optimizer.set_upper_bounds(upper);
-    optimizer.set_max_objective(Objective, &context);
-    optimizer.add_inequality_mconstraint(Constraints, &context, std::vector<double>(constraint_count, 1e-9));
-    optimizer.set_xtol_rel(1e-9);
-    optimizer.set_ftol_rel(1e-10);
-    optimizer.set_maxeval(max_evaluations);
-    std::vector<double> x(start.data(), start.data() + 6);
-    for (int k = 0; k < 6; ++k) x[k] = std::min(std::max(x[k], lower[k]), upper[k]);
-    double value = 0;
-    try {
-      optimizer.optimize(x, value);
-    } catch (const std::exception&) {
-      // SLSQP stops with roundoff or a failed line search now and then; x holds its last iterate.
-    }
-    const Vector6d pose = ToVector(x.data());
-    if (!pose.allFinite() || !model.IsFeasible(pose)) continue;
-    Vector6d unused;
-    results.push_back({pose, CriterionAndGradient(model, state, criterion, pose, &unused)});
+  // The starts are independent: one slot each, joined in order, so the
+  // results do not depend on the thread count.
+  std::vector<std::optional<ContinuousResult>> found(starts.size());
+  ParallelFor(static_cast<int>(starts.size()), threads, [&](int k, int /*worker*/) {
+    found[k] = MaximiseFrom(model, state, criterion, starts[k], lower, upper, constraint_count, max_evaluations);
+  });
+  for (const std::optional<ContinuousResult>& result : found) {
+    if (result) results.push_back(*result);
   }
   return results;
 }

@@ -18,10 +18,11 @@ struct ContinuousResult {
   double value = 0;  // criterion of the set plus this pose
 };
 
-// One result per start whose optimum is feasible.
+// One result per start whose optimum is feasible, in the order of the starts;
+// the starts run on `threads` cores (0: every core).
 std::vector<ContinuousResult> ContinuousAddFind(const PlanningModel& model, const DesignState& state,
                                                 Criterion criterion, const std::vector<Vector6d>& starts,
-                                                int max_evaluations = 100);
+                                                int max_evaluations = 100, int threads = 0);
 
 // Criterion of `state` plus the pose, and its gradient w.r.t. the pose vector.
 double CriterionAndGradient(const PlanningModel& model, const DesignState& state, Criterion criterion,

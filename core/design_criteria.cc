@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/parallel.h"
 #include "core/sigma_criterion.h"
 
 namespace hexcal {
@@ -13,6 +14,7 @@ namespace {
 
 using Vector7d = Eigen::Matrix<double, kParamsPerLeg, 1>;
 constexpr double kNegativeInfinity = -std::numeric_limits<double>::infinity();
+constexpr double kPositiveInfinity = std::numeric_limits<double>::infinity();
 
 // Root of f(μ) = 1 + Σ z_k² / (λ_k - μ) in (lo, hi), where f(lo+) < 0 < f(hi-)
 // (f increases between consecutive poles), by Newton from `start`, kept inside
@@ -395,6 +397,10 @@ void DesignState::Remove(const PoseRows& rows) {
 }
 
 void QuadraticFormCache::Reset(const DesignState& state, const CandidateRows& candidates) {
+  if (source_ != &candidates || columns_[0].rows() != candidates.size()) {
+    for (int i = 0; i < kNumLegs; ++i) columns_[i] = candidates.legs[i].transpose();
+    source_ = &candidates;
+  }
   for (int i = 0; i < kNumLegs; ++i) {
     const auto& r = candidates.legs[i];
     q_[i] = r.cwiseProduct(state.inverse(i) * r).colwise().sum().transpose().array();
@@ -414,23 +420,28 @@ void QuadraticFormCache::Update(const DesignState& state, const CandidateRows& c
 }
 
 void QuadraticFormCache::Exchanged(const DesignState& before, const PoseRows& added, const DesignState& with_added,
-                                   const PoseRows& removed, const CandidateRows& candidates) {
-  constexpr int kChunk = 512;
-  for (int i = 0; i < kNumLegs; ++i) {
+                                   const PoseRows& removed, const CandidateRows& candidates, int threads) {
+  const int count = candidates.size();
+  // The legs are independent: one each per worker, the same sums whatever the thread count.
+  ParallelFor(kNumLegs, threads, [&](int i, int /*worker*/) {
     const Vector7d u_add = before.inverse(i) * added[i].transpose();
     const Vector7d u_remove = with_added.inverse(i) * removed[i].transpose();
     const double d_add = 1 + added[i].dot(u_add.transpose()), d_remove = 1 - removed[i].dot(u_remove.transpose());
-    Eigen::Matrix<double, 2, kParamsPerLeg> u;
-    u << u_add.transpose(), u_remove.transpose();
-    Eigen::Matrix<double, 2, kChunk> projection;
-    const int count = candidates.size();
-    for (int first = 0; first < count; first += kChunk) {
-      const int size = std::min(kChunk, count - first);
-      projection.leftCols(size).noalias() = u * candidates.legs[i].middleCols(first, size);
-      q_[i].segment(first, size) += projection.row(1).head(size).array().square().transpose() / d_remove -
-                                    projection.row(0).head(size).array().square().transpose() / d_add;
+    // One pass over the candidates, both projections from the same 7 loads;
+    // unrolled over the parameters, it vectorises along the candidates.
+    const double* column[kParamsPerLeg];
+    for (int k = 0; k < kParamsPerLeg; ++k) column[k] = columns_[i].col(k).data();
+    double* __restrict q = q_[i].data();
+    for (int c = 0; c < count; ++c) {
+      double along_add = 0, along_remove = 0;
+#pragma GCC unroll 7
+      for (int k = 0; k < kParamsPerLeg; ++k) {
+        along_add += u_add[k] * column[k][c];
+        along_remove += u_remove[k] * column[k][c];
+      }
+      q[c] += along_remove * along_remove / d_remove - along_add * along_add / d_add;
     }
-  }
+  });
   updates_ += 2;
 }
 
@@ -440,6 +451,19 @@ void QuadraticFormCache::Added(const DesignState& state, const CandidateRows& ca
 
 void QuadraticFormCache::Removed(const DesignState& state, const CandidateRows& candidates, const PoseRows& rows) {
   Update(state, candidates, rows, -1);
+}
+
+void QuadraticFormCache::SigmaUpperBounds(const DesignState& state, int begin, int end, double* bounds) const {
+  std::array<InfoBlock, kNumLegs> inverses;
+  std::array<const double*, kNumLegs> forms;
+  for (int i = 0; i < kNumLegs; ++i) inverses[i] = state.inverse(i), forms[i] = q_[i].data();
+  SigmaSumLowerBounds(inverses, columns_, forms, begin, end - begin, bounds);
+  // The exact values (SigmaSumsAfterAdding) round differently and q drifts
+  // between resets: a relative slack keeps the bound above them.
+  constexpr double kSlack = 1e-9;
+  for (int j = 0; j < end - begin; ++j) {
+    bounds[j] = bounds[j] > 0 ? kNumParams / bounds[j] * (1 + kSlack) : kPositiveInfinity;
+  }
 }
 
 void QuadraticFormCache::Growth(std::vector<double>* growth) const {

@@ -108,14 +108,21 @@ class QuadraticFormCache {
   // One exchange in one pass over the candidates (they are read once, not twice):
   // `before` is the state before adding `added`, `with_added` the state after it.
   void Exchanged(const DesignState& before, const PoseRows& added, const DesignState& with_added,
-                 const PoseRows& removed, const CandidateRows& candidates);
+                 const PoseRows& removed, const CandidateRows& candidates, int threads = 0);
   // Π_i (1 + q_ij) for every candidate.
   void Growth(std::vector<double>* growth) const;
+  // An upper bound of the S of `state` plus candidate j, for every j in
+  // [begin, end) (SigmaSumLowerBounds, sigma_criterion.h).
+  void SigmaUpperBounds(const DesignState& state, int begin, int end, double* bounds) const;
   int updates_since_reset() const { return updates_; }
 
  private:
   void Update(const DesignState& state, const CandidateRows& candidates, const PoseRows& rows, double sign);
   std::array<Eigen::ArrayXd, kNumLegs> q_;
+  // The candidates' rows one column per parameter (n x 7), copied on the first
+  // Reset: the updates and bounds then run along contiguous candidates.
+  std::array<Eigen::Matrix<double, Eigen::Dynamic, kParamsPerLeg>, kNumLegs> columns_;
+  const CandidateRows* source_ = nullptr;
   int updates_ = 0;
 };
 

@@ -232,7 +232,8 @@ namespace hexcal {
 namespace {
 
 // The Sherman–Morrison-maintained quadratic forms equal fresh ones after a series
-// of exchanges, and their growth ranks candidates exactly as O1 does.
+// of exchanges, and their growth ranks candidates exactly as O1 does; they
+// bound S from above.
 TEST(QuadraticFormCache, TracksExchangesExactly) {
   const PlanningModel model{::hexcal::testing::Preset("inria-left-hand"), std::nullopt, std::nullopt};
   CandidateOptions options;
@@ -269,6 +270,16 @@ TEST(QuadraticFormCache, TracksExchangesExactly) {
     const double o1 = std::exp((std::log(std::pow(state.Value(Criterion::kD), kNumParams)) + std::log(growth[j])) /
                                (2.0 * kNumParams)) / std::sqrt(19.0);
     EXPECT_NEAR(o1, scores[j], 1e-9 * scores[j]) << "candidate " << j;
+  }
+
+  // The same forms bound S from above: never below its exact value, and equal
+  // to it only when u is parallel to every unit vector (never, with 7 parameters).
+  std::vector<double> bounds(200);
+  cache.SigmaUpperBounds(state, 0, 200, bounds.data());
+  state.ScoreAdditions(Criterion::kS, candidates, 0, 200, scores.data());
+  for (int j = 0; j < 200; ++j) {
+    EXPECT_GE(bounds[j], scores[j]) << "candidate " << j;
+    EXPECT_GT(bounds[j], state.Value(Criterion::kS)) << "candidate " << j;
   }
 }
 

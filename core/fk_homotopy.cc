@@ -38,8 +38,10 @@ class TotalDegreeHomotopy : public Homotopy {
       gz(k, k + 1) = 2.0 * z[k + 1];
       gz(k, 0) = -2.0 * z[0];
     }
-    *h = (1 - s) * f + s * gamma_ * g;
-    (*h)[7] = f[7];
+    if (h) {
+      *h = (1 - s) * f + s * gamma_ * g;
+      (*h)[7] = f[7];
+    }
     if (hz) {
       *hz = (1 - s) * fz + s * gamma_ * gz;
       hz->row(7) = fz.row(7);
@@ -82,6 +84,7 @@ class ParameterHomotopy : public Homotopy {
       c1_[i] = CoefficientDerivative(a, b, da, db, dd2);
       c2_[i] = {Complex(da.transpose() * da) + Complex(db.transpose() * db), CVector3::Zero(), CVector3::Zero(),
                 da * db.transpose()};
+      lengths_only_ = lengths_only_ && da.isZero(0) && db.isZero(0);
     }
   }
 
@@ -92,7 +95,8 @@ class ParameterHomotopy : public Homotopy {
               c0_[i].ab + s * (c1_[i].ab + s * c2_[i].ab)};
       if (hs) {
         const LegCoefficients dc = {c1_[i].d + 2 * s * c2_[i].d, c1_[i].a, c1_[i].b, c1_[i].ab + 2 * s * c2_[i].ab};
-        (*hs)[i] = LegLinearPart(dc, z);  // the 4 g·g term does not depend on p
+        // The 4 g·g term does not depend on p; with the lengths alone moving, only D Δ does.
+        (*hs)[i] = lengths_only_ ? dc.d * Complex(z.head<4>().transpose() * z.head<4>()) : LegLinearPart(dc, z);
       }
     }
     EvaluateStudySystem(c, chart_, z, h, hz);
@@ -102,6 +106,7 @@ class ParameterHomotopy : public Homotopy {
  private:
   std::array<LegCoefficients, 6> c0_, c1_, c2_;
   CVector8 chart_;
+  bool lengths_only_ = true;  // the attachment points are the same at both ends (FkFamily)
 };
 
 Complex Delta(const CVector8& z) { return Complex(z.head<4>().transpose() * z.head<4>()); }
@@ -285,16 +290,19 @@ const StartSystem& GenericStartSystem() {
   return system;
 }
 
-StatusOr<FkAllResult> ForwardKinematicsAll(const Robot& robot, const LegReadings& readings,
-                                           const FkAllOptions& options) {
-  const StartSystem& start = GenericStartSystem();
-  if (static_cast<int>(start.solutions.size()) != kGenericSolutionCount) {
-    std::ostringstream message;
-    message << "forward kinematics: the generic start system has " << start.solutions.size() << " solutions instead of "
-            << kGenericSolutionCount;
-    return Status::Failed(message.str());
-  }
-  // Work in units of the longest leg so the target looks like the unit-size start.
+namespace {
+
+Status CheckStartSystem(const StartSystem& start) {
+  if (static_cast<int>(start.solutions.size()) == kGenericSolutionCount) return Status::Ok();
+  std::ostringstream message;
+  message << "forward kinematics: the generic start system has " << start.solutions.size() << " solutions instead of "
+          << kGenericSolutionCount;
+  return Status::Failed(message.str());
+}
+
+// The longest total leg length of `readings`: the unit the instance is solved
+// in, so that it looks like the unit-size start.
+StatusOr<double> LongestLeg(const Robot& robot, const LegReadings& readings) {
   double scale = 0;
   for (int i = 0; i < kNumLegs; ++i) {
     const double length = readings[i] + robot.legs[i].offset;
@@ -304,28 +312,97 @@ StatusOr<FkAllResult> ForwardKinematicsAll(const Robot& robot, const LegReadings
     }
     scale = std::max(scale, length);
   }
-  StudyParameters target;
-  for (int i = 0; i < kNumLegs; ++i) {
-    target.a[i] = (robot.legs[i].a_in_base / scale).cast<Complex>();
-    target.b[i] = (robot.legs[i].b_in_platform / scale).cast<Complex>();
-    const double length = (readings[i] + robot.legs[i].offset) / scale;
-    target.d2[i] = length * length;
-  }
+  return scale;
+}
 
-  const ParameterHomotopy homotopy(start.params, target, start.chart);
+// The robot's attachment points and the squared total lengths of `readings`, in units of `scale`.
+StudyParameters ScaledInstance(const Robot& robot, const LegReadings& readings, double scale) {
+  StudyParameters instance;
+  for (int i = 0; i < kNumLegs; ++i) {
+    instance.a[i] = (robot.legs[i].a_in_base / scale).cast<Complex>();
+    instance.b[i] = (robot.legs[i].b_in_platform / scale).cast<Complex>();
+    const double length = (readings[i] + robot.legs[i].offset) / scale;
+    instance.d2[i] = length * length;
+  }
+  return instance;
+}
+
+// Tracks the solutions of `from` to `to` (same chart) along the parameter
+// line, on up to `threads` cores: the paths are independent.
+std::vector<PathEnd> TrackSolutions(const StudyParameters& from, const std::vector<CVector8>& solutions,
+                                    const CVector8& chart, const StudyParameters& to, int threads,
+                                    double initial_step = TrackerOptions().initial_step) {
+  const ParameterHomotopy homotopy(from, to, chart);
   // Paths of special robots (planar-planar, symmetric) that end on the spurious
   // set Δ = 0 converge slowly to a singular point; drop them once they are close.
   TrackerOptions tracker;
+  tracker.initial_step = initial_step;
   tracker.give_up = [](const CVector8& z, double s) {
     return s < 0.02 && std::abs(Delta(z)) < 1e-8 * z.head<4>().squaredNorm();
   };
-  // The 40 paths are independent: track them on every core (at most 4).
-  std::vector<PathEnd> ends(start.solutions.size());
-  ParallelFor(static_cast<int>(ends.size()), std::min(ResolveThreadCount(0), 4), [&](int k, int) {
-    ends[k] = TrackPath(homotopy, start.solutions[k], tracker);
+  std::vector<PathEnd> ends(solutions.size());
+  ParallelFor(static_cast<int>(ends.size()), threads, [&](int k, int) {
+    ends[k] = TrackPath(homotopy, solutions[k], tracker);
     if (ends[k].reached_end) RefineAt(homotopy, 0.0, &ends[k].z, 4, 1e-14);
   });
-  return CollectRealModes(robot, readings, ends, scale, options);
+  return ends;
+}
+
+}  // namespace
+
+StatusOr<FkAllResult> ForwardKinematicsAll(const Robot& robot, const LegReadings& readings,
+                                           const FkAllOptions& options) {
+  const StartSystem& start = GenericStartSystem();
+  if (Status s = CheckStartSystem(start); !s.ok()) return s;
+  StatusOr<double> scale = LongestLeg(robot, readings);
+  if (!scale.ok()) return scale.status();
+  const StudyParameters target = ScaledInstance(robot, readings, *scale);
+  const std::vector<PathEnd> ends =
+      TrackSolutions(start.params, start.solutions, start.chart, target, std::min(ResolveThreadCount(0), 4));
+  return CollectRealModes(robot, readings, ends, *scale, options);
+}
+
+StatusOr<FkFamily> FkFamily::ForRobot(const Robot& robot, const FkAllOptions& options) {
+  const StartSystem& start = GenericStartSystem();
+  if (Status s = CheckStartSystem(start); !s.ok()) return s;
+  LegReadings longest, middle;
+  for (int i = 0; i < kNumLegs; ++i) {
+    longest[i] = std::max(robot.legs[i].stroke_min, robot.legs[i].stroke_max);
+    middle[i] = 0.5 * (robot.legs[i].stroke_min + robot.legs[i].stroke_max);
+  }
+  StatusOr<double> scale = LongestLeg(robot, longest);
+  if (!scale.ok()) return scale.status();
+  FkFamily family;
+  family.robot_ = robot;
+  family.options_ = options;
+  family.scale_ = *scale;
+  family.chart_ = start.chart;
+  // The hub: mid-stroke lengths moved off the reals at random (by 5 %: enough
+  // to be generic, close enough that the paths to every reading are short), a generic
+  // member of the robot's family (fixed seed: the set of paths is part of the method).
+  family.hub_ = ScaledInstance(robot, middle, *scale);
+  std::mt19937_64 rng(kStartSystemSeed + 1);
+  for (Complex& d2 : family.hub_.d2) d2 *= 1.0 + 0.05 * RandomComplex(rng);
+  const std::vector<PathEnd> ends = TrackSolutions(start.params, start.solutions, start.chart, family.hub_,
+                                                   std::min(ResolveThreadCount(0), 4));
+  for (const PathEnd& end : ends) {
+    if (!end.reached_end || !end.z.allFinite() || IsSpurious(end.z)) continue;
+    if (ContainsNear(family.solutions_, end.z)) {  // two paths met: the hub is not generic
+      return Status::Failed("forward kinematics: the family's generic instance has a double root");
+    }
+    family.solutions_.push_back(end.z);
+  }
+  return family;
+}
+
+StatusOr<FkAllResult> FkFamily::Solve(const LegReadings& readings) const {
+  StatusOr<double> longest = LongestLeg(robot_, readings);  // refuses a non-positive length
+  if (!longest.ok()) return longest.status();
+  const StudyParameters target = ScaledInstance(robot_, readings, scale_);
+  // The hub is near every reading: a first step of a quarter of the path (the
+  // step control halves it where the path bends).
+  const std::vector<PathEnd> ends = TrackSolutions(hub_, solutions_, chart_, target, 1, 0.25);
+  return CollectRealModes(robot_, readings, ends, scale_, options_);
 }
 
 }  // namespace hexcal

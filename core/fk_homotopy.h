@@ -58,6 +58,33 @@ struct FkAllResult {
 StatusOr<FkAllResult> ForwardKinematicsAll(const Robot& robot, const LegReadings& readings,
                                            const FkAllOptions& options = {});
 
+// Forward kinematics of many readings of one robot (the boundary candidates'
+// 64 min/max combinations). The robot's own generic instance, its attachment
+// points with random complex leg lengths (the hub), is solved once from the
+// generic start system; every reading is then reached from it by a parameter
+// homotopy in the leg lengths alone. The hub is generic in that family, so by
+// the same theorem (Morgan & Sommese 1989) its finite non-spurious solutions
+// reach every isolated solution of any reading, and the paths are short and
+// fewer than 40: those that end at infinity or on Δ = 0 for this robot are
+// gone. Each Solve gives the modes ForwardKinematicsAll gives
+// (fk_homotopy_test checks it on every combination).
+class FkFamily {
+ public:
+  // Solves the hub (about the cost of one ForwardKinematicsAll).
+  static StatusOr<FkFamily> ForRobot(const Robot& robot, const FkAllOptions& options = {});
+  // Every real mode at `readings`, on the calling thread; thread-safe.
+  StatusOr<FkAllResult> Solve(const LegReadings& readings) const;
+  int hub_solutions() const { return static_cast<int>(solutions_.size()); }
+
+ private:
+  Robot robot_;
+  FkAllOptions options_;
+  double scale_ = 1;  // lengths are divided by the longest leg at full stroke
+  StudyParameters hub_;
+  CVector8 chart_;
+  std::vector<CVector8> solutions_;
+};
+
 // The generic complex instance and its 40 solutions. Its parameters come from
 // a fixed seed; its solutions are shipped (core/fk_start_solutions.inc), each
 // checked by Newton on first use, so a process pays for no 128-path solve

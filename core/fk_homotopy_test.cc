@@ -137,7 +137,7 @@ TEST(StudySystem, JacobianMatchesComplexFiniteDifferences) {
     CVector8 f;
     CMatrix8 jacobian;
     EvaluateStudySystem(legs, chart, z, &f, &jacobian);
-    EXPECT_TRUE(MatrixNear(f, Evaluate(legs, chart, z), 0.0));
+    EXPECT_TRUE(MatrixNear(f, Evaluate(legs, chart, z), 1e-12)) << (f - Evaluate(legs, chart, z)).transpose();
     const double h = 1e-6;
     for (int k = 0; k < 8; ++k) {
       for (const Complex direction : {Complex(1, 0), Complex(0, 1)}) {
@@ -357,6 +357,63 @@ TEST(ForwardKinematicsAll, DietmaierRobotFile) {
   ASSERT_TRUE(readings.allFinite()) << "no '# readings:' line with six numbers in " << path;
   EXPECT_TRUE(MatrixNear(readings, Eigen::Map<const LegReadings>(kDietmaierLengths), 0.0));
   EXPECT_TRUE(HasFortyRealModes(*robot, readings));
+}
+
+}  // namespace
+}  // namespace hexcal
+
+namespace hexcal {
+namespace {
+
+::testing::AssertionResult SameModes(const FkAllResult& family, const FkAllResult& direct) {
+  if (family.poses.size() != direct.poses.size() || family.SingularCount() != direct.SingularCount()) {
+    return ::testing::AssertionFailure() << family.poses.size() << " modes (" << family.SingularCount()
+                                         << " singular) from the family, " << direct.poses.size() << " ("
+                                         << direct.SingularCount() << ") from the generic start";
+  }
+  for (const Pose& pose : direct.poses) {
+    if (!ContainsPose(family.poses, pose, 1e-9)) {
+      return ::testing::AssertionFailure() << "the family misses the mode at " << pose.position.transpose();
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// One hub and short homotopies in the leg lengths find exactly the modes the
+// generic start finds, on every stroke corner of both presets (the boundary
+// candidates) and at readings inside the strokes.
+TEST(FkFamily, SameModesAsTheGenericStart) {
+  for (const char* name : {"inria-left-hand", "deltalab-table"}) {
+    const Robot robot = *LoadRobot(name);
+    StatusOr<FkFamily> family = FkFamily::ForRobot(robot);
+    ASSERT_TRUE(family.ok()) << family.status().message();
+    EXPECT_LE(family->hub_solutions(), 40) << name;
+    for (int corner = 0; corner < 64 + 8; ++corner) {
+      LegReadings readings;
+      for (int i = 0; i < kNumLegs; ++i) {
+        const Leg& leg = robot.legs[i];
+        readings[i] = corner >= 64                  ? Uniform(leg.stroke_min, leg.stroke_max)
+                      : (corner >> i) & 1 ? leg.stroke_max
+                                          : leg.stroke_min;
+      }
+      StatusOr<FkAllResult> via_family = family->Solve(readings);
+      StatusOr<FkAllResult> direct = ForwardKinematicsAll(robot, readings);
+      ASSERT_TRUE(via_family.ok() && direct.ok());
+      EXPECT_TRUE(SameModes(*via_family, *direct)) << name << " corner " << corner;
+      EXPECT_LT(WorstLegError(robot, via_family->poses, readings), 1e-9) << name << " corner " << corner;
+    }
+  }
+}
+
+// Dietmaier's platform (strokes 0-10 m, readings about 1 m): all 40 modes real.
+TEST(FkFamily, DietmaierFortyRealModes) {
+  StatusOr<FkFamily> family = FkFamily::ForRobot(DietmaierRobot());
+  ASSERT_TRUE(family.ok()) << family.status().message();
+  EXPECT_EQ(family->hub_solutions(), 40);
+  StatusOr<FkAllResult> fk = family->Solve(Eigen::Map<const LegReadings>(kDietmaierLengths));
+  ASSERT_TRUE(fk.ok());
+  EXPECT_EQ(fk->poses.size(), 40u);
+  EXPECT_LT(WorstLegError(DietmaierRobot(), fk->poses, Eigen::Map<const LegReadings>(kDietmaierLengths)), 1e-9);
 }
 
 }  // namespace

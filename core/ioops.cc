@@ -73,47 +73,56 @@ int SelectBest(const std::vector<double>& primary, const std::vector<double>* se
   return *std::max_element(kept.begin(), kept.end(), [&](int a, int b) { return (*secondary)[a] < (*secondary)[b]; });
 }
 
-// SelectBest with an eigenvalue secondary (O2-O4, E), the same choice at a
-// fraction of the cost: the kept candidates in decreasing order of an upper
-// bound of the secondary (DesignState::ScoreUpperBounds), their secular
-// equations solved in batches only while a bound can still beat the best value
-// found. Ties go to the lower candidate index.
-int SelectBestScreened(const DesignState& state, Criterion secondary, const CandidateRows& scored,
-                       const std::vector<double>& primary, double keep, int threads) {
-  std::vector<int> kept = KeptOnPrimary(primary, keep);
-  if (kept.empty()) return -1;
-  std::vector<double> bounds(scored.size());
-  ParallelForBlocks(scored.size(), kScoreBlock, threads, [&](int begin, int end) {
-    state.ScoreUpperBounds(secondary, scored, begin, end, bounds.data() + begin);
-  });
+// The best of `indices` on `criterion` given an upper bound of each
+// candidate's value: the candidates in decreasing order of bound, their exact
+// values (ScoreAdditions) computed in batches only while a bound can still
+// beat the best value found. Ties go to the lower candidate index, as in SelectBest.
+int BestByBounds(std::vector<int> indices, const std::vector<double>& bounds, const DesignState& state,
+                 Criterion criterion, const CandidateRows& scored) {
+  if (indices.empty()) return -1;
   const auto by_bound = [&](int a, int b) { return bounds[a] > bounds[b] || (bounds[a] == bounds[b] && a < b); };
   constexpr int kBatch = 16;
   CandidateRows batch;
   std::array<double, kBatch> values;
   int best = -1;
   double best_value = kMinusInfinity;
-  auto evaluate = [&](const int* indices, int size) {
+  auto evaluate = [&](const int* batch_indices, int size) {
     batch.Resize(size);
-    for (int k = 0; k < size; ++k) batch.Set(k, scored.Rows(indices[k]));
-    state.ScoreAdditions(secondary, batch, 0, size, values.data());
+    for (int k = 0; k < size; ++k) batch.Set(k, scored.Rows(batch_indices[k]));
+    state.ScoreAdditions(criterion, batch, 0, size, values.data());
     for (int k = 0; k < size; ++k) {
-      if (values[k] > best_value || (values[k] == best_value && indices[k] < best)) best_value = values[k], best = indices[k];
+      if (values[k] > best_value || (values[k] == best_value && batch_indices[k] < best)) {
+        best_value = values[k], best = batch_indices[k];
+      }
     }
   };
   // The best bounds first; then only the candidates whose bound can still win,
   // in decreasing order (a handful: sorting them all would cost more than the rest).
-  const int first = std::min<int>(kBatch, kept.size());
-  std::nth_element(kept.begin(), kept.begin() + (first - 1), kept.end(), by_bound);
-  evaluate(kept.data(), first);
+  const int first = std::min<int>(kBatch, indices.size());
+  std::nth_element(indices.begin(), indices.begin() + (first - 1), indices.end(), by_bound);
+  evaluate(indices.data(), first);
   std::vector<int> open;
-  for (size_t k = first; k < kept.size(); ++k) {
-    if (bounds[kept[k]] >= best_value) open.push_back(kept[k]);
+  for (size_t k = first; k < indices.size(); ++k) {
+    if (bounds[indices[k]] >= best_value) open.push_back(indices[k]);
   }
   std::sort(open.begin(), open.end(), by_bound);
   for (size_t k = 0; k < open.size() && bounds[open[k]] >= best_value; k += kBatch) {
     evaluate(open.data() + k, static_cast<int>(std::min<size_t>(kBatch, open.size() - k)));
   }
   return best;
+}
+
+// SelectBest with an eigenvalue secondary (O2-O4, E), the same choice at a
+// fraction of the cost: BestByBounds on the kept candidates with an upper
+// bound of the secondary (DesignState::ScoreUpperBounds) instead of twelve
+// secular equations per candidate.
+int SelectBestScreened(const DesignState& state, Criterion secondary, const CandidateRows& scored,
+                       const std::vector<double>& primary, double keep, int threads) {
+  std::vector<double> bounds(scored.size());
+  ParallelForBlocks(scored.size(), kScoreBlock, threads, [&](int begin, int end) {
+    state.ScoreUpperBounds(secondary, scored, begin, end, bounds.data() + begin);
+  });
+  return BestByBounds(KeptOnPrimary(primary, keep), bounds, state, secondary, scored);
 }
 
 Status CheckPlanInput(const std::vector<Vector6d>& candidates, const std::vector<Vector6d>& initial,
@@ -147,8 +156,10 @@ struct Search {
   std::deque<int64_t> tabu;     // T: ids of the last n added poses (section 4.3)
   int starts = 0;               // U
   // D and O1 over every candidate: keep the quadratic forms through the
-  // exchanges instead of recomputing them (QuadraticFormCache).
+  // exchanges instead of recomputing them (QuadraticFormCache); S alone over
+  // every candidate: the same forms bound it (sigma_screened).
   bool cached = false;
+  bool sigma_screened = false;
   QuadraticFormCache cache;
   std::vector<double> primary_scores, secondary_scores;  // AddFind's, reused
 };
@@ -176,13 +187,12 @@ Search::Search(const PlanningModel& model, const std::vector<Vector6d>& candidat
       state(DesignState::FromRows(RowsOf(plan))),
       in_plan(candidates.size(), 0) {
   const int count = static_cast<int>(candidates.size());
-  if (!options.continuous) {  // the continuous AddFind only draws its starts from the candidates
-    rows.Resize(count);
-    for (int j = 0; j < count; ++j) rows.Set(j, model.Rows(candidates[j]));
-  }
+  if (!options.continuous) rows = model.RowsOf(candidates, options.threads);  // continuous: starts only
   starts = options.addfind_starts > 0 ? options.addfind_starts : (options.continuous ? 40 : count);
-  cached = !options.continuous && starts >= count &&
-           (options.criterion == Criterion::kO1 || options.criterion == Criterion::kD);
+  const bool every_candidate = !options.continuous && starts >= count;
+  sigma_screened = every_candidate && options.screen && options.criterion == Criterion::kS && !options.secondary;
+  cached = sigma_screened ||
+           (every_candidate && (options.criterion == Criterion::kO1 || options.criterion == Criterion::kD));
   if (cached && state.full_rank()) cache.Reset(state, rows);  // PlanPoses refuses a singular start
   // An initial pose that is one of the candidates (a subset of measured poses,
   // core/subset_study.h) is that candidate: AddFind must not add it a second time.
@@ -243,7 +253,14 @@ StatusOr<PlanEntry> AddFindFinite(Search& s, const AddCriteria& criteria) {
 
   if (s.cached && !criteria.switched) {
     if (s.cache.updates_since_reset() >= 50) s.cache.Reset(s.state, s.rows);
-    s.cache.Growth(&s.primary_scores);  // ranks candidates as the criterion does
+    if (s.sigma_screened) {
+      s.primary_scores.resize(s.rows.size());  // bounds only: BestByBounds below
+      ParallelForBlocks(s.rows.size(), kScoreBlock, s.options.threads, [&](int begin, int end) {
+        s.cache.SigmaUpperBounds(s.state, begin, end, s.primary_scores.data() + begin);
+      });
+    } else {
+      s.cache.Growth(&s.primary_scores);  // ranks candidates as the criterion does
+    }
   } else {
     ScoreInParallel(s.state, criteria.add, scored, &s.primary_scores, s.options.threads);
   }
@@ -251,7 +268,9 @@ StatusOr<PlanEntry> AddFindFinite(Search& s, const AddCriteria& criteria) {
     if (s.in_plan[candidate_of(k)]) s.primary_scores[k] = kMinusInfinity;
   }
   int pick;
-  if (criteria.secondary && s.options.screen_secondary && IsEigenvalueCriterion(*criteria.secondary)) {
+  if (s.sigma_screened) {
+    pick = BestByBounds(FiniteEntries(s.primary_scores), s.primary_scores, s.state, Criterion::kS, scored);
+  } else if (criteria.secondary && s.options.screen && IsEigenvalueCriterion(*criteria.secondary)) {
     pick = SelectBestScreened(s.state, *criteria.secondary, scored, s.primary_scores, s.options.keep,
                               s.options.threads);
   } else {
@@ -271,7 +290,7 @@ StatusOr<PlanEntry> AddFindContinuous(Search& s, const AddCriteria& criteria) {
   const int count = static_cast<int>(s.candidates.size());
   std::vector<Vector6d> start_poses;
   for (int k = 0; k < s.starts; ++k) start_poses.push_back(s.candidates[s.rng() % count]);
-  const std::vector<ContinuousResult> found = ContinuousAddFind(s.model, s.state, criteria.add, start_poses);
+  const std::vector<ContinuousResult> found = ContinuousAddFind(s.model, s.state, criteria.add, start_poses, 100, s.options.threads);
   if (found.empty()) {
     return Status::Error("continuous AddFind found no feasible pose from " + std::to_string(s.starts) + " starts");
   }
@@ -328,7 +347,7 @@ StatusOr<bool> Exchange(Search& s) {
   const PlanEntry removed = s.plan[removed_index];
   s.plan.erase(s.plan.begin() + removed_index);
   const bool exchanged = removed.id != added->id;
-  if (s.cached && exchanged) s.cache.Exchanged(*before_add, added->rows, s.state, removed.rows, s.rows);
+  if (s.cached && exchanged) s.cache.Exchanged(*before_add, added->rows, s.state, removed.rows, s.rows, s.options.threads);
   s.state.Remove(removed.rows);
   if (removed.id >= 0) s.in_plan[removed.id] = 0;
   return exchanged;

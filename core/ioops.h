@@ -40,10 +40,11 @@ struct PlannerOptions {
   int removal_choices = 1;                // section 4.2: remove one of the r best at random
   uint64_t seed = 1;
   int threads = 0;                        // candidate scoring threads; 0: every core
-  // An eigenvalue secondary (O2-O4, E) is screened by upper bounds before its
-  // secular equations are solved; the choice is the same (ioops_test checks
-  // it against the plain scoring of every candidate, false).
-  bool screen_secondary = true;
+  // Candidates are screened by upper bounds before their exact values are
+  // computed: an eigenvalue secondary (O2-O4, E) before its secular equations,
+  // S as the only criterion before its 42 square roots. The choice is the
+  // same (ioops_test checks it against the plain scoring of every candidate, false).
+  bool screen = true;
 
   bool IsValid(std::string* error) const;
   int IterationBudget() const;

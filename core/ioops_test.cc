@@ -67,12 +67,30 @@ TEST_F(IoopsTest, ScreenedSecondaryChoosesAsThePlainScoring) {
     options.tabu = 4;
     options.iterations = 40;
     StatusOr<PlanResult> screened = PlanPoses(model_, candidates, random18_, options);
-    options.screen_secondary = false;
+    options.screen = false;
     StatusOr<PlanResult> plain = PlanPoses(model_, candidates, random18_, options);
     ASSERT_TRUE(screened.ok() && plain.ok());
     EXPECT_EQ(screened->poses, plain->poses) << CriterionName(secondary);
     EXPECT_EQ(screened->best_iteration, plain->best_iteration) << CriterionName(secondary);
   }
+}
+
+// S alone, screened by the quadratic-form bound (QuadraticFormCache), makes
+// the same choices as scoring every candidate on it.
+TEST_F(IoopsTest, ScreenedSigmaChoosesAsThePlainScoring) {
+  std::vector<Vector6d> candidates = Generate(model_.robot, CandidateKind::kRandom, 3000, 79);
+  candidates.insert(candidates.end(), boundary_.begin(), boundary_.end());
+  PlannerOptions options;
+  options.criterion = Criterion::kS;
+  options.tabu = 4;
+  options.iterations = 120;  // past four cache refreshes (every 25 exchanges)
+  StatusOr<PlanResult> screened = PlanPoses(model_, candidates, random18_, options);
+  options.screen = false;
+  StatusOr<PlanResult> plain = PlanPoses(model_, candidates, random18_, options);
+  ASSERT_TRUE(screened.ok() && plain.ok());
+  EXPECT_EQ(screened->poses, plain->poses);
+  EXPECT_EQ(screened->best_iteration, plain->best_iteration);
+  EXPECT_EQ(screened->final_primary, plain->final_primary);
 }
 
 // A start drawn from the candidates themselves (a subset of measured poses):

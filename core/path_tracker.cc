@@ -1,17 +1,44 @@
 #include "core/path_tracker.h"
 
-#include <Eigen/LU>
 #include <algorithm>
 
 namespace hexcal {
 namespace {
 
+// x = A⁻¹ b by Gaussian elimination with partial pivoting, the pivot chosen on
+// |re| + |im|: any norm gives a stable pivot, and this one needs no hypot
+// (Eigen's PartialPivLU scores complex pivots by |·|, a fifth of the tracking
+// time). A singular A gives non-finite entries, which the callers test.
+CVector8 SolveLinear(CMatrix8 a, CVector8 b) {
+  const auto score = [](const Complex& v) { return std::abs(v.real()) + std::abs(v.imag()); };
+  for (int k = 0; k < kStudyUnknowns; ++k) {
+    int pivot = k;
+    for (int r = k + 1; r < kStudyUnknowns; ++r) {
+      if (score(a(r, k)) > score(a(pivot, k))) pivot = r;
+    }
+    if (pivot != k) {
+      a.row(k).swap(a.row(pivot));
+      std::swap(b[k], b[pivot]);
+    }
+    const Complex inverse = 1.0 / a(k, k);
+    for (int r = k + 1; r < kStudyUnknowns; ++r) {
+      const Complex factor = a(r, k) * inverse;
+      a.row(r).tail(kStudyUnknowns - k - 1) -= factor * a.row(k).tail(kStudyUnknowns - k - 1);
+      b[r] -= factor * b[k];
+    }
+  }
+  for (int k = kStudyUnknowns - 1; k >= 0; --k) {
+    b[k] = (b[k] - Complex(a.row(k).tail(kStudyUnknowns - k - 1) * b.tail(kStudyUnknowns - k - 1))) / a(k, k);
+  }
+  return b;
+}
+
 // dz/ds = -H_z⁻¹ H_s
 CVector8 Tangent(const Homotopy& homotopy, const CVector8& z, double s) {
-  CVector8 h, hs;
+  CVector8 hs;
   CMatrix8 hz;
-  homotopy.Evaluate(z, s, &h, &hz, &hs);
-  return -hz.partialPivLu().solve(hs);
+  homotopy.Evaluate(z, s, nullptr, &hz, &hs);
+  return -SolveLinear(hz, hs);
 }
 
 bool Correct(const Homotopy& homotopy, double s, CVector8* z, const TrackerOptions& options) {
@@ -20,7 +47,7 @@ bool Correct(const Homotopy& homotopy, double s, CVector8* z, const TrackerOptio
     CVector8 h;
     CMatrix8 hz;
     homotopy.Evaluate(*z, s, &h, &hz, nullptr);
-    const CVector8 dz = hz.partialPivLu().solve(h);
+    const CVector8 dz = SolveLinear(hz, h);
     if (!dz.allFinite()) return false;
     *z -= dz;
     const double size = dz.norm(), scale = 1 + z->norm();
@@ -76,7 +103,7 @@ bool RefineAt(const Homotopy& homotopy, double s, CVector8* z, int iterations, d
     CVector8 h;
     CMatrix8 hz;
     homotopy.Evaluate(*z, s, &h, &hz, nullptr);
-    const CVector8 dz = hz.partialPivLu().solve(h);
+    const CVector8 dz = SolveLinear(hz, h);
     if (!dz.allFinite()) return false;
     *z -= dz;
     converged = dz.norm() <= tolerance * (1 + z->norm());

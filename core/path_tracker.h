@@ -17,7 +17,7 @@ namespace hexcal {
 class Homotopy {
  public:
   virtual ~Homotopy() = default;
-  // H(z, s), dH/dz and dH/ds; hz or hs may be null when not needed.
+  // H(z, s), dH/dz and dH/ds; h, hz or hs may be null when not needed.
   virtual void Evaluate(const CVector8& z, double s, CVector8* h, CMatrix8* hz, CVector8* hs) const = 0;
 };
 

@@ -17,9 +17,7 @@ struct DesignInput {
 
 DesignInput RowsOf(const PlanningModel& model, const std::vector<Vector6d>& candidates,
                    const std::vector<Vector6d>& plan) {
-  CandidateRows rows;
-  rows.Resize(static_cast<int>(candidates.size()));
-  for (size_t j = 0; j < candidates.size(); ++j) rows.Set(static_cast<int>(j), model.Rows(candidates[j]));
+  CandidateRows rows = model.RowsOf(candidates);
   std::vector<PoseRows> plan_rows;
   for (const Vector6d& pose : plan) plan_rows.push_back(model.Rows(pose));
   return {std::move(rows), DesignState::FromRows(plan_rows)};

@@ -9,9 +9,31 @@
 #include "core/constraints.h"
 #include "core/inverse_kinematics.h"
 #include "core/noise_yaml.h"
+#include "core/parallel.h"
 #include "core/yaml_document.h"
 
 namespace hexcal {
+
+// Blocks of poses per ParallelFor item: large enough that the items cost far
+// more than handing them out.
+constexpr int kPoseBlock = 512;
+
+CandidateRows PlanningModel::RowsOf(const std::vector<Vector6d>& poses, int threads) const {
+  CandidateRows rows;
+  rows.Resize(static_cast<int>(poses.size()));
+  ParallelForBlocks(static_cast<int>(poses.size()), kPoseBlock, threads, [&](int begin, int end) {
+    for (int j = begin; j < end; ++j) rows.Set(j, Rows(poses[j]));
+  });
+  return rows;
+}
+
+std::vector<char> PlanningModel::FeasibleOf(const std::vector<Vector6d>& poses, int threads) const {
+  std::vector<char> feasible(poses.size());
+  ParallelForBlocks(static_cast<int>(poses.size()), kPoseBlock, threads, [&](int begin, int end) {
+    for (int j = begin; j < end; ++j) feasible[j] = IsFeasible(poses[j]);
+  });
+  return feasible;
+}
 
 PoseRows PlanningModel::Rows(const Vector6d& v) const {
   const Pose pose = robot.PoseFromVector(v);

@@ -35,6 +35,10 @@ struct PlanningModel {
   std::optional<MeasurementConstraints> measurement;  // camera visibility
 
   PoseRows Rows(const Vector6d& pose) const;
+  // The rows of every pose, on `threads` cores (0: every core).
+  CandidateRows RowsOf(const std::vector<Vector6d>& poses, int threads = 0) const;
+  // Which poses are feasible (IsFeasible), on `threads` cores.
+  std::vector<char> FeasibleOf(const std::vector<Vector6d>& poses, int threads = 0) const;
   // d(rows)/d(pose vector) as six 7x6 matrices (angles per degree).
   std::array<Eigen::Matrix<double, kParamsPerLeg, 6>, kNumLegs> RowJacobians(const Vector6d& pose) const;
   // Robot margins (optionally without the pose box) followed by the measurement margins.

@@ -1,5 +1,7 @@
 #include "core/sigma_criterion.h"
 
+#include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -47,6 +49,43 @@ void SigmaSumsAfterAdding(const std::array<InfoBlock, kNumLegs>& inverses,
         }
       }
       for (int c = 0; c < size; ++c) out[c] += leg_sum[c];
+    }
+  }
+}
+
+void SigmaSumLowerBounds(const std::array<InfoBlock, kNumLegs>& inverses,
+                         const std::array<ParameterColumns, kNumLegs>& candidates,
+                         const std::array<const double*, kNumLegs>& forms, int begin, int n, double* least_sums) {
+  std::fill(least_sums, least_sums + n, 0.0);
+  for (int i = 0; i < kNumLegs; ++i) {
+    Vector7d sigma;
+    for (int k = 0; k < kParamsPerLeg; ++k) sigma[k] = SafeSqrt(inverses[i](k, k));
+    const double sigma_sum = sigma.sum();
+    const InfoBlock weight = inverses[i] * sigma.cwiseInverse().asDiagonal() * inverses[i];
+    const InfoBlock upper = Eigen::LLT<InfoBlock>(weight).matrixU();  // W = UᵀU: rᵀWr = |U r|²
+    // One pass over the candidates: their 7 entries, |U r|² and the bound;
+    // with the loops over j and k unrolled, it vectorises along the candidates.
+    double u[kParamsPerLeg][kParamsPerLeg];
+    for (int j = 0; j < kParamsPerLeg; ++j) {
+      for (int k = 0; k < kParamsPerLeg; ++k) u[j][k] = upper(j, k);
+    }
+    const double* column[kParamsPerLeg];
+    for (int k = 0; k < kParamsPerLeg; ++k) column[k] = candidates[i].col(k).data() + begin;
+    const double* __restrict q = forms[i] + begin;
+    double* __restrict out = least_sums;
+    for (int c = 0; c < n; ++c) {
+      double w = 0;
+#pragma GCC unroll 7
+      for (int j = 0; j < kParamsPerLeg; ++j) {
+        double y = 0;
+#pragma GCC unroll 7
+        for (int k = j; k < kParamsPerLeg; ++k) y += u[j][k] * column[k][c];
+        w += y * y;
+      }
+      // min(a, b) as (a + b - |a - b|) / 2 keeps the loop free of branches (the
+      // slack of SigmaUpperBounds covers its rounding); q >= 0 up to drift.
+      const double root = std::sqrt(1 + q[c]), a = q[c] * sigma_sum;
+      out[c] += sigma_sum - 0.5 * (a + w - std::abs(a - w)) / (root * (root + 1));
     }
   }
 }

@@ -30,6 +30,21 @@ void SigmaSumsAfterAdding(const std::array<InfoBlock, kNumLegs>& inverses,
                           const std::array<Eigen::Matrix<double, kParamsPerLeg, Eigen::Dynamic>, kNumLegs>& candidates,
                           int begin, int n, double* sums);
 
+// A lower bound of the Σσ after adding each candidate in [begin, begin + n),
+// given its quadratic forms q_i = r_iᵀM_i⁻¹r_i (forms[i][j], QuadraticFormCache).
+// With u = M⁻¹r and c_k² = u_k²/((M⁻¹)_kk q) <= 1 (Cauchy–Schwarz), σ_k falls
+// by σ_k g(c_k²), g(x) = 1 - √(1 - x q/(1 + q)), convex with g(0) = 0, so
+// g(x) <= x g(1) and a leg's Σσ falls by at most
+//   φ(q) Σ_k u_k²/σ_k = φ(q) rᵀWr,  W = M⁻¹ diag(σ)⁻¹ M⁻¹,  φ(q) = 1/(√(1+q)(√(1+q)+1))
+// (and by at most q φ(q) Σ_k σ_k, every c_k = 1): 28 multiply-adds and one
+// square root per leg through W's Cholesky factor, against 49 and seven.
+// The candidates' rows come one column per parameter (n x 7), so that the
+// sums run along contiguous candidates.
+using ParameterColumns = Eigen::Matrix<double, Eigen::Dynamic, kParamsPerLeg>;
+void SigmaSumLowerBounds(const std::array<InfoBlock, kNumLegs>& inverses,
+                         const std::array<ParameterColumns, kNumLegs>& candidates,
+                         const std::array<const double*, kNumLegs>& forms, int begin, int n, double* least_sums);
+
 // The Σσ after adding one pose with rows r_i, and its gradient w.r.t. each r_i:
 //   ∂Σ_j σ_j / ∂r = -M⁻¹(u ⊘ σ) / (1 + q) + (Σ_j u_j² / σ_j) u / (1 + q)²,  q = rᵀu.
 double SigmaSumAfterAddingWithGradient(const std::array<InfoBlock, kNumLegs>& inverses,

@@ -58,7 +58,7 @@ void EvaluateStudySystem(const std::array<LegCoefficients, 6>& legs, const CVect
   const CVector8 g_part = (CVector8() << 0, 0, 0, 0, z.segment<4>(4)).finished();
   const Complex gg = Complex(z.segment<4>(4).transpose() * z.segment<4>(4));
   for (int i = 0; i < 6; ++i) {
-    (*f)[i] = 4.0 * gg + LegLinearPart(legs[i], z);
+    if (f) (*f)[i] = 4.0 * gg + LegLinearPart(legs[i], z);
     if (jacobian) {
       Eigen::Matrix<Complex, 1, 8> grad;
       LegLinearPartGradient(legs[i], z, &grad);
@@ -66,8 +66,10 @@ void EvaluateStudySystem(const std::array<LegCoefficients, 6>& legs, const CVect
     }
   }
   // Study quadric e0 g0 + ev·gv.
-  (*f)[6] = Complex(z.segment<4>(0).transpose() * z.segment<4>(4));
-  (*f)[7] = Complex(chart.transpose() * z) - 1.0;
+  if (f) {
+    (*f)[6] = Complex(z.segment<4>(0).transpose() * z.segment<4>(4));
+    (*f)[7] = Complex(chart.transpose() * z) - 1.0;
+  }
   if (jacobian) {
     jacobian->row(6) << z.segment<4>(4).transpose(), z.segment<4>(0).transpose();
     jacobian->row(7) = chart.transpose();

@@ -61,7 +61,7 @@ LegCoefficients CoefficientDerivative(const CVector3& a, const CVector3& b, cons
 Complex LegLinearPart(const LegCoefficients& c, const CVector8& z, CVector3* unused = nullptr);
 void LegLinearPartGradient(const LegCoefficients& c, const CVector8& z, Eigen::Matrix<Complex, 1, 8>* grad);
 
-// F(z) and dF/dz for the 8 equations above.
+// F(z) and dF/dz for the 8 equations above; either may be null when not needed.
 void EvaluateStudySystem(const std::array<LegCoefficients, 6>& legs, const CVector8& chart, const CVector8& z,
                          CVector8* f, CMatrix8* jacobian);
 

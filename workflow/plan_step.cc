@@ -51,8 +51,10 @@ StatusOr<CandidatePool> BuildCandidatePool(const PlanningModel& model, const std
       pool.sources.push_back({{"kind", names[k]}, {"count", set->poses.size()}});
     }
   }
-  std::copy_if(raw.begin(), raw.end(), std::back_inserter(pool.poses),
-               [&](const Vector6d& pose) { return model.IsFeasible(pose); });
+  const std::vector<char> feasible = model.FeasibleOf(raw);
+  for (size_t j = 0; j < raw.size(); ++j) {
+    if (feasible[j]) pool.poses.push_back(raw[j]);
+  }
   if (pool.poses.empty() && !file.empty()) {
     return Status::Error(file + ": none of its " + std::to_string(raw.size()) +
                          " poses satisfies the robot and measurement constraints (all unreachable)");
