@@ -15,6 +15,15 @@ namespace {
 using Vector7d = Eigen::Matrix<double, kParamsPerLeg, 1>;
 constexpr double kNegativeInfinity = -std::numeric_limits<double>::infinity();
 constexpr double kPositiveInfinity = std::numeric_limits<double>::infinity();
+// Candidates per ParallelFor item of the cache: their rows (6 x 7 x 8 bytes
+// each) stay in cache between the update and the bound.
+constexpr int kCacheBlock = 1024;
+
+std::array<InfoBlock, kNumLegs> InversesOf(const DesignState& state) {
+  std::array<InfoBlock, kNumLegs> inverses;
+  for (int i = 0; i < kNumLegs; ++i) inverses[i] = state.inverse(i);
+  return inverses;
+}
 
 // Root of f(μ) = 1 + Σ z_k² / (λ_k - μ) in (lo, hi), where f(lo+) < 0 < f(hi-)
 // (f increases between consecutive poles), by Newton from `start`, kept inside
@@ -420,27 +429,48 @@ void QuadraticFormCache::Update(const DesignState& state, const CandidateRows& c
 }
 
 void QuadraticFormCache::Exchanged(const DesignState& before, const PoseRows& added, const DesignState& with_added,
-                                   const PoseRows& removed, const CandidateRows& candidates, int threads) {
-  const int count = candidates.size();
-  // The legs are independent: one each per worker, the same sums whatever the thread count.
-  ParallelFor(kNumLegs, threads, [&](int i, int /*worker*/) {
-    const Vector7d u_add = before.inverse(i) * added[i].transpose();
-    const Vector7d u_remove = with_added.inverse(i) * removed[i].transpose();
-    const double d_add = 1 + added[i].dot(u_add.transpose()), d_remove = 1 - removed[i].dot(u_remove.transpose());
-    // One pass over the candidates, both projections from the same 7 loads;
-    // unrolled over the parameters, it vectorises along the candidates.
-    const double* column[kParamsPerLeg];
-    for (int k = 0; k < kParamsPerLeg; ++k) column[k] = columns_[i].col(k).data();
-    double* __restrict q = q_[i].data();
-    for (int c = 0; c < count; ++c) {
-      double along_add = 0, along_remove = 0;
-#pragma GCC unroll 7
+                                   const PoseRows& removed, const CandidateRows& candidates, int threads,
+                                   const DesignState* after, std::vector<double>* sigma_bounds) {
+  // Per leg, by Sherman–Morrison: q += (rᵀu_remove)² / d_remove - (rᵀu_add)² / d_add.
+  std::array<Vector7d, kNumLegs> u_add, u_remove;
+  std::array<double, kNumLegs> d_add, d_remove;
+  for (int i = 0; i < kNumLegs; ++i) {
+    u_add[i] = before.inverse(i) * added[i].transpose();
+    u_remove[i] = with_added.inverse(i) * removed[i].transpose();
+    d_add[i] = 1 + added[i].dot(u_add[i].transpose());
+    d_remove[i] = 1 - removed[i].dot(u_remove[i].transpose());
+  }
+  const bool bound = after && sigma_bounds;
+  SigmaBoundFactors factors;
+  if (bound) {
+    factors = SigmaBoundFactorsOf(InversesOf(*after));
+    sigma_bounds->resize(candidates.size());
+  }
+  // Blocks of candidates on every core: all legs' forms, then (in cache) the bounds.
+  ParallelForBlocks(candidates.size(), kCacheBlock, threads, [&](int begin, int end) {
+    for (int i = 0; i < kNumLegs; ++i) {
+      // Both projections from the same 7 loads; unrolled over the parameters,
+      // the loop vectorises along the candidates.
+      // Local copies, so that the compiler sees them unchanged by the stores to q.
+      const double* column[kParamsPerLeg];
+      double ua[kParamsPerLeg], ur[kParamsPerLeg];
       for (int k = 0; k < kParamsPerLeg; ++k) {
-        along_add += u_add[k] * column[k][c];
-        along_remove += u_remove[k] * column[k][c];
+        column[k] = columns_[i].col(k).data();
+        ua[k] = u_add[i][k], ur[k] = u_remove[i][k];
       }
-      q[c] += along_remove * along_remove / d_remove - along_add * along_add / d_add;
+      const double da = d_add[i], dr = d_remove[i];
+      double* __restrict q = q_[i].data();
+      for (int c = begin; c < end; ++c) {
+        double along_add = 0, along_remove = 0;
+#pragma GCC unroll 7
+        for (int k = 0; k < kParamsPerLeg; ++k) {
+          along_add += ua[k] * column[k][c];
+          along_remove += ur[k] * column[k][c];
+        }
+        q[c] += along_remove * along_remove / dr - along_add * along_add / da;
+      }
     }
+    if (bound) SigmaUpperBoundsOf(factors, begin, end, sigma_bounds->data() + begin);
   });
   updates_ += 2;
 }
@@ -453,17 +483,25 @@ void QuadraticFormCache::Removed(const DesignState& state, const CandidateRows& 
   Update(state, candidates, rows, -1);
 }
 
-void QuadraticFormCache::SigmaUpperBounds(const DesignState& state, int begin, int end, double* bounds) const {
-  std::array<InfoBlock, kNumLegs> inverses;
+void QuadraticFormCache::SigmaUpperBoundsOf(const SigmaBoundFactors& factors, int begin, int end,
+                                            double* bounds) const {
   std::array<const double*, kNumLegs> forms;
-  for (int i = 0; i < kNumLegs; ++i) inverses[i] = state.inverse(i), forms[i] = q_[i].data();
-  SigmaSumLowerBounds(inverses, columns_, forms, begin, end - begin, bounds);
+  for (int i = 0; i < kNumLegs; ++i) forms[i] = q_[i].data();
+  SigmaSumLowerBounds(factors, columns_, forms, begin, end - begin, bounds);
   // The exact values (SigmaSumsAfterAdding) round differently and q drifts
   // between resets: a relative slack keeps the bound above them.
   constexpr double kSlack = 1e-9;
   for (int j = 0; j < end - begin; ++j) {
     bounds[j] = bounds[j] > 0 ? kNumParams / bounds[j] * (1 + kSlack) : kPositiveInfinity;
   }
+}
+
+void QuadraticFormCache::SigmaUpperBounds(const DesignState& state, std::vector<double>* bounds, int threads) const {
+  const SigmaBoundFactors factors = SigmaBoundFactorsOf(InversesOf(state));
+  bounds->resize(q_[0].size());
+  ParallelForBlocks(static_cast<int>(q_[0].size()), kCacheBlock, threads, [&](int begin, int end) {
+    SigmaUpperBoundsOf(factors, begin, end, bounds->data() + begin);
+  });
 }
 
 void QuadraticFormCache::Growth(std::vector<double>* growth) const {

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "core/identification.h"
+#include "core/sigma_criterion.h"
 
 namespace hexcal {
 
@@ -107,17 +108,23 @@ class QuadraticFormCache {
   void Removed(const DesignState& state, const CandidateRows& candidates, const PoseRows& rows);
   // One exchange in one pass over the candidates (they are read once, not twice):
   // `before` is the state before adding `added`, `with_added` the state after it.
+  // With `after` (the state once `removed` is gone) and `sigma_bounds`, the
+  // same pass also gives SigmaUpperBounds(after): the candidates are read from
+  // memory once per exchange, not twice.
   void Exchanged(const DesignState& before, const PoseRows& added, const DesignState& with_added,
-                 const PoseRows& removed, const CandidateRows& candidates, int threads = 0);
+                 const PoseRows& removed, const CandidateRows& candidates, int threads = 0,
+                 const DesignState* after = nullptr, std::vector<double>* sigma_bounds = nullptr);
   // Π_i (1 + q_ij) for every candidate.
   void Growth(std::vector<double>* growth) const;
-  // An upper bound of the S of `state` plus candidate j, for every j in
-  // [begin, end) (SigmaSumLowerBounds, sigma_criterion.h).
-  void SigmaUpperBounds(const DesignState& state, int begin, int end, double* bounds) const;
+  // An upper bound of the S of `state` plus each candidate (SigmaSumLowerBounds,
+  // sigma_criterion.h), on `threads` cores.
+  void SigmaUpperBounds(const DesignState& state, std::vector<double>* bounds, int threads = 0) const;
   int updates_since_reset() const { return updates_; }
 
  private:
   void Update(const DesignState& state, const CandidateRows& candidates, const PoseRows& rows, double sign);
+  // S upper bounds of candidates [begin, end) from q and the factors of SigmaBoundFactorsOf.
+  void SigmaUpperBoundsOf(const SigmaBoundFactors& factors, int begin, int end, double* bounds) const;
   std::array<Eigen::ArrayXd, kNumLegs> q_;
   // The candidates' rows one column per parameter (n x 7), copied on the first
   // Reset: the updates and bounds then run along contiguous candidates.

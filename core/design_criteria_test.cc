@@ -274,8 +274,8 @@ TEST(QuadraticFormCache, TracksExchangesExactly) {
 
   // The same forms bound S from above: never below its exact value, and equal
   // to it only when u is parallel to every unit vector (never, with 7 parameters).
-  std::vector<double> bounds(200);
-  cache.SigmaUpperBounds(state, 0, 200, bounds.data());
+  std::vector<double> bounds;
+  cache.SigmaUpperBounds(state, &bounds);
   state.ScoreAdditions(Criterion::kS, candidates, 0, 200, scores.data());
   for (int j = 0; j < 200; ++j) {
     EXPECT_GE(bounds[j], scores[j]) << "candidate " << j;

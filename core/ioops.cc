@@ -160,6 +160,8 @@ struct Search {
   // every candidate: the same forms bound it (sigma_screened).
   bool cached = false;
   bool sigma_screened = false;
+  std::vector<double> sigma_bounds;  // S bounds of `state`, from the last exchange's pass
+  bool bounds_current = false;
   QuadraticFormCache cache;
   std::vector<double> primary_scores, secondary_scores;  // AddFind's, reused
 };
@@ -252,12 +254,14 @@ StatusOr<PlanEntry> AddFindFinite(Search& s, const AddCriteria& criteria) {
   const CandidateRows& scored = subset.empty() ? s.rows : subset_rows;
 
   if (s.cached && !criteria.switched) {
-    if (s.cache.updates_since_reset() >= 50) s.cache.Reset(s.state, s.rows);
-    if (s.sigma_screened) {
-      s.primary_scores.resize(s.rows.size());  // bounds only: BestByBounds below
-      ParallelForBlocks(s.rows.size(), kScoreBlock, s.options.threads, [&](int begin, int end) {
-        s.cache.SigmaUpperBounds(s.state, begin, end, s.primary_scores.data() + begin);
-      });
+    if (s.cache.updates_since_reset() >= 50) {
+      s.cache.Reset(s.state, s.rows);
+      s.bounds_current = false;
+    }
+    if (s.sigma_screened) {  // bounds only, for BestByBounds below
+      if (!s.bounds_current) s.cache.SigmaUpperBounds(s.state, &s.sigma_bounds, s.options.threads);
+      s.primary_scores = s.sigma_bounds;
+      s.bounds_current = false;
     } else {
       s.cache.Growth(&s.primary_scores);  // ranks candidates as the criterion does
     }
@@ -347,8 +351,16 @@ StatusOr<bool> Exchange(Search& s) {
   const PlanEntry removed = s.plan[removed_index];
   s.plan.erase(s.plan.begin() + removed_index);
   const bool exchanged = removed.id != added->id;
-  if (s.cached && exchanged) s.cache.Exchanged(*before_add, added->rows, s.state, removed.rows, s.rows, s.options.threads);
-  s.state.Remove(removed.rows);
+  if (s.cached && exchanged) {
+    DesignState after = s.state;
+    after.Remove(removed.rows);
+    s.cache.Exchanged(*before_add, added->rows, s.state, removed.rows, s.rows, s.options.threads,
+                      s.sigma_screened ? &after : nullptr, &s.sigma_bounds);
+    s.bounds_current = s.sigma_screened;
+    s.state = std::move(after);
+  } else {
+    s.state.Remove(removed.rows);
+  }
   if (removed.id >= 0) s.in_plan[removed.id] = 0;
   return exchanged;
 }

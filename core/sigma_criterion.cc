@@ -53,22 +53,29 @@ void SigmaSumsAfterAdding(const std::array<InfoBlock, kNumLegs>& inverses,
   }
 }
 
-void SigmaSumLowerBounds(const std::array<InfoBlock, kNumLegs>& inverses,
-                         const std::array<ParameterColumns, kNumLegs>& candidates,
-                         const std::array<const double*, kNumLegs>& forms, int begin, int n, double* least_sums) {
-  std::fill(least_sums, least_sums + n, 0.0);
+SigmaBoundFactors SigmaBoundFactorsOf(const std::array<InfoBlock, kNumLegs>& inverses) {
+  SigmaBoundFactors factors;
   for (int i = 0; i < kNumLegs; ++i) {
     Vector7d sigma;
     for (int k = 0; k < kParamsPerLeg; ++k) sigma[k] = SafeSqrt(inverses[i](k, k));
-    const double sigma_sum = sigma.sum();
+    factors.sigma_sum[i] = sigma.sum();
     const InfoBlock weight = inverses[i] * sigma.cwiseInverse().asDiagonal() * inverses[i];
-    const InfoBlock upper = Eigen::LLT<InfoBlock>(weight).matrixU();  // W = UᵀU: rᵀWr = |U r|²
-    // One pass over the candidates: their 7 entries, |U r|² and the bound;
-    // with the loops over j and k unrolled, it vectorises along the candidates.
+    factors.upper[i] = Eigen::LLT<InfoBlock>(weight).matrixU();  // W = UᵀU: rᵀWr = |U r|²
+  }
+  return factors;
+}
+
+void SigmaSumLowerBounds(const SigmaBoundFactors& factors, const std::array<ParameterColumns, kNumLegs>& candidates,
+                         const std::array<const double*, kNumLegs>& forms, int begin, int n, double* least_sums) {
+  std::fill(least_sums, least_sums + n, 0.0);
+  for (int i = 0; i < kNumLegs; ++i) {
+    const double sigma_sum = factors.sigma_sum[i];
     double u[kParamsPerLeg][kParamsPerLeg];
     for (int j = 0; j < kParamsPerLeg; ++j) {
-      for (int k = 0; k < kParamsPerLeg; ++k) u[j][k] = upper(j, k);
+      for (int k = 0; k < kParamsPerLeg; ++k) u[j][k] = factors.upper[i](j, k);
     }
+    // One pass over the candidates: their 7 entries, |U r|² and the bound;
+    // with the loops over j and k unrolled, it vectorises along the candidates.
     const double* column[kParamsPerLeg];
     for (int k = 0; k < kParamsPerLeg; ++k) column[k] = candidates[i].col(k).data() + begin;
     const double* __restrict q = forms[i] + begin;

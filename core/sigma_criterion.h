@@ -39,10 +39,15 @@ void SigmaSumsAfterAdding(const std::array<InfoBlock, kNumLegs>& inverses,
 // (and by at most q φ(q) Σ_k σ_k, every c_k = 1): 28 multiply-adds and one
 // square root per leg through W's Cholesky factor, against 49 and seven.
 // The candidates' rows come one column per parameter (n x 7), so that the
-// sums run along contiguous candidates.
+// sums run along contiguous candidates; the per-leg factors (U with W = UᵀU,
+// and Σ_k σ_k) once per design.
 using ParameterColumns = Eigen::Matrix<double, Eigen::Dynamic, kParamsPerLeg>;
-void SigmaSumLowerBounds(const std::array<InfoBlock, kNumLegs>& inverses,
-                         const std::array<ParameterColumns, kNumLegs>& candidates,
+struct SigmaBoundFactors {
+  std::array<InfoBlock, kNumLegs> upper;
+  std::array<double, kNumLegs> sigma_sum;
+};
+SigmaBoundFactors SigmaBoundFactorsOf(const std::array<InfoBlock, kNumLegs>& inverses);
+void SigmaSumLowerBounds(const SigmaBoundFactors& factors, const std::array<ParameterColumns, kNumLegs>& candidates,
                          const std::array<const double*, kNumLegs>& forms, int begin, int n, double* least_sums);
 
 // The Σσ after adding one pose with rows r_i, and its gradient w.r.t. each r_i:
