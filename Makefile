@@ -42,7 +42,7 @@ sanitize: deps
 	cmake -S . -B $(ASAN_BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo $(SANITIZER_FLAGS) -DHEXCAL_SANITIZE=ON \
 	  -DHEXCAL_BUILD_BENCHMARKS=OFF -DHEXCAL_BUILD_GUI=OFF
 	cmake --build $(ASAN_BUILD_DIR) -j$(JOBS) --target hexcal_unit_tests
-	$(SANITIZER_ENV) ctest --test-dir $(ASAN_BUILD_DIR) -R '^(core|vision|charts|workflow)/' --output-on-failure -j$(JOBS)
+	$(SANITIZER_ENV) scripts/sanitize-ctest.sh $(ASAN_BUILD_DIR) $(JOBS)
 
 # The libFuzzer targets of fuzz/ (clang, ASan + UBSan) and a bounded run of each
 # from its seed corpus through CTest; any crash, leak or UB report fails.
