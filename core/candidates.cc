@@ -68,12 +68,7 @@ StatusOr<CandidateSet> BoundaryCandidates(const Robot& robot, const JobHooks& ho
   const bool finished = ParallelFor(
       kCombinations, 0,
       [&](int combination, int /*worker*/) {
-        LegReadings readings;
-        for (int i = 0; i < kNumLegs; ++i) {
-          const Leg& leg = robot.legs[i];
-          readings[i] = (combination >> i) & 1 ? leg.stroke_max : leg.stroke_min;
-        }
-        modes[combination] = family->Solve(readings);
+        modes[combination] = family->Solve(StrokeCornerReadings(robot, combination));
       },
       hooks);
   if (!finished) return Status::Cancelled("candidates: cancelled");
@@ -120,6 +115,14 @@ bool CandidateOptions::IsValid(std::string* error) const {
     return false;
   }
   return true;
+}
+
+LegReadings StrokeCornerReadings(const Robot& robot, int corner) {
+  LegReadings readings;
+  for (int i = 0; i < kNumLegs; ++i) {
+    readings[i] = (corner >> i) & 1 ? robot.legs[i].stroke_max : robot.legs[i].stroke_min;
+  }
+  return readings;
 }
 
 StatusOr<CandidateSet> GenerateCandidates(const Robot& robot, const CandidateOptions& options, const JobHooks& hooks) {

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/inverse_kinematics.h"
 #include "core/job_hooks.h"
 #include "core/robot.h"
 #include "core/status.h"
@@ -50,5 +51,9 @@ struct CandidateSet {
 // there (Status::Cancelled).
 StatusOr<CandidateSet> GenerateCandidates(const Robot& robot, const CandidateOptions& options,
                                           const JobHooks& hooks = {});
+
+// The readings of stroke corner `corner` (0-63; bit i: leg i at its stroke
+// maximum, else its minimum), the combinations the boundary candidates solve.
+LegReadings StrokeCornerReadings(const Robot& robot, int corner);
 
 }  // namespace hexcal

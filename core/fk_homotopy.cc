@@ -69,6 +69,9 @@ class TotalDegreeHomotopy : public Homotopy {
   Complex gamma_;
 };
 
+// Δ = e·e of a solution (study_system.h).
+Complex Delta(const CVector8& z) { return Complex(z.head<4>().transpose() * z.head<4>()); }
+
 // F(z; p(s)) with p(s) = target + s (start - target). Along that line each
 // leg's coefficients are quadratic in s (D and A = a bᵀ are products of linear
 // terms), so they are expanded once: c(s) = c0 + s c1 + s² c2.
@@ -96,7 +99,7 @@ class ParameterHomotopy : public Homotopy {
       if (hs) {
         const LegCoefficients dc = {c1_[i].d + 2 * s * c2_[i].d, c1_[i].a, c1_[i].b, c1_[i].ab + 2 * s * c2_[i].ab};
         // The 4 g·g term does not depend on p; with the lengths alone moving, only D Δ does.
-        (*hs)[i] = lengths_only_ ? dc.d * Complex(z.head<4>().transpose() * z.head<4>()) : LegLinearPart(dc, z);
+        (*hs)[i] = lengths_only_ ? dc.d * Delta(z) : LegLinearPart(dc, z);
       }
     }
     EvaluateStudySystem(c, chart_, z, h, hz);
@@ -108,8 +111,6 @@ class ParameterHomotopy : public Homotopy {
   CVector8 chart_;
   bool lengths_only_ = true;  // the attachment points are the same at both ends (FkFamily)
 };
-
-Complex Delta(const CVector8& z) { return Complex(z.head<4>().transpose() * z.head<4>()); }
 
 bool IsSpurious(const CVector8& z) { return std::abs(Delta(z)) < 1e-8 * z.head<4>().squaredNorm(); }
 

@@ -14,6 +14,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "core/candidates.h"
 #include "core/constraints.h"
 #include "core/forward_kinematics.h"
 #include "core/robot_io.h"
@@ -262,22 +263,15 @@ Pose Mirrored(const Pose& pose) {
   return mirrored;
 }
 
-// The readings of stroke corner `corner` (bit i: leg i at its max) of a robot.
-LegReadings CornerReadings(const Robot& robot, int corner) {
-  LegReadings readings;
-  for (int i = 0; i < kNumLegs; ++i) {
-    readings[i] = (corner >> i) & 1 ? robot.legs[i].stroke_max : robot.legs[i].stroke_min;
-  }
-  return readings;
-}
-
 // ForwardKinematicsAll at every stroke corner of the INRIA robot, solved once
 // for the two tests that check it (the slowest part of this binary under ASan).
 const std::vector<StatusOr<FkAllResult>>& InriaCornerModes() {
   static const std::vector<StatusOr<FkAllResult>> modes = [] {
     const Robot robot = *LoadRobot("inria-left-hand");
     std::vector<StatusOr<FkAllResult>> all;
-    for (int corner = 0; corner < 64; ++corner) all.push_back(ForwardKinematicsAll(robot, CornerReadings(robot, corner)));
+    for (int corner = 0; corner < 64; ++corner) {
+      all.push_back(ForwardKinematicsAll(robot, StrokeCornerReadings(robot, corner)));
+    }
     return all;
   }();
   return modes;
@@ -293,7 +287,7 @@ TEST(ForwardKinematicsAll, InriaStrokeCorners) {
   std::ostringstream summary;
   int total_real = 0, total_feasible = 0, corners_without_mode = 0;
   for (int corner = 0; corner < 64; ++corner) {
-    const LegReadings readings = CornerReadings(robot, corner);
+    const LegReadings readings = StrokeCornerReadings(robot, corner);
     const StatusOr<FkAllResult>& fk = InriaCornerModes()[corner];
     ASSERT_TRUE(fk.ok()) << fk.status().message();
     const std::vector<Pose>& modes = fk->poses;
@@ -408,7 +402,7 @@ TEST(FkFamily, SameModesAsTheGenericStart) {
     EXPECT_LE(family->hub_solutions(), 40) << name;
     const bool inria = robot.name == "inria-left-hand";
     for (int corner = 0; corner < 64 + 8; ++corner) {
-      LegReadings readings = CornerReadings(robot, corner % 64);
+      LegReadings readings = StrokeCornerReadings(robot, corner % 64);
       if (corner >= 64) {
         for (int i = 0; i < kNumLegs; ++i) readings[i] = Uniform(robot.legs[i].stroke_min, robot.legs[i].stroke_max);
       }

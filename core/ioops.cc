@@ -260,7 +260,7 @@ StatusOr<PlanEntry> AddFindFinite(Search& s, const AddCriteria& criteria) {
     }
     if (s.sigma_screened) {  // bounds only, for BestByBounds below
       if (!s.bounds_current) s.cache.SigmaUpperBounds(s.state, &s.sigma_bounds, s.options.threads);
-      s.primary_scores = s.sigma_bounds;
+      s.primary_scores.swap(s.sigma_bounds);  // used once: the next exchange writes them anew
       s.bounds_current = false;
     } else {
       s.cache.Growth(&s.primary_scores);  // ranks candidates as the criterion does
@@ -294,7 +294,8 @@ StatusOr<PlanEntry> AddFindContinuous(Search& s, const AddCriteria& criteria) {
   const int count = static_cast<int>(s.candidates.size());
   std::vector<Vector6d> start_poses;
   for (int k = 0; k < s.starts; ++k) start_poses.push_back(s.candidates[s.rng() % count]);
-  const std::vector<ContinuousResult> found = ContinuousAddFind(s.model, s.state, criteria.add, start_poses, 100, s.options.threads);
+  const std::vector<ContinuousResult> found =
+      ContinuousAddFind(s.model, s.state, criteria.add, start_poses, 100, s.options.threads);
   if (found.empty()) {
     return Status::Error("continuous AddFind found no feasible pose from " + std::to_string(s.starts) + " starts");
   }
