@@ -15,9 +15,10 @@ double AngleDeg(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
 
 const char* kPoseNames[6] = {"x", "y", "z", "q1", "q2", "q3"};
 
-// Calls visit(kind, leg_or_index, other_index, margin) for every constraint.
+// Calls visit(kind, leg_or_index, other_index, margin) for every constraint
+// (the pose box's only with include_box: it costs three inverse trigonometric calls).
 template <typename Visit>
-void VisitConstraints(const Robot& robot, const Pose& pose, Visit&& visit) {
+void VisitConstraints(const Robot& robot, const Pose& pose, bool include_box, Visit&& visit) {
   std::array<Eigen::Vector3d, kNumLegs> leg_top;
   for (int i = 0; i < kNumLegs; ++i) {
     const Leg& leg = robot.legs[i];
@@ -49,7 +50,7 @@ void VisitConstraints(const Robot& robot, const Pose& pose, Visit&& visit) {
       }
     }
   }
-  if (robot.limits.pose_box) {
+  if (include_box && robot.limits.pose_box) {
     const Vector6d v = robot.VectorFromPose(pose);
     for (int k = 0; k < 6; ++k) {
       const auto& range = robot.limits.pose_box->bounds[k];
@@ -83,7 +84,7 @@ std::string Label(ConstraintKind kind, int i, int j) {
 ConstraintReport EvaluateConstraints(const Robot& robot, const Pose& pose) {
   ConstraintReport report;
   report.worst_margin = std::numeric_limits<double>::infinity();
-  VisitConstraints(robot, pose, [&](ConstraintKind kind, int i, int j, double margin) {
+  VisitConstraints(robot, pose, /*include_box=*/true, [&](ConstraintKind kind, int i, int j, double margin) {
     report.margins.push_back({kind, Label(kind, i, j), margin});
     if (!(margin >= report.worst_margin)) {  // also catches NaN
       report.worst_margin = margin;
@@ -104,7 +105,7 @@ bool IsFeasible(const Robot& robot, const Pose& pose) {
     if (!WithinStroke(leg, LegVector(leg, pose).norm() - leg.offset)) return false;
   }
   bool feasible = true;
-  VisitConstraints(robot, pose, [&](ConstraintKind, int, int, double margin) {
+  VisitConstraints(robot, pose, /*include_box=*/true, [&](ConstraintKind, int, int, double margin) {
     if (!(margin >= -kFeasibilityTolerance)) feasible = false;
   });
   return feasible;
@@ -112,9 +113,7 @@ bool IsFeasible(const Robot& robot, const Pose& pose) {
 
 std::vector<double> ConstraintMargins(const Robot& robot, const Pose& pose, bool include_box) {
   std::vector<double> margins;
-  VisitConstraints(robot, pose, [&](ConstraintKind kind, int, int, double margin) {
-    if (include_box || kind != ConstraintKind::kPoseBox) margins.push_back(margin);
-  });
+  VisitConstraints(robot, pose, include_box, [&](ConstraintKind, int, int, double margin) { margins.push_back(margin); });
   return margins;
 }
 

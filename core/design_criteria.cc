@@ -8,6 +8,7 @@
 
 #include "core/parallel.h"
 #include "core/sigma_criterion.h"
+#include "core/vector_clones.h"
 
 namespace hexcal {
 namespace {
@@ -18,6 +19,31 @@ constexpr double kPositiveInfinity = std::numeric_limits<double>::infinity();
 // Candidates per ParallelFor item of the cache: their rows (6 x 7 x 8 bytes
 // each) stay in cache between the update and the bound.
 constexpr int kCacheBlock = 1024;
+
+// One leg's forms after an exchange, for the candidates in [begin, end), by
+// Sherman–Morrison: q += (rᵀu_remove)² / d_remove - (rᵀu_add)² / d_add. Both
+// projections come from the same 7 loads; unrolled over the parameters, the
+// loop vectorises along the candidates.
+HEXCAL_VECTOR_CLONES void ExchangeForms(const ParameterColumns& columns, const Vector7d& u_add, double d_add,
+                                        const Vector7d& u_remove, double d_remove, int begin, int end,
+                                        double* __restrict q) {
+  // Local copies, so that the compiler sees them unchanged by the stores to q.
+  const double* column[kParamsPerLeg];
+  double ua[kParamsPerLeg], ur[kParamsPerLeg];
+  for (int k = 0; k < kParamsPerLeg; ++k) {
+    column[k] = columns.col(k).data();
+    ua[k] = u_add[k], ur[k] = u_remove[k];
+  }
+  for (int c = begin; c < end; ++c) {
+    double along_add = 0, along_remove = 0;
+#pragma GCC unroll 7
+    for (int k = 0; k < kParamsPerLeg; ++k) {
+      along_add += ua[k] * column[k][c];
+      along_remove += ur[k] * column[k][c];
+    }
+    q[c] += along_remove * along_remove / d_remove - along_add * along_add / d_add;
+  }
+}
 
 std::array<InfoBlock, kNumLegs> InversesOf(const DesignState& state) {
   std::array<InfoBlock, kNumLegs> inverses;
@@ -405,15 +431,23 @@ void DesignState::Remove(const PoseRows& rows) {
   Refactor();
 }
 
-void QuadraticFormCache::Reset(const DesignState& state, const CandidateRows& candidates) {
-  if (source_ != &candidates || columns_[0].rows() != candidates.size()) {
-    for (int i = 0; i < kNumLegs; ++i) columns_[i] = candidates.legs[i].transpose();
-    source_ = &candidates;
-  }
+void QuadraticFormCache::Reset(const DesignState& state, const CandidateRows& candidates, int threads) {
+  const int n = candidates.size();
+  const bool copy = source_ != &candidates || columns_[0].rows() != n;
   for (int i = 0; i < kNumLegs; ++i) {
-    const auto& r = candidates.legs[i];
-    q_[i] = r.cwiseProduct(state.inverse(i) * r).colwise().sum().transpose().array();
+    if (copy) columns_[i].resize(n, kParamsPerLeg);
+    q_[i].resize(n);
   }
+  source_ = &candidates;
+  // q_j = r_jᵀ M⁻¹ r_j, block by block on every core: each candidate's form
+  // comes out the same as from the whole product at once.
+  ParallelForBlocks(n, kCacheBlock, threads, [&](int begin, int end) {
+    for (int i = 0; i < kNumLegs; ++i) {
+      const auto r = candidates.legs[i].middleCols(begin, end - begin);
+      if (copy) columns_[i].middleRows(begin, end - begin) = r.transpose();
+      q_[i].segment(begin, end - begin) = r.cwiseProduct(state.inverse(i) * r).colwise().sum().transpose().array();
+    }
+  });
   updates_ = 0;
 }
 
@@ -449,26 +483,7 @@ void QuadraticFormCache::Exchanged(const DesignState& before, const PoseRows& ad
   // Blocks of candidates on every core: all legs' forms, then (in cache) the bounds.
   ParallelForBlocks(candidates.size(), kCacheBlock, threads, [&](int begin, int end) {
     for (int i = 0; i < kNumLegs; ++i) {
-      // Both projections from the same 7 loads; unrolled over the parameters,
-      // the loop vectorises along the candidates.
-      // Local copies, so that the compiler sees them unchanged by the stores to q.
-      const double* column[kParamsPerLeg];
-      double ua[kParamsPerLeg], ur[kParamsPerLeg];
-      for (int k = 0; k < kParamsPerLeg; ++k) {
-        column[k] = columns_[i].col(k).data();
-        ua[k] = u_add[i][k], ur[k] = u_remove[i][k];
-      }
-      const double da = d_add[i], dr = d_remove[i];
-      double* __restrict q = q_[i].data();
-      for (int c = begin; c < end; ++c) {
-        double along_add = 0, along_remove = 0;
-#pragma GCC unroll 7
-        for (int k = 0; k < kParamsPerLeg; ++k) {
-          along_add += ua[k] * column[k][c];
-          along_remove += ur[k] * column[k][c];
-        }
-        q[c] += along_remove * along_remove / dr - along_add * along_add / da;
-      }
+      ExchangeForms(columns_[i], u_add[i], d_add[i], u_remove[i], d_remove[i], begin, end, q_[i].data());
     }
     if (bound) SigmaUpperBoundsOf(factors, begin, end, sigma_bounds->data() + begin);
   });

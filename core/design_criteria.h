@@ -102,7 +102,7 @@ class DesignState {
 // D and O1 do (determinant lemma). Refreshed from scratch now and then against drift.
 class QuadraticFormCache {
  public:
-  void Reset(const DesignState& state, const CandidateRows& candidates);
+  void Reset(const DesignState& state, const CandidateRows& candidates, int threads = 0);
   // Call with the state *before* the change.
   void Added(const DesignState& state, const CandidateRows& candidates, const PoseRows& rows);
   void Removed(const DesignState& state, const CandidateRows& candidates, const PoseRows& rows);

@@ -199,10 +199,18 @@ TEST(OptimalDesign, SatisfiesTheEquivalenceTheorem) {
       EXPECT_NEAR(d[j], kNumParams, 0.01 * kNumParams) << "support point " << j;
     }
   }
-  StatusOr<PlanCertificate> random_plan = CertifyPlan(model, candidates, SpreadFeasiblePoses(model.robot, 18, 13));
+  const std::vector<Vector6d> plan = SpreadFeasiblePoses(model.robot, 18, 13);
+  StatusOr<PlanCertificate> random_plan = CertifyPlan(model, candidates, plan);
   ASSERT_TRUE(random_plan.ok());
   EXPECT_GT(random_plan->d_efficiency, 0);
   EXPECT_LE(random_plan->d_efficiency, 1);
+  // The planner's rows of a prefix of the candidates, reused: the same certificate.
+  const CandidateRows prefix = model.RowsOf(std::vector<Vector6d>(candidates.begin(), candidates.end() - 5));
+  StatusOr<PlanCertificate> reused = CertifyPlan(model, candidates, plan, {}, &prefix);
+  ASSERT_TRUE(reused.ok());
+  EXPECT_EQ(reused->d_efficiency, random_plan->d_efficiency);
+  EXPECT_EQ(reused->s_efficiency, random_plan->s_efficiency);
+  EXPECT_EQ(reused->design.weights, random_plan->design.weights);
 }
 
 // The variance function is computed in fixed blocks of candidates spread over

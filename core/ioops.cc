@@ -73,13 +73,26 @@ int SelectBest(const std::vector<double>& primary, const std::vector<double>* se
   return *std::max_element(kept.begin(), kept.end(), [&](int a, int b) { return (*secondary)[a] < (*secondary)[b]; });
 }
 
-// The best of `indices` on `criterion` given an upper bound of each
-// candidate's value: the candidates in decreasing order of bound, their exact
-// values (ScoreAdditions) computed in batches only while a bound can still
-// beat the best value found. Ties go to the lower candidate index, as in SelectBest.
-int BestByBounds(std::vector<int> indices, const std::vector<double>& bounds, const DesignState& state,
+// Calls visit(j) for each j of `subset`, or for every j < count with a finite
+// bound when there is no subset.
+template <typename Visit>
+void ForEachEntry(const std::vector<int>* subset, const std::vector<double>& bounds, Visit visit) {
+  if (subset) {
+    for (int j : *subset) visit(j);
+    return;
+  }
+  for (int j = 0; j < static_cast<int>(bounds.size()); ++j) {
+    if (bounds[j] > kMinusInfinity) visit(j);
+  }
+}
+
+// The best of `subset` (null: of every candidate with a finite bound) on
+// `criterion` given an upper bound of each candidate's value: the candidates in
+// decreasing order of bound, their exact values (ScoreAdditions) computed in
+// batches only while a bound can still beat the best value found. Ties go to
+// the lower candidate index, as in SelectBest.
+int BestByBounds(const std::vector<int>* subset, const std::vector<double>& bounds, const DesignState& state,
                  Criterion criterion, const CandidateRows& scored) {
-  if (indices.empty()) return -1;
   const auto by_bound = [&](int a, int b) { return bounds[a] > bounds[b] || (bounds[a] == bounds[b] && a < b); };
   constexpr int kBatch = 16;
   CandidateRows batch;
@@ -96,15 +109,21 @@ int BestByBounds(std::vector<int> indices, const std::vector<double>& bounds, co
       }
     }
   };
-  // The best bounds first; then only the candidates whose bound can still win,
-  // in decreasing order (a handful: sorting them all would cost more than the rest).
-  const int first = std::min<int>(kBatch, indices.size());
-  std::nth_element(indices.begin(), indices.begin() + (first - 1), indices.end(), by_bound);
-  evaluate(indices.data(), first);
+  // The kBatch best bounds first, kept sorted in one pass (most candidates
+  // fail the first comparison); then only the candidates whose bound can still
+  // win, in decreasing order (a handful: sorting them all would cost more).
+  std::vector<int> top;
+  ForEachEntry(subset, bounds, [&](int j) {
+    if (top.size() == kBatch && !by_bound(j, top.back())) return;
+    if (top.size() == kBatch) top.pop_back();
+    top.insert(std::upper_bound(top.begin(), top.end(), j, by_bound), j);
+  });
+  if (top.empty()) return -1;
+  evaluate(top.data(), static_cast<int>(top.size()));
   std::vector<int> open;
-  for (size_t k = first; k < indices.size(); ++k) {
-    if (bounds[indices[k]] >= best_value) open.push_back(indices[k]);
-  }
+  ForEachEntry(subset, bounds, [&](int j) {
+    if (bounds[j] >= best_value && by_bound(top.back(), j)) open.push_back(j);
+  });
   std::sort(open.begin(), open.end(), by_bound);
   for (size_t k = 0; k < open.size() && bounds[open[k]] >= best_value; k += kBatch) {
     evaluate(open.data() + k, static_cast<int>(std::min<size_t>(kBatch, open.size() - k)));
@@ -122,7 +141,8 @@ int SelectBestScreened(const DesignState& state, Criterion secondary, const Cand
   ParallelForBlocks(scored.size(), kScoreBlock, threads, [&](int begin, int end) {
     state.ScoreUpperBounds(secondary, scored, begin, end, bounds.data() + begin);
   });
-  return BestByBounds(KeptOnPrimary(primary, keep), bounds, state, secondary, scored);
+  const std::vector<int> kept = KeptOnPrimary(primary, keep);
+  return BestByBounds(&kept, bounds, state, secondary, scored);
 }
 
 Status CheckPlanInput(const std::vector<Vector6d>& candidates, const std::vector<Vector6d>& initial,
@@ -141,14 +161,15 @@ Status CheckPlanInput(const std::vector<Vector6d>& candidates, const std::vector
 // plan Υ^N with its information, the candidate set, the Tabu list T and the
 // random stream of the section 4.2 randomisation.
 struct Search {
-  Search(const PlanningModel& model, const std::vector<Vector6d>& candidates, const std::vector<Vector6d>& initial,
-         const PlannerOptions& options);
+  Search(const PlanningModel& model, const std::vector<Vector6d>& candidates, const CandidateRows* given_rows,
+         const std::vector<Vector6d>& initial, const PlannerOptions& options);
 
   const PlanningModel& model;
   const std::vector<Vector6d>& candidates;  // Ω_d (fig. 2a), or the start list of fig. 2b
   const PlannerOptions& options;
   std::mt19937_64 rng;
-  CandidateRows rows;           // of every candidate (finite search only)
+  CandidateRows own_rows;       // computed here when the caller gave none
+  const CandidateRows& rows;    // of every candidate (finite search only)
   int64_t next_new_id = -1;     // ids of the poses that are not candidates: -1, -2, ...
   std::vector<PlanEntry> plan;  // Υ^N; Υ^{N+1} between AddFind and RemoveFind
   DesignState state;            // the information of `plan`
@@ -179,23 +200,25 @@ std::vector<PoseRows> RowsOf(const std::vector<PlanEntry>& plan) {
   return rows;
 }
 
-Search::Search(const PlanningModel& model, const std::vector<Vector6d>& candidates,
+Search::Search(const PlanningModel& model, const std::vector<Vector6d>& candidates, const CandidateRows* given_rows,
                const std::vector<Vector6d>& initial, const PlannerOptions& options)
     : model(model),
       candidates(candidates),
       options(options),
       rng(options.seed),
+      // Continuous: the candidates are starts only, no rows.
+      own_rows(given_rows || options.continuous ? CandidateRows{} : model.RowsOf(candidates, options.threads)),
+      rows(given_rows ? *given_rows : own_rows),
       plan(InitialPlan(model, initial, &next_new_id)),
       state(DesignState::FromRows(RowsOf(plan))),
       in_plan(candidates.size(), 0) {
   const int count = static_cast<int>(candidates.size());
-  if (!options.continuous) rows = model.RowsOf(candidates, options.threads);  // continuous: starts only
   starts = options.addfind_starts > 0 ? options.addfind_starts : (options.continuous ? 40 : count);
   const bool every_candidate = !options.continuous && starts >= count;
   sigma_screened = every_candidate && options.screen && options.criterion == Criterion::kS && !options.secondary;
   cached = sigma_screened ||
            (every_candidate && (options.criterion == Criterion::kO1 || options.criterion == Criterion::kD));
-  if (cached && state.full_rank()) cache.Reset(state, rows);  // PlanPoses refuses a singular start
+  if (cached && state.full_rank()) cache.Reset(state, rows, options.threads);  // PlanPoses refuses a singular start
   // An initial pose that is one of the candidates (a subset of measured poses,
   // core/subset_study.h) is that candidate: AddFind must not add it a second time.
   for (PlanEntry& entry : plan) {
@@ -255,7 +278,7 @@ StatusOr<PlanEntry> AddFindFinite(Search& s, const AddCriteria& criteria) {
 
   if (s.cached && !criteria.switched) {
     if (s.cache.updates_since_reset() >= 50) {
-      s.cache.Reset(s.state, s.rows);
+      s.cache.Reset(s.state, s.rows, s.options.threads);
       s.bounds_current = false;
     }
     if (s.sigma_screened) {  // bounds only, for BestByBounds below
@@ -273,7 +296,7 @@ StatusOr<PlanEntry> AddFindFinite(Search& s, const AddCriteria& criteria) {
   }
   int pick;
   if (s.sigma_screened) {
-    pick = BestByBounds(FiniteEntries(s.primary_scores), s.primary_scores, s.state, Criterion::kS, scored);
+    pick = BestByBounds(nullptr, s.primary_scores, s.state, Criterion::kS, scored);
   } else if (criteria.secondary && s.options.screen && IsEigenvalueCriterion(*criteria.secondary)) {
     pick = SelectBestScreened(s.state, *criteria.secondary, scored, s.primary_scores, s.options.keep,
                               s.options.threads);
@@ -426,9 +449,19 @@ void ScoreInParallel(const DesignState& state, Criterion criterion, const Candid
 StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vector6d>& candidates,
                                const std::vector<Vector6d>& initial, const PlannerOptions& options,
                                const JobHooks& hooks, const PlanIterationObserver& on_iteration) {
+  return PlanPoses(model, candidates, nullptr, initial, options, hooks, on_iteration);
+}
+
+StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vector6d>& candidates,
+                               const CandidateRows* candidate_rows, const std::vector<Vector6d>& initial,
+                               const PlannerOptions& options, const JobHooks& hooks,
+                               const PlanIterationObserver& on_iteration) {
   const auto start_time = std::chrono::steady_clock::now();
   if (Status s = CheckPlanInput(candidates, initial, options); !s.ok()) return s;
-  Search search(model, candidates, initial, options);
+  if (candidate_rows && !options.continuous && candidate_rows->size() != static_cast<int>(candidates.size())) {
+    return Status::Error("the candidate rows do not match the candidates");
+  }
+  Search search(model, candidates, options.continuous ? nullptr : candidate_rows, initial, options);
   if (!search.state.full_rank()) {
     return Status::Error(
         "the initial poses do not identify all 42 parameters (a leg's information matrix is "

@@ -83,6 +83,12 @@ using PlanIterationObserver = std::function<void(const PlanIteration& step)>;
 StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vector6d>& candidates,
                                const std::vector<Vector6d>& initial, const PlannerOptions& options,
                                const JobHooks& hooks = {}, const PlanIterationObserver& on_iteration = {});
+// The same with the candidates' rows given (model.RowsOf(candidates), shared
+// with the certificates); a finite search then does not compute them again.
+StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vector6d>& candidates,
+                               const CandidateRows* candidate_rows, const std::vector<Vector6d>& initial,
+                               const PlannerOptions& options, const JobHooks& hooks = {},
+                               const PlanIterationObserver& on_iteration = {});
 
 // Scores every candidate with DesignState::ScoreAdditions on `threads` threads
 // (0: every core); the scores do not depend on the thread count.

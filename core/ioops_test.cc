@@ -180,6 +180,23 @@ TEST_F(IoopsTest, SameSeedSamePlan) {
   for (size_t k = 0; k < a->poses.size(); ++k) EXPECT_EQ(a->poses[k], b->poses[k]);
 }
 
+// Rows given by the caller (shared with the certificates) plan as rows computed
+// here; rows of another candidate count are refused.
+TEST_F(IoopsTest, GivenRowsPlanAsComputedOnes) {
+  PlannerOptions options;
+  options.criterion = Criterion::kS;
+  options.tabu = 2;
+  options.iterations = 20;
+  const CandidateRows rows = model_.RowsOf(boundary_);
+  const auto given = PlanPoses(model_, boundary_, &rows, random18_, options);
+  const auto computed = PlanPoses(model_, boundary_, random18_, options);
+  ASSERT_TRUE(given.ok() && computed.ok());
+  EXPECT_EQ(given->poses, computed->poses);
+  EXPECT_EQ(given->final_primary, computed->final_primary);
+  const std::vector<Vector6d> fewer(boundary_.begin(), boundary_.end() - 1);
+  EXPECT_FALSE(PlanPoses(model_, fewer, &rows, random18_, options).ok());
+}
+
 // Continuous AddFind: SLSQP from random starts improves the plan and stays feasible.
 TEST_F(IoopsTest, ContinuousSearchImprovesAndStaysFeasible) {
   const std::vector<Vector6d> starts = Generate(model_.robot, CandidateKind::kRandom, 200, 4);

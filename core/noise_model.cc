@@ -79,27 +79,36 @@ std::array<Eigen::Matrix3d, 3> RotationEulerPartials(const Eigen::Vector3d& q, E
   return {r3 * r2 * Skew(e1) * r1, r3 * Skew(e2) * r2 * r1, Skew(e3) * r3 * r2 * r1};
 }
 
-Eigen::Matrix<double, 7, 1> ResidualMeasurementGradient(const Robot& robot, int leg_index,
-                                                        const Vector6d& pose_vector, double reading) {
-  const Leg& leg = robot.legs[leg_index];
-  const Pose pose = robot.PoseFromVector(pose_vector);
-  const Eigen::Vector3d v = LegVector(leg, pose);
+MeasuredPose MeasuredPoseOf(const Robot& robot, const Vector6d& pose_vector) {
   const Eigen::Vector3d q(DegToRad(pose_vector[3]), DegToRad(pose_vector[4]), DegToRad(pose_vector[5]));
-  const auto partials = RotationEulerPartials(q, robot.euler);
+  return {robot.PoseFromVector(pose_vector), RotationEulerPartials(q, robot.euler)};
+}
+
+Eigen::Matrix<double, 7, 1> ResidualMeasurementGradient(const Leg& leg, const MeasuredPose& measured, double reading) {
+  const Eigen::Vector3d v = LegVector(leg, measured.pose);
   Eigen::Matrix<double, 7, 1> g;
   g.head<3>() = 2 * v;  // ∂|v|²/∂P
-  for (int k = 0; k < 3; ++k) g[3 + k] = 2 * v.dot(partials[k] * leg.b_in_platform);
+  for (int k = 0; k < 3; ++k) g[3 + k] = 2 * v.dot(measured.rotation_partials[k] * leg.b_in_platform);
   g[6] = -2 * (reading + leg.offset);
   return g;
 }
 
-double ResidualStdDev(const Robot& robot, int leg, const Vector6d& pose_vector, double reading,
-                      const NoiseModel& noise) {
-  const Eigen::Matrix<double, 7, 1> g = ResidualMeasurementGradient(robot, leg, pose_vector, reading);
+Eigen::Matrix<double, 7, 1> ResidualMeasurementGradient(const Robot& robot, int leg_index,
+                                                        const Vector6d& pose_vector, double reading) {
+  return ResidualMeasurementGradient(robot.legs[leg_index], MeasuredPoseOf(robot, pose_vector), reading);
+}
+
+double ResidualStdDev(const Leg& leg, const MeasuredPose& measured, double reading, const NoiseModel& noise) {
+  const Eigen::Matrix<double, 7, 1> g = ResidualMeasurementGradient(leg, measured, reading);
   const double sp = noise.PositionStdDev(), sq = noise.AngleStdDevRad(), sl = noise.LegStdDev();
   const double variance = g.head<3>().squaredNorm() * sp * sp + g.segment<3>(3).squaredNorm() * sq * sq +
                           g[6] * g[6] * sl * sl;
   return std::sqrt(variance);
+}
+
+double ResidualStdDev(const Robot& robot, int leg, const Vector6d& pose_vector, double reading,
+                      const NoiseModel& noise) {
+  return ResidualStdDev(robot.legs[leg], MeasuredPoseOf(robot, pose_vector), reading, noise);
 }
 
 double ResidualStdDev(const Robot& robot, int leg, const Vector6d& pose_vector, double reading,

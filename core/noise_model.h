@@ -40,13 +40,23 @@ std::string NoiseModelText(const NoiseModel& noise, const std::string& separator
 // dR/dq_k for the Euler angles of `convention` (q in radians).
 std::array<Eigen::Matrix3d, 3> RotationEulerPartials(const Eigen::Vector3d& q_rad, EulerConvention convention);
 
+// A measured pose and dR/dq_k at it: what every leg's residual gradient
+// needs, computed once per pose rather than once per leg.
+struct MeasuredPose {
+  Pose pose;
+  std::array<Eigen::Matrix3d, 3> rotation_partials;
+};
+MeasuredPose MeasuredPoseOf(const Robot& robot, const Vector6d& pose_vector);
+
 // g = ∂F/∂(x, y, z, q1, q2, q3 [per radian], L) for leg i.
 Eigen::Matrix<double, 7, 1> ResidualMeasurementGradient(const Robot& robot, int leg, const Vector6d& pose_vector,
                                                         double reading);
+Eigen::Matrix<double, 7, 1> ResidualMeasurementGradient(const Leg& leg, const MeasuredPose& measured, double reading);
 
 // √(gᵀ Σ g): the standard deviation of F_ij under the noise model.
 double ResidualStdDev(const Robot& robot, int leg, const Vector6d& pose_vector, double reading,
                       const NoiseModel& noise);
+double ResidualStdDev(const Leg& leg, const MeasuredPose& measured, double reading, const NoiseModel& noise);
 // The same with the pose's own covariance (robot unit², degrees², any
 // correlations) in place of the model's pose terms; the reading's from `noise`.
 double ResidualStdDev(const Robot& robot, int leg, const Vector6d& pose_vector, double reading,

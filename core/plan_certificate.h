@@ -23,8 +23,11 @@ struct PlanCertificate {
 // Both design bounds over `candidates` and the plan's efficiencies against them:
 // D on the model's rows (weighted when the model has a noise model), S on rows
 // weighted by the model's noise or else the paper's levels, as the S criterion.
-// Each design gets the options' time limit.
+// Each design gets the options' time limit; the two run side by side.
+// `known_rows`, when given, are model.RowsOf of a prefix of `candidates`
+// (the planner's), not computed again.
 StatusOr<PlanCertificate> CertifyPlan(const PlanningModel& model, const std::vector<Vector6d>& candidates,
-                                      const std::vector<Vector6d>& plan, const OptimalDesignOptions& options = {});
+                                      const std::vector<Vector6d>& plan, const OptimalDesignOptions& options = {},
+                                      const CandidateRows* known_rows = nullptr);
 
 }  // namespace hexcal

@@ -36,14 +36,18 @@ std::vector<char> PlanningModel::FeasibleOf(const std::vector<Vector6d>& poses, 
 }
 
 PoseRows PlanningModel::Rows(const Vector6d& v) const {
-  const Pose pose = robot.PoseFromVector(v);
   PoseRows rows;
+  if (!noise) {
+    const Pose pose = robot.PoseFromVector(v);
+    for (int i = 0; i < kNumLegs; ++i) rows[i] = NominalJacobianRow(robot.legs[i], pose);
+    return rows;
+  }
+  const MeasuredPose measured = MeasuredPoseOf(robot, v);  // the pose's partials once for the six legs
   for (int i = 0; i < kNumLegs; ++i) {
-    rows[i] = NominalJacobianRow(robot.legs[i], pose);
-    if (noise) {
-      const double reading = LegVector(robot.legs[i], pose).norm() - robot.legs[i].offset;
-      rows[i] /= ResidualStdDev(robot, i, v, reading, *noise);
-    }
+    const Leg& leg = robot.legs[i];
+    rows[i] = NominalJacobianRow(leg, measured.pose);
+    const double reading = LegVector(leg, measured.pose).norm() - leg.offset;
+    rows[i] /= ResidualStdDev(leg, measured, reading, *noise);
   }
   return rows;
 }

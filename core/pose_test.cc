@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <vector>
 
 #include "tests/test_support.h"
 
@@ -53,6 +56,37 @@ TEST(Pose, RotationFromEulerMatchesHandWrittenProducts) {
 }
 
 // A fixed case checked entry by entry: xyz with q = (90°, 0, 0) maps y to z.
+uint64_t Bits(double value) {
+  uint64_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  return bits;
+}
+
+// The closed form is the product of Eigen's AngleAxis matrices bit for bit
+// (the sign of zero included), so that no plan or candidate moves by an ulp.
+TEST(Pose, RotationFromEulerIsTheAngleAxisProductExactly) {
+  const auto axis = [](double q, const Eigen::Vector3d& u) { return Eigen::AngleAxisd(q, u).matrix(); };
+  const Eigen::Vector3d x = Eigen::Vector3d::UnitX(), y = Eigen::Vector3d::UnitY(), z = Eigen::Vector3d::UnitZ();
+  const double special[] = {0.0, -0.0, kPi, -kPi, kPi / 2, 1e-300, -1e-17, 3.0};
+  std::vector<Eigen::Vector3d> angles;
+  for (double a : special) {
+    for (double b : special) {
+      for (double c : special) angles.emplace_back(a, b, c);
+    }
+  }
+  for (int k = 0; k < 20000; ++k) angles.push_back(RandomAnglesRad());
+  for (const Eigen::Vector3d& q : angles) {
+    const Eigen::Matrix3d xyz = axis(q[2], z) * axis(q[1], y) * axis(q[0], x);
+    const Eigen::Matrix3d zyx = axis(q[2], x) * axis(q[1], y) * axis(q[0], z);
+    const Eigen::Matrix3d r_xyz = RotationFromEuler(q, EulerConvention::kXYZ);
+    const Eigen::Matrix3d r_zyx = RotationFromEuler(q, EulerConvention::kZYX);
+    for (int e = 0; e < 9; ++e) {
+      ASSERT_EQ(Bits(r_xyz.data()[e]), Bits(xyz.data()[e])) << q.transpose();
+      ASSERT_EQ(Bits(r_zyx.data()[e]), Bits(zyx.data()[e])) << q.transpose();
+    }
+  }
+}
+
 TEST(Pose, RotationFromEulerKnownCase) {
   const Eigen::Matrix3d r = RotationFromEuler(Eigen::Vector3d(kPi / 2, 0, 0), EulerConvention::kXYZ);
   EXPECT_TRUE(MatrixNear(r * Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(), 1e-15));

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/vector_clones.h"
+
 namespace hexcal {
 namespace {
 
@@ -65,7 +67,7 @@ SigmaBoundFactors SigmaBoundFactorsOf(const std::array<InfoBlock, kNumLegs>& inv
   return factors;
 }
 
-void SigmaSumLowerBounds(const SigmaBoundFactors& factors, const std::array<ParameterColumns, kNumLegs>& candidates,
+HEXCAL_VECTOR_CLONES void SigmaSumLowerBounds(const SigmaBoundFactors& factors, const std::array<ParameterColumns, kNumLegs>& candidates,
                          const std::array<const double*, kNumLegs>& forms, int begin, int n, double* least_sums) {
   std::fill(least_sums, least_sums + n, 0.0);
   for (int i = 0; i < kNumLegs; ++i) {

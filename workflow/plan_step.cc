@@ -271,13 +271,14 @@ Status ContinuousPhase(const PlanningModel& model, const PlanSetup& setup, int i
 
 // The certificates on the pool plus the plan's own poses (a polished pose is
 // not in the pool), so that no efficiency can exceed 1.
-Status Certify(const PlanningModel& model, const PlanSetup& setup, const JobHooks& hooks, PlanOutcome* outcome) {
+Status Certify(const PlanningModel& model, const PlanSetup& setup, const CandidateRows& pool_rows, const JobHooks& hooks,
+               PlanOutcome* outcome) {
   hooks.Stage("certificate");
   OptimalDesignOptions design_options;
   design_options.max_seconds = setup.certificate_seconds;
   std::vector<Vector6d> candidates = outcome->pool.poses;
   candidates.insert(candidates.end(), outcome->plan.poses.begin(), outcome->plan.poses.end());
-  StatusOr<PlanCertificate> cert = CertifyPlan(model, candidates, outcome->plan.poses, design_options);
+  StatusOr<PlanCertificate> cert = CertifyPlan(model, candidates, outcome->plan.poses, design_options, &pool_rows);
   if (!cert.ok()) return cert.status().AsFailure();
   outcome->certificate = *cert;
   return Status::Ok();
@@ -305,7 +306,9 @@ StatusOr<PlanOutcome> RunPlan(const PlanningModel& given_model, const PlanSetup&
                                                     hooks);
   if (!pool.ok()) return pool.status();
   hooks.Stage("planning");
-  StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, *initial, finite, hooks, on_iteration);
+  // The pool's rows once, for the search and the certificates.
+  const CandidateRows pool_rows = model.RowsOf(pool->poses, finite.threads);
+  StatusOr<PlanResult> plan = PlanPoses(model, pool->poses, &pool_rows, *initial, finite, hooks, on_iteration);
   if (!plan.ok()) return plan.status().AsFailure();
   PlanOutcome outcome{setup, std::move(*pool), std::move(*plan), std::nullopt, "", std::nullopt, 0, {}, {}};
   const int continuous_iterations = setup.planner.continuous ? setup.planner.IterationBudget() : setup.polish;
@@ -316,7 +319,7 @@ StatusOr<PlanOutcome> RunPlan(const PlanningModel& given_model, const PlanSetup&
     }
   }
   if (setup.certificate) {
-    if (Status s = Certify(model, setup, hooks, &outcome); !s.ok()) return s;
+    if (Status s = Certify(model, setup, pool_rows, hooks, &outcome); !s.ok()) return s;
   }
   hooks.Stage("prediction");
   outcome.length_unit = LengthUnitName(model.robot.length_unit);
