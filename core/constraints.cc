@@ -113,7 +113,8 @@ bool IsFeasible(const Robot& robot, const Pose& pose) {
 
 std::vector<double> ConstraintMargins(const Robot& robot, const Pose& pose, bool include_box) {
   std::vector<double> margins;
-  VisitConstraints(robot, pose, include_box, [&](ConstraintKind, int, int, double margin) { margins.push_back(margin); });
+  VisitConstraints(robot, pose, include_box,
+                   [&](ConstraintKind, int, int, double margin) { margins.push_back(margin); });
   return margins;
 }
 

@@ -271,8 +271,8 @@ Status ContinuousPhase(const PlanningModel& model, const PlanSetup& setup, int i
 
 // The certificates on the pool plus the plan's own poses (a polished pose is
 // not in the pool), so that no efficiency can exceed 1.
-Status Certify(const PlanningModel& model, const PlanSetup& setup, const CandidateRows& pool_rows, const JobHooks& hooks,
-               PlanOutcome* outcome) {
+Status Certify(const PlanningModel& model, const PlanSetup& setup, const CandidateRows& pool_rows,
+               const JobHooks& hooks, PlanOutcome* outcome) {
   hooks.Stage("certificate");
   OptimalDesignOptions design_options;
   design_options.max_seconds = setup.certificate_seconds;
