@@ -51,9 +51,9 @@ StatusOr<PlanCertificate> CertifyPlan(const PlanningModel& model, const std::vec
   PlanningModel weighted = model;
   if (!weighted.noise) weighted.noise = NoiseModel{};
   const DesignInput d_input{RowsAfter(model, known_rows, candidates), PlanStateOf(model, plan)};
-  std::optional<DesignInput> unweighted_model;  // S's own rows when D's are not weighted
-  if (!model.noise) unweighted_model = DesignInput{weighted.RowsOf(candidates), PlanStateOf(weighted, plan)};
-  const DesignInput& s_input = unweighted_model ? *unweighted_model : d_input;
+  std::optional<DesignInput> s_own;  // S's own weighted rows, when D's are not
+  if (!model.noise) s_own = DesignInput{weighted.RowsOf(candidates), PlanStateOf(weighted, plan)};
+  const DesignInput& s_input = s_own ? *s_own : d_input;
   // The two designs are independent and each mostly one thread's work (its
   // working set is small): side by side, one core each when there are two.
   const int threads = ResolveThreadCount(options.threads);
