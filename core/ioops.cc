@@ -41,11 +41,22 @@ ObservabilityIndices PaperIndices(const Robot& robot, const std::vector<PlanEntr
 }
 
 // The entries with a finite primary value.
+// Calls visit(j) for each j of `subset`, or, when there is no subset, for
+// every j whose bound is finite (above -inf: not excluded).
+template <typename Visit>
+void ForEachEntry(const std::vector<int>* subset, const std::vector<double>& bounds, Visit visit) {
+  if (subset) {
+    for (int j : *subset) visit(j);
+    return;
+  }
+  for (int j = 0; j < static_cast<int>(bounds.size()); ++j) {
+    if (bounds[j] > kMinusInfinity) visit(j);
+  }
+}
+
 std::vector<int> FiniteEntries(const std::vector<double>& primary) {
   std::vector<int> order;
-  for (int j = 0; j < static_cast<int>(primary.size()); ++j) {
-    if (primary[j] > kMinusInfinity) order.push_back(j);
-  }
+  ForEachEntry(nullptr, primary, [&](int j) { order.push_back(j); });
   return order;
 }
 
@@ -71,19 +82,6 @@ int SelectBest(const std::vector<double>& primary, const std::vector<double>* se
   const std::vector<int> kept = KeptOnPrimary(primary, keep);
   if (kept.empty()) return -1;
   return *std::max_element(kept.begin(), kept.end(), [&](int a, int b) { return (*secondary)[a] < (*secondary)[b]; });
-}
-
-// Calls visit(j) for each j of `subset`, or for every j < count with a finite
-// bound when there is no subset.
-template <typename Visit>
-void ForEachEntry(const std::vector<int>* subset, const std::vector<double>& bounds, Visit visit) {
-  if (subset) {
-    for (int j : *subset) visit(j);
-    return;
-  }
-  for (int j = 0; j < static_cast<int>(bounds.size()); ++j) {
-    if (bounds[j] > kMinusInfinity) visit(j);
-  }
 }
 
 // The best of `subset` (null: of every candidate with a finite bound) on

@@ -17,7 +17,7 @@ Elementary ElementaryOf(double q) {
 }
 
 // R = Rz(c) Ry(b) Rx(a) with the nonzero terms of the two 3 x 3 products only
-// (a fifth of the time of multiplying AngleAxis matrices, which this is
+// (a quarter of the time of multiplying AngleAxis matrices, which this is
 // bit-for-bit: pose_test checks it; + 0.0 turns the -0 of a vanished term into
 // the +0 the full product gives).
 Eigen::Matrix3d RzRyRx(const Elementary& a, const Elementary& b, const Elementary& c) {

@@ -67,7 +67,8 @@ SigmaBoundFactors SigmaBoundFactorsOf(const std::array<InfoBlock, kNumLegs>& inv
   return factors;
 }
 
-HEXCAL_VECTOR_CLONES void SigmaSumLowerBounds(const SigmaBoundFactors& factors, const std::array<ParameterColumns, kNumLegs>& candidates,
+HEXCAL_VECTOR_CLONES void SigmaSumLowerBounds(const SigmaBoundFactors& factors,
+                                              const std::array<ParameterColumns, kNumLegs>& candidates,
                          const std::array<const double*, kNumLegs>& forms, int begin, int n, double* least_sums) {
   std::fill(least_sums, least_sums + n, 0.0);
   for (int i = 0; i < kNumLegs; ++i) {

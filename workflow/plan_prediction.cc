@@ -19,11 +19,11 @@ bool ParameterCovariances(const Robot& robot, const std::vector<Vector6d>& poses
   std::array<InfoBlock, kNumLegs> information, scatter;
   for (int i = 0; i < kNumLegs; ++i) information[i].setZero(), scatter[i].setZero();
   for (const Vector6d& v : poses) {
-    const Pose pose = robot.PoseFromVector(v);
-    const LegReadings readings = InverseKinematics(robot, pose);  // the nominal model's
+    const MeasuredPose measured = MeasuredPoseOf(robot, v);  // once for the six legs
+    const LegReadings readings = InverseKinematics(robot, measured.pose);  // the nominal model's
     for (int i = 0; i < kNumLegs; ++i) {
-      const JacobianRow r = NominalJacobianRow(robot.legs[i], pose);
-      const double sd = ResidualStdDev(robot, i, v, readings[i], noise);
+      const JacobianRow r = NominalJacobianRow(robot.legs[i], measured.pose);
+      const double sd = ResidualStdDev(robot.legs[i], measured, readings[i], noise);
       const InfoBlock outer = r.transpose() * r;
       information[i] += weighted ? InfoBlock(outer / (sd * sd)) : outer;
       scatter[i] += sd * sd * outer;
@@ -41,13 +41,13 @@ bool ParameterCovariances(const Robot& robot, const std::vector<Vector6d>& poses
 // Squared expectations at one pose of the FK error the parameters cause.
 ExpectedPoseError SquaredParameterPoseError(const Robot& robot, const Vector6d& v,
                                             const std::array<InfoBlock, kNumLegs>& covariances) {
-  const Pose pose = robot.PoseFromVector(v);
-  const LegReadings readings = InverseKinematics(robot, pose);
+  const MeasuredPose measured = MeasuredPoseOf(robot, v);
+  const LegReadings readings = InverseKinematics(robot, measured.pose);
   Matrix6d g;
   Vector6d leg_variance;
   for (int i = 0; i < kNumLegs; ++i) {
-    g.row(i) = ResidualMeasurementGradient(robot, i, v, readings[i]).head<6>().transpose();
-    const JacobianRow r = NominalJacobianRow(robot.legs[i], pose);
+    g.row(i) = ResidualMeasurementGradient(robot.legs[i], measured, readings[i]).head<6>().transpose();
+    const JacobianRow r = NominalJacobianRow(robot.legs[i], measured.pose);
     leg_variance[i] = r * covariances[i] * r.transpose();
   }
   const Eigen::FullPivLU<Matrix6d> lu(g);
