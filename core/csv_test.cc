@@ -15,6 +15,7 @@ namespace {
 
 using ::hexcal::testing::TempDir;
 using ::hexcal::testing::TestRng;
+using ::hexcal::testing::Uniform;
 using ::hexcal::testing::WriteTextFile;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
@@ -188,6 +189,32 @@ TEST(CsvTest, LoadPosesTakesColumnsInAnyOrderAndIgnoresExtras) {
   EXPECT_EQ((*poses)[1], (Vector6d() << -1.25, -2, -3, -4, -5, -6).finished());
 }
 
+// Plain tables take a direct path (no quotes, no rows of strings): it must
+// read every layout the general reader forgives as that reader does.
+TEST(CsvTest, LoadPosesReadsPlainTablesAsTheGeneralReader) {
+  TempDir dir;
+  std::string text = "\xEF\xBB\xBF  q1 ,x,\ty,z,q2,q3,extra\r\n# a comment\n\n";
+  for (int row = 0; row < 500; ++row) {
+    for (int k = 0; k < 6; ++k) {
+      const double v = Uniform(-1, 1) * std::pow(10.0, static_cast<int>(Uniform(-8, 8)));
+      text += (k == 2 && v > 0 ? " +" : " ") + FormatNumber(v) + (k == 4 ? "\t," : ",");
+    }
+    text += row % 3 ? "\r\n" : "\n";
+    if (row % 50 == 0) text += "   \n  # ruler\n";
+  }
+  const std::string path = WriteCsvFile(dir, text);
+  StatusOr<std::vector<Vector6d>> poses = LoadPoses(path);
+  StatusOr<CsvTable> table = ReadCsv(path);
+  ASSERT_TRUE(poses.ok() && table.ok()) << poses.status().message();
+  ASSERT_EQ(poses->size(), table->rows.size());
+  const char* names[6] = {"x", "y", "z", "q1", "q2", "q3"};
+  for (size_t row = 0; row < table->rows.size(); ++row) {
+    for (int k = 0; k < 6; ++k) {
+      EXPECT_EQ((*poses)[row][k], *NumberAt(*table, row, *ColumnIndex(*table, names[k]))) << row << " " << k;
+    }
+  }
+}
+
 TEST(CsvTest, LoadPosesErrorsNameFileLineAndColumn) {
   TempDir dir;
   std::string path = WriteCsvFile(dir, "x,y,z,q1,q3\n0,0,50,0,0\n");
@@ -195,6 +222,12 @@ TEST(CsvTest, LoadPosesErrorsNameFileLineAndColumn) {
 
   path = WriteCsvFile(dir, "x,y,z,q1,q2,q3\n0,0,50,0,0,0\n0,0,nan,0,0,0\n");
   EXPECT_EQ(LoadPoses(path).status().message(), path + ":3: column 'z': 'nan' is not a finite number");
+
+  path = WriteCsvFile(dir, "x,y,z,q1,q2,q3\n0,0,50,0,0,0\n0,0,50,0,0\n");
+  EXPECT_EQ(LoadPoses(path).status().message(), path + ":3: 5 columns, header has 6");
+
+  path = WriteCsvFile(dir, "x,y,z,q1,q2,q3,x\n0,0,50,0,0,0,0\n");
+  EXPECT_EQ(LoadPoses(path).status().message(), path + ":1: duplicate column 'x' in header");
 
   path = WriteCsvFile(dir, "x,y,z,q1,q2,q3\n# nothing yet\n");
   EXPECT_EQ(LoadPoses(path).status().message(), path + ": no poses (the file has a header but no data rows)");

@@ -1,12 +1,85 @@
 #include "core/parallel.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <atomic>
+#include <condition_variable>
 #include <mutex>
 #include <thread>
 #include <vector>
 
 namespace hexcal {
+
+namespace {
+
+// Threads kept between calls: a search calls ParallelFor hundreds of times a
+// second on blocks of a few milliseconds, and a thread started per call came
+// up after the calling thread had taken most of the blocks. One job at a
+// time; a call made while the pool is busy (from another thread, or nested
+// inside a job) starts its own threads instead, as before, and so does a
+// forked child, which has none of the pool's threads. Never destroyed, so
+// that no exit-time destructor joins threads still waiting.
+class WorkerPool {
+ public:
+  static WorkerPool& Instance() {
+    static WorkerPool* pool = new WorkerPool;
+    return *pool;
+  }
+
+  // work(1) .. work(helpers) on pool threads and work(0) on the caller's,
+  // returning when all are done; false, having run nothing, when busy.
+  bool TryRun(int helpers, const std::function<void(int)>& work) {
+    if (::getpid() != owner_) return false;
+    bool idle = false;
+    if (!busy_.compare_exchange_strong(idle, true)) return false;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      while (static_cast<int>(threads_.size()) < helpers) {
+        const int worker = static_cast<int>(threads_.size()) + 1;
+        threads_.emplace_back([this, worker] { Serve(worker); });
+      }
+      job_ = &work;
+      helpers_ = helpers;
+      pending_ = helpers;
+      ++generation_;
+    }
+    started_.notify_all();
+    work(0);
+    std::unique_lock<std::mutex> lock(mutex_);
+    finished_.wait(lock, [&] { return pending_ == 0; });
+    job_ = nullptr;
+    busy_ = false;
+    return true;
+  }
+
+ private:
+  void Serve(int worker) {
+    long seen = 0;
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (true) {
+      started_.wait(lock, [&] { return generation_ != seen; });
+      seen = generation_;
+      if (worker > helpers_) continue;
+      const std::function<void(int)>* job = job_;
+      lock.unlock();
+      (*job)(worker);
+      lock.lock();
+      if (--pending_ == 0) finished_.notify_one();
+    }
+  }
+
+  const pid_t owner_ = ::getpid();  // the process whose threads these are
+  std::atomic<bool> busy_{false};  // a caller's job is running (a flag, not a mutex: nested calls test it)
+  std::mutex mutex_;  // guards what follows
+  std::condition_variable started_, finished_;
+  std::vector<std::thread> threads_;  // threads_[k] serves worker k + 1
+  const std::function<void(int)>* job_ = nullptr;
+  int helpers_ = 0, pending_ = 0;
+  long generation_ = 0;
+};
+
+}  // namespace
 
 int ResolveThreadCount(int threads) {
   if (threads > 0) return threads;
@@ -37,10 +110,14 @@ bool ParallelFor(int count, int threads, const std::function<void(int index, int
     }
   };
   const int workers = ParallelWorkers(count, threads);
-  std::vector<std::thread> pool;
-  for (int w = 1; w < workers; ++w) pool.emplace_back(work, w);
-  work(0);
-  for (std::thread& thread : pool) thread.join();
+  if (workers == 1) {
+    work(0);
+  } else if (!WorkerPool::Instance().TryRun(workers - 1, work)) {
+    std::vector<std::thread> own;
+    for (int w = 1; w < workers; ++w) own.emplace_back(work, w);
+    work(0);
+    for (std::thread& thread : own) thread.join();
+  }
   return !cancelled;
 }
 

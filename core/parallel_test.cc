@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -28,6 +29,30 @@ TEST(ParallelForTest, EachIndexOnceWhateverTheThreadCount) {
     }));
     for (int index = 0; index < 1000; ++index) EXPECT_EQ(runs[index], 1) << "threads " << threads;
   }
+}
+
+// The kept threads serve one job at a time: a call nested in a job, or made
+// from another thread meanwhile, runs on threads of its own.
+TEST(ParallelForTest, NestedAndConcurrentCallsRunEachIndexOnce) {
+  std::vector<std::atomic<int>> inner(8 * 100);
+  std::vector<std::atomic<int>> outer(8);
+  std::thread other([&] {
+    for (int repeat = 0; repeat < 50; ++repeat) {
+      std::vector<int> runs(64, 0);
+      ASSERT_TRUE(ParallelFor(64, 2, [&](int index, int) { ++runs[index]; }));
+      for (int k = 0; k < 64; ++k) ASSERT_EQ(runs[k], 1);
+    }
+  });
+  ASSERT_TRUE(ParallelFor(8, 2, [&](int index, int) {
+    ++outer[index];
+    ParallelFor(100, 3, [&](int k, int worker) {
+      EXPECT_LT(worker, 3);
+      ++inner[index * 100 + k];
+    });
+  }));
+  other.join();
+  for (const std::atomic<int>& runs : outer) EXPECT_EQ(runs.load(), 1);
+  for (const std::atomic<int>& runs : inner) EXPECT_EQ(runs.load(), 1);
 }
 
 TEST(ParallelForTest, ProgressCountsEveryItemOneCallAtATime) {

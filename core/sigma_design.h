@@ -39,6 +39,30 @@ StatusOr<SigmaDesign> ComputeSigmaOptimalDesign(const CandidateRows& candidates,
                                                 const OptimalDesignOptions& options = {},
                                                 const JobHooks& hooks = {});
 
+// Φ along a vertex exchange: weight δ moved from candidate `from` to candidate
+// `to`, M_i(δ) = M_i + δ (r_to r_toᵀ - r_from r_fromᵀ). By Woodbury, with
+// A = M_i⁻¹, p = A r_to, q = A r_from, a = r_toᵀp, b = r_fromᵀq, c = r_toᵀq,
+//   M_i(δ)⁻¹_kk = A_kk - δ [(1 - δb) p_k² + 2δc p_k q_k - (1 + δa) q_k²] / g(δ),
+//   g(δ) = (1 + δa)(1 - δb) + δ²c² = det M_i(δ) / det M_i,
+// and g is concave (c² <= ab) with g(0) = 1, so M_i(δ) is positive definite
+// exactly while g(δ) > 0. Each δ costs O(7) per leg, not a factorisation.
+class SigmaSumAlongExchange {
+ public:
+  SigmaSumAlongExchange(const std::array<InfoBlock, kNumLegs>& blocks, const CandidateRows& candidates, int to,
+                        int from);
+  // Φ(M(δ)); infinity where M(δ) is not positive definite (or M itself is not).
+  double operator()(double delta) const;
+
+ private:
+  using Vector7d = Eigen::Matrix<double, kParamsPerLeg, 1>;
+  struct Leg {
+    Vector7d variance, p, q;  // diag A, A r_to, A r_from
+    double a = 0, b = 0, c = 0;
+  };
+  std::array<Leg, kNumLegs> legs_;
+  bool positive_definite_ = true;
+};
+
 // Certified lower bound on the S-efficiency of a plan of `num_poses` poses with
 // information `plan_blocks`: Φ* / (√N Σσ_plan), in (0, 1].
 double SEfficiencyLowerBound(const std::array<InfoBlock, kNumLegs>& plan_blocks, int num_poses,

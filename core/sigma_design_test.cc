@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+#include <utility>
+
 #include "core/planning_model.h"
 #include "core/sigma_criterion.h"
 #include "tests/robot_presets.h"
@@ -66,6 +69,28 @@ TEST(SigmaDesign, NoMoveTowardsACandidateImprovesTheOptimum) {
     }
     EXPECT_LE(design->SigmaSumBound(), phi);
     EXPECT_GE(design->SigmaSumBound(), phi * (1 - design->gap));
+  }
+}
+
+// The exchange's Woodbury form against Φ from dense inverses of the moved weights.
+TEST(SigmaDesign, SigmaSumAlongAnExchangeIsPhiOfTheMovedWeights) {
+  const Problem p = SpreadCandidates(true);
+  const int count = p.rows.size();
+  Eigen::ArrayXd w = Eigen::ArrayXd::LinSpaced(count, 1, 2);
+  w /= w.sum();
+  const std::array<InfoBlock, kNumLegs> blocks = DesignInformation(p.rows, w);
+  for (const auto& [to, from] : {std::pair{3, 17}, std::pair{120, 4}, std::pair{250, 251}}) {
+    const SigmaSumAlongExchange phi(blocks, p.rows, to, from);
+    for (double fraction : {0.0, 0.1, 0.5, 1.0}) {
+      const double delta = fraction * w[from];
+      Eigen::ArrayXd moved = w;
+      moved[to] += delta;
+      moved[from] -= delta;
+      const double dense = DensePhi(p.rows, moved);
+      EXPECT_NEAR(phi(delta), dense, 1e-10 * dense) << to << " <- " << from << ", δ = " << delta;
+    }
+    // Far past the support point's weight, M_i(δ) loses r_from's direction.
+    EXPECT_EQ(phi(1e9), std::numeric_limits<double>::infinity());
   }
 }
 
