@@ -23,12 +23,14 @@ constexpr int kCacheBlock = 1024;
 // One leg's forms after an exchange, for the candidates in [begin, end), by
 // Sherman–Morrison: q += (rᵀu_remove)² / d_remove - (rᵀu_add)² / d_add. Both
 // projections come from the same 7 loads; unrolled over the parameters, the
-// loop vectorises along the candidates.
-HEXCAL_VECTOR_CLONES void ExchangeForms(const ParameterColumns& columns, const Vector7d& u_add, double d_add,
-                                        const Vector7d& u_remove, double d_remove, int begin, int end,
-                                        double* __restrict q) {
+// loop vectorises along the candidates. For double or float columns (read as
+// double), inlined into each ExchangeForms so that each is cloned.
+template <typename Scalar>
+__attribute__((always_inline)) inline void ExchangeFormsOf(
+    const Eigen::Matrix<Scalar, Eigen::Dynamic, kParamsPerLeg>& columns, const Vector7d& u_add, double d_add,
+    const Vector7d& u_remove, double d_remove, int begin, int end, double* __restrict q) {
   // Local copies, so that the compiler sees them unchanged by the stores to q.
-  const double* column[kParamsPerLeg];
+  const Scalar* column[kParamsPerLeg];
   double ua[kParamsPerLeg], ur[kParamsPerLeg];
   for (int k = 0; k < kParamsPerLeg; ++k) {
     column[k] = columns.col(k).data();
@@ -38,10 +40,45 @@ HEXCAL_VECTOR_CLONES void ExchangeForms(const ParameterColumns& columns, const V
     double along_add = 0, along_remove = 0;
 #pragma GCC unroll 7
     for (int k = 0; k < kParamsPerLeg; ++k) {
-      along_add += ua[k] * column[k][c];
-      along_remove += ur[k] * column[k][c];
+      const double r = static_cast<double>(column[k][c]);
+      along_add += ua[k] * r;
+      along_remove += ur[k] * r;
     }
     q[c] += along_remove * along_remove / d_remove - along_add * along_add / d_add;
+  }
+}
+
+HEXCAL_VECTOR_CLONES void ExchangeForms(const ParameterColumns& columns, const Vector7d& u_add, double d_add,
+                                        const Vector7d& u_remove, double d_remove, int begin, int end, double* q) {
+  ExchangeFormsOf(columns, u_add, d_add, u_remove, d_remove, begin, end, q);
+}
+
+HEXCAL_VECTOR_CLONES void ExchangeForms(const ParameterColumns32& columns, const Vector7d& u_add, double d_add,
+                                        const Vector7d& u_remove, double d_remove, int begin, int end, double* q) {
+  ExchangeFormsOf(columns, u_add, d_add, u_remove, d_remove, begin, end, q);
+}
+
+// q = rᵀ A r of the float rows in [begin, end), along the candidates as ExchangeForms.
+HEXCAL_VECTOR_CLONES void FormsOf(const ParameterColumns32& columns, const InfoBlock& inverse, int begin, int end,
+                                  double* __restrict q) {
+  const float* column[kParamsPerLeg];
+  double a[kParamsPerLeg][kParamsPerLeg];
+  for (int j = 0; j < kParamsPerLeg; ++j) {
+    column[j] = columns.col(j).data();
+    for (int k = 0; k < kParamsPerLeg; ++k) a[j][k] = inverse(j, k);
+  }
+  for (int c = begin; c < end; ++c) {
+    double r[kParamsPerLeg], form = 0;
+#pragma GCC unroll 7
+    for (int k = 0; k < kParamsPerLeg; ++k) r[k] = static_cast<double>(column[k][c]);
+#pragma GCC unroll 7
+    for (int j = 0; j < kParamsPerLeg; ++j) {
+      double y = 0;
+#pragma GCC unroll 7
+      for (int k = 0; k < kParamsPerLeg; ++k) y += a[j][k] * r[k];
+      form += r[j] * y;
+    }
+    q[c] = form;
   }
 }
 
@@ -431,19 +468,31 @@ void DesignState::Remove(const PoseRows& rows) {
   Refactor();
 }
 
-void QuadraticFormCache::Reset(const DesignState& state, const CandidateRows& candidates, int threads) {
+void QuadraticFormCache::Reset(const DesignState& state, const CandidateRows& candidates, int threads,
+                               bool single_precision) {
   const int n = candidates.size();
-  const bool copy = source_ != &candidates || columns_[0].rows() != n;
+  const bool copy = source_ != &candidates || single_ != single_precision ||
+                    (single_precision ? columns32_[0].rows() : columns_[0].rows()) != n;
+  single_ = single_precision;
   for (int i = 0; i < kNumLegs; ++i) {
-    if (copy) columns_[i].resize(n, kParamsPerLeg);
+    if (copy) {
+      columns_[i].resize(single_ ? 0 : n, kParamsPerLeg);
+      columns32_[i].resize(single_ ? n : 0, kParamsPerLeg);
+    }
     q_[i].resize(n);
   }
   source_ = &candidates;
   // q_j = r_jᵀ M⁻¹ r_j, block by block on every core: each candidate's form
-  // comes out the same as from the whole product at once.
+  // comes out the same as from the whole product at once. In single
+  // precision, of the rows as rounded to float: the rows the updates read.
   ParallelForBlocks(n, kCacheBlock, threads, [&](int begin, int end) {
     for (int i = 0; i < kNumLegs; ++i) {
       const auto r = candidates.legs[i].middleCols(begin, end - begin);
+      if (single_) {
+        if (copy) columns32_[i].middleRows(begin, end - begin) = r.transpose().cast<float>();
+        FormsOf(columns32_[i], state.inverse(i), begin, end, q_[i].data());
+        continue;
+      }
       if (copy) columns_[i].middleRows(begin, end - begin) = r.transpose();
       q_[i].segment(begin, end - begin) = r.cwiseProduct(state.inverse(i) * r).colwise().sum().transpose().array();
     }
@@ -483,7 +532,11 @@ void QuadraticFormCache::Exchanged(const DesignState& before, const PoseRows& ad
   // Blocks of candidates on every core: all legs' forms, then (in cache) the bounds.
   ParallelForBlocks(candidates.size(), kCacheBlock, threads, [&](int begin, int end) {
     for (int i = 0; i < kNumLegs; ++i) {
-      ExchangeForms(columns_[i], u_add[i], d_add[i], u_remove[i], d_remove[i], begin, end, q_[i].data());
+      if (single_) {
+        ExchangeForms(columns32_[i], u_add[i], d_add[i], u_remove[i], d_remove[i], begin, end, q_[i].data());
+      } else {
+        ExchangeForms(columns_[i], u_add[i], d_add[i], u_remove[i], d_remove[i], begin, end, q_[i].data());
+      }
     }
     if (bound) SigmaUpperBoundsOf(factors, begin, end, sigma_bounds->data() + begin);
   });
@@ -502,12 +555,20 @@ void QuadraticFormCache::SigmaUpperBoundsOf(const SigmaBoundFactors& factors, in
                                             double* bounds) const {
   std::array<const double*, kNumLegs> forms;
   for (int i = 0; i < kNumLegs; ++i) forms[i] = q_[i].data();
-  SigmaSumLowerBounds(factors, columns_, forms, begin, end - begin, bounds);
+  if (single_) {
+    SigmaSumLowerBounds(factors, columns32_, forms, begin, end - begin, bounds);
+  } else {
+    SigmaSumLowerBounds(factors, columns_, forms, begin, end - begin, bounds);
+  }
   // The exact values (SigmaSumsAfterAdding) round differently and q drifts
-  // between resets: a relative slack keeps the bound above them.
-  constexpr double kSlack = 1e-9;
+  // between resets: a relative slack keeps the bound above them. Rows rounded
+  // to float (relative error 6e-8) move a bound by up to 1e-6 relative, M⁻¹
+  // being ill-conditioned (design_criteria_test measures it against the
+  // double-precision bound and checks it against exact S): 1e-4 is a hundred
+  // times that, and costs only a few more exact evaluations.
+  const double slack = single_ ? 1e-4 : 1e-9;
   for (int j = 0; j < end - begin; ++j) {
-    bounds[j] = bounds[j] > 0 ? kNumParams / bounds[j] * (1 + kSlack) : kPositiveInfinity;
+    bounds[j] = bounds[j] > 0 ? kNumParams / bounds[j] * (1 + slack) : kPositiveInfinity;
   }
 }
 

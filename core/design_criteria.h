@@ -102,7 +102,11 @@ class DesignState {
 // D and O1 do (determinant lemma). Refreshed from scratch now and then against drift.
 class QuadraticFormCache {
  public:
-  void Reset(const DesignState& state, const CandidateRows& candidates, int threads = 0);
+  // With single_precision the rows are kept as float, half the memory each
+  // exchange reads: q is then that of the rows rounded to float, good for the
+  // S bounds (whose slack covers the rounding), not for an exact Growth.
+  void Reset(const DesignState& state, const CandidateRows& candidates, int threads = 0,
+             bool single_precision = false);
   // Call with the state *before* the change.
   void Added(const DesignState& state, const CandidateRows& candidates, const PoseRows& rows);
   void Removed(const DesignState& state, const CandidateRows& candidates, const PoseRows& rows);
@@ -128,7 +132,9 @@ class QuadraticFormCache {
   std::array<Eigen::ArrayXd, kNumLegs> q_;
   // The candidates' rows one column per parameter (n x 7), copied on the first
   // Reset: the updates and bounds then run along contiguous candidates.
-  std::array<Eigen::Matrix<double, Eigen::Dynamic, kParamsPerLeg>, kNumLegs> columns_;
+  std::array<ParameterColumns, kNumLegs> columns_;      // double precision, or
+  std::array<ParameterColumns32, kNumLegs> columns32_;  // single precision
+  bool single_ = false;
   const CandidateRows* source_ = nullptr;
   int updates_ = 0;
 };

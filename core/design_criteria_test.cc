@@ -291,5 +291,46 @@ TEST(QuadraticFormCache, TracksExchangesExactly) {
   }
 }
 
+// Rows kept as float (the S search's cache) still bound S from above, on
+// noise-weighted rows as the planner's, on both presets; rounding the rows
+// moves a bound by a tenth of its slack (1e-4) at most (1.0e-6 on INRIA's
+// rows, 1.0e-7 on DeltaLab's).
+TEST(QuadraticFormCache, SinglePrecisionStillBoundsS) {
+  for (const char* name : {"inria-left-hand", "deltalab-table"}) {
+    const PlanningModel model{::hexcal::testing::Preset(name), NoiseModel{}, std::nullopt};
+    CandidateOptions options;
+    options.count = 2300;
+    options.seed = 22;
+    const std::vector<Vector6d> poses = GenerateCandidates(model.robot, options)->poses;
+    std::vector<PoseRows> plan;
+    for (int k = 0; k < 18; ++k) plan.push_back(model.Rows(poses[k]));
+    const CandidateRows candidates = model.RowsOf(std::vector<Vector6d>(poses.begin() + 300, poses.end()));
+    const int count = candidates.size();
+    DesignState state = DesignState::FromRows(plan);
+    QuadraticFormCache single, exact;
+    single.Reset(state, candidates, 0, /*single_precision=*/true);
+    exact.Reset(state, candidates);
+    for (int step = 0; step < 40; ++step) {
+      const PoseRows added = candidates.Rows(step * 37), removed = plan[step % plan.size()];
+      const DesignState before = state;
+      state.Add(added);
+      single.Exchanged(before, added, state, removed, candidates);
+      exact.Exchanged(before, added, state, removed, candidates);
+      state.Remove(removed);
+      plan[step % plan.size()] = added;
+    }
+    std::vector<double> bounds, exact_bounds, scores(count);
+    single.SigmaUpperBounds(state, &bounds);
+    exact.SigmaUpperBounds(state, &exact_bounds);
+    state.ScoreAdditions(Criterion::kS, candidates, 0, count, scores.data());
+    for (int j = 0; j < count; ++j) {
+      EXPECT_GE(bounds[j], scores[j]) << name << " candidate " << j;
+      // The slacks are 1e-4 and 1e-9: what is left is the rounding's.
+      const double rounding = bounds[j] / (1 + 1e-4) / (exact_bounds[j] / (1 + 1e-9)) - 1;
+      EXPECT_LT(std::abs(rounding), 1e-5) << name << " candidate " << j;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hexcal

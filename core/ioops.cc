@@ -216,7 +216,9 @@ Search::Search(const PlanningModel& model, const std::vector<Vector6d>& candidat
   sigma_screened = every_candidate && options.screen && options.criterion == Criterion::kS && !options.secondary;
   cached = sigma_screened ||
            (every_candidate && (options.criterion == Criterion::kO1 || options.criterion == Criterion::kD));
-  if (cached && state.full_rank()) cache.Reset(state, rows, options.threads);  // PlanPoses refuses a singular start
+  // PlanPoses refuses a singular start. S alone keeps the rows as float: they
+  // only bound it, and the exact S of double rows decides.
+  if (cached && state.full_rank()) cache.Reset(state, rows, options.threads, sigma_screened);
   // An initial pose that is one of the candidates (a subset of measured poses,
   // core/subset_study.h) is that candidate: AddFind must not add it a second time.
   for (PlanEntry& entry : plan) {
@@ -276,7 +278,7 @@ StatusOr<PlanEntry> AddFindFinite(Search& s, const AddCriteria& criteria) {
 
   if (s.cached && !criteria.switched) {
     if (s.cache.updates_since_reset() >= 50) {
-      s.cache.Reset(s.state, s.rows, s.options.threads);
+      s.cache.Reset(s.state, s.rows, s.options.threads, s.sigma_screened);
       s.bounds_current = false;
     }
     if (s.sigma_screened) {  // bounds only, for BestByBounds below

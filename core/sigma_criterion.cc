@@ -67,9 +67,15 @@ SigmaBoundFactors SigmaBoundFactorsOf(const std::array<InfoBlock, kNumLegs>& inv
   return factors;
 }
 
-HEXCAL_VECTOR_CLONES void SigmaSumLowerBounds(const SigmaBoundFactors& factors,
-                                              const std::array<ParameterColumns, kNumLegs>& candidates,
-                         const std::array<const double*, kNumLegs>& forms, int begin, int n, double* least_sums) {
+namespace {
+
+// The loop of both SigmaSumLowerBounds, for double or float columns (read as
+// double): inlined into each, so that each is cloned for AVX-512 and AVX2.
+template <typename Scalar>
+__attribute__((always_inline)) inline void LowerBoundsOf(
+    const SigmaBoundFactors& factors,
+    const std::array<Eigen::Matrix<Scalar, Eigen::Dynamic, kParamsPerLeg>, kNumLegs>& candidates,
+    const std::array<const double*, kNumLegs>& forms, int begin, int n, double* least_sums) {
   std::fill(least_sums, least_sums + n, 0.0);
   for (int i = 0; i < kNumLegs; ++i) {
     const double sigma_sum = factors.sigma_sum[i];
@@ -79,7 +85,7 @@ HEXCAL_VECTOR_CLONES void SigmaSumLowerBounds(const SigmaBoundFactors& factors,
     }
     // One pass over the candidates: their 7 entries, |U r|² and the bound;
     // with the loops over j and k unrolled, it vectorises along the candidates.
-    const double* column[kParamsPerLeg];
+    const Scalar* column[kParamsPerLeg];
     for (int k = 0; k < kParamsPerLeg; ++k) column[k] = candidates[i].col(k).data() + begin;
     const double* __restrict q = forms[i] + begin;
     double* __restrict out = least_sums;
@@ -89,7 +95,7 @@ HEXCAL_VECTOR_CLONES void SigmaSumLowerBounds(const SigmaBoundFactors& factors,
       for (int j = 0; j < kParamsPerLeg; ++j) {
         double y = 0;
 #pragma GCC unroll 7
-        for (int k = j; k < kParamsPerLeg; ++k) y += u[j][k] * column[k][c];
+        for (int k = j; k < kParamsPerLeg; ++k) y += u[j][k] * static_cast<double>(column[k][c]);
         w += y * y;
       }
       // min(a, b) as (a + b - |a - b|) / 2 keeps the loop free of branches (the
@@ -98,6 +104,22 @@ HEXCAL_VECTOR_CLONES void SigmaSumLowerBounds(const SigmaBoundFactors& factors,
       out[c] += sigma_sum - 0.5 * (a + w - std::abs(a - w)) / (root * (root + 1));
     }
   }
+}
+
+}  // namespace
+
+HEXCAL_VECTOR_CLONES void SigmaSumLowerBounds(const SigmaBoundFactors& factors,
+                                              const std::array<ParameterColumns, kNumLegs>& candidates,
+                                              const std::array<const double*, kNumLegs>& forms, int begin, int n,
+                                              double* least_sums) {
+  LowerBoundsOf(factors, candidates, forms, begin, n, least_sums);
+}
+
+HEXCAL_VECTOR_CLONES void SigmaSumLowerBounds(const SigmaBoundFactors& factors,
+                                              const std::array<ParameterColumns32, kNumLegs>& candidates,
+                                              const std::array<const double*, kNumLegs>& forms, int begin, int n,
+                                              double* least_sums) {
+  LowerBoundsOf(factors, candidates, forms, begin, n, least_sums);
 }
 
 double SigmaSumAfterAddingWithGradient(const std::array<InfoBlock, kNumLegs>& inverses,
