@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "core/parallel.h"
 #include "core/sigma_criterion.h"
@@ -142,6 +143,27 @@ double LogDetOrMinusInfinity(const InfoBlock& block) {
   const Vector7d diagonal = InfoBlock(llt.matrixL()).diagonal();
   if ((diagonal.array() <= 0).any()) return kNegativeInfinity;
   return 2 * diagonal.array().log().sum();
+}
+
+// Σσ of the blocks as DesignState's Refactor computes it (the same operations
+// in the same order), when a sufficient test proves them full rank without an
+// eigendecomposition: λ_min >= 1 / tr M⁻¹ and λ_max <= tr M, so
+// tr M · tr M⁻¹ below 1 / (7ε), with a margin of 10³ for the eigensolver's
+// rounding, passes Refactor's test λ_min > 7ε λ_max. nullopt when the test
+// cannot tell (Refactor decides); 0 when a block is not positive definite.
+std::optional<double> SigmaSumIfClearlyFullRank(const std::array<InfoBlock, kNumLegs>& blocks) {
+  constexpr double kMaxConditioning = 1e-3 / (kParamsPerLeg * std::numeric_limits<double>::epsilon());
+  double sigma_sum = 0;
+  for (const InfoBlock& block : blocks) {
+    const Eigen::LLT<InfoBlock> llt(block);
+    if (llt.info() != Eigen::Success) return 0.0;
+    const InfoBlock lower = llt.matrixL();
+    const InfoBlock cholesky_inverse = lower.triangularView<Eigen::Lower>().solve(InfoBlock::Identity());
+    const InfoBlock inverse = cholesky_inverse.transpose() * cholesky_inverse;
+    if (!(block.trace() * inverse.trace() < kMaxConditioning)) return std::nullopt;
+    sigma_sum += SigmaSum(inverse);
+  }
+  return sigma_sum;
 }
 
 }  // namespace
@@ -452,6 +474,11 @@ double DesignState::ValueAfterRemoving(Criterion criterion, const PoseRows& rows
     double log_det = 0;
     for (const InfoBlock& block : blocks) log_det += LogDetOrMinusInfinity(block);
     return FromSpectrum(criterion, log_det, 0, 0, 0, num_poses_ - 1);
+  }
+  if (criterion == Criterion::kS) {  // RemoveFind's many calls: no eigendecompositions, the same value
+    if (const std::optional<double> sigma_sum = SigmaSumIfClearlyFullRank(blocks)) {
+      return *sigma_sum > 0 ? kNumParams / *sigma_sum : 0.0;
+    }
   }
   return DesignState(blocks, num_poses_ - 1).Value(criterion);
 }

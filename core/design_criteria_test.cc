@@ -84,6 +84,36 @@ TEST(DesignCriteria, IncrementalScoresMatchRecomputation) {
   }
 }
 
+// Removing a pose evaluates S without eigendecompositions: bit for bit the
+// value of a state built from the downdated blocks (as the other criteria but
+// O1 and D, which take their own log det), down to a plan left rank-deficient
+// (0), and for S that of the remaining poses up to rounding.
+TEST(DesignCriteria, ValueAfterRemovingIsTheRecomputedValue) {
+  PlanningModel model{Preset("inria-left-hand"), NoiseModel{}, std::nullopt};
+  for (int size : {7, 8, 18}) {
+    std::vector<PoseRows> rows;
+    for (const Vector6d& v : SpreadFeasiblePoses(model.robot, size, 7)) rows.push_back(model.Rows(v));
+    const DesignState state = DesignState::FromRows(rows);
+    for (size_t k = 0; k < rows.size(); ++k) {
+      std::array<InfoBlock, kNumLegs> downdated = state.blocks();
+      for (int i = 0; i < kNumLegs; ++i) downdated[i].noalias() -= rows[k][i].transpose() * rows[k][i];
+      std::vector<PoseRows> rest = rows;
+      rest.erase(rest.begin() + static_cast<long>(k));
+      for (Criterion criterion : kAll) {
+        const double value = state.ValueAfterRemoving(criterion, rows[k]);
+        if (criterion != Criterion::kO1 && criterion != Criterion::kD) {  // those by their own log det
+          EXPECT_EQ(value, DesignState(downdated, size - 1).Value(criterion))
+              << CriterionName(criterion) << ", " << size << " poses less pose " << k;
+        }
+      }
+      // The downdate itself rounds: the smallest eigenvalues of a nearly
+      // singular plan lose digits, the σ much fewer.
+      const double direct = DesignState::FromRows(rest).Value(Criterion::kS);
+      EXPECT_NEAR(state.ValueAfterRemoving(Criterion::kS, rows[k]), direct, 1e-6 * direct) << size << " less " << k;
+    }
+  }
+}
+
 // The screening bounds of the eigenvalue criteria are never below the exact
 // values, for every candidate, and they rank: the best bound's candidate is
 // within a few per cent of the best value.

@@ -35,32 +35,52 @@ std::vector<char> PlanningModel::FeasibleOf(const std::vector<Vector6d>& poses, 
   return feasible;
 }
 
-PoseRows PlanningModel::Rows(const Vector6d& v) const {
+namespace {
+
+// The rows divided by their residuals' standard deviations, at a pose whose
+// rotation partials are known (computed once for the six legs).
+PoseRows WeightedRows(const Robot& robot, const MeasuredPose& measured, const NoiseModel& noise) {
   PoseRows rows;
-  if (!noise) {
-    const Pose pose = robot.PoseFromVector(v);
-    for (int i = 0; i < kNumLegs; ++i) rows[i] = NominalJacobianRow(robot.legs[i], pose);
-    return rows;
-  }
-  const MeasuredPose measured = MeasuredPoseOf(robot, v);  // the pose's partials once for the six legs
   for (int i = 0; i < kNumLegs; ++i) {
     const Leg& leg = robot.legs[i];
     rows[i] = NominalJacobianRow(leg, measured.pose);
     const double reading = LegVector(leg, measured.pose).norm() - leg.offset;
-    rows[i] /= ResidualStdDev(leg, measured, reading, *noise);
+    rows[i] /= ResidualStdDev(leg, measured, reading, noise);
   }
+  return rows;
+}
+
+}  // namespace
+
+PoseRows PlanningModel::Rows(const Vector6d& v) const {
+  if (noise) return WeightedRows(robot, MeasuredPoseOf(robot, v), *noise);
+  PoseRows rows;
+  const Pose pose = robot.PoseFromVector(v);
+  for (int i = 0; i < kNumLegs; ++i) rows[i] = NominalJacobianRow(robot.legs[i], pose);
   return rows;
 }
 
 std::array<Eigen::Matrix<double, kParamsPerLeg, 6>, kNumLegs> PlanningModel::RowJacobians(const Vector6d& v) const {
   std::array<Eigen::Matrix<double, kParamsPerLeg, 6>, kNumLegs> jacobians;
   if (noise) {  // the weight 1/σ(pose) has no closed form worth keeping: central differences
+    // A step in x, y or z leaves the rotation and its partials as they are:
+    // computed once, they are the very values Rows(v ± h e_k) would compute.
+    const MeasuredPose at = MeasuredPoseOf(robot, v);
     for (int k = 0; k < 6; ++k) {
       const double h = 1e-6 * (1 + std::abs(v[k]));
       Vector6d plus = v, minus = v;
       plus[k] += h;
       minus[k] -= h;
-      const PoseRows rp = Rows(plus), rm = Rows(minus);
+      PoseRows rp, rm;
+      if (k < 3) {
+        MeasuredPose moved = at;
+        moved.pose.position[k] = plus[k];
+        rp = WeightedRows(robot, moved, *noise);
+        moved.pose.position[k] = minus[k];
+        rm = WeightedRows(robot, moved, *noise);
+      } else {
+        rp = Rows(plus), rm = Rows(minus);
+      }
       for (int i = 0; i < kNumLegs; ++i) jacobians[i].col(k) = (rp[i] - rm[i]).transpose() / (2 * h);
     }
     return jacobians;
