@@ -20,6 +20,7 @@ namespace hexcal {
 namespace {
 
 using ::hexcal::testing::Preset;
+using ::hexcal::testing::RandomFeasiblePoses;
 using ::hexcal::testing::SpreadFeasiblePoses;
 using ::hexcal::testing::Uniform;
 
@@ -269,17 +270,20 @@ TEST(OptimalDesign, DoesNotDependOnTheThreadCount) {
 namespace hexcal {
 namespace {
 
+// The rows of the first `count` poses: a plan.
+std::vector<PoseRows> FirstRows(const PlanningModel& model, const std::vector<Vector6d>& poses, int count) {
+  std::vector<PoseRows> rows;
+  for (int k = 0; k < count; ++k) rows.push_back(model.Rows(poses[k]));
+  return rows;
+}
+
 // The Sherman–Morrison-maintained quadratic forms equal fresh ones after a series
 // of exchanges, and their growth ranks candidates exactly as O1 does; they
 // bound S from above.
 TEST(QuadraticFormCache, TracksExchangesExactly) {
-  const PlanningModel model{::hexcal::testing::Preset("inria-left-hand"), std::nullopt, std::nullopt};
-  CandidateOptions options;
-  options.count = 300;
-  options.seed = 21;
-  const std::vector<Vector6d> poses = GenerateCandidates(model.robot, options)->poses;
-  std::vector<PoseRows> plan;
-  for (int k = 0; k < 18; ++k) plan.push_back(model.Rows(poses[k]));
+  const PlanningModel model{Preset("inria-left-hand"), std::nullopt, std::nullopt};
+  const std::vector<Vector6d> poses = RandomFeasiblePoses(model.robot, 300, 21);
+  std::vector<PoseRows> plan = FirstRows(model, poses, 18);
   CandidateRows candidates;
   candidates.Resize(200);
   for (int j = 0; j < 200; ++j) candidates.Set(j, model.Rows(poses[100 + j]));
@@ -327,13 +331,9 @@ TEST(QuadraticFormCache, TracksExchangesExactly) {
 // rows, 1.0e-7 on DeltaLab's).
 TEST(QuadraticFormCache, SinglePrecisionStillBoundsS) {
   for (const char* name : {"inria-left-hand", "deltalab-table"}) {
-    const PlanningModel model{::hexcal::testing::Preset(name), NoiseModel{}, std::nullopt};
-    CandidateOptions options;
-    options.count = 2300;
-    options.seed = 22;
-    const std::vector<Vector6d> poses = GenerateCandidates(model.robot, options)->poses;
-    std::vector<PoseRows> plan;
-    for (int k = 0; k < 18; ++k) plan.push_back(model.Rows(poses[k]));
+    const PlanningModel model{Preset(name), NoiseModel{}, std::nullopt};
+    const std::vector<Vector6d> poses = RandomFeasiblePoses(model.robot, 2300, 22);
+    std::vector<PoseRows> plan = FirstRows(model, poses, 18);
     const CandidateRows candidates = model.RowsOf(std::vector<Vector6d>(poses.begin() + 300, poses.end()));
     const int count = candidates.size();
     DesignState state = DesignState::FromRows(plan);

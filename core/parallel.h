@@ -3,7 +3,9 @@
 // ParallelWorkers(count, threads) threads (threads = 0: every core). `worker`
 // (0 .. workers - 1) names the calling thread, for per-thread state such as
 // one tag detector each. Results must go to per-index slots so that they do
-// not depend on the thread count or on the order in which items finish.
+// not depend on the thread count or on the order in which items finish. The
+// threads are kept between calls; a call made while they serve another one
+// (from another thread, or nested in a body) starts threads of its own.
 //
 // hooks.Progress(done, count) is called after each item, serialised (never
 // two at once), from whichever worker finished it. hooks.Cancelled() is polled
