@@ -119,10 +119,9 @@ std::optional<double> PlainNumber(const char* begin, const char* end) {
   return value;
 }
 
-// The six columns of a plain table straight from its text: no quote anywhere,
-// every data line the header's field count, every cell wanted a number. A
-// table of 10⁵ poses as rows of strings costs more than its numbers; anything
-// else (nullopt) goes through ParseCsv, whose errors name the line.
+}  // namespace
+
+// A table of 10⁵ poses as rows of strings costs more than its numbers.
 std::optional<std::vector<Vector6d>> PlainSixColumns(const std::string& text, const std::array<const char*, 6>& names) {
   if (text.find('"') != std::string::npos) return std::nullopt;
   size_t pos = text.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
@@ -166,6 +165,8 @@ std::optional<std::vector<Vector6d>> PlainSixColumns(const std::string& text, co
   if (vectors.empty() || !CheckHeader(CsvTable{"", header, {}, {}}, 1).ok()) return std::nullopt;
   return vectors;
 }
+
+namespace {
 
 StatusOr<std::vector<Vector6d>> LoadSixColumns(const std::string& path, const std::array<const char*, 6>& names,
                                                const std::string& what) {

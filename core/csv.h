@@ -19,6 +19,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,6 +54,11 @@ StatusOr<double> NumberAt(const CsvTable& table, size_t row, int col);
 StatusOr<std::vector<Vector6d>> LoadPoses(const std::string& path);
 // Leg sensor readings [L1..L6] from columns L1..L6, same rules as LoadPoses.
 StatusOr<std::vector<Eigen::Matrix<double, 6, 1>>> LoadLegReadings(const std::string& path);
+// Their fast path: the six named columns of a plain table's text (no quote
+// anywhere, every data line the header's field count, every wanted cell a
+// number, at least one row), read as the general reader would; nullopt for
+// anything else, which the general reader then reads or reports on.
+std::optional<std::vector<Vector6d>> PlainSixColumns(const std::string& text, const std::array<const char*, 6>& names);
 
 // CSV text with "\n" line ends; fields that need it are double-quoted (commas,
 // quotes, surrounding spaces, empty fields, a leading '#'). Every row must have

@@ -495,6 +495,51 @@ void DesignState::Remove(const PoseRows& rows) {
   Refactor();
 }
 
+namespace {
+
+// The S bounds' slack with float rows: rounding them moved a bound by up to
+// 1e-6 relative on both presets' rows (M⁻¹ is ill-conditioned).
+constexpr double kSingleSlack = 1e-4;
+
+// How far rounding the rows to float moves the S bounds at `state`: the
+// largest relative difference, over an even sample of 512 candidates, between
+// the bounds of the rows as the cache keeps them (`columns32`, `forms32`) and
+// of the double rows.
+double FloatBoundDrift(const DesignState& state, const CandidateRows& candidates,
+                       const std::array<ParameterColumns32, kNumLegs>& columns32,
+                       const std::array<Eigen::ArrayXd, kNumLegs>& forms32) {
+  const int n = candidates.size(), count = std::min(n, 512);
+  std::array<ParameterColumns, kNumLegs> exact_rows;
+  std::array<ParameterColumns32, kNumLegs> rounded_rows;
+  std::array<Eigen::ArrayXd, kNumLegs> exact_forms, rounded_forms;
+  std::array<const double*, kNumLegs> exact_pointers, rounded_pointers;
+  for (int i = 0; i < kNumLegs; ++i) {
+    exact_rows[i].resize(count, kParamsPerLeg);
+    rounded_rows[i].resize(count, kParamsPerLeg);
+    exact_forms[i].resize(count);
+    rounded_forms[i].resize(count);
+    for (int k = 0; k < count; ++k) {
+      const int j = static_cast<int>(static_cast<int64_t>(k) * n / count);
+      const auto r = candidates.legs[i].col(j);
+      exact_rows[i].row(k) = r.transpose();
+      rounded_rows[i].row(k) = columns32[i].row(j);
+      exact_forms[i][k] = r.dot(state.inverse(i) * r);
+      rounded_forms[i][k] = forms32[i][j];
+    }
+    exact_pointers[i] = exact_forms[i].data();
+    rounded_pointers[i] = rounded_forms[i].data();
+  }
+  const SigmaBoundFactors factors = SigmaBoundFactorsOf(InversesOf(state));
+  std::vector<double> exact(count), rounded(count);
+  SigmaSumLowerBounds(factors, exact_rows, exact_pointers, 0, count, exact.data());
+  SigmaSumLowerBounds(factors, rounded_rows, rounded_pointers, 0, count, rounded.data());
+  double drift = 0;
+  for (int k = 0; k < count; ++k) drift = std::max(drift, std::abs(rounded[k] / exact[k] - 1));
+  return std::isfinite(drift) ? drift : kPositiveInfinity;
+}
+
+}  // namespace
+
 void QuadraticFormCache::Reset(const DesignState& state, const CandidateRows& candidates, int threads,
                                bool single_precision) {
   const int n = candidates.size();
@@ -525,6 +570,11 @@ void QuadraticFormCache::Reset(const DesignState& state, const CandidateRows& ca
     }
   });
   updates_ = 0;
+  // Where rounding matters more than a tenth of the slack (an ill-conditioned
+  // plan), the rows stay double: the bounds must stay bounds.
+  if (single_ && FloatBoundDrift(state, candidates, columns32_, q_) > 0.1 * kSingleSlack) {
+    Reset(state, candidates, threads, /*single_precision=*/false);
+  }
 }
 
 void QuadraticFormCache::Update(const DesignState& state, const CandidateRows& candidates, const PoseRows& rows,
@@ -532,7 +582,9 @@ void QuadraticFormCache::Update(const DesignState& state, const CandidateRows& c
   for (int i = 0; i < kNumLegs; ++i) {
     const Vector7d u = state.inverse(i) * rows[i].transpose();
     const double denominator = 1 + sign * rows[i].dot(u.transpose());
-    const Eigen::ArrayXd projection = (u.transpose() * candidates.legs[i]).transpose().array();
+    // In single precision, of the float rows, as the forms themselves.
+    const Eigen::ArrayXd projection = single_ ? (columns32_[i].cast<double>() * u).array().eval()
+                                              : (u.transpose() * candidates.legs[i]).transpose().array().eval();
     q_[i] -= sign * projection.square() / denominator;
   }
   ++updates_;
@@ -589,11 +641,12 @@ void QuadraticFormCache::SigmaUpperBoundsOf(const SigmaBoundFactors& factors, in
   }
   // The exact values (SigmaSumsAfterAdding) round differently and q drifts
   // between resets: a relative slack keeps the bound above them. Rows rounded
-  // to float (relative error 6e-8) move a bound by up to 1e-6 relative, M⁻¹
-  // being ill-conditioned (design_criteria_test measures it against the
-  // double-precision bound and checks it against exact S): 1e-4 is a hundred
+  // to float (relative error 6e-8) move a bound by up to 1e-6 relative on the
+  // presets' plans, M⁻¹ being ill-conditioned (design_criteria_test measures
+  // it and checks the bounds against exact S; each Reset samples it and keeps
+  // the rows double beyond a tenth of the slack): kSingleSlack is a hundred
   // times that, and costs only a few more exact evaluations.
-  const double slack = single_ ? 1e-4 : 1e-9;
+  const double slack = single_ ? kSingleSlack : 1e-9;
   for (int j = 0; j < end - begin; ++j) {
     bounds[j] = bounds[j] > 0 ? kNumParams / bounds[j] * (1 + slack) : kPositiveInfinity;
   }

@@ -104,9 +104,12 @@ class QuadraticFormCache {
  public:
   // With single_precision the rows are kept as float, half the memory each
   // exchange reads: q is then that of the rows rounded to float, good for the
-  // S bounds (whose slack covers the rounding), not for an exact Growth.
+  // S bounds (whose slack covers the rounding), not for an exact Growth. When
+  // a sample shows the rounding moving the bounds by more than a tenth of
+  // that slack (an ill-conditioned plan), the rows are kept double instead.
   void Reset(const DesignState& state, const CandidateRows& candidates, int threads = 0,
              bool single_precision = false);
+  bool single_precision() const { return single_; }
   // Call with the state *before* the change.
   void Added(const DesignState& state, const CandidateRows& candidates, const PoseRows& rows);
   void Removed(const DesignState& state, const CandidateRows& candidates, const PoseRows& rows);

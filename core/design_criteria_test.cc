@@ -86,9 +86,8 @@ TEST(DesignCriteria, IncrementalScoresMatchRecomputation) {
 }
 
 // Removing a pose evaluates S without eigendecompositions: bit for bit the
-// value of a state built from the downdated blocks (as the other criteria but
-// O1 and D, which take their own log det), down to a plan left rank-deficient
-// (0), and for S that of the remaining poses up to rounding.
+// value of a state built from the downdated blocks, down to a plan left
+// rank-deficient (0), and that of the remaining poses up to rounding.
 TEST(DesignCriteria, ValueAfterRemovingIsTheRecomputedValue) {
   PlanningModel model{Preset("inria-left-hand"), NoiseModel{}, std::nullopt};
   for (int size : {7, 8, 18}) {
@@ -100,17 +99,32 @@ TEST(DesignCriteria, ValueAfterRemovingIsTheRecomputedValue) {
       for (int i = 0; i < kNumLegs; ++i) downdated[i].noalias() -= rows[k][i].transpose() * rows[k][i];
       std::vector<PoseRows> rest = rows;
       rest.erase(rest.begin() + static_cast<long>(k));
-      for (Criterion criterion : kAll) {
-        const double value = state.ValueAfterRemoving(criterion, rows[k]);
-        if (criterion != Criterion::kO1 && criterion != Criterion::kD) {  // those by their own log det
-          EXPECT_EQ(value, DesignState(downdated, size - 1).Value(criterion))
-              << CriterionName(criterion) << ", " << size << " poses less pose " << k;
-        }
-      }
-      // The downdate itself rounds: the smallest eigenvalues of a nearly
-      // singular plan lose digits, the σ much fewer.
+      const double value = state.ValueAfterRemoving(Criterion::kS, rows[k]);
+      EXPECT_EQ(value, DesignState(downdated, size - 1).Value(Criterion::kS)) << size << " poses less pose " << k;
+      // The downdate itself rounds: a nearly singular plan's σ lose a few digits.
       const double direct = DesignState::FromRows(rest).Value(Criterion::kS);
-      EXPECT_NEAR(state.ValueAfterRemoving(Criterion::kS, rows[k]), direct, 1e-6 * direct) << size << " less " << k;
+      EXPECT_NEAR(value, direct, 1e-6 * direct) << size << " poses less pose " << k;
+    }
+  }
+}
+
+// With a noise model the row Jacobian is central differences of Rows; its x,
+// y and z columns reuse the pose's rotation partials and must still be those
+// differences bit for bit.
+TEST(DesignCriteria, RowJacobiansAreTheCentralDifferencesOfRows) {
+  const PlanningModel model{Preset("inria-left-hand"), NoiseModel{}, std::nullopt};
+  for (const Vector6d& v : SpreadFeasiblePoses(model.robot, 20, 9)) {
+    const auto jacobians = model.RowJacobians(v);
+    for (int k = 0; k < 6; ++k) {
+      const double h = 1e-6 * (1 + std::abs(v[k]));
+      Vector6d plus = v, minus = v;
+      plus[k] += h;
+      minus[k] -= h;
+      const PoseRows up = model.Rows(plus), down = model.Rows(minus);
+      for (int i = 0; i < kNumLegs; ++i) {
+        const JacobianRow difference = (up[i] - down[i]) / (2 * h);
+        EXPECT_EQ(jacobians[i].col(k).transpose(), difference) << "leg " << i << ", coordinate " << k;
+      }
     }
   }
 }
@@ -360,6 +374,30 @@ TEST(QuadraticFormCache, SinglePrecisionStillBoundsS) {
       EXPECT_LT(std::abs(rounding), 1e-5) << name << " candidate " << j;
     }
   }
+}
+
+constexpr double kCrowding = 0.1;  // robot unit and degrees
+
+// Seven poses crowded together make an ill-conditioned plan: rounding the
+// rows would move the bounds by more than a tenth of their slack, so the cache
+// keeps them double; a spread plan keeps them float.
+TEST(QuadraticFormCache, KeepsDoubleRowsWhenRoundingMatters) {
+  const PlanningModel model{Preset("inria-left-hand"), NoiseModel{}, std::nullopt};
+  const std::vector<Vector6d> poses = RandomFeasiblePoses(model.robot, 1300, 23);
+  const CandidateRows candidates = model.RowsOf(std::vector<Vector6d>(poses.begin() + 300, poses.end()));
+  QuadraticFormCache cache;
+  cache.Reset(DesignState::FromRows(FirstRows(model, poses, 18)), candidates, 0, /*single_precision=*/true);
+  EXPECT_TRUE(cache.single_precision());
+  std::vector<PoseRows> crowded;
+  for (int k = 0; k < kParamsPerLeg; ++k) {
+    Vector6d v = poses[0];
+    v[k % 6] += kCrowding * (k + 1);
+    crowded.push_back(model.Rows(v));
+  }
+  const DesignState state = DesignState::FromRows(crowded);
+  ASSERT_TRUE(state.full_rank());
+  cache.Reset(state, candidates, 0, /*single_precision=*/true);
+  EXPECT_FALSE(cache.single_precision());
 }
 
 }  // namespace

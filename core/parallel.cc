@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <atomic>
 #include <condition_variable>
+#include <exception>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -16,10 +18,11 @@ namespace {
 // Threads kept between calls: a search calls ParallelFor hundreds of times a
 // second on blocks of a few milliseconds, and a thread started per call came
 // up after the calling thread had taken most of the blocks. One job at a
-// time; a call made while the pool is busy (from another thread, or nested
-// inside a job) starts its own threads instead, as before, and so does a
-// forked child, which has none of the pool's threads. Never destroyed, so
-// that no exit-time destructor joins threads still waiting.
+// time, at most one helper per core beyond the caller's; a call made while
+// the pool is busy (from another thread, or nested inside a job), one that
+// wants more threads than that, and one in a forked child (which has none of
+// the pool's threads) start their own threads instead, as before. Never
+// destroyed, so that no exit-time destructor joins threads still waiting.
 class WorkerPool {
  public:
   static WorkerPool& Instance() {
@@ -30,14 +33,19 @@ class WorkerPool {
   // work(1) .. work(helpers) on pool threads and work(0) on the caller's,
   // returning when all are done; false, having run nothing, when busy.
   bool TryRun(int helpers, const std::function<void(int)>& work) {
-    if (::getpid() != owner_) return false;
+    if (::getpid() != owner_ || helpers > max_helpers_) return false;
     bool idle = false;
     if (!busy_.compare_exchange_strong(idle, true)) return false;
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      while (static_cast<int>(threads_.size()) < helpers) {
-        const int worker = static_cast<int>(threads_.size()) + 1;
-        threads_.emplace_back([this, worker] { Serve(worker); });
+      try {
+        while (static_cast<int>(threads_.size()) < helpers) {
+          const int worker = static_cast<int>(threads_.size()) + 1;
+          threads_.emplace_back([this, worker] { Serve(worker); });
+        }
+      } catch (const std::system_error&) {  // no thread to be had: the caller's own attempt reports it
+        busy_ = false;
+        return false;
       }
       job_ = &work;
       helpers_ = helpers;
@@ -45,11 +53,17 @@ class WorkerPool {
       ++generation_;
     }
     started_.notify_all();
-    work(0);
+    std::exception_ptr thrown;  // the helpers hold `work`: wait for them before it goes
+    try {
+      work(0);
+    } catch (...) {
+      thrown = std::current_exception();
+    }
     std::unique_lock<std::mutex> lock(mutex_);
     finished_.wait(lock, [&] { return pending_ == 0; });
     job_ = nullptr;
     busy_ = false;
+    if (thrown) std::rethrow_exception(thrown);
     return true;
   }
 
@@ -70,6 +84,7 @@ class WorkerPool {
   }
 
   const pid_t owner_ = ::getpid();  // the process whose threads these are
+  const int max_helpers_ = ResolveThreadCount(0) - 1;
   std::atomic<bool> busy_{false};  // a caller's job is running (a flag, not a mutex: nested calls test it)
   std::mutex mutex_;  // guards what follows
   std::condition_variable started_, finished_;
@@ -115,8 +130,14 @@ bool ParallelFor(int count, int threads, const std::function<void(int index, int
   } else if (!WorkerPool::Instance().TryRun(workers - 1, work)) {
     std::vector<std::thread> own;
     for (int w = 1; w < workers; ++w) own.emplace_back(work, w);
-    work(0);
+    std::exception_ptr thrown;  // as the pool's: the threads are joined first
+    try {
+      work(0);
+    } catch (...) {
+      thrown = std::current_exception();
+    }
     for (std::thread& thread : own) thread.join();
+    if (thrown) std::rethrow_exception(thrown);
   }
   return !cancelled;
 }

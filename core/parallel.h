@@ -6,6 +6,9 @@
 // not depend on the thread count or on the order in which items finish. The
 // threads are kept between calls; a call made while they serve another one
 // (from another thread, or nested in a body) starts threads of its own.
+// Bodies should not throw: an exception thrown on the calling thread comes out
+// of ParallelFor once the other threads have run the remaining items; one
+// thrown on another thread ends the process.
 //
 // hooks.Progress(done, count) is called after each item, serialised (never
 // two at once), from whichever worker finished it. hooks.Cancelled() is polled

@@ -1,9 +1,13 @@
 #include "core/parallel.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <stdexcept>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -53,6 +57,34 @@ TEST(ParallelForTest, NestedAndConcurrentCallsRunEachIndexOnce) {
   other.join();
   for (const std::atomic<int>& runs : outer) EXPECT_EQ(runs.load(), 1);
   for (const std::atomic<int>& runs : inner) EXPECT_EQ(runs.load(), 1);
+}
+
+// A body that throws on the calling thread: the exception comes out once the
+// other threads are done with the body, and the next call runs as usual.
+TEST(ParallelForTest, AnExceptionOnTheCallingThreadComesOut) {
+  const auto body = [](int, int worker) {
+    if (worker == 0) throw std::runtime_error("item failed");
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  };
+  EXPECT_THROW(ParallelFor(100, 2, body), std::runtime_error);
+  std::vector<int> runs(100, 0);
+  ASSERT_TRUE(ParallelFor(100, 2, [&](int index, int) { ++runs[index]; }));
+  for (int k = 0; k < 100; ++k) EXPECT_EQ(runs[k], 1);
+}
+
+// A forked child has none of the pool's threads: it runs on threads of its own.
+TEST(ParallelForTest, AForkedChildRunsOnThreadsOfItsOwn) {
+  ASSERT_TRUE(ParallelFor(10, 2, [](int, int) {}));  // the pool, if any, exists
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::vector<int> runs(100, 0);
+    const bool finished = ParallelFor(100, 2, [&](int index, int) { ++runs[index]; });
+    ::_exit(finished && std::count(runs.begin(), runs.end(), 1) == 100 ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
 }
 
 TEST(ParallelForTest, ProgressCountsEveryItemOneCallAtATime) {
