@@ -1,6 +1,7 @@
 #include "core/constraints.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -15,15 +16,70 @@ double AngleDeg(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
 
 const char* kPoseNames[6] = {"x", "y", "z", "q1", "q2", "q3"};
 
+// det of a 6x6 matrix by Gaussian elimination with partial pivoting: several
+// times cheaper than Eigen's general LU at this size, and the planner's polish
+// evaluates margins some hundred thousand times per plan.
+double Determinant6(Eigen::Matrix<double, 6, 6> m) {
+  double det = 1;
+  for (int k = 0; k < 6; ++k) {
+    int pivot = k;
+    for (int r = k + 1; r < 6; ++r) {
+      if (std::abs(m(r, k)) > std::abs(m(pivot, k))) pivot = r;
+    }
+    if (m(pivot, k) == 0) return 0;
+    if (pivot != k) {
+      m.row(k).swap(m.row(pivot));
+      det = -det;
+    }
+    det *= m(k, k);
+    for (int r = k + 1; r < 6; ++r) {
+      const double factor = m(r, k) / m(k, k);
+      for (int c = k + 1; c < 6; ++c) m(r, c) -= factor * m(k, c);
+    }
+  }
+  return det;
+}
+
+// det J_IK at the mode's pose, kept per thread for the last geometry asked
+// (a and b of every leg, the mode's pose and the Euler convention are the key).
+double ModePoseDeterminant(const Robot& robot, const AssemblyMode& mode) {
+  constexpr size_t kKeySize = kNumLegs * 6 + 6 + 1;
+  thread_local std::array<double, kKeySize> cached_key{};
+  thread_local double cached = std::nan("");
+  std::array<double, kKeySize> key;
+  size_t k = 0;
+  for (const Leg& leg : robot.legs) {
+    for (int c = 0; c < 3; ++c) key[k++] = leg.a_in_base[c];
+    for (int c = 0; c < 3; ++c) key[k++] = leg.b_in_platform[c];
+  }
+  for (int c = 0; c < 6; ++c) key[k++] = mode.pose[c];
+  key[k] = static_cast<double>(robot.euler);
+  if (key != cached_key || std::isnan(cached)) {
+    cached = Determinant6(InverseKinematicsJacobian(robot, robot.PoseFromVector(mode.pose)));
+    cached_key = key;
+  }
+  return cached;
+}
+
+// The sign of det J_IK marks the assembly mode (section 5.3): it changes only
+// across a parallel singularity, where det J_IK is 0. The ratio to its value at
+// the mode's pose also says how far from one a pose is (docs/robot-file.md).
+double AssemblyModeMargin(const Robot& robot, const AssemblyMode& mode,
+                          const Eigen::Matrix<double, kNumLegs, 6>& jacobian) {
+  return Determinant6(jacobian) / ModePoseDeterminant(robot, mode) - mode.min_det_ratio;
+}
+
 // Calls visit(kind, leg_or_index, other_index, margin) for every constraint
 // (the pose box's only with include_box: it costs three inverse trigonometric calls).
 template <typename Visit>
 void VisitConstraints(const Robot& robot, const Pose& pose, bool include_box, Visit&& visit) {
   std::array<Eigen::Vector3d, kNumLegs> leg_top;
+  Eigen::Matrix<double, kNumLegs, 6> jacobian;  // InverseKinematicsJacobian's rows, for the assembly mode
   for (int i = 0; i < kNumLegs; ++i) {
     const Leg& leg = robot.legs[i];
     const Eigen::Vector3d v = LegVector(leg, pose);
-    const double reading = v.norm() - leg.offset;
+    const double length = v.norm();
+    const double reading = length - leg.offset;
     visit(ConstraintKind::kStrokeMin, i, -1, reading - leg.stroke_min);
     visit(ConstraintKind::kStrokeMax, i, -1, leg.stroke_max - reading);
     if (robot.limits.base_joint_max_deg) {
@@ -35,6 +91,11 @@ void VisitConstraints(const Robot& robot, const Pose& pose, bool include_box, Vi
             *robot.limits.platform_joint_max_deg - AngleDeg(v, pose.rotation.col(2)));
     }
     leg_top[i] = leg.a_in_base + v;
+    if (robot.limits.assembly_mode) {
+      const Eigen::Vector3d u = v / length;
+      const Eigen::Vector3d platform_point = leg_top[i] - pose.position;  // R b_i
+      jacobian.row(i) << u.transpose(), platform_point.cross(u).transpose();
+    }
   }
   if (robot.limits.leg_min_distance) {
     for (int i = 0; i < kNumLegs; ++i) {
@@ -49,6 +110,9 @@ void VisitConstraints(const Robot& robot, const Pose& pose, bool include_box, Vi
         visit(ConstraintKind::kLegDistance, i, j, d - *robot.limits.leg_min_distance);
       }
     }
+  }
+  if (robot.limits.assembly_mode) {
+    visit(ConstraintKind::kAssemblyMode, -1, -1, AssemblyModeMargin(robot, *robot.limits.assembly_mode, jacobian));
   }
   if (include_box && robot.limits.pose_box) {
     const Vector6d v = robot.VectorFromPose(pose);
@@ -73,6 +137,8 @@ std::string Label(ConstraintKind kind, int i, int j) {
       return "platform joint " + std::to_string(i + 1);
     case ConstraintKind::kLegDistance:
       return "leg distance " + std::to_string(i + 1) + "-" + std::to_string(j + 1);
+    case ConstraintKind::kAssemblyMode:
+      return "assembly mode";
     case ConstraintKind::kPoseBox:
       return std::string("pose box ") + kPoseNames[i] + (j == 0 ? " min" : " max");
   }
@@ -113,7 +179,7 @@ bool IsFeasible(const Robot& robot, const Pose& pose) {
 
 std::vector<double> ConstraintMargins(const Robot& robot, const Pose& pose, bool include_box) {
   std::vector<double> margins;
-  margins.reserve(64);  // 4 per leg, 15 leg pairs, 12 box bounds: one allocation (optimisers call this often)
+  margins.reserve(64);  // 4 per leg, 15 leg pairs, the assembly mode, 12 box bounds: one allocation (optimisers call this often)
   VisitConstraints(robot, pose, include_box,
                    [&](ConstraintKind, int, int, double margin) { margins.push_back(margin); });
   return margins;

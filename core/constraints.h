@@ -1,7 +1,8 @@
 // Workspace constraints of a pose, each as a signed margin: positive inside,
 // zero on the boundary, negative outside. Margins are in the natural unit of
 // the constraint (robot length unit for strokes and leg distances, degrees for
-// joint angles and the angular pose-box bounds).
+// joint angles and the angular pose-box bounds; the assembly mode's is the
+// ratio det J_IK(pose) / det J_IK(mode pose) less its min_det_ratio).
 //
 //   ConstraintReport report = EvaluateConstraints(robot, pose);
 //   if (!report.feasible) std::cout << report.worst_label << " " << report.worst_margin;
@@ -15,11 +16,19 @@
 
 namespace hexcal {
 
-enum class ConstraintKind { kStrokeMin, kStrokeMax, kBaseJoint, kPlatformJoint, kLegDistance, kPoseBox };
+enum class ConstraintKind {
+  kStrokeMin,
+  kStrokeMax,
+  kBaseJoint,
+  kPlatformJoint,
+  kLegDistance,
+  kAssemblyMode,
+  kPoseBox
+};
 
 struct ConstraintMargin {
   ConstraintKind kind;
-  std::string label;  // e.g. "stroke max L3", "base joint 2", "leg distance 1-4", "pose box q2 max"
+  std::string label;  // e.g. "stroke max L3", "base joint 2", "leg distance 1-4", "assembly mode", "pose box q2 max"
   double margin;
 };
 

@@ -2,6 +2,7 @@
 
 #include <nlopt.hpp>
 
+#include <cmath>
 #include <limits>
 #include <optional>
 
@@ -61,6 +62,16 @@ double CriterionAndGradient(const PlanningModel& model, const DesignState& state
 
 namespace {
 
+// An angle the pose box leaves unbounded winds freely under SLSQP (to 10⁵
+// degrees on the INRIA robot without its yaw bound): give it back in
+// [-180, 180], the same rotation.
+Vector6d WrapFreeAngles(Vector6d pose, const std::vector<double>& lower, const std::vector<double>& upper) {
+  for (int k = 3; k < 6; ++k) {
+    if (std::isinf(lower[k]) && std::isinf(upper[k])) pose[k] = std::remainder(pose[k], 360.0);
+  }
+  return pose;
+}
+
 // The local maximisation from one start: its optimum when that is feasible.
 std::optional<ContinuousResult> MaximiseFrom(const PlanningModel& model, const DesignState& state, Criterion criterion,
                                              const Vector6d& start, const std::vector<double>& lower,
@@ -83,7 +94,7 @@ std::optional<ContinuousResult> MaximiseFrom(const PlanningModel& model, const D
   } catch (const std::exception&) {
     // SLSQP stops with roundoff or a failed line search now and then; x holds its last iterate.
   }
-  const Vector6d pose = ToVector(x.data());
+  const Vector6d pose = WrapFreeAngles(ToVector(x.data()), lower, upper);
   if (!pose.allFinite() || !model.IsFeasible(pose)) return std::nullopt;
   Vector6d unused;
   return ContinuousResult{pose, CriterionAndGradient(model, state, criterion, pose, &unused)};

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <atomic>
 #include <random>
 
@@ -208,6 +209,27 @@ TEST_F(IoopsTest, ContinuousSearchImprovesAndStaysFeasible) {
   ASSERT_TRUE(plan.ok()) << plan.status().message();
   EXPECT_GT(plan->final.o1, 1.2 * plan->initial.o1);
   for (const Vector6d& pose : plan->poses) EXPECT_TRUE(model_.IsFeasible(pose));
+}
+
+// Without a pose-box bound on an angle, SLSQP winds it freely; planned poses
+// give it back in [-180, 180] (without the fix this plan has a pose at q3 =
+// 139604 degrees), still feasible.
+TEST_F(IoopsTest, ContinuousSearchGivesFreeAnglesWithinAHalfTurn) {
+  Robot robot = model_.robot;
+  robot.limits.pose_box->bounds[5].reset();
+  const PlanningModel free_yaw{robot, std::nullopt, std::nullopt};
+  PlannerOptions options;
+  options.criterion = Criterion::kS;
+  options.continuous = true;
+  options.addfind_starts = 12;
+  options.iterations = 30;
+  const std::vector<Vector6d> starts = Generate(robot, CandidateKind::kRandom, 300, 4);
+  StatusOr<PlanResult> plan = PlanPoses(free_yaw, starts, random18_, options);
+  ASSERT_TRUE(plan.ok()) << plan.status().message();
+  for (const Vector6d& pose : plan->poses) {
+    EXPECT_LE(std::abs(pose[5]), 180) << pose.transpose();
+    EXPECT_TRUE(free_yaw.IsFeasible(pose));
+  }
 }
 
 // Scores are computed in fixed blocks of candidates: the same on any number of threads.

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -236,6 +237,55 @@ TEST(Constraints, StrokeLimitWithinTolerance) {
   EXPECT_THAT(report.worst_label, ::testing::AnyOf("stroke min L1", "stroke min L2"));
   // dL/dz = z / |v| with |v| = 52.2496.
   EXPECT_NEAR(report.worst_margin, -1e-6 * z_at_min / 52.2496, 1e-12);
+}
+
+// det J_IK from central differences of the readings: a truth independent of
+// InverseKinematicsJacobian.
+double DeterminantByDifferences(const Robot& robot, const Pose& pose) {
+  Eigen::Matrix<double, kNumLegs, 6> j;
+  const double h = 1e-6;
+  for (int k = 0; k < 6; ++k) {
+    const Vector6d step = Vector6d::Unit(k) * h;
+    j.col(k) = (InverseKinematics(robot, ApplyIncrement(pose, step)) -
+                InverseKinematics(robot, ApplyIncrement(pose, -step))) / (2 * h);
+  }
+  return j.determinant();
+}
+
+// Section 5.3's assembly mode. Without its yaw bound, the INRIA preset's
+// boundary set gains poses on the far side of a singularity; the mode's margin
+// is det J_IK over its value at the home pose less min_det_ratio, and it keeps
+// exactly the boundary poses on the home side: the paper's 44 again.
+TEST(Constraints, AssemblyModeKeepsTheHomeSideOfTheSingularities) {
+  Robot robot = Preset("inria-left-hand");
+  ASSERT_TRUE(robot.limits.assembly_mode && robot.limits.pose_box);
+  robot.limits.pose_box->bounds[5].reset();
+  Robot any_mode = robot;
+  any_mode.limits.assembly_mode.reset();
+  CandidateOptions options;
+  options.kind = CandidateKind::kBoundary;
+  const StatusOr<CandidateSet> all = GenerateCandidates(any_mode, options);
+  const StatusOr<CandidateSet> kept = GenerateCandidates(robot, options);
+  ASSERT_TRUE(all.ok() && kept.ok());
+
+  const AssemblyMode& mode = *robot.limits.assembly_mode;
+  const double home = DeterminantByDifferences(robot, robot.PoseFromVector(mode.pose));
+  size_t on_home_side = 0;
+  for (const Vector6d& v : all->poses) {
+    const Pose pose = robot.PoseFromVector(v);
+    const double ratio = DeterminantByDifferences(robot, pose) / home;
+    const ConstraintReport report = EvaluateConstraints(robot, pose);
+    EXPECT_NEAR(MarginOf(report, "assembly mode"), ratio - mode.min_det_ratio, 1e-6) << v.transpose();
+    if (ratio >= mode.min_det_ratio) {
+      ++on_home_side;
+    } else {
+      EXPECT_EQ(report.worst_label, "assembly mode") << v.transpose();
+      EXPECT_FALSE(IsFeasible(robot, pose));
+    }
+  }
+  EXPECT_EQ(kept->poses.size(), on_home_side);
+  EXPECT_EQ(on_home_side, 44u);
+  EXPECT_GT(all->poses.size(), 44u);
 }
 
 // Shortest distance between segments, cases worked by hand.

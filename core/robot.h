@@ -51,6 +51,16 @@ struct PoseBox {
   }
 };
 
+// The working assembly mode (the paper's section 5.3 bounds its search by "the
+// sign of the inverse kinematic Jacobian matrix"): a robot moving from `pose`
+// cannot cross a parallel singularity, so a pose is in its workspace only where
+// det J_IK has the sign it has at `pose`, and, with min_det_ratio > 0, at least
+// that fraction of its size there (clear of the singularity's neighbourhood).
+struct AssemblyMode {
+  Vector6d pose = Vector6d::Zero();  // [x, y, z, q1, q2, q3] of a pose in the mode
+  double min_det_ratio = 0;          // in [0, 1)
+};
+
 // Workspace limits; every one is optional.
 struct RobotLimits {
   // Angle between a leg and the base normal (+z of the base frame), degrees.
@@ -59,6 +69,7 @@ struct RobotLimits {
   std::optional<double> platform_joint_max_deg;
   // Smallest allowed distance between two leg segments, robot unit.
   std::optional<double> leg_min_distance;
+  std::optional<AssemblyMode> assembly_mode;
   std::optional<PoseBox> pose_box;
   // Where random and uniform poses are drawn (an operator's calibration
   // workspace, like the paper's random poses), intersected with pose_box.

@@ -2,7 +2,9 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <Eigen/LU>
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <set>
@@ -11,6 +13,7 @@
 
 #include "core/atomic_file.h"
 #include "core/csv.h"
+#include "core/inverse_kinematics.h"
 #include "core/presets.h"
 #include "core/yaml_document.h"
 
@@ -21,7 +24,8 @@ const std::vector<std::string> kTopKeys = {"name", "length_unit", "euler", "legs
 const std::vector<std::string> kRequiredTopKeys = {"name", "length_unit", "euler", "legs"};
 const std::vector<std::string> kLegKeys = {"a", "b", "l", "stroke"};
 const std::vector<std::string> kLimitKeys = {"base_joint_max_deg", "platform_joint_max_deg", "leg_min_distance",
-                                             "pose_box", "sampling_box"};
+                                             "assembly_mode", "pose_box", "sampling_box"};
+const std::vector<std::string> kAssemblyModeKeys = {"pose", "min_det_ratio"};
 // In the order of the pose vector [x, y, z, q1, q2, q3].
 const std::vector<std::string> kPoseBoxKeys = {"x", "y", "z", "q1", "q2", "q3"};
 
@@ -98,6 +102,7 @@ class RobotYamlReader {
 
     if (Status s = ReadLegs(root["legs"], &robot); !s.ok()) return s;
     if (Status s = ReadLimits(root["limits"], &robot.limits); !s.ok()) return s;
+    if (Status s = CheckAssemblyModePose(robot); !s.ok()) return s;
     // root["calibration"] is written by `hexcal calibrate` for people and tools
     // that audit a result; the robot model does not use it.
     return robot;
@@ -261,8 +266,49 @@ class RobotYamlReader {
       }
       limits->leg_min_distance = *distance;
     }
+    if (Status s = ReadAssemblyMode(node["assembly_mode"], &limits->assembly_mode); !s.ok()) return s;
     if (Status s = ReadPoseBox(node["pose_box"], "pose_box", &limits->pose_box); !s.ok()) return s;
     return ReadPoseBox(node["sampling_box"], "sampling_box", &limits->sampling_box);
+  }
+
+  Status ReadAssemblyMode(const YAML::Node& node, std::optional<AssemblyMode>* out) const {
+    if (!node.IsDefined() || node.IsNull()) return Status::Ok();
+    const std::string path = "limits.assembly_mode";
+    if (!node.IsMap()) {
+      return Error(path, "expected a mapping {pose: [x, y, z, q1, q2, q3], min_det_ratio: r}, found " + Describe(node));
+    }
+    if (Status s = CheckKeys(node, path, kAssemblyModeKeys, {"pose"}); !s.ok()) return s;
+    StatusOr<std::vector<double>> pose = Numbers(node["pose"], path + ".pose", 6, "[x, y, z, q1, q2, q3]");
+    if (!pose.ok()) return pose.status();
+    AssemblyMode mode;
+    mode.pose = Eigen::Map<const Vector6d>(pose->data());
+    if (node["min_det_ratio"]) {
+      StatusOr<double> ratio = Number(node["min_det_ratio"], path + ".min_det_ratio");
+      if (!ratio.ok()) return ratio.status();
+      if (*ratio < 0 || *ratio >= 1) {
+        return Error(path + ".min_det_ratio", "must be in [0, 1), found " + FormatNumber(*ratio));
+      }
+      mode.min_det_ratio = *ratio;
+    }
+    *out = mode;
+    return Status::Ok();
+  }
+
+  // The mode is the side of the singularities its pose is on: a pose on one
+  // names no side. Unit-free: rows [u, (R b) x u / radius], |det| <= 8.
+  Status CheckAssemblyModePose(const Robot& robot) const {
+    if (!robot.limits.assembly_mode) return Status::Ok();
+    double radius = 0;
+    for (const Leg& leg : robot.legs) radius = std::max(radius, leg.b_in_platform.norm());
+    Eigen::Matrix<double, kNumLegs, 6> j =
+        InverseKinematicsJacobian(robot, robot.PoseFromVector(robot.limits.assembly_mode->pose));
+    j.rightCols<3>() /= radius;
+    constexpr double kSingularDet = 1e-9;
+    if (!(std::abs(j.determinant()) > kSingularDet)) {
+      return Error("limits.assembly_mode.pose", "is at a parallel singularity (det of the inverse-kinematics "
+                                                "Jacobian is 0): it names no assembly mode");
+    }
+    return Status::Ok();
   }
 
   Status ReadPoseBox(const YAML::Node& node, const std::string& key, std::optional<PoseBox>* out) const {
@@ -339,8 +385,8 @@ std::string RobotToYaml(const Robot& robot) {
         << ", l: " << FormatNumber(leg.offset) << ", stroke: " << YamlList({leg.stroke_min, leg.stroke_max}) << "}\n";
   }
   const RobotLimits& limits = robot.limits;
-  if (!limits.base_joint_max_deg && !limits.platform_joint_max_deg && !limits.leg_min_distance && !limits.pose_box &&
-      !limits.sampling_box) {
+  if (!limits.base_joint_max_deg && !limits.platform_joint_max_deg && !limits.leg_min_distance &&
+      !limits.assembly_mode && !limits.pose_box && !limits.sampling_box) {
     return out.str();
   }
   out << "limits:\n";
@@ -352,6 +398,11 @@ std::string RobotToYaml(const Robot& robot) {
   }
   if (limits.leg_min_distance) {
     out << "  leg_min_distance: " << FormatNumber(*limits.leg_min_distance) << "\n";
+  }
+  if (const auto& mode = limits.assembly_mode) {
+    const Vector6d& p = mode->pose;
+    out << "  assembly_mode: {pose: " << YamlList({p[0], p[1], p[2], p[3], p[4], p[5]})
+        << ", min_det_ratio: " << FormatNumber(mode->min_det_ratio) << "}\n";
   }
   for (const auto& [key, box] :
        {std::pair{"pose_box", &limits.pose_box}, std::pair{"sampling_box", &limits.sampling_box}}) {

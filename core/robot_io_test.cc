@@ -49,6 +49,15 @@ bool SameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
       !same_optional(a.limits.leg_min_distance, b.limits.leg_min_distance)) {
     return fail("limits");
   }
+  const auto& mode_a = a.limits.assembly_mode;
+  const auto& mode_b = b.limits.assembly_mode;
+  if (mode_a.has_value() != mode_b.has_value()) return fail("assembly_mode");
+  if (mode_a) {
+    for (int k = 0; k < 6; ++k) {
+      if (!SameBits(mode_a->pose[k], mode_b->pose[k])) return fail("assembly_mode.pose " + std::to_string(k));
+    }
+    if (!SameBits(mode_a->min_det_ratio, mode_b->min_det_ratio)) return fail("assembly_mode.min_det_ratio");
+  }
   if (a.limits.pose_box.has_value() != b.limits.pose_box.has_value()) return fail("pose_box");
   if (a.limits.pose_box) {
     for (int k = 0; k < 6; ++k) {
@@ -91,6 +100,9 @@ TEST(RobotIoTest, InriaPresetHoldsTable1OfThePaper) {
   EXPECT_EQ(robot.limits.base_joint_max_deg, 50);
   EXPECT_EQ(robot.limits.platform_joint_max_deg, 50);
   EXPECT_EQ(robot.limits.leg_min_distance, 0.5);
+  ASSERT_TRUE(robot.limits.assembly_mode);
+  EXPECT_EQ(robot.limits.assembly_mode->pose, (Vector6d() << 0, 0, 53.5, 0, 0, 0).finished());
+  EXPECT_EQ(robot.limits.assembly_mode->min_det_ratio, 0.1);
   ASSERT_TRUE(robot.limits.pose_box && robot.limits.pose_box->IsComplete());
   EXPECT_EQ(robot.limits.pose_box->bounds[2]->min, 47);
   EXPECT_EQ(robot.limits.pose_box->bounds[2]->max, 56);
@@ -150,6 +162,8 @@ TEST(RobotIoTest, ArbitraryDoublesSurviveSaveAndLoadExactly) {
     leg.stroke_max = 0.1 + 0.2 + Uniform(1, 4);
   }
   robot.limits.leg_min_distance = 1e-300;
+  robot.limits.assembly_mode->pose[0] = Uniform(-1, 1);
+  robot.limits.assembly_mode->min_det_ratio = 0.1 + 0.2 / 3;
   robot.limits.pose_box->bounds[1].reset();
   robot.limits.base_joint_max_deg.reset();
   robot.euler = EulerConvention::kZYX;

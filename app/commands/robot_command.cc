@@ -33,6 +33,11 @@ void PrintRobot(const Robot& robot, std::ostream& out) {
   if (limits.base_joint_max_deg) out << "base joint max: " << *limits.base_joint_max_deg << " deg\n";
   if (limits.platform_joint_max_deg) out << "platform joint max: " << *limits.platform_joint_max_deg << " deg\n";
   if (limits.leg_min_distance) out << "leg min distance: " << *limits.leg_min_distance << " " << unit << "\n";
+  if (const auto& mode = limits.assembly_mode) {
+    out << "assembly mode: of the pose [";
+    for (int k = 0; k < 6; ++k) out << (k ? ", " : "") << mode->pose[k];
+    out << "], det J_IK at least " << mode->min_det_ratio << " of its value there\n";
+  }
   static const char* names[6] = {"x", "y", "z", "q1", "q2", "q3"};
   for (const auto& [label, box] : {std::pair{"pose box", &limits.pose_box}, std::pair{"sampling box", &limits.sampling_box}}) {
     if (!*box) continue;
