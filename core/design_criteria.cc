@@ -145,6 +145,14 @@ double LogDetOrMinusInfinity(const InfoBlock& block) {
   return 2 * diagonal.array().log().sum();
 }
 
+// L⁻¹ and M⁻¹ = L⁻ᵀ L⁻¹ from a block's Cholesky factor M = L Lᵀ: the one
+// sequence of operations of Refactor and SigmaSumIfClearlyFullRank, whose
+// values must agree bit for bit.
+void InvertByCholesky(const InfoBlock& lower, InfoBlock* cholesky_inverse, InfoBlock* inverse) {
+  *cholesky_inverse = lower.triangularView<Eigen::Lower>().solve(InfoBlock::Identity());
+  *inverse = cholesky_inverse->transpose() * *cholesky_inverse;
+}
+
 // Σσ of the blocks as DesignState's Refactor computes it (the same operations
 // in the same order), when a sufficient test proves them full rank without an
 // eigendecomposition: λ_min >= 1 / tr M⁻¹ and λ_max <= tr M, so
@@ -157,9 +165,8 @@ std::optional<double> SigmaSumIfClearlyFullRank(const std::array<InfoBlock, kNum
   for (const InfoBlock& block : blocks) {
     const Eigen::LLT<InfoBlock> llt(block);
     if (llt.info() != Eigen::Success) return 0.0;
-    const InfoBlock lower = llt.matrixL();
-    const InfoBlock cholesky_inverse = lower.triangularView<Eigen::Lower>().solve(InfoBlock::Identity());
-    const InfoBlock inverse = cholesky_inverse.transpose() * cholesky_inverse;
+    InfoBlock cholesky_inverse, inverse;
+    InvertByCholesky(llt.matrixL(), &cholesky_inverse, &inverse);
     if (!(block.trace() * inverse.trace() < kMaxConditioning)) return std::nullopt;
     sigma_sum += SigmaSum(inverse);
   }
@@ -258,8 +265,7 @@ void DesignState::Refactor() {
       continue;
     }
     const InfoBlock lower = llt.matrixL();
-    cholesky_inverse_[i] = lower.triangularView<Eigen::Lower>().solve(InfoBlock::Identity());
-    inverse_[i] = cholesky_inverse_[i].transpose() * cholesky_inverse_[i];
+    InvertByCholesky(lower, &cholesky_inverse_[i], &inverse_[i]);
     log_det_ += 2 * lower.diagonal().array().log().sum();
     trace_inverse_ += inverse_[i].trace();
     sigma_sum_ += SigmaSum(inverse_[i]);
