@@ -179,7 +179,8 @@ bool IsFeasible(const Robot& robot, const Pose& pose) {
 
 std::vector<double> ConstraintMargins(const Robot& robot, const Pose& pose, bool include_box) {
   std::vector<double> margins;
-  margins.reserve(64);  // 4 per leg, 15 leg pairs, the assembly mode, 12 box bounds: one allocation (optimisers call this often)
+  // 4 per leg, 15 leg pairs, the assembly mode, 12 box bounds: one allocation (optimisers call this often).
+  margins.reserve(64);
   VisitConstraints(robot, pose, include_box,
                    [&](ConstraintKind, int, int, double margin) { margins.push_back(margin); });
   return margins;
