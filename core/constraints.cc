@@ -64,9 +64,9 @@ double ModePoseDeterminant(const Robot& robot, const AssemblyMode& mode) {
 // The sign of det J_IK marks the assembly mode (section 5.3): it changes only
 // across a parallel singularity, where det J_IK is 0. The ratio to its value at
 // the mode's pose also says how far from one a pose is (docs/robot-file.md).
-double AssemblyModeMargin(const Robot& robot, const AssemblyMode& mode,
-                          const Eigen::Matrix<double, kNumLegs, 6>& jacobian) {
-  return Determinant6(jacobian) / ModePoseDeterminant(robot, mode) - mode.min_det_ratio;
+double AssemblyModeMargin(const Robot& robot, const AssemblyMode& mode, const Pose& pose) {
+  return Determinant6(InverseKinematicsJacobian(robot, pose)) / ModePoseDeterminant(robot, mode) -
+         mode.min_det_ratio;
 }
 
 // Calls visit(kind, leg_or_index, other_index, margin) for every constraint
@@ -74,12 +74,10 @@ double AssemblyModeMargin(const Robot& robot, const AssemblyMode& mode,
 template <typename Visit>
 void VisitConstraints(const Robot& robot, const Pose& pose, bool include_box, Visit&& visit) {
   std::array<Eigen::Vector3d, kNumLegs> leg_top;
-  Eigen::Matrix<double, kNumLegs, 6> jacobian;  // InverseKinematicsJacobian's rows, for the assembly mode
   for (int i = 0; i < kNumLegs; ++i) {
     const Leg& leg = robot.legs[i];
     const Eigen::Vector3d v = LegVector(leg, pose);
-    const double length = v.norm();
-    const double reading = length - leg.offset;
+    const double reading = v.norm() - leg.offset;
     visit(ConstraintKind::kStrokeMin, i, -1, reading - leg.stroke_min);
     visit(ConstraintKind::kStrokeMax, i, -1, leg.stroke_max - reading);
     if (robot.limits.base_joint_max_deg) {
@@ -91,11 +89,6 @@ void VisitConstraints(const Robot& robot, const Pose& pose, bool include_box, Vi
             *robot.limits.platform_joint_max_deg - AngleDeg(v, pose.rotation.col(2)));
     }
     leg_top[i] = leg.a_in_base + v;
-    if (robot.limits.assembly_mode) {
-      const Eigen::Vector3d u = v / length;
-      const Eigen::Vector3d platform_point = leg_top[i] - pose.position;  // R b_i
-      jacobian.row(i) << u.transpose(), platform_point.cross(u).transpose();
-    }
   }
   if (robot.limits.leg_min_distance) {
     for (int i = 0; i < kNumLegs; ++i) {
@@ -112,7 +105,7 @@ void VisitConstraints(const Robot& robot, const Pose& pose, bool include_box, Vi
     }
   }
   if (robot.limits.assembly_mode) {
-    visit(ConstraintKind::kAssemblyMode, -1, -1, AssemblyModeMargin(robot, *robot.limits.assembly_mode, jacobian));
+    visit(ConstraintKind::kAssemblyMode, -1, -1, AssemblyModeMargin(robot, *robot.limits.assembly_mode, pose));
   }
   if (include_box && robot.limits.pose_box) {
     const Vector6d v = robot.VectorFromPose(pose);

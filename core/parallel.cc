@@ -15,6 +15,17 @@ namespace hexcal {
 
 namespace {
 
+// work(0) on the calling thread, holding back what it throws: other threads
+// run `work` too, and the caller rethrows only once they are done with it.
+std::exception_ptr RunCallersShare(const std::function<void(int)>& work) {
+  try {
+    work(0);
+  } catch (...) {
+    return std::current_exception();
+  }
+  return nullptr;
+}
+
 // Threads kept between calls: a search calls ParallelFor hundreds of times a
 // second on blocks of a few milliseconds, and a thread started per call came
 // up after the calling thread had taken most of the blocks. One job at a
@@ -53,12 +64,7 @@ class WorkerPool {
       ++generation_;
     }
     started_.notify_all();
-    std::exception_ptr thrown;  // the helpers hold `work`: wait for them before it goes
-    try {
-      work(0);
-    } catch (...) {
-      thrown = std::current_exception();
-    }
+    const std::exception_ptr thrown = RunCallersShare(work);
     std::unique_lock<std::mutex> lock(mutex_);
     finished_.wait(lock, [&] { return pending_ == 0; });
     job_ = nullptr;
@@ -130,12 +136,7 @@ bool ParallelFor(int count, int threads, const std::function<void(int index, int
   } else if (!WorkerPool::Instance().TryRun(workers - 1, work)) {
     std::vector<std::thread> own;
     for (int w = 1; w < workers; ++w) own.emplace_back(work, w);
-    std::exception_ptr thrown;  // as the pool's: the threads are joined first
-    try {
-      work(0);
-    } catch (...) {
-      thrown = std::current_exception();
-    }
+    const std::exception_ptr thrown = RunCallersShare(work);
     for (std::thread& thread : own) thread.join();
     if (thrown) std::rethrow_exception(thrown);
   }
