@@ -20,6 +20,7 @@
 #include "core/parallel.h"
 #include "vision/board_pose.h"
 #include "vision/intrinsics.h"
+#include "vision/library_detector.h"
 #include "vision/measure.h"
 #include "vision/renderer.h"
 
@@ -80,16 +81,31 @@ void BM_ThroughputAprilTagLibrary(benchmark::State& state) {
 }
 BENCHMARK(BM_ThroughputAprilTagLibrary)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-void BM_ThroughputDetectAndEdgeFit(benchmark::State& state) {
+// The library's own default detector (quad_decimate 2), as apriltag_demo runs it.
+void BM_ThroughputAprilTagLibraryDefaults(benchmark::State& state) {
   const ImageSet& set = Images();
-  std::unique_ptr<TagDetector> detector =
-      TagDetector::Create(DetectorOptions{}, std::make_shared<const IdealPixelMap>(Sim())).value();
+  std::unique_ptr<LibraryDetector> detector = LibraryDetector::Create("tag36h11").value();
   size_t k = 0;
   for (auto _ : state) benchmark::DoNotOptimize(detector->Detect(set.images[k++ % set.images.size()]));
   state.SetItemsProcessed(state.iterations());
-  state.SetLabel("images/s: library (nthreads 2) + edge fit of every tag");
+  state.SetLabel("images/s: apriltag_detector_detect with its defaults (quad_decimate 2), nthreads 1");
 }
-BENCHMARK(BM_ThroughputDetectAndEdgeFit)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ThroughputAprilTagLibraryDefaults)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// range(0): 1 = with the library's default detector as the floor (the default), 0 = hexcal's pass alone.
+void BM_ThroughputDetectAndEdgeFit(benchmark::State& state) {
+  const ImageSet& set = Images();
+  DetectorOptions options;
+  options.library_floor = state.range(0) != 0;
+  std::unique_ptr<TagDetector> detector =
+      TagDetector::Create(options, std::make_shared<const IdealPixelMap>(Sim())).value();
+  size_t k = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(detector->Detect(set.images[k++ % set.images.size()]));
+  state.SetItemsProcessed(state.iterations());
+  state.SetLabel(std::string("images/s: quads, decode, edge fit of every tag; library floor ") +
+                 (options.library_floor ? "on" : "off"));
+}
+BENCHMARK(BM_ThroughputDetectAndEdgeFit)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The whole batch, files to poses; range(0) workers, each detector single-threaded.
 void BM_ThroughputMeasureBatch(benchmark::State& state) {
@@ -130,13 +146,20 @@ void BM_MeasureAgainstLibrary(benchmark::State& state) {
   MeasureOptions options;
   options.threads = kWorkers;
   const double images = static_cast<double>(set.files.size());
-  std::vector<double> library_rate, measure_rate;
+  std::vector<std::unique_ptr<LibraryDetector>> library_defaults;
+  for (int w = 0; w < kWorkers; ++w) library_defaults.push_back(LibraryDetector::Create("tag36h11").value());
+  std::vector<double> library_rate, library_default_rate, measure_rate;
   for (auto _ : state) {
     for (int round = 0; round < kRounds; ++round) {
       library_rate.push_back(images / SecondsOf([&] {
         ParallelFor(static_cast<int>(set.images.size()), kWorkers, [&](int k, int worker) {
           TagDetector& detector = *library[static_cast<size_t>(worker)];
           benchmark::DoNotOptimize(detector.DetectWithLibraryOnly(set.images[static_cast<size_t>(k)]));
+        });
+      }));
+      library_default_rate.push_back(images / SecondsOf([&] {
+        ParallelFor(static_cast<int>(set.images.size()), kWorkers, [&](int k, int worker) {
+          benchmark::DoNotOptimize(library_defaults[static_cast<size_t>(worker)]->Detect(set.images[static_cast<size_t>(k)]));
         });
       }));
       measure_rate.push_back(images / SecondsOf([&] {
@@ -147,6 +170,8 @@ void BM_MeasureAgainstLibrary(benchmark::State& state) {
   state.counters["library_img_s"] = MedianOf(library_rate);
   state.counters["measure_img_s"] = MedianOf(measure_rate);
   state.counters["ratio"] = MedianOf(measure_rate) / MedianOf(library_rate);
+  state.counters["library_default_img_s"] = MedianOf(library_default_rate);
+  state.counters["ratio_default"] = MedianOf(measure_rate) / MedianOf(library_default_rate);
   state.SetLabel("measure (PNG files) / library detection (in memory), 2 workers each, medians of 5");
 }
 BENCHMARK(BM_MeasureAgainstLibrary)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();

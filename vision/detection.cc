@@ -1,13 +1,13 @@
 #include "vision/detection.h"
 
-#include <apriltag/apriltag.h>
-
 #include <algorithm>
 #include <map>
 
 #include "core/csv.h"
 #include "vision/edge_refine.h"
+#include "vision/library_detector.h"
 #include "vision/quad_finder.h"
+#include "vision/quad_snap.h"
 #include "vision/tag_decoder.h"
 #include "vision/tag_family.h"
 
@@ -16,45 +16,25 @@ namespace {
 
 // Corners closer than this to the image's edge (pixels) are not trusted.
 constexpr double kBorderPx = 1.0;
-
-struct DetectionsDeleter {
-  void operator()(zarray_t* detections) const { apriltag_detections_destroy(detections); }
-};
-using DetectionsPtr = std::unique_ptr<zarray_t, DetectionsDeleter>;
+// The blur before the segmentation of the image as it is: sensor noise
+// splits the thresholded image into many small components, which cost the
+// library's quad stage 5× its time on the grown image (where the 3 × 3
+// maximum has smoothed it); a tag of 14 px keeps its 1.75 px border.
+constexpr double kPlainPassSigmaPx = 0.8;
 
 }  // namespace
 
 struct TagDetector::Impl {
-  std::unique_ptr<QuadFinder> quads;
+  std::unique_ptr<QuadFinder> grown_quads;  // white grown: aprilgrids' corner joints opened
+  std::unique_ptr<QuadFinder> plain_quads;  // the image as it is (a little blurred): small tags' thin borders kept
   TagCodebook codebook;
   std::shared_ptr<const IdealPixelMap> ideal;
-  // The library's own detector, for DetectWithLibraryOnly (benchmarks) only.
-  AprilTagFamilyPtr family;
-  apriltag_detector_t* detector = nullptr;
-
-  ~Impl() {
-    if (detector) {
-      apriltag_detector_remove_family(detector, family.get());
-      apriltag_detector_destroy(detector);
-    }
-  }
-
-  // Made on first use: only benchmarks call it.
-  DetectionsPtr RunLibrary(const cv::Mat& gray, const DetectorOptions& options) {
-    CV_Assert(gray.type() == CV_8UC1);
-    if (!detector) {
-      family = CreateAprilTagFamily(options.family);
-      detector = apriltag_detector_create();
-      apriltag_detector_add_family_bits(detector, family.get(), std::max(1, options.max_hamming));
-      detector->quad_decimate = 1;
-      detector->quad_sigma = static_cast<float>(options.quad_sigma);
-      detector->nthreads = options.threads;
-      detector->refine_edges = 1;
-    }
-    // The library reads rows through `stride`; a cv::Mat row step is one.
-    image_u8_t image{gray.cols, gray.rows, static_cast<int32_t>(gray.step[0]), const_cast<uint8_t*>(gray.data)};
-    return DetectionsPtr(apriltag_detector_detect(detector, &image));
-  }
+  // The library's default detector (vision/library_detector.h): the floor
+  // under hexcal's tags; null when options.library_floor is off.
+  std::unique_ptr<LibraryDetector> floor;
+  // The library alone at hexcal's resolution, for DetectWithLibraryOnly
+  // (benchmarks); made on first use.
+  std::unique_ptr<LibraryDetector> benchmark_library;
 };
 
 bool DetectorOptions::IsValid(std::string* error) const {
@@ -77,13 +57,25 @@ StatusOr<std::unique_ptr<TagDetector>> TagDetector::Create(const DetectorOptions
   if (!options.IsValid(&error)) return Status::Error("detector options: " + error);
   StatusOr<TagCodebook> codebook = TagCodebook::Create(options.family, options.border_bits);
   if (!codebook.ok()) return Status::Error("detector options: " + codebook.status().message());
-  StatusOr<std::unique_ptr<QuadFinder>> quads =
-      QuadFinder::Create(options.threads, options.quad_sigma, codebook->width_at_border());
-  if (!quads.ok()) return quads.status();
+  StatusOr<std::unique_ptr<QuadFinder>> grown =
+      QuadFinder::Create(options.threads, options.quad_sigma, codebook->width_at_border(), /*grow_white=*/true);
+  if (!grown.ok()) return grown.status();
+  StatusOr<std::unique_ptr<QuadFinder>> plain =
+      QuadFinder::Create(options.threads, std::max(options.quad_sigma, kPlainPassSigmaPx), codebook->width_at_border(),
+                         /*grow_white=*/false);
+  if (!plain.ok()) return plain.status();
   auto impl = std::make_unique<Impl>();
-  impl->quads = std::move(*quads);
+  impl->grown_quads = std::move(*grown);
+  impl->plain_quads = std::move(*plain);
   impl->codebook = std::move(*codebook);
   impl->ideal = std::move(ideal);
+  if (options.library_floor) {
+    LibraryDetectorSettings settings;
+    settings.threads = options.threads;
+    StatusOr<std::unique_ptr<LibraryDetector>> floor = LibraryDetector::Create(options.family, settings);
+    if (!floor.ok()) return floor.status();
+    impl->floor = std::move(*floor);
+  }
   return std::unique_ptr<TagDetector>(new TagDetector(options, std::move(impl)));
 }
 
@@ -92,22 +84,38 @@ TagDetector::TagDetector(const DetectorOptions& options, std::unique_ptr<Impl> i
 
 TagDetector::~TagDetector() = default;
 
-int TagDetector::DetectWithLibraryOnly(const cv::Mat& gray) { return zarray_size(impl_->RunLibrary(gray, options_).get()); }
+int TagDetector::DetectWithLibraryOnly(const cv::Mat& gray) {
+  if (!impl_->benchmark_library) {
+    LibraryDetectorSettings settings;
+    settings.quad_decimate = 1;
+    settings.quad_sigma = options_.quad_sigma;
+    settings.bits_corrected = std::max(1, options_.max_hamming);
+    settings.threads = options_.threads;
+    impl_->benchmark_library = LibraryDetector::Create(options_.family, settings).value();
+  }
+  return static_cast<int>(impl_->benchmark_library->Detect(gray).size());
+}
 
 namespace {
 
-bool CornersInside(const std::array<Eigen::Vector2d, 4>& corners, const cv::Mat& gray) {
+// Whether the tag's corners, and the ring of white cells around its black
+// square, lie in the image. A tag cut by the border decodes from its inner
+// cells; the segmentation of the image as it is then closes its quad along
+// the border, 1-2 px inside it, where no white ring is seen.
+bool RingInside(const std::array<Eigen::Vector2d, 4>& corners, int width_at_border, const cv::Mat& gray) {
+  double perimeter = 0;
+  for (size_t k = 0; k < 4; ++k) perimeter += (corners[(k + 1) % 4] - corners[k]).norm();
+  const double margin = std::max(kBorderPx, perimeter / 4 / width_at_border);
   for (const Eigen::Vector2d& c : corners) {
-    if (!(c.x() >= kBorderPx && c.y() >= kBorderPx && c.x() <= gray.cols - 1 - kBorderPx &&
-          c.y() <= gray.rows - 1 - kBorderPx)) {
+    if (!(c.x() >= margin && c.y() >= margin && c.x() <= gray.cols - 1 - margin && c.y() <= gray.rows - 1 - margin)) {
       return false;
     }
   }
   return true;
 }
 
-// Why a decode is not accepted, or "" when it is.
-std::string RejectionReason(const DecodedTag& tag, const DetectorOptions& options, const cv::Mat& gray) {
+std::string RejectionReason(const DecodedTag& tag, const DetectorOptions& options, int width_at_border,
+                            const cv::Mat& gray) {
   if (tag.hamming > options.max_hamming) {
     return std::to_string(tag.hamming) + " corrected bits > " + std::to_string(options.max_hamming);
   }
@@ -115,8 +123,8 @@ std::string RejectionReason(const DecodedTag& tag, const DetectorOptions& option
     return "decision margin " + FormatSignificant(tag.decision_margin) + " < " + FormatSignificant(options.min_decision_margin);
   }
   // A tag cut by the image border can still decode from its inner cells, but
-  // its outer corners are extrapolated: keep only tags whose corners are inside.
-  if (!CornersInside(tag.corners, gray)) return "a corner is outside the image";
+  // its outer corners are extrapolated or lie on the border.
+  if (!RingInside(tag.corners, width_at_border, gray)) return "a corner is outside the image";
   return "";
 }
 
@@ -124,15 +132,85 @@ Eigen::Vector2d Centre(const std::array<Eigen::Vector2d, 4>& corners) {
   return 0.25 * (corners[0] + corners[1] + corners[2] + corners[3]);
 }
 
-// The same tag decoded from two quads (its outer edge and a ring just
-// inside it): keep the decode with the fewer corrected bits, then the larger margin.
-std::vector<DecodedTag> DropRepeatedDecodes(std::vector<DecodedTag> decoded) {
-  std::sort(decoded.begin(), decoded.end(), [](const DecodedTag& a, const DecodedTag& b) {
-    if (a.hamming != b.hamming) return a.hamming < b.hamming;
-    return a.decision_margin > b.decision_margin;
+// Where a decode's quad came from, in the order of preference between two
+// decodes of one tag with as many corrected bits: the image's own quad fit
+// (the library's at full resolution), the grown-white one (its erosion undone
+// exactly only for straight, sharp edges), the library's at half resolution.
+enum class QuadSource { kImage = 0, kGrownWhite = 1, kLibrary = 2 };
+
+struct Candidate {
+  DecodedTag tag;
+  QuadSource source = QuadSource::kImage;
+};
+
+// Whether p lies inside the convex quad (either winding).
+bool Inside(const std::array<Eigen::Vector2d, 4>& corners, const Eigen::Vector2d& p) {
+  int positive = 0, negative = 0;
+  for (size_t k = 0; k < 4; ++k) {
+    const Eigen::Vector2d edge = corners[(k + 1) % 4] - corners[k], to_p = p - corners[k];
+    const double cross = edge.x() * to_p.y() - edge.y() * to_p.x();
+    positive += cross > 0;
+    negative += cross < 0;
+  }
+  return positive == 0 || negative == 0;
+}
+
+// A quad well inside a tag already decoded (a data cell's blob, a ring of the
+// border) cannot be another tag, and decoding is the costly part: skip it.
+// Quads of about the tag's size are decoded again (another fit of its edge).
+bool InsideADecodedTag(const Quad& quad, const std::vector<Candidate>& candidates) {
+  const Eigen::Vector2d centre = Centre(quad.corners);
+  const double area = std::abs(SignedArea(quad.corners));
+  return std::any_of(candidates.begin(), candidates.end(), [&](const Candidate& c) {
+    return area < 0.7 * std::abs(SignedArea(c.tag.corners)) && Inside(c.tag.corners, centre);
+  });
+}
+
+void DecodeQuads(const cv::Mat& gray, std::vector<Quad> quads, QuadSource source, const TagCodebook& codebook,
+                 int max_hamming, std::vector<Candidate>& candidates) {
+  // Largest first: a tag's outer edge before the blobs inside it.
+  std::sort(quads.begin(), quads.end(), [](const Quad& a, const Quad& b) {
+    return std::abs(SignedArea(a.corners)) > std::abs(SignedArea(b.corners));
+  });
+  for (const Quad& quad : quads) {
+    if (InsideADecodedTag(quad, candidates)) continue;
+    // The snapped quad reads most tags best; a few of 14 px read only
+    // through the quad as found.
+    std::optional<DecodedTag> tag = codebook.Decode(gray, SnapQuadEdges(gray, quad), max_hamming);
+    if (!tag) tag = codebook.Decode(gray, quad, max_hamming);
+    if (tag) candidates.push_back({*tag, source});
+  }
+}
+
+// The library's default detector's tags (vision/library_detector.h). It reads
+// the one-cell layout; for a target with two, its quad is kept only where
+// hexcal's codebook reads the same tag in it.
+void AddLibraryTags(const cv::Mat& gray, LibraryDetector& library, const TagCodebook& codebook, int max_hamming,
+                    std::vector<Candidate>& candidates) {
+  for (const DecodedTag& tag : library.Detect(gray)) {
+    if (codebook.border_bits() == 1) {
+      candidates.push_back({tag, QuadSource::kLibrary});
+      continue;
+    }
+    Quad quad{tag.corners};
+    if (SignedArea(quad.corners) > 0) std::swap(quad.corners[1], quad.corners[3]);
+    std::optional<DecodedTag> again = codebook.Decode(gray, SnapQuadEdges(gray, quad), max_hamming);
+    if (again && again->id == tag.id) candidates.push_back({*again, QuadSource::kLibrary});
+  }
+}
+
+// The same tag decoded from several quads (the passes above, or its outer
+// edge and a ring just inside it): keep the decode with the fewer corrected
+// bits, then the preferred source, then the larger margin.
+std::vector<DecodedTag> DropRepeatedDecodes(std::vector<Candidate> candidates) {
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+    if (a.tag.hamming != b.tag.hamming) return a.tag.hamming < b.tag.hamming;
+    if (a.source != b.source) return a.source < b.source;
+    return a.tag.decision_margin > b.tag.decision_margin;
   });
   std::vector<DecodedTag> kept;
-  for (const DecodedTag& tag : decoded) {
+  for (const Candidate& candidate : candidates) {
+    const DecodedTag& tag = candidate.tag;
     const double side = (tag.corners[1] - tag.corners[0]).norm();
     const bool repeated = std::any_of(kept.begin(), kept.end(), [&](const DecodedTag& other) {
       return other.id == tag.id && (Centre(other.corners) - Centre(tag.corners)).norm() < 0.25 * side;
@@ -151,13 +229,14 @@ Detections TagDetector::Detect(const cv::Mat& gray) {
   // One corrected bit more than accepted, so that near misses are reported
   // as rejected rather than silently missing.
   const int report_hamming = std::max(1, options_.max_hamming);
-  std::vector<DecodedTag> decoded;
-  for (const Quad& quad : impl_->quads->Find(gray)) {
-    if (std::optional<DecodedTag> tag = impl_->codebook.Decode(gray, quad, report_hamming)) decoded.push_back(*tag);
-  }
+  std::vector<Candidate> candidates;
+  DecodeQuads(gray, impl_->plain_quads->Find(gray), QuadSource::kImage, impl_->codebook, report_hamming, candidates);
+  DecodeQuads(gray, impl_->grown_quads->Find(gray), QuadSource::kGrownWhite, impl_->codebook, report_hamming,
+              candidates);
+  if (impl_->floor) AddLibraryTags(gray, *impl_->floor, impl_->codebook, report_hamming, candidates);
   Detections result;
-  for (const DecodedTag& decode : DropRepeatedDecodes(std::move(decoded))) {
-    const std::string reason = RejectionReason(decode, options_, gray);
+  for (const DecodedTag& decode : DropRepeatedDecodes(std::move(candidates))) {
+    const std::string reason = RejectionReason(decode, options_, impl_->codebook.width_at_border(), gray);
     if (!reason.empty()) {
       result.rejected.push_back({decode.id, decode.decision_margin, decode.hamming, reason});
       continue;
@@ -166,7 +245,8 @@ Detections TagDetector::Detect(const cv::Mat& gray) {
     tag.id = decode.id;
     tag.decision_margin = decode.decision_margin;
     tag.hamming = decode.hamming;
-    tag.corners = decode.corners;
+    // Every pass's quad moved onto the image's edges (vision/quad_snap.h).
+    tag.corners = SnapQuadEdges(gray, Quad{decode.corners}).corners;
     if (options_.refine_edges) {
       if (std::optional<RefinedTag> refined =
               RefineTagCorners(gray, ideal, impl_->codebook.width_at_border(), impl_->codebook.border_bits(),

@@ -1,15 +1,19 @@
 // AprilTag detection with calibration-grade corners, and matching of the
 // detected ids to the target.
 //
-// The AprilTag library finds and decodes the tags (quad_decimate 1: its
-// corners are only consistent at full resolution, see docs/vision.md).
-// Its corners are pixel-corner based, (0, 0) being the top-left corner of the
-// top-left pixel; hexcal shifts them by −½ px to OpenCV's pixel-centre
-// convention, then (by default) replaces them by the sub-pixel edge fit of
-// edge_refine.h. Decodes with a decision margin below the threshold, with
-// corrected bits beyond max_hamming, or with a corner outside the image (the
-// library extrapolates the corners of a tag cut by the border) are rejected
-// and reported.
+// Quads come from the AprilTag library's segmentation (vision/quad_finder.h)
+// of the image as it is, slightly blurred (small tags' thin borders), and of
+// the image with its white grown by one pixel (an aprilgrid's corner joints
+// opened), and are decoded by hexcal's codebook, which reads one- and
+// two-cell borders (vision/tag_decoder.h). The library's own default
+// detector runs too, and every tag it finds that those passes missed is kept
+// (vision/library_detector.h): never fewer tags than the library. Every
+// quad is snapped to the image's edges (vision/quad_snap.h).
+// Corners are in OpenCV's pixel-centre convention and are (by default)
+// replaced by the sub-pixel edge fit of edge_refine.h. Decodes with a
+// decision margin below the threshold, with corrected bits beyond
+// max_hamming, or with a corner outside the image (the library extrapolates
+// the corners of a tag cut by the border) are rejected and reported.
 //
 //   StatusOr<std::unique_ptr<TagDetector>> detector = TagDetector::Create(DetectorOptions{});
 //   StatusOr<cv::Mat> gray = LoadGrayImage("view.png");
@@ -42,6 +46,11 @@ struct DetectorOptions {
   int max_hamming = 0;              // corrected bits accepted, 0..2
   bool refine_edges = true;         // sub-pixel edge fit of each black square
   double quad_sigma = 0;            // AprilTag's blur before segmentation, px (0 = none)
+  // Also keep every tag the AprilTag library's default detector finds
+  // (vision/library_detector.h; for two-cell borders where hexcal's codebook
+  // reads the same tag in its quad): never fewer tags than the library. Off
+  // only to measure hexcal's own passes.
+  bool library_floor = true;
 
   bool IsValid(std::string* error) const;
 };

@@ -13,6 +13,7 @@
 
 #include "core/parallel.h"
 #include "core/pose.h"
+#include "vision/fisheye_init.h"
 #include "vision/intrinsics_diagnosis.h"
 
 namespace hexcal {
@@ -112,7 +113,14 @@ double CalibrateFisheye(const std::vector<const BoardObservation*>& views, cv::S
       image[v].emplace_back(views[v]->image_points[i].x(), views[v]->image_points[i].y());
     }
   }
-  const int flags = cv::fisheye::CALIB_RECOMPUTE_EXTRINSIC | cv::fisheye::CALIB_FIX_SKEW;
+  int flags = cv::fisheye::CALIB_RECOMPUTE_EXTRINSIC | cv::fisheye::CALIB_FIX_SKEW;
+  // OpenCV's own start (f = side / π) fails for lenses wider than that:
+  // start from the focal length the views agree on (vision/fisheye_init.h).
+  if (std::optional<FisheyeStart> start = EquidistantStart(views, size)) {
+    k = cv::Mat(start->CameraMatrix());
+    d = cv::Mat::zeros(4, 1, CV_64F);
+    flags |= cv::fisheye::CALIB_USE_INTRINSIC_GUESS;
+  }
   return cv::fisheye::calibrate(object, image, size, k, d, rvecs, tvecs, flags,
                                 cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 200, 1e-12));
 }

@@ -71,6 +71,7 @@ struct QuadFinder::Impl {
   AprilTagFamilyPtr family;  // only its width and border colour matter to the quad fit
   apriltag_detector_t* detector = nullptr;
   double quad_sigma = 0;
+  bool grow_white = true;
 
   ~Impl() {
     if (detector) {
@@ -80,7 +81,8 @@ struct QuadFinder::Impl {
   }
 };
 
-StatusOr<std::unique_ptr<QuadFinder>> QuadFinder::Create(int threads, double quad_sigma, int min_width_cells) {
+StatusOr<std::unique_ptr<QuadFinder>> QuadFinder::Create(int threads, double quad_sigma, int min_width_cells,
+                                                         bool grow_white) {
   if (threads < 1 || threads > 64) return Status::Error("quad finder: threads must be in 1..64");
   if (!(quad_sigma >= 0 && quad_sigma <= 10)) return Status::Error("quad finder: quad_sigma must be in [0, 10] px");
   auto impl = std::make_unique<Impl>();
@@ -91,6 +93,7 @@ StatusOr<std::unique_ptr<QuadFinder>> QuadFinder::Create(int threads, double qua
   impl->detector->quad_decimate = 1;
   impl->detector->nthreads = threads;
   impl->quad_sigma = quad_sigma;
+  impl->grow_white = grow_white;
   // The library makes its worker pool in its first detection; apriltag_quad_thresh
   // needs that pool, so run one on a blank image now.
   uint8_t blank[16 * 16] = {};
@@ -105,7 +108,11 @@ QuadFinder::~QuadFinder() = default;
 std::vector<Quad> QuadFinder::Find(const cv::Mat& gray) {
   CV_Assert(gray.type() == CV_8UC1);
   cv::Mat grown;
-  cv::dilate(gray, grown, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * kGrowthRadius + 1, 2 * kGrowthRadius + 1)));
+  if (impl_->grow_white) {
+    cv::dilate(gray, grown, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * kGrowthRadius + 1, 2 * kGrowthRadius + 1)));
+  } else {
+    grown = impl_->quad_sigma > 0 ? gray.clone() : gray;
+  }
   if (impl_->quad_sigma > 0) cv::GaussianBlur(grown, grown, cv::Size(), impl_->quad_sigma);
   image_u8_t image{grown.cols, grown.rows, static_cast<int32_t>(grown.step[0]), grown.data};
   QuadListPtr found(apriltag_quad_thresh(impl_->detector, &image));
@@ -119,7 +126,7 @@ std::vector<Quad> QuadFinder::Find(const cv::Mat& gray) {
       quad.corners[k] = Eigen::Vector2d(q->p[k][0] + kAprilTagToOpenCv, q->p[k][1] + kAprilTagToOpenCv);
     }
     if (SignedArea(quad.corners) > 0) std::swap(quad.corners[1], quad.corners[3]);
-    quad.corners = UndoWhiteGrowth(quad.corners, kGrowthRadius);
+    if (impl_->grow_white) quad.corners = UndoWhiteGrowth(quad.corners, kGrowthRadius);
     quads.push_back(quad);
   }
   return quads;

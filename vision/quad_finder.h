@@ -47,8 +47,10 @@ class QuadFinder {
  public:
   // `threads`: the library's workers for one image; `quad_sigma`: Gaussian
   // blur before segmentation, px (0 = none); `min_width_cells`: the cells across
-  // the smallest tag's black square (the library skips quads too small to hold one).
-  static StatusOr<std::unique_ptr<QuadFinder>> Create(int threads, double quad_sigma, int min_width_cells);
+  // the smallest tag's black square (the library skips quads too small to hold one);
+  // `grow_white`: false finds the quads of the image as it is, as the library does.
+  static StatusOr<std::unique_ptr<QuadFinder>> Create(int threads, double quad_sigma, int min_width_cells,
+                                                      bool grow_white = true);
   ~QuadFinder();
   QuadFinder(const QuadFinder&) = delete;
   QuadFinder& operator=(const QuadFinder&) = delete;

@@ -1,4 +1,5 @@
 #include "vision/quad_finder.h"
+#include "vision/quad_snap.h"
 
 #include <gtest/gtest.h>
 
@@ -93,6 +94,31 @@ TEST(QuadFinderTest, UndoWhiteGrowthMovesEachEdgeByTheSquaresSupport) {
   const auto diamond = Square({0, 0}, 10, M_PI / 4);  // edge normals at 45°: moved by √2
   const std::array<Eigen::Vector2d, 4> moved = UndoWhiteGrowth(diamond, 1);
   for (size_t k = 0; k < 4; ++k) EXPECT_NEAR(moved[k].norm() - diamond[k].norm(), 2.0, 1e-9);
+}
+
+// The edge snap (vision/quad_snap.h) against the drawn truth: from corners
+// 1.5 px off, on squares down to 14 px, at several angles.
+TEST(QuadSnapTest, CornersOffByPixelsLandOnTheDrawnSquare) {
+  for (double half : {7.0, 12.0, 30.0}) {
+    for (double angle : {0.0, 0.3, 0.7}) {
+      const auto truth = Square({60, 60}, half, angle);
+      const cv::Mat image = DrawSquares({truth}, cv::Size(120, 120));
+      Quad start{truth};
+      const Eigen::Vector2d offsets[4] = {{1.5, -1.0}, {-1.0, 1.2}, {0.8, 1.5}, {-1.5, -0.6}};
+      for (size_t k = 0; k < 4; ++k) start.corners[k] += offsets[k];
+      const Quad snapped = SnapQuadEdges(image, start);
+      for (size_t k = 0; k < 4; ++k) {
+        EXPECT_LT((snapped.corners[k] - truth[k]).norm(), 0.2) << "half " << half << ", angle " << angle << ", corner " << k;
+      }
+    }
+  }
+}
+
+TEST(QuadSnapTest, NoEdgeLeavesTheQuadAsItWas) {
+  const cv::Mat blank(120, 120, CV_8UC1, cv::Scalar(128));
+  const Quad quad{Square({60, 60}, 20, 0.2)};
+  const Quad snapped = SnapQuadEdges(blank, quad);
+  for (size_t k = 0; k < 4; ++k) EXPECT_EQ(snapped.corners[k], quad.corners[k]);
 }
 
 }  // namespace

@@ -54,13 +54,14 @@ END
 "$hexcal" render --camera "$dir/fisheye.yaml" --poses "$data/poses/vision_views.csv" --out "$dir/fisheye" >/dev/null
 "$hexcal" intrinsics --model pinhole-equi --images "$dir/fisheye" --out "$dir/fisheye_out.yaml" --json >"$dir/fisheye.json"
 grep -q '"model": "pinhole-equi"' "$dir/fisheye.json"
-# Two of the views (0.56 m, tilted 44 deg) leave bit cells under 3 px at f = 520 px: not detected.
-grep -q '"used_views": 8' "$dir/fisheye.json"
+# Two of the views (0.56 m, tilted 44 deg) leave bit cells under 3 px at f = 520 px; the
+# segmentation of the image as it is finds them (docs/vision.md, "Detection"): all 10 used.
+grep -q '"used_views": 10' "$dir/fisheye.json"
 grep -q '^distortion_model: equidistant' "$dir/fisheye_out.yaml"
 # fx within 0.5 % of 520.4
 fx=$(grep -A4 '^camera_matrix' "$dir/fisheye_out.yaml" | sed -n 's/.*data: \[ \([0-9.]*\),.*/\1/p')
 awk -v fx="$fx" 'BEGIN { d = fx - 520.4; if (d < 0) d = -d; exit !(d < 2.6) }'
-"$hexcal" measure --camera "$dir/fisheye_out.yaml" --images "$dir/fisheye" --out "$dir/fm.csv" | grep -q "10 images: 2 no_target 8 ok"
+"$hexcal" measure --camera "$dir/fisheye_out.yaml" --images "$dir/fisheye" --out "$dir/fm.csv" | grep -q "10 images: 10 ok"
 code=0
 "$hexcal" intrinsics --model omni --images "$dir/fisheye" --out "$dir/never.yaml" 2>"$dir/err" || code=$?
 [ "$code" -eq 2 ]
