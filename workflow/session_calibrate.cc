@@ -18,6 +18,7 @@
 #include "core/staged_folder.h"
 #include "core/validation.h"
 #include "vision/measure.h"
+#include "workflow/board_pose_shortfall.h"
 #include "workflow/camera_frame_diagnosis.h"
 #include "workflow/expected_error.h"
 #include "workflow/measure_step.h"
@@ -93,9 +94,10 @@ StatusOr<CameraPoses> MeasureSession(const std::string& dir, const SessionInputs
   }
   // A board that fits badly in most images is the target or camera file, not the images.
   if (const std::string diagnosis = DiagnoseBoardFits(counts); !diagnosis.empty()) {
-    if (ok < 3) return Status::Error(dir + ": " + diagnosis);
+    if (ok < kMinBoardPoses) return Status::Error(dir + ": " + diagnosis);
     hooks.Note("warning: " + diagnosis);
   }
+  if (ok < kMinBoardPoses) return Status::Error(dir + ": " + ExplainBoardPoseShortfall(dir, measured->poses, in.target));
   if (observations != nullptr) *observations = std::move(measured->observations);
   return measured->poses;
 }

@@ -5,6 +5,7 @@
 #include "app/commands/cli_common.h"
 #include "app/commands/command_table.h"
 #include "vision/detection.h"
+#include "vision/layout_hint.h"
 #include "vision/measure.h"
 
 namespace hexcal::cli {
@@ -25,20 +26,6 @@ nlohmann::json DetectionJson(const std::string& family, const TagDetection& tag)
                          {"hamming", tag.hamming}, {"refined", tag.refined}};
   if (!tag.refine_failure.empty()) json["refine_failure"] = tag.refine_failure;
   return json;
-}
-
-// With few tags found, the count the other border width gives, when it is
-// more: the usual reason for an empty Kalibr aprilgrid is border_bits 1.
-std::optional<int> OtherBorderCount(const cv::Mat& gray, const DetectorOptions& options, size_t found) {
-  if (found >= 4) return std::nullopt;
-  DetectorOptions other = options;
-  other.border_bits = 3 - options.border_bits;
-  other.refine_edges = false;
-  StatusOr<std::unique_ptr<TagDetector>> detector = TagDetector::Create(other);
-  if (!detector.ok()) return std::nullopt;
-  const size_t count = (*detector)->Detect(gray).tags.size();
-  if (count <= found) return std::nullopt;
-  return static_cast<int>(count);
 }
 
 // One line per image: the tags, why any kept their quad corners, what the file needed.
@@ -99,9 +86,8 @@ int RunDetect(const DetectCliOptions& cli, std::ostream& out, std::ostream& err)
       if (const std::string note = DescribeImageNotes(notes); !note.empty()) image["note"] = note;
       total_tags += static_cast<int>(found.tags.size());
       if (!cli.json) PrintImageLine(file, found, notes, out);
-      if (std::optional<int> other = OtherBorderCount(*gray, options, found.tags.size())) {
-        const std::string hint = std::to_string(*other) + " tags with border_bits " +
-                                 std::to_string(3 - options.border_bits) + " (--border-bits, or the target's key)";
+      if (std::optional<LayoutHint> other = BetterLayout(*gray, options, found.tags.size())) {
+        const std::string hint = DescribeLayoutHint(*other, options);
         image["hint"] = hint;
         err << "hexcal detect: " << file << ": " << hint << "\n";
       }
