@@ -83,6 +83,11 @@ struct Camera {
   std::optional<Eigen::Vector2d> IdealPixel(const Eigen::Vector2d& pixel) const;
   // Inverse of IdealPixel.
   Eigen::Vector2d DistortedPixel(const Eigen::Vector2d& ideal_pixel) const;
+  // The angle (radians) between the optical axis and the ray a pixel sees:
+  // atan |Undistort(pixel)|, and for the fisheye θ itself, so past 90° too
+  // (on the branch where θ_d grows); nullopt where the model does not invert.
+  std::optional<double> OffAxisAngle(const Eigen::Vector2d& pixel) const;
+
 
   Status Validate() const;
 };
@@ -107,6 +112,17 @@ class IdealPixelMap {
   int width_ = 0, height_ = 0;
   std::vector<float> xy_;  // float: 1e-4 px at 1000 px, 4× under the fit's noise floor
 };
+
+// The angles the image spans, in degrees, each the sum of the off-axis angles
+// (Camera::OffAxisAngle) of two opposite points of the image's outer edge:
+// horizontal through the principal point's row (u = -0.5 and width - 0.5,
+// pixel centres at whole numbers), vertical through its column, diagonal
+// through the top-left and bottom-right corners. nullopt where a point is past
+// what the model inverts (a strong fisheye's corners, say).
+struct FieldOfView {
+  std::optional<double> horizontal_deg, vertical_deg, diagonal_deg;
+};
+FieldOfView CameraFieldOfView(const Camera& camera);
 
 // What a calibration adds to a camera file (all optional).
 struct CameraFileExtras {
