@@ -19,16 +19,18 @@
 //   θ = atan(r),  θ_d = θ (1 + k1 θ² + k2 θ⁴ + k3 θ⁶ + k4 θ⁸),  (x_d, y_d) = (θ_d / r) (x, y)
 //   (Project uses θ = atan2(|p.xy|, p.z), the same for p.z > 0.)
 //
-// Files: OpenCV FileStorage YAML as OpenCV's calibration sample writes it
-// (camera_matrix, distortion_coefficients, image_width, image_height; 8
-// coefficients are the rational model, `distortion_model: equidistant` marks
-// a fisheye), ROS camera_info YAML (distortion_model plumb_bob,
-// rational_polynomial or equidistant), or a Kalibr camchain YAML (cam0:
-// camera_model pinhole, distortion_model radtan or equidistant).
+// Files, read and written (CameraToText): OpenCV FileStorage YAML as OpenCV's
+// calibration sample writes it (camera_matrix, distortion_coefficients,
+// image_width, image_height; 8 coefficients are the rational model,
+// `distortion_model: equidistant` marks a fisheye), ROS camera_info YAML
+// (distortion_model plumb_bob, rational_polynomial or equidistant), or a
+// Kalibr camchain YAML (cam0: camera_model pinhole, distortion_model radtan
+// or equidistant).
 //
 //   StatusOr<Camera> camera = LoadCamera("camera.yaml");
 //   Eigen::Vector2d pixel = camera->Project(p_in_camera);
 //   std::optional<Eigen::Vector2d> ray = camera->Undistort(pixel);  // normalised x, y
+//   StatusOr<std::string> ros = CameraToText(*camera, CameraFileFormat::kRos);
 #pragma once
 
 #include <Eigen/Core>
@@ -88,7 +90,6 @@ struct Camera {
   // (on the branch where θ_d grows); nullopt where the model does not invert.
   std::optional<double> OffAxisAngle(const Eigen::Vector2d& pixel) const;
 
-
   Status Validate() const;
 };
 
@@ -140,6 +141,37 @@ struct CameraFileExtras {
 // other than kRadTan (whose file is exactly what OpenCV's sample writes).
 std::string CameraToOpenCvYaml(const Camera& camera, const CameraFileExtras& extras = {});
 Status SaveCamera(const Camera& camera, const std::string& path, const CameraFileExtras& extras = {});
+
+// The formats hexcal writes a camera in (camera_writers.cc); ParseCameraFile
+// reads all three back to the same camera, bit for bit.
+enum class CameraFileFormat {
+  kOpenCv,  // CameraToOpenCvYaml
+  kRos,     // CameraToRosYaml
+  kKalibr,  // CameraToKalibrYaml
+};
+const char* CameraFileFormatName(CameraFileFormat format);  // "opencv", "ros", "kalibr"
+std::optional<CameraFileFormat> CameraFileFormatFromName(const std::string& name);
+
+// ROS camera_info YAML, as camera_calibration_parsers writes it: image_width,
+// image_height, camera_name, camera_matrix, distortion_model (plumb_bob,
+// rational_polynomial, equidistant), distortion_coefficients, an identity
+// rectification_matrix and projection_matrix [K | 0] (a monocular camera
+// whose rectified image keeps fx fy cx cy). Every real number has a '.' (and
+// a signed exponent), so that PyYAML, which ROS's Python tools read with,
+// takes it for a float: it reads "1e-05" as a string. `camera_name`: letters,
+// digits and '_' (IsRosCameraName), as camera_info_manager requires.
+std::string CameraToRosYaml(const Camera& camera, const std::string& camera_name = "camera");
+bool IsRosCameraName(const std::string& name);
+// A Kalibr camchain of one camera (cam0: camera_model pinhole, intrinsics
+// [fu, fv, pu, pv], distortion_model radtan | equidistant, distortion_coeffs,
+// resolution [w, h]), numbers as for ROS (Kalibr also wants fu, fv, pu, pv
+// as floats). Refused, naming the model or the coefficient, for what Kalibr
+// cannot hold: the rational model, radtan with k3 ≠ 0 (Kalibr's radtan is
+// k1 k2 p1 p2), a principal point Kalibr's reader rejects (negative).
+StatusOr<std::string> CameraToKalibrYaml(const Camera& camera);
+// The file text in `format`; `ros_camera_name` is checked and used for kRos only.
+StatusOr<std::string> CameraToText(const Camera& camera, CameraFileFormat format,
+                                   const std::string& ros_camera_name = "camera");
 
 // OpenCV FileStorage YAML (read with yaml-cpp) or XML (cv::FileStorage),
 // recognised by its "%YAML:1." or "<?xml" header; else a Kalibr camchain
