@@ -25,7 +25,9 @@ expect() {
   output=$(timeout 20 "$hexcal" "$@" 2>&1)
   rc=$?
   if [ "$rc" -ne "$code" ]; then fail "exit code $rc, expected $code: hexcal $*"; echo "$output"; return; fi
-  if ! grep -Eq -- "$regex" <<<"$output"; then fail "output does not match /$regex/: hexcal $*"; echo "$output"; return; fi
+  if ! grep -Eq -- "$regex" <<<"$output"; then
+    fail "output does not match /$regex/: hexcal $*"; echo "$output"; return
+  fi
   echo "ok: hexcal $*"
 }
 
@@ -43,7 +45,8 @@ expect 0 "distortion: +k1 -0.28 k2 0.09 p1 0.0004 p2 -0.0003 k3 -0.012" camera s
 expect 0 "field of view: [0-9.]+ deg horizontal, [0-9.]+ deg vertical, [0-9.]+ deg diagonal" \
   camera show "$data/cameras/ros_camera_info.yaml"
 "$hexcal" camera show "$data/cameras/kalibr_tumvi_camchain.yaml" --json >tumvi.json || fail "camera show --json"
-check "show --json: one object, the TUM VI camera's numbers" tumvi.json "$data/cameras/kalibr_tumvi_camchain.yaml" <<'PY'
+check "show --json: one object, the TUM VI camera's numbers" tumvi.json \
+  "$data/cameras/kalibr_tumvi_camchain.yaml" <<'PY'
 import json, sys, yaml
 shown = json.load(open(sys.argv[1]))
 cam = yaml.safe_load(open(sys.argv[2]))["cam0"]
@@ -119,8 +122,10 @@ d = info["distortion_coefficients"]["data"]
 assert d == original["distortion_coeffs"] + ([0.0] if original["distortion_model"] == "radtan" else []), d
 assert [info["image_width"], info["image_height"]] == original["resolution"]
 PY
-  "$hexcal" camera show "$camera" --json >a.json && "$hexcal" camera show "${name}_opencv.yaml" --json >b.json ||
+  if ! { "$hexcal" camera show "$camera" --json >a.json && "$hexcal" camera show "${name}_opencv.yaml" --json >b.json; }
+  then
     fail "camera show $name"
+  fi
   check "$name: the same camera after three conversions (hexcal's reading)" a.json b.json <<'PY'
 import json, sys
 a, b = (json.load(open(path)) for path in sys.argv[1:3])
