@@ -107,11 +107,17 @@ int RunCameraConvert(const CameraConvertOptions& options, std::ostream& out, std
         err, "camera convert",
         Status::Error("--to: unknown format " + Excerpt(options.to) + "; accepted: opencv, ros, kalibr"));
   }
+  if (*format == CameraFileFormat::kRos && !IsRosCameraName(options.camera_name)) {
+    return ReportError(err, "camera convert",
+                       Status::Error("--camera-name: " + Excerpt(options.camera_name) +
+                                     " is not a ROS camera name: letters, digits and '_' only"));
+  }
   if (Status s = CheckOutputFree(options.out, options.force); !s.ok()) return ReportError(err, "camera convert", s);
   StatusOr<Camera> camera = LoadCamera(options.camera);
   if (!camera.ok()) return ReportError(err, "camera convert", camera.status());
+  // A refusal (Kalibr and the rational model, say) names the camera it is about.
   StatusOr<std::string> text = CameraToText(*camera, *format, options.camera_name);
-  if (!text.ok()) return ReportError(err, "camera convert", text.status());
+  if (!text.ok()) return ReportError(err, "camera convert", text.status().Prefixed(options.camera + ": "));
   if (Status s = WriteFileAtomically(options.out, *text); !s.ok()) return ReportError(err, "camera convert", s);
   if (options.json) {
     out << nlohmann::json{{"out", options.out},

@@ -80,7 +80,8 @@ assert matrix("rectification_matrix", 3, 3) == [1, 0, 0, 0, 1, 0, 0, 0, 1]
 assert matrix("projection_matrix", 3, 4) == [903.2, 0, 515.3, 0, 0, 903.2, 380.1, 0, 0, 0, 1, 0]
 PY
 # Kalibr's radtan has no k3: the simulated camera (k3 = -0.012) is refused, nothing written.
-expect 2 "a Kalibr camchain cannot hold this camera: k3 = -0.012, and Kalibr's radtan has k1 k2 p1 p2 only" \
+CANNOT="a Kalibr camchain cannot hold this camera"
+expect 2 "sim_ros.yaml: $CANNOT: k3 = -0.012, and Kalibr's radtan has k1 k2 p1 p2 only" \
   camera convert sim_ros.yaml --to kalibr --out never.yaml
 [ -e never.yaml ] && fail "a refused conversion wrote never.yaml"
 
@@ -150,7 +151,8 @@ assert info["distortion_model"] == "rational_polynomial", info["distortion_model
 assert info["distortion_coefficients"]["data"] == [0.4, -0.1, 1e-05, -0.0003, 0.02, 0.68, 0.02, 0.01], info
 assert info["camera_matrix"]["data"][0] == 500.0 and info["camera_name"] == "camera", info
 PY
-expect 2 "Kalibr has no rational model \(k1 k2 p1 p2 k3 k4 k5 k6\)" camera convert rational.yaml --to kalibr \
+expect 2 "rational.yaml: $CANNOT: Kalibr has no rational model \(k1 k2 p1 p2 k3 k4 k5 k6\)" \
+  camera convert rational.yaml --to kalibr \
   --out never.yaml
 [ -e never.yaml ] && fail "a refused conversion wrote never.yaml"
 
@@ -165,7 +167,8 @@ expect 2 "fifo.yaml: not a regular file \(a FIFO\)" camera convert fifo.yaml --t
 expect 2 "fifo.yaml: not a regular file \(a FIFO\)" camera show fifo.yaml
 expect 2 "--to: unknown format 'matlab'; accepted: opencv, ros, kalibr" camera convert rational.yaml --to matlab \
   --out x.yaml
-expect 2 "camera name 'left cam': ROS takes letters, digits and '_' only" camera convert rational.yaml --to ros \
+expect 2 "--camera-name: 'left cam' is not a ROS camera name: letters, digits and '_' only" camera convert \
+  rational.yaml --to ros \
   --out x.yaml --camera-name "left cam"
 [ -e x.yaml ] && fail "a refused conversion wrote x.yaml"
 expect 2 "out.yaml: exists; use --force to overwrite it" camera convert rational.yaml --to ros --out out.yaml
