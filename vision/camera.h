@@ -86,8 +86,8 @@ struct Camera {
   // Inverse of IdealPixel.
   Eigen::Vector2d DistortedPixel(const Eigen::Vector2d& ideal_pixel) const;
   // The angle (radians) between the optical axis and the ray a pixel sees:
-  // atan |Undistort(pixel)|, and for the fisheye θ itself, so past 90° too
-  // (on the branch where θ_d grows); nullopt where the model does not invert.
+  // atan |Undistort(pixel)|, and for the fisheye θ itself, so past 90° too, up
+  // to 180° (on the branch where θ_d grows); nullopt where the model does not invert.
   std::optional<double> OffAxisAngle(const Eigen::Vector2d& pixel) const;
 
   Status Validate() const;
@@ -157,8 +157,8 @@ std::optional<CameraFileFormat> CameraFileFormatFromName(const std::string& name
 // rational_polynomial, equidistant), distortion_coefficients, an identity
 // rectification_matrix and projection_matrix [K | 0] (a monocular camera
 // whose rectified image keeps fx fy cx cy). Every real number has a '.' (and
-// a signed exponent), so that PyYAML, which ROS's Python tools read with,
-// takes it for a float: it reads "1e-05" as a string. `camera_name`: letters,
+// its exponent, if any, a sign), so that PyYAML, which ROS's Python tools read
+// with, takes it for a float: it reads "1e-05" as a string, "903" as an int. `camera_name`: letters,
 // digits and '_' (IsRosCameraName), as camera_info_manager requires.
 std::string CameraToRosYaml(const Camera& camera, const std::string& camera_name = "camera");
 bool IsRosCameraName(const std::string& name);
