@@ -175,8 +175,18 @@ Status WriteFileAtomically(const std::string& path, const std::string& contents)
 }
 
 Status CheckOutputFree(const std::string& path, bool force) {
-  std::error_code error;
-  if (force || path.empty() || !std::filesystem::exists(path, error)) return Status::Ok();
+  struct stat info;
+  // stat follows links: the rename would replace a link to /dev/sda or to a
+  // pipe (/dev/stdout) with a file, which is no more what was meant.
+  if (path.empty() || ::stat(path.c_str(), &info) != 0) return Status::Ok();
+  if (S_ISDIR(info.st_mode)) return Status::Error(path + ": is a directory, not a file");
+  // --force or not: the rename would put a file where a device node, a FIFO
+  // or a socket was (as root, over /dev/null too).
+  if (!S_ISREG(info.st_mode)) {
+    return Status::Error(path + ": not a regular file (" + FileTypeName(info.st_mode) +
+                         "); hexcal replaces only files");
+  }
+  if (force) return Status::Ok();
   return Status::Error(path + ": exists; use --force to overwrite it");
 }
 

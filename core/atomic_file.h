@@ -36,14 +36,16 @@ constexpr size_t kMaxTableBytes = 256 * kMiB;  // CSV tables (poses, legs, measu
 constexpr size_t kMaxJsonBytes = 64 * kMiB;    // report.json
 constexpr size_t kMaxImageBytes = 512 * kMiB;  // PNG, JPEG, TIFF
 
+// Refuses to replace an existing output file unless the user gave --force:
+// "PATH: exists; use --force to overwrite it" (bad input), the same in every
+// command and workflow step. A folder, a FIFO, a device or a socket at PATH
+// (also behind a symlink) is refused even with --force: "PATH: not a regular
+// file (a FIFO); hexcal replaces only files". An empty path is free.
+Status CheckOutputFree(const std::string& path, bool force);
+
 // The whole file as bytes. Errors: missing file, a directory, not a regular
 // file (a FIFO, a device, a socket: refused at once, never waited on, also
 // behind a symlink), larger than `max_bytes`, unreadable.
-// Refuses to replace an existing output file unless the user gave --force:
-// "PATH: exists; use --force to overwrite it" (bad input), the same in every
-// command and workflow step. An empty path is free.
-Status CheckOutputFree(const std::string& path, bool force);
-
 StatusOr<std::string> ReadFileToString(const std::string& path, size_t max_bytes = kMaxYamlBytes);
 
 }  // namespace hexcal

@@ -191,6 +191,33 @@ TEST(AtomicFileTest, ReadingAFileOverItsSizeCapIsRefused) {
   EXPECT_TRUE(ReadFileToString(path, 2 * kMiB).ok());
 }
 
+// An output: a file is replaced only with --force; what is not a file never,
+// since the rename would put a file in place of a device node or a FIFO.
+TEST(AtomicFileTest, CheckOutputFreeRefusesWhatIsNotAFileEvenWithForce) {
+  TempDir dir;
+  const std::string file = dir.File("camera.yaml"), fifo = dir.File("fifo.yaml"), link = dir.File("null.yaml");
+  EXPECT_TRUE(CheckOutputFree(dir.File("new.yaml"), false).ok());
+  EXPECT_TRUE(CheckOutputFree("", false).ok());
+  WriteTextFile(file, "old");
+  const Status exists = CheckOutputFree(file, false);
+  EXPECT_EQ(exists.kind(), StatusKind::kBadInput);
+  EXPECT_EQ(exists.message(), file + ": exists; use --force to overwrite it");
+  EXPECT_TRUE(CheckOutputFree(file, true).ok());
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::filesystem::create_symlink("/dev/null", link);
+  for (bool force : {false, true}) {
+    EXPECT_EQ(CheckOutputFree(fifo, force).message(),
+              fifo + ": not a regular file (a FIFO); hexcal replaces only files");
+    EXPECT_EQ(CheckOutputFree(link, force).message(),
+              link + ": not a regular file (a character device); hexcal replaces only files");
+    EXPECT_EQ(CheckOutputFree(dir.path().string(), force).message(),
+              dir.path().string() + ": is a directory, not a file");
+  }
+  // A dangling link is free: the rename replaces the link, nothing behind it.
+  std::filesystem::create_symlink(dir.File("nowhere"), dir.File("dangling.yaml"));
+  EXPECT_TRUE(CheckOutputFree(dir.File("dangling.yaml"), false).ok());
+}
+
 }  // namespace
 }  // namespace hexcal
 

@@ -10,6 +10,8 @@ packages=(
   qtbase5-dev libqt5charts5-dev libqt5svg5-dev
   libvtk9-dev libvtk9-qt-dev mpi-default-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
+  # PyYAML: tests/cli/camera_convert.sh reads the ROS and Kalibr files as their Python tools do.
+  python3-yaml
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth libgl1-mesa-dri
   clang libclang-rt-14-dev

@@ -56,12 +56,13 @@ double FisheyeThetaDSlope(const std::array<double, 8>& k, double theta) {
 }
 
 // The end of the branch where θ_d grows from θ = 0: the first zero of its
-// slope in (0, π/2], else π/2 (sampled at 1.4° steps, then bisected).
-double FisheyeMonotoneLimit(const std::array<double, 8>& k) {
+// slope in (0, max_theta], else max_theta (sampled at max_theta / 64 steps,
+// 1.4° for π/2, then bisected).
+double FisheyeMonotoneLimit(const std::array<double, 8>& k, double max_theta) {
   constexpr int kSamples = 64;
   double previous = 0;
   for (int i = 1; i <= kSamples; ++i) {
-    const double theta = kHalfPi * i / kSamples;
+    const double theta = max_theta * i / kSamples;
     if (FisheyeThetaDSlope(k, theta) > 0) {
       previous = theta;
       continue;
@@ -73,21 +74,16 @@ double FisheyeMonotoneLimit(const std::array<double, 8>& k) {
     }
     return lo;
   }
-  return kHalfPi;
+  return max_theta;
 }
 
-// Normalised undistorted (x, y) of distorted normalised `target` for the
-// fisheye: θ from θ_d(θ) = |target| by Newton kept inside a bracket (bisection
-// when a step leaves it), on [0, FisheyeMonotoneLimit].
-std::optional<Eigen::Vector2d> UndistortFisheye(const Camera& camera, const Eigen::Vector2d& target,
-                                                const Eigen::Vector2d* start) {
-  const auto& k = camera.distortion;
-  const double theta_d = target.norm();
-  if (!std::isfinite(theta_d)) return std::nullopt;
-  if (theta_d == 0) return Eigen::Vector2d(0, 0);
-  double lo = 0, hi = FisheyeMonotoneLimit(k);
-  if (!(FisheyeThetaD(k, hi) > theta_d)) return std::nullopt;  // past the branch, or at 90° and beyond
-  double theta = start ? std::atan(start->norm()) : theta_d;
+// θ of the fisheye from θ_d(θ) = theta_d (> 0) by Newton kept inside a
+// bracket (bisection when a step leaves it), on [0, FisheyeMonotoneLimit];
+// nullopt past that branch or at max_theta and beyond. `theta` starts the
+// search (ignored outside the bracket).
+std::optional<double> FisheyeTheta(const std::array<double, 8>& k, double theta_d, double theta, double max_theta) {
+  double lo = 0, hi = FisheyeMonotoneLimit(k, max_theta);
+  if (!(FisheyeThetaD(k, hi) > theta_d)) return std::nullopt;
   if (!(theta > lo && theta < hi)) theta = theta_d < hi ? theta_d : 0.5 * (lo + hi);
   for (int iteration = 0; iteration < 100; ++iteration) {
     const double f = FisheyeThetaD(k, theta) - theta_d;
@@ -99,7 +95,20 @@ std::optional<Eigen::Vector2d> UndistortFisheye(const Camera& camera, const Eige
     theta = next;
     if (converged) break;
   }
-  if (!(theta < kHalfPi)) return std::nullopt;
+  return theta;
+}
+
+// Normalised undistorted (x, y) of distorted normalised `target` for the
+// fisheye (FisheyeTheta); nullopt at 90° and beyond, where there is no (x, y).
+std::optional<Eigen::Vector2d> UndistortFisheye(const Camera& camera, const Eigen::Vector2d& target,
+                                                const Eigen::Vector2d* start) {
+  const double theta_d = target.norm();
+  if (!std::isfinite(theta_d)) return std::nullopt;
+  if (theta_d == 0) return Eigen::Vector2d(0, 0);
+  const std::optional<double> solved =
+      FisheyeTheta(camera.distortion, theta_d, start ? std::atan(start->norm()) : theta_d, kHalfPi);
+  if (!solved || !(*solved < kHalfPi)) return std::nullopt;
+  const double theta = *solved;
   const Eigen::Vector2d xy = target * (std::tan(theta) / theta_d);
   if (!xy.allFinite() || !((camera.Distort(xy) - target).norm() <= 1e-11 * std::max(1.0, theta_d))) return std::nullopt;
   return xy;
@@ -220,6 +229,36 @@ std::optional<Eigen::Vector2d> Camera::IdealPixel(const Eigen::Vector2d& pixel) 
 Eigen::Vector2d Camera::DistortedPixel(const Eigen::Vector2d& ideal_pixel) const {
   const Eigen::Vector2d d = Distort({(ideal_pixel.x() - cx) / fx, (ideal_pixel.y() - cy) / fy});
   return {fx * d.x() + cx, fy * d.y() + cy};
+}
+
+std::optional<double> Camera::OffAxisAngle(const Eigen::Vector2d& pixel) const {
+  if (model != CameraModel::kPinholeEqui) {
+    const std::optional<Eigen::Vector2d> xy = Undistort(pixel);
+    if (!xy) return std::nullopt;
+    return std::atan(xy->norm());
+  }
+  const double theta_d = Eigen::Vector2d((pixel.x() - cx) / fx, (pixel.y() - cy) / fy).norm();
+  if (!std::isfinite(theta_d)) return std::nullopt;
+  if (theta_d == 0) return 0.0;
+  // Up to 180°: Project takes θ = atan2(|p.xy|, p.z), so rays behind the image plane have pixels too.
+  const std::optional<double> theta = FisheyeTheta(distortion, theta_d, theta_d, 2 * kHalfPi);
+  // The same check as UndistortFisheye's: the angle must give the pixel back.
+  if (!theta || !(std::abs(FisheyeThetaD(distortion, *theta) - theta_d) <= 1e-11 * std::max(1.0, theta_d)))
+    return std::nullopt;
+  return theta;
+}
+
+FieldOfView CameraFieldOfView(const Camera& camera) {
+  // Pixel centres are whole numbers (docs/conventions.md): the image's outer
+  // edge is half a pixel beyond the first and last centres.
+  const double left = -0.5, top = -0.5, right = camera.width - 0.5, bottom = camera.height - 0.5;
+  const auto span = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) -> std::optional<double> {
+    const std::optional<double> angle_a = camera.OffAxisAngle(a), angle_b = camera.OffAxisAngle(b);
+    if (!angle_a || !angle_b) return std::nullopt;
+    return (*angle_a + *angle_b) * (90.0 / kHalfPi);
+  };
+  return {span({left, camera.cy}, {right, camera.cy}), span({camera.cx, top}, {camera.cx, bottom}),
+          span({left, top}, {right, bottom})};
 }
 
 Status Camera::Validate() const {

@@ -19,16 +19,18 @@
 //   θ = atan(r),  θ_d = θ (1 + k1 θ² + k2 θ⁴ + k3 θ⁶ + k4 θ⁸),  (x_d, y_d) = (θ_d / r) (x, y)
 //   (Project uses θ = atan2(|p.xy|, p.z), the same for p.z > 0.)
 //
-// Files: OpenCV FileStorage YAML as OpenCV's calibration sample writes it
-// (camera_matrix, distortion_coefficients, image_width, image_height; 8
-// coefficients are the rational model, `distortion_model: equidistant` marks
-// a fisheye), ROS camera_info YAML (distortion_model plumb_bob,
-// rational_polynomial or equidistant), or a Kalibr camchain YAML (cam0:
-// camera_model pinhole, distortion_model radtan or equidistant).
+// Files, read and written (CameraToText): OpenCV FileStorage YAML as OpenCV's
+// calibration sample writes it (camera_matrix, distortion_coefficients,
+// image_width, image_height; 8 coefficients are the rational model,
+// `distortion_model: equidistant` marks a fisheye), ROS camera_info YAML
+// (distortion_model plumb_bob, rational_polynomial or equidistant), or a
+// Kalibr camchain YAML (cam0: camera_model pinhole, distortion_model radtan
+// or equidistant).
 //
 //   StatusOr<Camera> camera = LoadCamera("camera.yaml");
 //   Eigen::Vector2d pixel = camera->Project(p_in_camera);
 //   std::optional<Eigen::Vector2d> ray = camera->Undistort(pixel);  // normalised x, y
+//   StatusOr<std::string> ros = CameraToText(*camera, CameraFileFormat::kRos);
 #pragma once
 
 #include <Eigen/Core>
@@ -83,6 +85,10 @@ struct Camera {
   std::optional<Eigen::Vector2d> IdealPixel(const Eigen::Vector2d& pixel) const;
   // Inverse of IdealPixel.
   Eigen::Vector2d DistortedPixel(const Eigen::Vector2d& ideal_pixel) const;
+  // The angle (radians) between the optical axis and the ray a pixel sees:
+  // atan |Undistort(pixel)|, and for the fisheye θ itself, so past 90° too, up
+  // to 180° (on the branch where θ_d grows); nullopt where the model does not invert.
+  std::optional<double> OffAxisAngle(const Eigen::Vector2d& pixel) const;
 
   Status Validate() const;
 };
@@ -108,6 +114,17 @@ class IdealPixelMap {
   std::vector<float> xy_;  // float: 1e-4 px at 1000 px, 4× under the fit's noise floor
 };
 
+// The angles the image spans, in degrees, each the sum of the off-axis angles
+// (Camera::OffAxisAngle) of two opposite points of the image's outer edge:
+// horizontal through the principal point's row (u = -0.5 and width - 0.5,
+// pixel centres at whole numbers), vertical through its column, diagonal
+// through the top-left and bottom-right corners. nullopt where a point is past
+// what the model inverts (a strong fisheye's corners, say).
+struct FieldOfView {
+  std::optional<double> horizontal_deg, vertical_deg, diagonal_deg;
+};
+FieldOfView CameraFieldOfView(const Camera& camera);
+
 // What a calibration adds to a camera file (all optional).
 struct CameraFileExtras {
   std::string calibration_time;         // "2026-11-22 10:03:00"
@@ -124,6 +141,37 @@ struct CameraFileExtras {
 // other than kRadTan (whose file is exactly what OpenCV's sample writes).
 std::string CameraToOpenCvYaml(const Camera& camera, const CameraFileExtras& extras = {});
 Status SaveCamera(const Camera& camera, const std::string& path, const CameraFileExtras& extras = {});
+
+// The formats hexcal writes a camera in (camera_writers.cc); ParseCameraFile
+// reads all three back to the same camera, bit for bit.
+enum class CameraFileFormat {
+  kOpenCv,  // CameraToOpenCvYaml
+  kRos,     // CameraToRosYaml
+  kKalibr,  // CameraToKalibrYaml
+};
+const char* CameraFileFormatName(CameraFileFormat format);  // "opencv", "ros", "kalibr"
+std::optional<CameraFileFormat> CameraFileFormatFromName(const std::string& name);
+
+// ROS camera_info YAML, as camera_calibration_parsers writes it: image_width,
+// image_height, camera_name, camera_matrix, distortion_model (plumb_bob,
+// rational_polynomial, equidistant), distortion_coefficients, an identity
+// rectification_matrix and projection_matrix [K | 0] (a monocular camera
+// whose rectified image keeps fx fy cx cy). Every real number has a '.' (and
+// its exponent, if any, a sign), so that PyYAML, which ROS's Python tools read
+// with, takes it for a float: it reads "1e-05" as a string, "903" as an int. `camera_name`: letters,
+// digits and '_' (IsRosCameraName), as camera_info_manager requires.
+std::string CameraToRosYaml(const Camera& camera, const std::string& camera_name = "camera");
+bool IsRosCameraName(const std::string& name);
+// A Kalibr camchain of one camera (cam0: camera_model pinhole, intrinsics
+// [fu, fv, pu, pv], distortion_model radtan | equidistant, distortion_coeffs,
+// resolution [w, h]), numbers as for ROS (Kalibr also wants fu, fv, pu, pv
+// as floats). Refused, naming the model or the coefficient, for what Kalibr
+// cannot hold: the rational model, radtan with k3 ≠ 0 (Kalibr's radtan is
+// k1 k2 p1 p2), a principal point Kalibr's reader rejects (negative).
+StatusOr<std::string> CameraToKalibrYaml(const Camera& camera);
+// The file text in `format`; `ros_camera_name` is checked and used for kRos only.
+StatusOr<std::string> CameraToText(const Camera& camera, CameraFileFormat format,
+                                   const std::string& ros_camera_name = "camera");
 
 // OpenCV FileStorage YAML (read with yaml-cpp) or XML (cv::FileStorage),
 // recognised by its "%YAML:1." or "<?xml" header; else a Kalibr camchain

@@ -1,13 +1,11 @@
-// Camera files (camera.h): OpenCV FileStorage YAML and XML, ROS camera_info
-// YAML and Kalibr camchain YAML in; OpenCV FileStorage YAML out.
+// Camera files in (camera.h): OpenCV FileStorage YAML and XML, ROS camera_info
+// YAML and Kalibr camchain YAML. Out: camera_writers.cc.
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <locale>
 #include <optional>
-#include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/csv.h"
@@ -17,21 +15,10 @@
 namespace hexcal {
 namespace {
 
-constexpr int kOpenCvRationalModelFlag = 0x4000;  // cv::CALIB_RATIONAL_MODEL, in the file's `flags`
-
 // node[key] when node is a mapping, else a null node (never throws).
 YAML::Node MapChild(const YAML::Node& node, const char* key) {
   if (!node || !node.IsMap()) return YAML::Node();
   return node[key];
-}
-
-std::string Matrix(const std::string& name, int rows, int cols, const std::vector<double>& data) {
-  std::string text = name + ": !!opencv-matrix\n   rows: " + std::to_string(rows) +
-                     "\n   cols: " + std::to_string(cols) + "\n   dt: d\n   data: [ ";
-  // NaN: a standard deviation the views do not determine (YAML's and OpenCV's spelling).
-  for (size_t i = 0; i < data.size(); ++i)
-    text += (i ? ", " : "") + (std::isfinite(data[i]) ? FormatNumber(data[i]) : ".nan");
-  return text + " ]\n";
 }
 
 // The `distortion_model` names of ROS (plumb_bob, rational_polynomial,
@@ -41,19 +28,6 @@ std::optional<CameraModel> ModelFromDistortionName(const std::string& name) {
   if (name == "rational_polynomial" || name == "rational") return CameraModel::kRational;
   if (name == "equidistant" || name == "fisheye" || name == "pinhole-equi") return CameraModel::kPinholeEqui;
   return std::nullopt;
-}
-
-// The name hexcal writes (ROS's).
-const char* DistortionName(CameraModel model) {
-  switch (model) {
-    case CameraModel::kRational:
-      return "rational_polynomial";
-    case CameraModel::kPinholeEqui:
-      return "equidistant";
-    case CameraModel::kRadTan:
-      break;
-  }
-  return "plumb_bob";
 }
 
 std::string Join(const std::vector<std::string>& names) {
@@ -313,41 +287,6 @@ class CameraReader {
 };
 
 }  // namespace
-
-std::string CameraToOpenCvYaml(const Camera& camera, const CameraFileExtras& extras) {
-  std::ostringstream out;
-  out.imbue(std::locale::classic());
-  out << "%YAML:1.0\n---\n";
-  std::istringstream comment(extras.comment);
-  for (std::string line; std::getline(comment, line);) out << "# " << line << "\n";
-  if (!extras.calibration_time.empty()) out << "calibration_time: \"" << extras.calibration_time << "\"\n";
-  if (extras.views > 0) out << "nr_of_frames: " << extras.views << "\n";
-  out << "image_width: " << camera.width << "\nimage_height: " << camera.height << "\n";
-  out << "flags: " << (camera.model == CameraModel::kRational ? kOpenCvRationalModelFlag : 0) << "\n";
-  // OpenCV's readers ignore this key; hexcal's and ROS's read the model from it.
-  if (camera.model != CameraModel::kRadTan) out << "distortion_model: " << DistortionName(camera.model) << "\n";
-  out << Matrix("camera_matrix", 3, 3, {camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1});
-  const int coefficients = camera.NumCoefficients();
-  out << Matrix("distortion_coefficients", coefficients, 1,
-                std::vector<double>(camera.distortion.begin(), camera.distortion.begin() + coefficients));
-  if (extras.rms_px >= 0) out << "avg_reprojection_error: " << FormatNumber(extras.rms_px) << "\n";
-  if (!extras.std_dev.empty()) {
-    const std::vector<std::string> names = camera.ParameterNames();
-    if (extras.std_dev.size() == names.size()) out << "# standard deviations of " << Join(names) << "\n";
-    if (!std::all_of(extras.std_dev.begin(), extras.std_dev.end(), [](double s) { return std::isfinite(s); }))
-      out << "# .nan: not determined by the views (the model has more freedom than they constrain)\n";
-    out << Matrix("intrinsics_std_dev", static_cast<int>(extras.std_dev.size()), 1, extras.std_dev);
-  }
-  if (!extras.per_view_rms_px.empty()) {
-    out << Matrix("per_view_reprojection_errors", static_cast<int>(extras.per_view_rms_px.size()), 1,
-                  extras.per_view_rms_px);
-  }
-  return out.str();
-}
-
-Status SaveCamera(const Camera& camera, const std::string& path, const CameraFileExtras& extras) {
-  return WriteFileAtomically(path, CameraToOpenCvYaml(camera, extras));
-}
 
 StatusOr<Camera> ParseCameraFile(const std::string& text, const std::string& source) {
   const CameraReader reader(source);

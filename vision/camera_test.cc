@@ -153,6 +153,43 @@ TEST(CameraTest, FisheyeUndistortsNearTheAxisAndAtWideAngles) {
   EXPECT_FALSE(camera.Undistort({camera.cx + 1.001 * theta_d_max * camera.fx, camera.cy}).has_value());
 }
 
+TEST(CameraTest, FieldOfViewSumsTheOffAxisAnglesOfTheImageEdges) {
+  Camera pinhole = SimulatedCamera();
+  pinhole.distortion = {};
+  const FieldOfView ideal = CameraFieldOfView(pinhole);
+  ASSERT_TRUE(ideal.horizontal_deg && ideal.vertical_deg && ideal.diagonal_deg);
+  // The outer edge is half a pixel beyond the first and last pixel centres.
+  const double left = pinhole.cx + 0.5, right = 1023.5 - pinhole.cx, top = pinhole.cy + 0.5,
+               bottom = 767.5 - pinhole.cy;
+  EXPECT_NEAR(*ideal.horizontal_deg, RadToDeg(std::atan(left / pinhole.fx) + std::atan(right / pinhole.fx)), 1e-12);
+  EXPECT_NEAR(*ideal.vertical_deg, RadToDeg(std::atan(top / pinhole.fy) + std::atan(bottom / pinhole.fy)), 1e-12);
+  EXPECT_NEAR(*ideal.diagonal_deg,
+              RadToDeg(std::atan(std::hypot(left / pinhole.fx, top / pinhole.fy)) +
+                       std::atan(std::hypot(right / pinhole.fx, bottom / pinhole.fy))),
+              1e-12);
+  // Barrel distortion (k1 < 0) shows more of the world on the same sensor.
+  const FieldOfView barrel = CameraFieldOfView(SimulatedCamera());
+  ASSERT_TRUE(barrel.horizontal_deg && barrel.diagonal_deg);
+  EXPECT_GT(*barrel.horizontal_deg, *ideal.horizontal_deg + 1);
+  // The fisheye's angle inverts Project, past 90° too (where Undistort has no (x, y)).
+  const Camera fisheye = SimulatedFisheyeCamera();
+  for (double degrees : {0.0, 10.0, 45.0, 89.0, 95.0, 110.0}) {
+    const double theta = DegToRad(degrees);
+    const Eigen::Vector2d pixel =
+        fisheye.Project({std::sin(theta) * std::cos(0.3), std::sin(theta) * std::sin(0.3), std::cos(theta)});
+    const std::optional<double> angle = fisheye.OffAxisAngle(pixel);
+    ASSERT_TRUE(angle.has_value()) << degrees;
+    EXPECT_NEAR(*angle, theta, 1e-12) << degrees;
+  }
+  // A lens whose θ_d(θ) turns back: no angle past the turn, so no field of view.
+  Camera turning = fisheye;
+  turning.distortion = {-0.3, 0, 0, 0};  // θ_d at most 0.608, at θ = 60.4°
+  turning.fx = turning.fy = 200;         // the image's edge at θ_d = 2.6
+  const FieldOfView none = CameraFieldOfView(turning);
+  EXPECT_FALSE(none.horizontal_deg.has_value());
+  EXPECT_FALSE(none.diagonal_deg.has_value());
+}
+
 TEST(CameraTest, IdealPixelMapMatchesIdealPixel) {
   for (const Camera& camera : {SimulatedCamera(), RationalCamera(), SimulatedFisheyeCamera()}) {
     const IdealPixelMap map(camera);

@@ -24,6 +24,7 @@ constexpr CommandEntry kCommands[] = {
     {"verify", AddVerifyCommand},
     {"sim-camera", AddSimCameraCommand},
     {"export", AddExportCommand},
+    {"camera", AddCameraCommand},
 };
 }  // namespace
 

@@ -34,6 +34,7 @@ void AddAcquireCommand(CLI::App& app, int* exit_code);
 void AddSimCameraCommand(CLI::App& app, int* exit_code);
 void AddVerifyCommand(CLI::App& app, int* exit_code);
 void AddExportCommand(CLI::App& app, int* exit_code);
+void AddCameraCommand(CLI::App& app, int* exit_code);
 
 // Builds the whole `hexcal` application; `exit_code` receives the command's code.
 void AddAllCommands(CLI::App& app, int* exit_code);
