@@ -41,6 +41,9 @@ class Controller {
   virtual StatusOr<LegReadings> ReadLegs() = 0;
   // "sim controller (inria-left-hand, seed 1)": for logs.
   virtual std::string Describe() const = 0;
+  // The settle time when the operator gives none, seconds: what this kind of
+  // machine needs before a frame shows the pose it reports (see each one).
+  virtual double DefaultSettleSeconds() const = 0;
 };
 
 struct ControllerOptions {

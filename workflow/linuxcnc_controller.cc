@@ -8,9 +8,11 @@
 #include <thread>
 #include <vector>
 
+#include "core/forward_kinematics.h"
+#include "core/straight_moves.h"
 #include "workflow/line_client.h"
-#include "workflow/linuxcnc_reply.h"
 #include "workflow/linuxcnc_geometry.h"
+#include "workflow/linuxcnc_reply.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -39,6 +41,10 @@ class LinuxCncController final : public Controller {
   Status SendMove(const Vector6d& world, const std::string& text);
   Status WaitSettled(double settle_seconds) override;
   StatusOr<LegReadings> ReadLegs() override;
+  // A machine reports "in position" before its structure stops ringing, and
+  // a camera's frame lags (hexcal sim-camera renders after the status
+  // update): with 0, frames showed the previous pose (docs/acquisition.md).
+  double DefaultSettleSeconds() const override { return 0.5; }
   std::string Describe() const override {
     return "LinuxCNC at " + client_.peer() + " (" + server_ + ", machine in " + MachineUnitName(unit_) + ", robot " +
            robot_.name + " in " + LengthUnitName(robot_.length_unit) + ")";
@@ -68,6 +74,8 @@ class LinuxCncController final : public Controller {
     bool in_position = false;  // and the platform is at the commanded pose
   };
   StatusOr<Motion> PollMotion();
+  // The platform's world pose now (machine units, degrees): see the definition.
+  StatusOr<Vector6d> WherePlatformIs();
 
   LineClient client_;
   Robot robot_;
@@ -236,17 +244,27 @@ Status LinuxCncController::MoveTo(const Vector6d& pose) {
   // Messages read now belong to earlier commands: WaitSettled's are this move's.
   if (Status s = DiscardOldErrors(); !s.ok()) return s;
   const Vector6d target = GenhexkinsWorldFromPose(robot_, pose, unit_);
-  StatusOr<Vector6d> here = AskSixNumbers("get abs_act_pos", "ABS_ACT_POS");
+  StatusOr<Vector6d> here = WherePlatformIs();
   if (!here.ok()) return here.status();
   // G0 is a straight line in X Y Z A B C, along which a leg can pass its
   // stroke between two poses within it (and stop the machine at a soft
-  // limit): then the move goes through the workspace centre.
-  if (!StraightMoveWithinStrokes(robot_, *here, target, unit_)) {
-    const Vector6d via = GenhexkinsWorldFromPose(robot_, WorkspaceCentre(robot_), unit_);
-    if (!StraightMoveWithinStrokes(robot_, *here, via, unit_) || !StraightMoveWithinStrokes(robot_, via, target, unit_))
-      return Status::Error("pose " + PoseText(pose) + ": no straight move from where the platform is, nor one " +
-                           "through the workspace centre, keeps every leg within its stroke");
-    if (Status s = SendMove(via, "the workspace centre " + PoseText(WorkspaceCentre(robot_))); !s.ok()) return s;
+  // limit): the move goes through waypoints that keep every leg within its
+  // stroke (core/straight_moves.h), each sent as its own G0.
+  const double scale = MachineUnitsPerRobotUnit(robot_, unit_);
+  const auto motion = [scale](Vector6d world) {
+    world.head<3>() /= scale;
+    return world;
+  };
+  StraightMoveOptions options;
+  options.vias = {MotionVectorFromPose(robot_.PoseFromVector(WorkspaceCentre(robot_)))};
+  StatusOr<std::vector<Vector6d>> moves = PlanStraightMoves(robot_, motion(*here), motion(target), options);
+  if (!moves.ok()) return Status::Error("pose " + PoseText(pose) + ": " + moves.status().message());
+  for (size_t k = 0; k + 1 < moves->size(); ++k) {
+    Vector6d waypoint = (*moves)[k];
+    waypoint.head<3>() *= scale;
+    const std::string text = "waypoint " + std::to_string(k + 1) + " of " + std::to_string(moves->size() - 1) +
+                             " on the way to " + PoseText(pose);
+    if (Status s = SendMove(waypoint, text); !s.ok()) return s;
     if (Status s = WaitSettled(0); !s.ok()) return s;
   }
   return SendMove(target, PoseText(pose));
@@ -258,10 +276,33 @@ StatusOr<LinuxCncController::Motion> LinuxCncController::PollMotion() {
   Motion motion;
   motion.idle = UpperCase((*program)[0]) == "IDLE";
   if (!motion.idle) return motion;
-  StatusOr<Vector6d> actual = AskSixNumbers("get abs_act_pos", "ABS_ACT_POS");
-  if (!actual.ok()) return actual.status();
-  motion.in_position = (*actual - target_).cwiseAbs().maxCoeff() <= options_.position_tolerance;
+  // In position: the joints (the drives' feedback) at the target's IK. Not
+  // `abs_act_pos`: it is genhexkins' forward kinematics of the joints, whose
+  // Newton iteration fails at large rotations (genhexkins.fwd-kins-fail) and
+  // then reports a stale pose (seen: the home pose at A = 35°, C = −60°).
+  StatusOr<Vector6d> joints = AskSixNumbers("get joint_pos", "JOINT_POS");
+  if (!joints.ok()) return joints.status();
+  const Vector6d expected =
+      JointsFromReadings(robot_, InverseKinematics(robot_, PoseFromGenhexkinsWorld(robot_, target_, unit_)), unit_);
+  motion.in_position = (*joints - expected).cwiseAbs().maxCoeff() <= options_.position_tolerance;
   return motion;
+}
+
+StatusOr<Vector6d> LinuxCncController::WherePlatformIs() {
+  // The commanded world pose is the trajectory planner's own (exact where the
+  // last move ended or stopped); hexcal's FK of the joints from there is
+  // where the platform is (genhexkins' FK, `abs_act_pos`, can fail: above).
+  StatusOr<Vector6d> commanded = AskSixNumbers("get abs_cmd_pos", "ABS_CMD_POS");
+  if (!commanded.ok()) return commanded.status();
+  StatusOr<Vector6d> joints = AskSixNumbers("get joint_pos", "JOINT_POS");
+  if (!joints.ok()) return joints.status();
+  StatusOr<LocalFkResult> fk = ForwardKinematicsLocal(robot_, ReadingsFromJoints(robot_, *joints, unit_),
+                                                      PoseFromGenhexkinsWorld(robot_, *commanded, unit_));
+  if (!fk.ok())
+    return Error("where is the platform? FK of the joints " + SixText(*joints) + ": " + fk.status().message());
+  Vector6d here = GenhexkinsWorldFromPose(robot_, robot_.VectorFromPose(fk->pose), unit_);
+  for (int k = 3; k < 6; ++k) here[k] += 360 * std::round(((*commanded)[k] - here[k]) / 360);  // the machine's turn
+  return here;
 }
 
 Status LinuxCncController::WaitSettled(double settle_seconds) {
