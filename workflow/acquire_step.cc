@@ -1,5 +1,6 @@
 #include "workflow/acquire_step.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +13,7 @@
 #include "core/robot_io.h"
 #include "core/session.h"
 #include "vision/image_codecs.h"
+#include "workflow/reading_check.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_edits.h"
 #include "workflow/sim_world.h"
@@ -58,15 +60,13 @@ Status RemoveImageWithoutRow(const std::string& dir, const std::string& image, c
 Status DriveAndCapture(const Vector6d& pose, Controller& controller, FrameSource& camera, const AcquireOptions& options,
                        const JobHooks& hooks, cv::Mat* frame, LegReadings* readings) {
   if (Status s = controller.MoveTo(pose); !s.ok()) return s;
-  if (Status s = controller.WaitSettled(options.settle_seconds); !s.ok()) return s;
+  const double settle = options.settle_seconds.value_or(controller.DefaultSettleSeconds());
+  if (Status s = controller.WaitSettled(settle); !s.ok()) return s;
   if (hooks.Cancelled()) return Status::Cancelled();
   StatusOr<cv::Mat> grabbed = camera.Grab(std::chrono::milliseconds(options.grab_timeout_ms));
   if (!grabbed.ok()) return grabbed.status();
   StatusOr<LegReadings> legs = controller.ReadLegs();
   if (!legs.ok()) return legs.status();
-  for (int i = 0; i < kNumLegs; ++i)
-    if (!std::isfinite((*legs)[i]))
-      return Status::Failed(controller.Describe() + ": leg " + std::to_string(i + 1) + " reads no number");
   *frame = std::move(*grabbed);
   *readings = *legs;
   return Status::Ok();
@@ -85,6 +85,46 @@ StatusOr<std::vector<Vector6d>> LoadRequestedPoses(const AcquireRequest& request
   return LoadPoses(path);
 }
 
+// AcquirePose; *refused (if given) says the controller's readings were refused.
+StatusOr<PoseRecord> AcquireOnePose(const std::string& dir, int pose_index, const Vector6d& pose,
+                                    Controller& controller, FrameSource& camera, const AcquireOptions& options,
+                                    const JobHooks& hooks, bool* refused) {
+  const auto start = std::chrono::steady_clock::now();
+  // Read before the machine moves: a session whose robot cannot be loaded is
+  // refused before anything moves.
+  StatusOr<ReadingCheck> check = SessionReadingCheck(dir);
+  if (!check.ok()) return check.status();
+  PoseRecord record;
+  record.index = pose_index;
+  record.image = AcquiredImageName(pose_index);
+  record.pose = pose;
+  record.holdout = options.holdout_every > 0 && pose_index % options.holdout_every == options.holdout_every - 1;
+  cv::Mat frame;
+  if (Status s = DriveAndCapture(pose, controller, camera, options, hooks, &frame, &record.readings); !s.ok()) return s;
+  if (Status s = CheckReadings(*check, record.image, pose, record.readings); !s.ok()) {
+    if (refused) *refused = true;
+    return Status::Failed(controller.Describe() + ": " + s.message());
+  }
+  StatusOr<std::string> png = EncodePng(frame);  // lossless: the corners are measured in it
+  if (!png.ok()) return png.status().Prefixed(record.image + ": ");
+
+  StatusOr<SessionLock> lock = SessionLock::Acquire(dir, options.wait);
+  if (!lock.ok()) return lock.status();
+  StatusOr<std::set<std::string>> recorded = ImagesWithRows(dir);
+  if (!recorded.ok()) return recorded.status();
+  if (recorded->count(record.image)) return Status::Error(dir + ": " + record.image + " is recorded already");
+  if (Status s = RemoveImageWithoutRow(dir, record.image, hooks); !s.ok()) return s;
+  LegsRow row;
+  row.image = record.image;
+  row.legs = record.readings;
+  row.holdout = record.holdout;
+  const EditOutcome outcome = RecordCaptureBytes(dir, *png, row, {false, options.wait});
+  if (!outcome.status.ok()) return outcome.status;
+  if (outcome.conflict) return Status::Error(outcome.conflict_text);
+  record.seconds = SecondsSince(start);
+  return record;
+}
+
 // One plan row: skipped when recorded, else acquired; a failure is recorded
 // in the result unless it stops the run.
 StatusOr<PoseRecord> RunOnePose(const AcquireRequest& request, int index, const Vector6d& pose,
@@ -98,8 +138,12 @@ StatusOr<PoseRecord> RunOnePose(const AcquireRequest& request, int index, const 
     skipped.state = PoseState::kAlreadyRecorded;
     return skipped;
   }
-  StatusOr<PoseRecord> done = AcquirePose(request.session, index, pose, controller, camera, request.options, hooks);
-  if (done.ok() || StopsTheRun(done.status())) return done;
+  bool refused = false;
+  StatusOr<PoseRecord> done =
+      AcquireOnePose(request.session, index, pose, controller, camera, request.options, hooks, &refused);
+  // Readings refused mean a controller that cannot be trusted: the next
+  // pose's would not be either.
+  if (done.ok() || refused || StopsTheRun(done.status())) return done;
   PoseRecord failed = skipped;
   failed.state = PoseState::kFailed;
   failed.error = done.status().message();
@@ -137,8 +181,8 @@ Status WriteOrCheckTruth(const SimWorld& world, const std::string& dir, uint64_t
 }  // namespace
 
 bool AcquireOptions::IsValid(std::string* error) const {
-  if (!(settle_seconds >= 0 && settle_seconds <= 600)) {
-    *error = "--settle must be between 0 and 600 seconds, got " + FormatNumber(settle_seconds);
+  if (settle_seconds && !(*settle_seconds >= 0 && *settle_seconds <= 600)) {
+    *error = "--settle must be between 0 and 600 seconds, got " + FormatNumber(*settle_seconds);
     return false;
   }
   if (grab_timeout_ms < 1 || grab_timeout_ms > 600000) {
@@ -178,32 +222,7 @@ int AcquireResult::Count(PoseState state) const {
 
 StatusOr<PoseRecord> AcquirePose(const std::string& dir, int pose_index, const Vector6d& pose, Controller& controller,
                                  FrameSource& camera, const AcquireOptions& options, const JobHooks& hooks) {
-  const auto start = std::chrono::steady_clock::now();
-  PoseRecord record;
-  record.index = pose_index;
-  record.image = AcquiredImageName(pose_index);
-  record.pose = pose;
-  record.holdout = options.holdout_every > 0 && pose_index % options.holdout_every == options.holdout_every - 1;
-  cv::Mat frame;
-  if (Status s = DriveAndCapture(pose, controller, camera, options, hooks, &frame, &record.readings); !s.ok()) return s;
-  StatusOr<std::string> png = EncodePng(frame);  // lossless: the corners are measured in it
-  if (!png.ok()) return png.status().Prefixed(record.image + ": ");
-
-  StatusOr<SessionLock> lock = SessionLock::Acquire(dir, options.wait);
-  if (!lock.ok()) return lock.status();
-  StatusOr<std::set<std::string>> recorded = ImagesWithRows(dir);
-  if (!recorded.ok()) return recorded.status();
-  if (recorded->count(record.image)) return Status::Error(dir + ": " + record.image + " is recorded already");
-  if (Status s = RemoveImageWithoutRow(dir, record.image, hooks); !s.ok()) return s;
-  LegsRow row;
-  row.image = record.image;
-  row.legs = record.readings;
-  row.holdout = record.holdout;
-  const EditOutcome outcome = RecordCaptureBytes(dir, *png, row, {false, options.wait});
-  if (!outcome.status.ok()) return outcome.status;
-  if (outcome.conflict) return Status::Error(outcome.conflict_text);
-  record.seconds = SecondsSince(start);
-  return record;
+  return AcquireOnePose(dir, pose_index, pose, controller, camera, options, hooks, nullptr);
 }
 
 StatusOr<AcquisitionRig> OpenAcquisitionRig(const std::string& dir, const std::string& controller_url,
@@ -254,25 +273,65 @@ StatusOr<AcquireResult> AcquirePlan(const AcquireRequest& request, Controller& c
   if (std::string error; !request.options.IsValid(&error)) return Status::Error(error);
   StatusOr<std::vector<Vector6d>> poses = LoadRequestedPoses(request);
   if (!poses.ok()) return poses.status();
+  StatusOr<Robot> robot = LoadSessionRobot(request.session);
+  if (!robot.ok()) return robot.status();
   StatusOr<SessionLock> lock = SessionLock::Acquire(request.session, request.options.wait);
   if (!lock.ok()) return lock.status();
   StatusOr<std::set<std::string>> recorded = ImagesWithRows(request.session);
   if (!recorded.ok()) return recorded.status();
 
-  AcquireResult result{request.session, controller.Describe(), camera.Describe(), {}, 0};
+  AcquireResult result{request.session, controller.Describe(), camera.Describe(), {}, 0, 0, {}};
+  result.settle_seconds = request.options.settle_seconds.value_or(controller.DefaultSettleSeconds());
   const int total = static_cast<int>(poses->size());
-  hooks.Stage("acquire");
-  hooks.Progress(0, total);
+  std::vector<bool> skip(total);
   for (int index = 0; index < total; ++index) {
+    PoseRecord& record = result.poses.emplace_back();
+    record.index = index;
+    record.state = PoseState::kAlreadyRecorded;
+    record.image = AcquiredImageName(index);
+    record.pose = (*poses)[index];
+    skip[index] = recorded->count(record.image) > 0;
+  }
+  result.visit_order = VisitOrder(*robot, *poses, WorkspaceCentre(*robot), skip);
+  hooks.Stage("acquire");
+  hooks.Progress(total - static_cast<int>(result.visit_order.size()), total);
+  int done = total - static_cast<int>(result.visit_order.size());
+  for (const int index : result.visit_order) {
     if (hooks.Cancelled()) return Status::Cancelled();
     StatusOr<PoseRecord> record = RunOnePose(request, index, (*poses)[index], *recorded, controller, camera, hooks);
     if (!record.ok()) return record.status();
-    if (record->state != PoseState::kAlreadyRecorded) hooks.Note(PoseNote(*record, total));
-    result.poses.push_back(*record);
-    hooks.Progress(index + 1, total);
+    hooks.Note(PoseNote(*record, total));
+    result.poses[index] = *record;
+    hooks.Progress(++done, total);
   }
   result.seconds = SecondsSince(start);
   return result;
+}
+
+std::vector<int> VisitOrder(const Robot& robot, const std::vector<Vector6d>& poses, const Vector6d& start,
+                            const std::vector<bool>& skip) {
+  const auto scaled_legs = [&](const Vector6d& pose) {
+    LegReadings legs = InverseKinematics(robot, robot.PoseFromVector(pose));
+    for (int i = 0; i < kNumLegs; ++i) legs[i] /= robot.legs[i].stroke_max - robot.legs[i].stroke_min;
+    return legs;
+  };
+  std::vector<LegReadings> legs;
+  std::vector<int> left;
+  for (size_t k = 0; k < poses.size(); ++k) {
+    legs.push_back(scaled_legs(poses[k]));
+    if (k >= skip.size() || !skip[k]) left.push_back(static_cast<int>(k));
+  }
+  std::vector<int> order;
+  LegReadings here = scaled_legs(start);
+  while (!left.empty()) {
+    // The first of equally near poses, so that the order is the plan's for a tie.
+    auto nearest = std::min_element(left.begin(), left.end(),
+                                    [&](int a, int b) { return (legs[a] - here).norm() < (legs[b] - here).norm(); });
+    order.push_back(*nearest);
+    here = legs[*nearest];
+    left.erase(nearest);
+  }
+  return order;
 }
 
 nlohmann::json ToJson(const AcquireResult& result) {
@@ -297,6 +356,8 @@ nlohmann::json ToJson(const AcquireResult& result) {
           {"already_recorded", result.Count(PoseState::kAlreadyRecorded)},
           {"failed", result.Count(PoseState::kFailed)},
           {"poses", poses},
+          {"visit_order", result.visit_order},
+          {"settle_seconds", result.settle_seconds},
           {"seconds", result.seconds}};
 }
 
@@ -305,7 +366,8 @@ std::string FormatAcquireSummary(const AcquireResult& result) {
   text << "acquired into " << result.session << " with " << result.controller << " and " << result.camera << "\n"
        << "  " << result.Count(PoseState::kRecorded) << " recorded, " << result.Count(PoseState::kAlreadyRecorded)
        << " already recorded, " << result.Count(PoseState::kFailed) << " failed, of " << result.poses.size()
-       << " poses in " << FormatNumber(std::round(result.seconds * 10) / 10) << " s\n";
+       << " poses in " << FormatNumber(std::round(result.seconds * 10) / 10) << " s (settle "
+       << FormatNumber(result.settle_seconds) << " s after each move)\n";
   for (const PoseRecord& r : result.poses)
     if (r.state == PoseState::kFailed) text << "  failed: " << r.image << ": " << r.error << "\n";
   if (result.Count(PoseState::kFailed) > 0) text << "  run hexcal acquire again to retry the failed poses\n";
