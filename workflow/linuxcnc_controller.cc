@@ -4,11 +4,11 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <sstream>
 #include <thread>
 #include <vector>
 
-#include "core/forward_kinematics.h"
 #include "core/straight_moves.h"
 #include "workflow/line_client.h"
 #include "workflow/linuxcnc_geometry.h"
@@ -74,18 +74,17 @@ class LinuxCncController final : public Controller {
     bool in_position = false;  // and the platform is at the commanded pose
   };
   StatusOr<Motion> PollMotion();
-  // The platform's world pose now (machine units, degrees): see the definition.
-  StatusOr<Vector6d> WherePlatformIs();
 
   LineClient client_;
   Robot robot_;
   LinuxCncOptions options_;
   MachineUnit unit_ = MachineUnit::kMillimetre;
-  std::string server_ = "linuxcncrsh";  // the HELLO ACK's server name and version
-  Vector6d target_ = Vector6d::Zero();  // the commanded world pose, machine units and degrees
-  std::string target_text_;             // hexcal's pose, for messages
-  std::string lost_;                    // why the connection was given up, if it was
-  bool moving_ = false;                 // a MoveTo was accepted and WaitSettled has not confirmed it
+  std::string server_ = "linuxcncrsh";   // the HELLO ACK's server name and version
+  Vector6d target_ = Vector6d::Zero();   // the commanded world pose, machine units and degrees
+  std::string target_text_;              // hexcal's pose, for messages
+  std::string lost_;                     // why the connection was given up, if it was
+  bool moving_ = false;                  // a MoveTo was accepted and WaitSettled has not confirmed it
+  std::optional<Vector6d> last_joints_;  // the joints at the last poll of an idle machine, machine units
 };
 
 StatusOr<std::string> LinuxCncController::Ask(const std::string& command) {
@@ -227,6 +226,7 @@ Status LinuxCncController::Open() {
 Status LinuxCncController::SendMove(const Vector6d& world, const std::string& text) {
   target_ = world;
   target_text_ = text;
+  last_joints_.reset();
   std::string command = unit_ == MachineUnit::kInch ? "set mdi G20 G90 G53 G0" : "set mdi G21 G90 G53 G0";
   static const char* axes[6] = {"X", "Y", "Z", "A", "B", "C"};
   for (int k = 0; k < 6; ++k) command += std::string(" ") + axes[k] + FixedNumber(target_[k]);
@@ -244,7 +244,10 @@ Status LinuxCncController::MoveTo(const Vector6d& pose) {
   // Messages read now belong to earlier commands: WaitSettled's are this move's.
   if (Status s = DiscardOldErrors(); !s.ok()) return s;
   const Vector6d target = GenhexkinsWorldFromPose(robot_, pose, unit_);
-  StatusOr<Vector6d> here = WherePlatformIs();
+  // Where the platform is, as the machine moves from it: the trajectory
+  // planner's pose (exact where the last move ended or stopped; abs_act_pos
+  // can be stale, PollMotion).
+  StatusOr<Vector6d> here = AskSixNumbers("get abs_cmd_pos", "ABS_CMD_POS");
   if (!here.ok()) return here.status();
   // G0 is a straight line in X Y Z A B C, along which a leg can pass its
   // stroke between two poses within it (and stop the machine at a soft
@@ -276,33 +279,21 @@ StatusOr<LinuxCncController::Motion> LinuxCncController::PollMotion() {
   Motion motion;
   motion.idle = UpperCase((*program)[0]) == "IDLE";
   if (!motion.idle) return motion;
-  // In position: the joints (the drives' feedback) at the target's IK. Not
-  // `abs_act_pos`: it is genhexkins' forward kinematics of the joints, whose
-  // Newton iteration fails at large rotations (genhexkins.fwd-kins-fail) and
-  // then reports a stale pose (seen: the home pose at A = 35°, C = −60°).
-  StatusOr<Vector6d> joints = AskSixNumbers("get joint_pos", "JOINT_POS");
-  if (!joints.ok()) return joints.status();
-  const Vector6d expected =
-      JointsFromReadings(robot_, InverseKinematics(robot_, PoseFromGenhexkinsWorld(robot_, target_, unit_)), unit_);
-  motion.in_position = (*joints - expected).cwiseAbs().maxCoeff() <= options_.position_tolerance;
-  return motion;
-}
-
-StatusOr<Vector6d> LinuxCncController::WherePlatformIs() {
-  // The commanded world pose is the trajectory planner's own (exact where the
-  // last move ended or stopped); hexcal's FK of the joints from there is
-  // where the platform is (genhexkins' FK, `abs_act_pos`, can fail: above).
+  // In position: the trajectory planner's pose at the target and the joints
+  // (the drives' feedback) still since the last poll. Not `abs_act_pos`: it
+  // is genhexkins' forward kinematics of the joints, whose Newton iteration
+  // fails at large rotations (genhexkins.fwd-kins-fail) and then reports a
+  // stale pose (seen: the home pose at A = 35°, C = −60°). Nor hexcal's IK of
+  // the target: the machine may run another geometry than the session's
+  // robot (`verify` after a calibration was loaded).
   StatusOr<Vector6d> commanded = AskSixNumbers("get abs_cmd_pos", "ABS_CMD_POS");
   if (!commanded.ok()) return commanded.status();
   StatusOr<Vector6d> joints = AskSixNumbers("get joint_pos", "JOINT_POS");
   if (!joints.ok()) return joints.status();
-  StatusOr<LocalFkResult> fk = ForwardKinematicsLocal(robot_, ReadingsFromJoints(robot_, *joints, unit_),
-                                                      PoseFromGenhexkinsWorld(robot_, *commanded, unit_));
-  if (!fk.ok())
-    return Error("where is the platform? FK of the joints " + SixText(*joints) + ": " + fk.status().message());
-  Vector6d here = GenhexkinsWorldFromPose(robot_, robot_.VectorFromPose(fk->pose), unit_);
-  for (int k = 3; k < 6; ++k) here[k] += 360 * std::round(((*commanded)[k] - here[k]) / 360);  // the machine's turn
-  return here;
+  const bool still = last_joints_ && (*joints - *last_joints_).cwiseAbs().maxCoeff() <= options_.position_tolerance;
+  last_joints_ = *joints;
+  motion.in_position = still && (*commanded - target_).cwiseAbs().maxCoeff() <= options_.position_tolerance;
+  return motion;
 }
 
 Status LinuxCncController::WaitSettled(double settle_seconds) {

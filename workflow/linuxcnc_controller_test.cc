@@ -327,8 +327,9 @@ TEST(LinuxCncController, AMoveTheMachineRefusesFailsNamingItsMessage) {
 }
 
 // genhexkins' forward kinematics fails at large rotations and then reports a
-// stale world pose (the home pose, seen at A = 35°, C = −60°): the joints,
-// not `abs_act_pos`, say whether the platform arrived.
+// stale world pose (the home pose, seen at A = 35°, C = −60°): the planner's
+// pose and still joints, not `abs_act_pos`, say whether the platform arrived
+// and where the next move starts.
 TEST(LinuxCncController, AStaleActualPoseIsNotTrusted) {
   FakeMachine fake;
   StatusOr<std::unique_ptr<Controller>> machine = fake.Open();
@@ -362,15 +363,12 @@ TEST(LinuxCncController, MoveErrors) {
   EXPECT_NE(slow.message().find("did not reach (1, -2, 53, 3, -4, 5) within 1 s"), std::string::npos) << slow.message();
 
   fake.machine.overrides["get program_status"] = "PROGRAM_STATUS IDLE\r\n";
-  const Robot& robot = fake.machine.robot;
-  const LegReadings at_home = InverseKinematics(robot, robot.PoseFromVector(WorkspaceCentre(robot)));
-  fake.machine.overrides["get joint_pos"] =  // reachable, not the target
-      SixNumbers("JOINT_POS", JointsFromReadings(robot, at_home, MachineUnit::kMillimetre));
+  fake.machine.overrides["get abs_cmd_pos"] = "ABS_CMD_POS 0 0 535 0 0 0\r\n";  // reachable, not the target
   ASSERT_TRUE((*machine)->MoveTo(SomePose()).ok());
   Status elsewhere = (*machine)->WaitSettled(0);
   EXPECT_NE(elsewhere.message().find("idle but not at (1, -2, 53, 3, -4, 5)"), std::string::npos)
       << elsewhere.message();
-  fake.machine.overrides.erase("get joint_pos");
+  fake.machine.overrides.erase("get abs_cmd_pos");
 
   fake.machine.overrides["get joint_pos"] = "JOINT_POS 1 2 3 4 5 nan\r\n";
   StatusOr<LegReadings> nan = (*machine)->ReadLegs();

@@ -32,7 +32,8 @@ recorded = list(csv.DictReader(open(sys.argv[1])))
 expected = list(csv.DictReader(open(sys.argv[2])))
 assert len(recorded) == 3, f"{len(recorded)} rows recorded, expected 3"
 worst = 0.0
-for row, ik in zip(recorded, expected):
+for row in recorded:  # in the order the poses were visited: pose_000k.png is row k of the plan
+    ik = expected[int(row["image"][len("pose_"):-len(".png")])]
     for leg in ("L1", "L2", "L3", "L4", "L5", "L6"):
         worst = max(worst, abs(float(row[leg]) - float(ik[leg])))
 print(f"linuxcnc: 3 poses, readings - IK of the commanded poses: max {worst:.2e} cm")
