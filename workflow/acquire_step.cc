@@ -72,6 +72,21 @@ Status DriveAndCapture(const Vector6d& pose, Controller& controller, FrameSource
   return Status::Ok();
 }
 
+// The caller's cancel flag reaches the controller's waits while a pose is
+// acquired, so that Ctrl-C stops a move rather than waiting for its end.
+class CancelFlagLent {
+ public:
+  CancelFlagLent(Controller& controller, const JobHooks& hooks) : controller_(controller) {
+    controller_.SetCancelFlag(hooks.cancel);
+  }
+  ~CancelFlagLent() { controller_.SetCancelFlag(nullptr); }
+  CancelFlagLent(const CancelFlagLent&) = delete;
+  CancelFlagLent& operator=(const CancelFlagLent&) = delete;
+
+ private:
+  Controller& controller_;
+};
+
 // Errors that stop the whole run rather than one pose.
 bool StopsTheRun(const Status& status) {
   return status.cancelled() || status.kind() == StatusKind::kBusy || status.kind() == StatusKind::kIo;
@@ -100,6 +115,7 @@ StatusOr<PoseRecord> AcquireOnePose(const std::string& dir, int pose_index, cons
   record.pose = pose;
   record.holdout = options.holdout_every > 0 && pose_index % options.holdout_every == options.holdout_every - 1;
   cv::Mat frame;
+  const CancelFlagLent lent(controller, hooks);
   if (Status s = DriveAndCapture(pose, controller, camera, options, hooks, &frame, &record.readings); !s.ok()) return s;
   if (Status s = CheckReadings(*check, record.image, pose, record.readings); !s.ok()) {
     if (refused) *refused = true;
@@ -142,8 +158,12 @@ StatusOr<PoseRecord> RunOnePose(const AcquireRequest& request, int index, const 
   StatusOr<PoseRecord> done =
       AcquireOnePose(request.session, index, pose, controller, camera, request.options, hooks, &refused);
   // Readings refused mean a controller that cannot be trusted: the next
-  // pose's would not be either.
+  // pose's would not be either. A machine stuck in a move (a time-out, a stop
+  // away from the target) would fail every later pose the same way.
   if (done.ok() || refused || StopsTheRun(done.status())) return done;
+  if (!controller.Usable())
+    return Status::Failed(done.status().message() + "; the run stops here: look at the machine, then run " +
+                          "hexcal acquire again to go on");
   PoseRecord failed = skipped;
   failed.state = PoseState::kFailed;
   failed.error = done.status().message();

@@ -289,6 +289,37 @@ TEST(AcquireStep, TheSettleTimeIsTheControllersUnlessGiven) {
   EXPECT_EQ(controller.settles, std::vector<double>(4, 0.0));
 }
 
+// A machine stuck in a move (time-out, stopped away from its target): the
+// run stops after that pose instead of sending the next one.
+class StuckController final : public Controller {
+ public:
+  Status MoveTo(const Vector6d&) override {
+    ++moves;
+    return Status::Ok();
+  }
+  Status WaitSettled(double) override { return Status::Failed("test machine: the move did not end"); }
+  StatusOr<LegReadings> ReadLegs() override { return Status::Failed("not reached"); }
+  std::string Describe() const override { return "stuck controller"; }
+  double DefaultSettleSeconds() const override { return 0; }
+  bool Usable() const override { return moves == 0; }
+  int moves = 0;
+};
+
+TEST(AcquireStep, AMachineStuckInAMoveStopsTheRun) {
+  TempDir dir;
+  const std::string s = MakeSession(dir);
+  StatusOr<AcquisitionRig> rig = OpenAcquisitionRig(s, "sim", "sim", 1);
+  ASSERT_TRUE(rig.ok()) << rig.status().message();
+  StuckController controller;
+  StatusOr<AcquireResult> run = AcquirePlan(AcquireRequest{s}, controller, *rig->camera);
+  ASSERT_FALSE(run.ok());
+  EXPECT_EQ(run.status().kind(), StatusKind::kFailed);
+  EXPECT_NE(run.status().message().find("test machine: the move did not end; the run stops here"), std::string::npos)
+      << run.status().message();
+  EXPECT_EQ(controller.moves, 1);
+  EXPECT_FALSE(fs::exists(s + "/legs.csv"));
+}
+
 // Nearest first from the start, in leg space: pure z moves from z = 53.5.
 TEST(AcquireStep, PosesAreVisitedNearestFirst) {
   const Robot robot = *LoadRobot("inria-left-hand");

@@ -45,6 +45,7 @@ class LinuxCncController final : public Controller {
   // a camera's frame lags (hexcal sim-camera renders after the status
   // update): with 0, frames showed the previous pose (docs/acquisition.md).
   double DefaultSettleSeconds() const override { return 0.5; }
+  bool Usable() const override { return !stuck_; }
   std::string Describe() const override {
     return "LinuxCNC at " + client_.peer() + " (" + server_ + ", machine in " + MachineUnitName(unit_) + ", robot " +
            robot_.name + " in " + LengthUnitName(robot_.length_unit) + ")";
@@ -74,6 +75,11 @@ class LinuxCncController final : public Controller {
     bool in_position = false;  // and the platform is at the commanded pose
   };
   StatusOr<Motion> PollMotion();
+  // Stops the motion (`set abort`: the planner's queue is dropped and the
+  // machine decelerates) and returns `why` with what the abort answered.
+  Status AbortMotion(Status why);
+  // The settle time, in poll-interval slices so that a cancel ends it.
+  Status Settle(double seconds);
 
   LineClient client_;
   Robot robot_;
@@ -84,6 +90,7 @@ class LinuxCncController final : public Controller {
   std::string target_text_;              // hexcal's pose, for messages
   std::string lost_;                     // why the connection was given up, if it was
   bool moving_ = false;                  // a MoveTo was accepted and WaitSettled has not confirmed it
+  bool stuck_ = false;                   // a move timed out or stopped away from its target
   std::optional<Vector6d> last_joints_;  // the joints at the last poll of an idle machine, machine units
 };
 
@@ -296,11 +303,21 @@ StatusOr<LinuxCncController::Motion> LinuxCncController::PollMotion() {
   return motion;
 }
 
+Status LinuxCncController::AbortMotion(Status why) {
+  moving_ = false;
+  const Status aborted = Expect("set abort", "SET ABORT ACK");
+  const std::string what = aborted.ok() ? "motion stopped (set abort)" : "stopping it failed: " + aborted.message();
+  return why.cancelled() ? Status::Cancelled(why.message() + "; " + what) : Error(why.message() + "; " + what);
+}
+
 Status LinuxCncController::WaitSettled(double settle_seconds) {
   if (!moving_) return Error("no move to wait for: the last MoveTo failed or none was made");
   const Clock::time_point start = Clock::now();
   double idle_since = -1;  // when the machine was first seen idle away from the target, seconds since start
   for (;;) {
+    if (CancelRequested())
+      return AbortMotion(
+          Status::Cancelled("cancelled during the move to " + target_text_ + "; nothing recorded for this pose"));
     StatusOr<std::string> message = NextMachineError();
     if (!message.ok()) return message.status();
     if (!message->empty()) return Error("the move to " + target_text_ + " failed: " + Excerpt(*message));
@@ -308,19 +325,31 @@ Status LinuxCncController::WaitSettled(double settle_seconds) {
     if (!motion.ok()) return motion.status();
     if (motion->in_position) break;
     const double elapsed = SecondsSince(start);
-    if (elapsed > options_.motion_timeout_seconds)
-      return Error("the platform did not reach " + target_text_ + " within " +
-                   FixedNumber(options_.motion_timeout_seconds, 3) + " s");
+    // A move that does not end is the machine's fault: stopped, and the run
+    // with it (Usable), rather than sending the next pose after it.
+    stuck_ = elapsed > options_.motion_timeout_seconds;
+    if (stuck_)
+      return AbortMotion(Status::Failed("the platform did not reach " + target_text_ + " within " +
+                                        FixedNumber(options_.motion_timeout_seconds, 3) + " s"));
     // Idle right after the command may be a move not started yet; idle for
-    // longer is a move that ended elsewhere.
+    // longer is a move that ended elsewhere (a soft limit, an abort).
     if (!motion->idle) idle_since = -1;
     if (motion->idle && idle_since < 0) idle_since = elapsed;
-    if (motion->idle && elapsed - idle_since > options_.idle_grace_seconds)
-      return Error("the machine is idle but not at " + target_text_ + " = machine " + SixText(target_));
+    stuck_ = motion->idle && elapsed - idle_since > options_.idle_grace_seconds;
+    if (stuck_) return Error("the machine is idle but not at " + target_text_ + " = machine " + SixText(target_));
     std::this_thread::sleep_for(options_.poll_interval);
   }
   moving_ = false;
-  if (settle_seconds > 0) std::this_thread::sleep_for(std::chrono::duration<double>(settle_seconds));
+  return Settle(settle_seconds);
+}
+
+Status LinuxCncController::Settle(double seconds) {
+  const Clock::time_point start = Clock::now();
+  while (SecondsSince(start) < seconds) {
+    if (CancelRequested()) return Status::Cancelled("cancelled while settling at " + target_text_);
+    std::this_thread::sleep_for(std::min(std::chrono::duration<double>(options_.poll_interval),
+                                         std::chrono::duration<double>(seconds - SecondsSince(start))));
+  }
   return Status::Ok();
 }
 

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cstdio>
 #include <deque>
@@ -55,6 +56,7 @@ struct FakeLinuxCnc {
   bool moved = false;            // until the first move the platform is at home, the workspace centre
   std::vector<std::string> mdi;  // the moves received
   std::vector<Vector6d> worlds;  // the world poses moved to
+  bool aborted = false;          // `set abort` was received
 
   std::string Reply(const std::string& line) {
     if (auto found = overrides.find(line); found != overrides.end()) return found->second;
@@ -66,6 +68,7 @@ struct FakeLinuxCnc {
     if (line == "get joint_homed")
       return homed ? "JOINT_HOMED YES YES YES YES YES YES\r\n" : "JOINT_HOMED NO YES NO YES YES YES\r\n";
     if (line == "set home -1") homed = true;
+    if (line == "set abort") aborted = true;
     if (line == "get error") {
       if (errors.empty()) return "ERROR OK\r\n";
       const std::string message = "ERROR " + errors.front() + "\r\n";
@@ -344,6 +347,44 @@ TEST(LinuxCncController, AStaleActualPoseIsNotTrusted) {
   EXPECT_TRUE((*machine)->WaitSettled(0).ok());
   // One straight move from where the platform is (SomePose), not from home.
   EXPECT_EQ(fake.machine.mdi.size(), 2u);
+}
+
+// Ctrl-C during a move (issue 33): the motion is stopped with `set abort`
+// at once, not after the 120 s time-out.
+TEST(LinuxCncController, ACancelStopsTheMotion) {
+  FakeMachine fake;
+  StatusOr<std::unique_ptr<Controller>> machine = fake.Open();
+  ASSERT_TRUE(machine.ok());
+  fake.machine.running_polls = 1000000;
+  std::atomic<bool> cancel{false};
+  (*machine)->SetCancelFlag(&cancel);
+  ASSERT_TRUE((*machine)->MoveTo(SomePose()).ok());
+  cancel = true;
+  const auto start = std::chrono::steady_clock::now();
+  Status stopped = (*machine)->WaitSettled(0);
+  EXPECT_LT(std::chrono::steady_clock::now() - start, 500ms);
+  EXPECT_TRUE(stopped.cancelled()) << stopped.message();
+  EXPECT_NE(stopped.message().find("cancelled during the move to (1, -2, 53, 3, -4, 5); nothing recorded for this "
+                                   "pose; motion stopped (set abort)"),
+            std::string::npos)
+      << stopped.message();
+  EXPECT_TRUE(fake.machine.aborted);
+  EXPECT_TRUE((*machine)->Usable());
+}
+
+// A move that does not end is stopped too, and the controller says it should
+// take no more moves (the acquire run stops instead of timing out per pose).
+TEST(LinuxCncController, ATimedOutMoveIsStoppedAndTheControllerNotUsable) {
+  FakeMachine fake;
+  StatusOr<std::unique_ptr<Controller>> machine = fake.Open();
+  ASSERT_TRUE(machine.ok());
+  fake.machine.overrides["get program_status"] = "PROGRAM_STATUS RUNNING\r\n";
+  ASSERT_TRUE((*machine)->MoveTo(SomePose()).ok());
+  Status slow = (*machine)->WaitSettled(0);
+  EXPECT_EQ(slow.kind(), StatusKind::kFailed);
+  EXPECT_NE(slow.message().find("within 1 s; motion stopped (set abort)"), std::string::npos) << slow.message();
+  EXPECT_TRUE(fake.machine.aborted);
+  EXPECT_FALSE((*machine)->Usable());
 }
 
 TEST(LinuxCncController, MoveErrors) {

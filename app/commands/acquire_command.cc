@@ -3,8 +3,8 @@
 //
 // Moves the robot to each planned pose and records an image and the leg
 // readings there (workflow/acquire_step.h, docs/acquisition.md). Ctrl-C stops
-// before the current pose's frame or after its record (exit 1, cancelled);
-// running the command again goes on from there.
+// before the current pose's frame (a machine's move at once) or after its
+// record (exit 1, cancelled); running the command again goes on from there.
 #include <atomic>
 #include <csignal>
 #include <iostream>
