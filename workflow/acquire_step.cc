@@ -1,9 +1,14 @@
 #include "workflow/acquire_step.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <set>
 #include <sstream>
@@ -179,6 +184,26 @@ std::string PoseNote(const PoseRecord& record, int total) {
   return line.str();
 }
 
+// What a run needs of the session, checked before a machine is powered on
+// and homed (issue 33): legs.csv parses and images/ takes a new file (a file
+// made and removed there: permission bits say nothing to root, a read-only
+// mount or a full disk does).
+Status CheckSessionTakesCaptures(const std::string& dir) {
+  StatusOr<std::set<std::string>> recorded = ImagesWithRows(dir);
+  if (!recorded.ok()) return recorded.status();
+  const std::string images = SessionPaths(dir).images;
+  std::error_code error;
+  fs::create_directories(images, error);
+  std::string probe = (fs::path(images) / ".hexcal-acquire-XXXXXX").string();
+  const int fd = error ? -1 : mkstemp(probe.data());
+  if (fd < 0)
+    return Status::IoError(images + ": cannot write a new file there (" +
+                           (error ? error.message() : std::string(std::strerror(errno))) + "); nothing was moved");
+  close(fd);
+  fs::remove(probe, error);
+  return Status::Ok();
+}
+
 StatusOr<Robot> LoadSessionRobot(const std::string& dir) {
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   if (!config.ok()) return config.status();
@@ -280,8 +305,11 @@ StatusOr<AcquisitionRig> OpenAcquisitionRig(const std::string& dir, const std::s
 
 StatusOr<AcquireResult> AcquirePlan(const AcquireRequest& request, const JobHooks& hooks) {
   if (std::string error; !request.options.IsValid(&error)) return Status::Error(error);
-  // The plan is checked before a sim world writes its truth into the session.
+  // The plan and the session are checked before a sim world writes its truth
+  // into the session, or a machine is powered on and homed.
   if (StatusOr<std::vector<Vector6d>> poses = LoadRequestedPoses(request); !poses.ok()) return poses.status();
+  if (Status s = CheckSessionTakesCaptures(request.session); !s.ok()) return s;
+  if (StatusOr<Robot> robot = LoadSessionRobot(request.session); !robot.ok()) return robot.status();
   StatusOr<AcquisitionRig> rig = OpenAcquisitionRig(request.session, request.controller, request.camera, request.seed);
   if (!rig.ok()) return rig.status();
   return AcquirePlan(request, *rig->controller, *rig->camera, hooks);

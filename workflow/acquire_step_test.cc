@@ -25,6 +25,7 @@
 namespace hexcal::workflow {
 namespace {
 
+using ::hexcal::testing::ReadTextFile;
 using ::hexcal::testing::TempDir;
 using ::hexcal::testing::WriteTextFile;
 
@@ -318,6 +319,31 @@ TEST(AcquireStep, AMachineStuckInAMoveStopsTheRun) {
       << run.status().message();
   EXPECT_EQ(controller.moves, 1);
   EXPECT_FALSE(fs::exists(s + "/legs.csv"));
+}
+
+// A session that cannot take the captures is refused before the controller
+// is opened: the LinuxCNC URL points at a closed port, so an error about the
+// connection would mean the machine had been tried (and powered on, homed).
+TEST(AcquireStep, TheSessionIsCheckedBeforeTheMachineIsOpened) {
+  TempDir dir;
+  const std::string s = MakeSession(dir);
+  ASSERT_TRUE(cv::imwrite(dir.File("still.png"), cv::Mat(8, 8, CV_8UC1, cv::Scalar(0))));
+  AcquireRequest request{s, "linuxcnc://127.0.0.1:1", "file:" + dir.File("still.png")};
+  WriteTextFile(s + "/legs.csv", "image,L1\n\"unclosed\n");
+  StatusOr<AcquireResult> broken_legs = AcquirePlan(request);
+  ASSERT_FALSE(broken_legs.ok());
+  EXPECT_NE(broken_legs.status().message().find("legs.csv"), std::string::npos) << broken_legs.status().message();
+  EXPECT_EQ(broken_legs.status().message().find("LinuxCNC"), std::string::npos) << broken_legs.status().message();
+
+  fs::remove(s + "/legs.csv");
+  fs::remove_all(s + "/images");
+  WriteTextFile(s + "/images", "a file where the folder should be");
+  StatusOr<AcquireResult> no_images = AcquirePlan(request);
+  ASSERT_FALSE(no_images.ok());
+  EXPECT_EQ(no_images.status().kind(), StatusKind::kIo);
+  EXPECT_NE(no_images.status().message().find("cannot write a new file there"), std::string::npos)
+      << no_images.status().message();
+  EXPECT_EQ(ReadTextFile(s + "/images"), "a file where the folder should be");
 }
 
 // Nearest first from the start, in leg space: pure z moves from z = 53.5.
