@@ -1,14 +1,9 @@
 #include "workflow/acquire_step.h"
 
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <set>
 #include <sstream>
@@ -18,6 +13,7 @@
 #include "core/robot_io.h"
 #include "core/session.h"
 #include "vision/image_codecs.h"
+#include "workflow/acquire_files.h"
 #include "workflow/reading_check.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_edits.h"
@@ -30,35 +26,6 @@ namespace fs = std::filesystem;
 
 double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// The images that have a row in legs.csv. Read as a plain table, not with
-// LoadSessionLegs: an image left without its row by a killed capture must not
-// stop the run that records it again.
-StatusOr<std::set<std::string>> ImagesWithRows(const std::string& dir) {
-  const std::string path = SessionPaths(dir).legs;
-  std::error_code error;
-  if (!fs::exists(path, error)) return std::set<std::string>{};
-  StatusOr<CsvTable> table = ReadCsv(path);
-  if (!table.ok()) return table.status();
-  StatusOr<int> column = ColumnIndex(*table, "image");
-  if (!column.ok()) return column.status();
-  std::set<std::string> images;
-  for (const std::vector<std::string>& row : table->rows) images.insert(row[*column]);
-  return images;
-}
-
-// An image of this step without its row is what a kill between RecordCapture's
-// two writes leaves: removed, so that the pose is recorded again whole.
-Status RemoveImageWithoutRow(const std::string& dir, const std::string& image, const JobHooks& hooks) {
-  const fs::path path = fs::path(SessionPaths(dir).images) / image;
-  std::error_code error;
-  if (!fs::exists(fs::symlink_status(path, error))) return Status::Ok();
-  fs::remove(path, error);
-  if (error)
-    return Status::IoError(path.string() + ": cannot remove an image left without its row: " + error.message());
-  hooks.Note("images/" + image + " had no row in legs.csv (an interrupted capture): recording it again");
-  return Status::Ok();
 }
 
 // Move, settle, grab, read: the device half of AcquirePose.
@@ -119,6 +86,12 @@ StatusOr<PoseRecord> AcquireOnePose(const std::string& dir, int pose_index, cons
   record.image = AcquiredImageName(pose_index);
   record.pose = pose;
   record.holdout = options.holdout_every > 0 && pose_index % options.holdout_every == options.holdout_every - 1;
+  // A recorded pose, or an operator's own file where the image would go:
+  // refused before the machine moves (and again under the lock, below).
+  StatusOr<std::set<std::string>> before = ImagesWithRows(dir);
+  if (!before.ok()) return before.status();
+  if (before->count(record.image)) return Status::Error(dir + ": " + record.image + " is recorded already");
+  if (Status s = ClearImageSlot(dir, record.image, false, hooks); !s.ok()) return s;
   cv::Mat frame;
   const CancelFlagLent lent(controller, hooks);
   if (Status s = DriveAndCapture(pose, controller, camera, options, hooks, &frame, &record.readings); !s.ok()) return s;
@@ -134,14 +107,12 @@ StatusOr<PoseRecord> AcquireOnePose(const std::string& dir, int pose_index, cons
   StatusOr<std::set<std::string>> recorded = ImagesWithRows(dir);
   if (!recorded.ok()) return recorded.status();
   if (recorded->count(record.image)) return Status::Error(dir + ": " + record.image + " is recorded already");
-  if (Status s = RemoveImageWithoutRow(dir, record.image, hooks); !s.ok()) return s;
+  if (Status s = ClearImageSlot(dir, record.image, true, hooks); !s.ok()) return s;
   LegsRow row;
   row.image = record.image;
   row.legs = record.readings;
   row.holdout = record.holdout;
-  const EditOutcome outcome = RecordCaptureBytes(dir, *png, row, {false, options.wait});
-  if (!outcome.status.ok()) return outcome.status;
-  if (outcome.conflict) return Status::Error(outcome.conflict_text);
+  if (Status s = RecordWithPendingName(dir, *png, row, options.wait); !s.ok()) return s;
   record.seconds = SecondsSince(start);
   return record;
 }
@@ -182,26 +153,6 @@ std::string PoseNote(const PoseRecord& record, int total) {
     line << " in " << FormatNumber(std::round(record.seconds * 100) / 100) << " s";
   if (record.state == PoseState::kFailed) line << ": " << record.error;
   return line.str();
-}
-
-// What a run needs of the session, checked before a machine is powered on
-// and homed (issue 33): legs.csv parses and images/ takes a new file (a file
-// made and removed there: permission bits say nothing to root, a read-only
-// mount or a full disk does).
-Status CheckSessionTakesCaptures(const std::string& dir) {
-  StatusOr<std::set<std::string>> recorded = ImagesWithRows(dir);
-  if (!recorded.ok()) return recorded.status();
-  const std::string images = SessionPaths(dir).images;
-  std::error_code error;
-  fs::create_directories(images, error);
-  std::string probe = (fs::path(images) / ".hexcal-acquire-XXXXXX").string();
-  const int fd = error ? -1 : mkstemp(probe.data());
-  if (fd < 0)
-    return Status::IoError(images + ": cannot write a new file there (" +
-                           (error ? error.message() : std::string(std::strerror(errno))) + "); nothing was moved");
-  close(fd);
-  fs::remove(probe, error);
-  return Status::Ok();
 }
 
 StatusOr<Robot> LoadSessionRobot(const std::string& dir) {

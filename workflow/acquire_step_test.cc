@@ -99,6 +99,7 @@ TEST(AcquireStep, AnImageLeftWithoutItsRowByAKillIsRecordedAgain) {
   TempDir dir;
   const std::string s = MakeSession(dir);
   WriteTextFile(s + "/images/pose_0001.png", "half a capture");
+  WriteTextFile(s + "/.acquire-pending", "pose_0001.png\n");  // the kill came between the two writes
   std::vector<std::string> notes;
   JobHooks hooks;
   hooks.note = [&](const std::string& line) { notes.push_back(line); };
@@ -110,6 +111,24 @@ TEST(AcquireStep, AnImageLeftWithoutItsRowByAKillIsRecordedAgain) {
     return line.find("images/pose_0001.png had no row in legs.csv") != std::string::npos;
   });
   EXPECT_NE(noted, notes.end());
+}
+
+// An image without its row that acquire did not write is an operator's: it
+// stays, and its pose fails (before the machine moves) while the run goes on.
+TEST(AcquireStep, AnOperatorsOwnImageIsNeverRemoved) {
+  TempDir dir;
+  const std::string s = MakeSession(dir);
+  WriteTextFile(s + "/images/pose_0002.png", "the operator's own picture");
+  StatusOr<AcquireResult> run = AcquirePlan(AcquireRequest{s});
+  ASSERT_TRUE(run.ok()) << run.status().message();
+  EXPECT_EQ(run->Count(PoseState::kRecorded), 3);
+  ASSERT_EQ(run->poses[2].state, PoseState::kFailed);
+  EXPECT_NE(run->poses[2].error.find("images/pose_0002.png exists without a row in legs.csv and hexcal acquire did "
+                                     "not write it"),
+            std::string::npos)
+      << run->poses[2].error;
+  EXPECT_EQ(ReadTextFile(s + "/images/pose_0002.png"), "the operator's own picture");
+  EXPECT_FALSE(fs::exists(s + "/.acquire-pending"));
 }
 
 TEST(AcquireStep, AnUnreachablePoseFailsAndTheRunGoesOn) {
