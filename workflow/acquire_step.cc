@@ -162,10 +162,10 @@ StatusOr<Robot> LoadSessionRobot(const std::string& dir) {
 }
 
 // The sim truth is written once; a resumed run must draw the same truth.
-Status WriteOrCheckTruth(const SimWorld& world, const std::string& dir, uint64_t seed) {
+Status WriteOrCheckTruth(const SimWorld& world, const std::string& dir, uint64_t seed, TruthRecord truth) {
   const std::string robot_file = (fs::path(dir) / "truth" / "robot.yaml").string();
   std::error_code error;
-  if (!fs::exists(robot_file, error)) return world.WriteTruth(dir);
+  if (!fs::exists(robot_file, error)) return truth == TruthRecord::kWriteOrCheck ? world.WriteTruth(dir) : Status::Ok();
   StatusOr<std::string> on_disk = ReadFileToString(robot_file, kMaxTableBytes);
   if (!on_disk.ok()) return on_disk.status();
   if (*on_disk != RobotToYaml(world.scene().truth))
@@ -222,7 +222,7 @@ StatusOr<PoseRecord> AcquirePose(const std::string& dir, int pose_index, const V
 }
 
 StatusOr<AcquisitionRig> OpenAcquisitionRig(const std::string& dir, const std::string& controller_url,
-                                            const std::string& camera_url, uint64_t seed) {
+                                            const std::string& camera_url, uint64_t seed, TruthRecord truth) {
   AcquisitionRig rig;
   const bool sim = controller_url == "sim" || camera_url == "sim";
   if (camera_url == "sim" && controller_url != "sim")
@@ -249,7 +249,7 @@ StatusOr<AcquisitionRig> OpenAcquisitionRig(const std::string& dir, const std::s
   if (sim) {  // the truth is written only for a rig that opened whole
     StatusOr<SessionLock> lock = SessionLock::Acquire(dir, LockWait::kBriefly);
     if (!lock.ok()) return lock.status();
-    if (Status s = WriteOrCheckTruth(*rig.sim, dir, seed); !s.ok()) return s;
+    if (Status s = WriteOrCheckTruth(*rig.sim, dir, seed, truth); !s.ok()) return s;
   }
   return rig;
 }

@@ -86,8 +86,13 @@ struct AcquisitionRig {
   std::unique_ptr<Controller> controller;
   std::unique_ptr<FrameSource> camera;
 };
+// What a `sim` rig does with its hidden truth: write it into SESSION/truth/
+// (or check it against the one there: acquire), or only check it against one
+// there (verify, which writes nothing into the session).
+enum class TruthRecord { kWriteOrCheck, kCheckOnly };
 StatusOr<AcquisitionRig> OpenAcquisitionRig(const std::string& session_dir, const std::string& controller_url,
-                                            const std::string& camera_url, uint64_t seed);
+                                            const std::string& camera_url, uint64_t seed,
+                                            TruthRecord truth = TruthRecord::kWriteOrCheck);
 
 struct AcquireRequest {
   std::string session;
