@@ -37,8 +37,8 @@ class LinuxCncController final : public Controller {
   // The opening sequence of linuxcnc_controller.h.
   Status Open();
   Status MoveTo(const Vector6d& pose) override;
-  // Sends one G0 to a world pose (machine units, degrees); `text` names it in messages.
-  Status SendMove(const Vector6d& world, const std::string& text);
+  // Sends one G0 from `from` to `world` (machine units, degrees); `text` names it in messages.
+  Status SendMove(const Vector6d& from, const Vector6d& world, const std::string& text);
   Status WaitSettled(double settle_seconds) override;
   StatusOr<LegReadings> ReadLegs() override;
   // A machine reports "in position" before its structure stops ringing, and
@@ -85,13 +85,14 @@ class LinuxCncController final : public Controller {
   Robot robot_;
   LinuxCncOptions options_;
   MachineUnit unit_ = MachineUnit::kMillimetre;
-  std::string server_ = "linuxcncrsh";   // the HELLO ACK's server name and version
-  Vector6d target_ = Vector6d::Zero();   // the commanded world pose, machine units and degrees
-  std::string target_text_;              // hexcal's pose, for messages
-  std::string lost_;                     // why the connection was given up, if it was
-  bool moving_ = false;                  // a MoveTo was accepted and WaitSettled has not confirmed it
-  bool stuck_ = false;                   // a move timed out or stopped away from its target
-  std::optional<Vector6d> last_joints_;  // the joints at the last poll of an idle machine, machine units
+  std::string server_ = "linuxcncrsh";      // the HELLO ACK's server name and version
+  Vector6d target_ = Vector6d::Zero();      // the commanded world pose, machine units and degrees
+  Vector6d move_start_ = Vector6d::Zero();  // where the move to target_ started, the same units
+  std::string target_text_;                 // hexcal's pose, for messages
+  std::string lost_;                        // why the connection was given up, if it was
+  bool moving_ = false;                     // a MoveTo was accepted and WaitSettled has not confirmed it
+  bool stuck_ = false;                      // a move timed out or stopped away from its target
+  std::optional<Vector6d> last_joints_;     // the joints at the last poll of an idle machine, machine units
 };
 
 StatusOr<std::string> LinuxCncController::Ask(const std::string& command) {
@@ -230,7 +231,8 @@ Status LinuxCncController::Open() {
   return DiscardOldErrors();
 }
 
-Status LinuxCncController::SendMove(const Vector6d& world, const std::string& text) {
+Status LinuxCncController::SendMove(const Vector6d& from, const Vector6d& world, const std::string& text) {
+  move_start_ = from;
   target_ = world;
   target_text_ = text;
   last_joints_.reset();
@@ -269,15 +271,17 @@ Status LinuxCncController::MoveTo(const Vector6d& pose) {
   options.vias = {MotionVectorFromPose(robot_.PoseFromVector(WorkspaceCentre(robot_)))};
   StatusOr<std::vector<Vector6d>> moves = PlanStraightMoves(robot_, motion(*here), motion(target), options);
   if (!moves.ok()) return Status::Error("pose " + PoseText(pose) + ": " + moves.status().message());
+  Vector6d from = *here;
   for (size_t k = 0; k + 1 < moves->size(); ++k) {
     Vector6d waypoint = (*moves)[k];
     waypoint.head<3>() *= scale;
     const std::string text = "waypoint " + std::to_string(k + 1) + " of " + std::to_string(moves->size() - 1) +
                              " on the way to " + PoseText(pose);
-    if (Status s = SendMove(waypoint, text); !s.ok()) return s;
+    if (Status s = SendMove(from, waypoint, text); !s.ok()) return s;
     if (Status s = WaitSettled(0); !s.ok()) return s;
+    from = waypoint;
   }
-  return SendMove(target, PoseText(pose));
+  return SendMove(from, target, PoseText(pose));
 }
 
 StatusOr<LinuxCncController::Motion> LinuxCncController::PollMotion() {
@@ -320,7 +324,15 @@ Status LinuxCncController::WaitSettled(double settle_seconds) {
           Status::Cancelled("cancelled during the move to " + target_text_ + "; nothing recorded for this pose"));
     StatusOr<std::string> message = NextMachineError();
     if (!message.ok()) return message.status();
-    if (!message->empty()) return Error("the move to " + target_text_ + " failed: " + Excerpt(*message));
+    if (!message->empty()) {
+      // A move refused before it started (a target past a joint limit)
+      // leaves the machine where it was; one stopped on the way (a soft
+      // limit) leaves it where later moves fail too: the run stops (Usable).
+      StatusOr<Vector6d> at = AskSixNumbers("get abs_cmd_pos", "ABS_CMD_POS");
+      stuck_ = !at.ok() || (*at - move_start_).cwiseAbs().maxCoeff() > options_.position_tolerance;
+      moving_ = false;
+      return Error("the move to " + target_text_ + " failed: " + Excerpt(*message));
+    }
     StatusOr<Motion> motion = PollMotion();
     if (!motion.ok()) return motion.status();
     if (motion->in_position) break;
@@ -340,6 +352,7 @@ Status LinuxCncController::WaitSettled(double settle_seconds) {
     std::this_thread::sleep_for(options_.poll_interval);
   }
   moving_ = false;
+  stuck_ = false;  // a move that ended in position: the machine moves again
   return Settle(settle_seconds);
 }
 

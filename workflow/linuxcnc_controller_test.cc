@@ -327,6 +327,22 @@ TEST(LinuxCncController, AMoveTheMachineRefusesFailsNamingItsMessage) {
       << settled.message();
   // The old error of FakeLinuxCnc was read away when the machine opened.
   EXPECT_EQ(settled.message().find("joint 0"), std::string::npos);
+  // The fake's planner pose jumped to the target: the move stopped on its
+  // way, where later moves would fail too.
+  EXPECT_FALSE((*machine)->Usable());
+
+  // Refused before it started (the planner still at the start): usable.
+  fake.machine.running_polls = 1;
+  ASSERT_TRUE((*machine)->MoveTo(SomePose()).ok());
+  ASSERT_TRUE((*machine)->WaitSettled(0).ok());
+  fake.machine.running_polls = 1000;
+  Vector6d next = SomePose();
+  next[0] = 0;
+  fake.machine.overrides["get abs_cmd_pos"] = SixNumbers("ABS_CMD_POS", fake.machine.world);
+  ASSERT_TRUE((*machine)->MoveTo(next).ok());
+  fake.machine.errors.push_back("Linear move on line 0 would exceed joint 2's positive limit");
+  EXPECT_FALSE((*machine)->WaitSettled(0).ok());
+  EXPECT_TRUE((*machine)->Usable());
 }
 
 // genhexkins' forward kinematics fails at large rotations and then reports a
