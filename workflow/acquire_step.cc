@@ -1,5 +1,6 @@
 #include "workflow/acquire_step.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +13,8 @@
 #include "core/robot_io.h"
 #include "core/session.h"
 #include "vision/image_codecs.h"
+#include "workflow/acquire_files.h"
+#include "workflow/reading_check.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_edits.h"
 #include "workflow/sim_world.h"
@@ -25,52 +28,36 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// The images that have a row in legs.csv. Read as a plain table, not with
-// LoadSessionLegs: an image left without its row by a killed capture must not
-// stop the run that records it again.
-StatusOr<std::set<std::string>> ImagesWithRows(const std::string& dir) {
-  const std::string path = SessionPaths(dir).legs;
-  std::error_code error;
-  if (!fs::exists(path, error)) return std::set<std::string>{};
-  StatusOr<CsvTable> table = ReadCsv(path);
-  if (!table.ok()) return table.status();
-  StatusOr<int> column = ColumnIndex(*table, "image");
-  if (!column.ok()) return column.status();
-  std::set<std::string> images;
-  for (const std::vector<std::string>& row : table->rows) images.insert(row[*column]);
-  return images;
-}
-
-// An image of this step without its row is what a kill between RecordCapture's
-// two writes leaves: removed, so that the pose is recorded again whole.
-Status RemoveImageWithoutRow(const std::string& dir, const std::string& image, const JobHooks& hooks) {
-  const fs::path path = fs::path(SessionPaths(dir).images) / image;
-  std::error_code error;
-  if (!fs::exists(fs::symlink_status(path, error))) return Status::Ok();
-  fs::remove(path, error);
-  if (error)
-    return Status::IoError(path.string() + ": cannot remove an image left without its row: " + error.message());
-  hooks.Note("images/" + image + " had no row in legs.csv (an interrupted capture): recording it again");
-  return Status::Ok();
-}
-
 // Move, settle, grab, read: the device half of AcquirePose.
 Status DriveAndCapture(const Vector6d& pose, Controller& controller, FrameSource& camera, const AcquireOptions& options,
                        const JobHooks& hooks, cv::Mat* frame, LegReadings* readings) {
   if (Status s = controller.MoveTo(pose); !s.ok()) return s;
-  if (Status s = controller.WaitSettled(options.settle_seconds); !s.ok()) return s;
+  const double settle = options.settle_seconds.value_or(controller.DefaultSettleSeconds());
+  if (Status s = controller.WaitSettled(settle); !s.ok()) return s;
   if (hooks.Cancelled()) return Status::Cancelled();
   StatusOr<cv::Mat> grabbed = camera.Grab(std::chrono::milliseconds(options.grab_timeout_ms));
   if (!grabbed.ok()) return grabbed.status();
   StatusOr<LegReadings> legs = controller.ReadLegs();
   if (!legs.ok()) return legs.status();
-  for (int i = 0; i < kNumLegs; ++i)
-    if (!std::isfinite((*legs)[i]))
-      return Status::Failed(controller.Describe() + ": leg " + std::to_string(i + 1) + " reads no number");
   *frame = std::move(*grabbed);
   *readings = *legs;
   return Status::Ok();
 }
+
+// The caller's cancel flag reaches the controller's waits while a pose is
+// acquired, so that Ctrl-C stops a move rather than waiting for its end.
+class CancelFlagLent {
+ public:
+  CancelFlagLent(Controller& controller, const JobHooks& hooks) : controller_(controller) {
+    controller_.SetCancelFlag(hooks.cancel);
+  }
+  ~CancelFlagLent() { controller_.SetCancelFlag(nullptr); }
+  CancelFlagLent(const CancelFlagLent&) = delete;
+  CancelFlagLent& operator=(const CancelFlagLent&) = delete;
+
+ private:
+  Controller& controller_;
+};
 
 // Errors that stop the whole run rather than one pose.
 bool StopsTheRun(const Status& status) {
@@ -83,6 +70,51 @@ StatusOr<std::vector<Vector6d>> LoadRequestedPoses(const AcquireRequest& request
   if (request.poses.empty() && !fs::exists(path, error))
     return Status::Error(path + ": no plan in the session; run hexcal plan --out " + path + " or pass --poses FILE");
   return LoadPoses(path);
+}
+
+// AcquirePose; *refused (if given) says the controller's readings were refused.
+StatusOr<PoseRecord> AcquireOnePose(const std::string& dir, int pose_index, const Vector6d& pose,
+                                    Controller& controller, FrameSource& camera, const AcquireOptions& options,
+                                    const JobHooks& hooks, bool* refused) {
+  const auto start = std::chrono::steady_clock::now();
+  // Read before the machine moves: a session whose robot cannot be loaded is
+  // refused before anything moves.
+  StatusOr<ReadingCheck> check = SessionReadingCheck(dir);
+  if (!check.ok()) return check.status();
+  PoseRecord record;
+  record.index = pose_index;
+  record.image = AcquiredImageName(pose_index);
+  record.pose = pose;
+  record.holdout = options.holdout_every > 0 && pose_index % options.holdout_every == options.holdout_every - 1;
+  // A recorded pose, or an operator's own file where the image would go:
+  // refused before the machine moves (and again under the lock, below).
+  StatusOr<std::set<std::string>> before = ImagesWithRows(dir);
+  if (!before.ok()) return before.status();
+  if (before->count(record.image)) return Status::Error(dir + ": " + record.image + " is recorded already");
+  if (Status s = ClearImageSlot(dir, record.image, false, hooks); !s.ok()) return s;
+  cv::Mat frame;
+  const CancelFlagLent lent(controller, hooks);
+  if (Status s = DriveAndCapture(pose, controller, camera, options, hooks, &frame, &record.readings); !s.ok()) return s;
+  if (Status s = CheckReadings(*check, record.image, pose, record.readings); !s.ok()) {
+    if (refused) *refused = true;
+    return Status::Failed(controller.Describe() + ": " + s.message());
+  }
+  StatusOr<std::string> png = EncodePng(frame);  // lossless: the corners are measured in it
+  if (!png.ok()) return png.status().Prefixed(record.image + ": ");
+
+  StatusOr<SessionLock> lock = SessionLock::Acquire(dir, options.wait);
+  if (!lock.ok()) return lock.status();
+  StatusOr<std::set<std::string>> recorded = ImagesWithRows(dir);
+  if (!recorded.ok()) return recorded.status();
+  if (recorded->count(record.image)) return Status::Error(dir + ": " + record.image + " is recorded already");
+  if (Status s = ClearImageSlot(dir, record.image, true, hooks); !s.ok()) return s;
+  LegsRow row;
+  row.image = record.image;
+  row.legs = record.readings;
+  row.holdout = record.holdout;
+  if (Status s = RecordWithPendingName(dir, *png, row, options.wait); !s.ok()) return s;
+  record.seconds = SecondsSince(start);
+  return record;
 }
 
 // One plan row: skipped when recorded, else acquired; a failure is recorded
@@ -98,8 +130,16 @@ StatusOr<PoseRecord> RunOnePose(const AcquireRequest& request, int index, const 
     skipped.state = PoseState::kAlreadyRecorded;
     return skipped;
   }
-  StatusOr<PoseRecord> done = AcquirePose(request.session, index, pose, controller, camera, request.options, hooks);
-  if (done.ok() || StopsTheRun(done.status())) return done;
+  bool refused = false;
+  StatusOr<PoseRecord> done =
+      AcquireOnePose(request.session, index, pose, controller, camera, request.options, hooks, &refused);
+  // Readings refused mean a controller that cannot be trusted: the next
+  // pose's would not be either. A machine stuck in a move (a time-out, a stop
+  // away from the target) would fail every later pose the same way.
+  if (done.ok() || refused || StopsTheRun(done.status())) return done;
+  if (!controller.Usable())
+    return Status::Failed(done.status().message() + "; the run stops here: look at the machine, then run " +
+                          "hexcal acquire again to go on");
   PoseRecord failed = skipped;
   failed.state = PoseState::kFailed;
   failed.error = done.status().message();
@@ -122,10 +162,10 @@ StatusOr<Robot> LoadSessionRobot(const std::string& dir) {
 }
 
 // The sim truth is written once; a resumed run must draw the same truth.
-Status WriteOrCheckTruth(const SimWorld& world, const std::string& dir, uint64_t seed) {
+Status WriteOrCheckTruth(const SimWorld& world, const std::string& dir, uint64_t seed, TruthRecord truth) {
   const std::string robot_file = (fs::path(dir) / "truth" / "robot.yaml").string();
   std::error_code error;
-  if (!fs::exists(robot_file, error)) return world.WriteTruth(dir);
+  if (!fs::exists(robot_file, error)) return truth == TruthRecord::kWriteOrCheck ? world.WriteTruth(dir) : Status::Ok();
   StatusOr<std::string> on_disk = ReadFileToString(robot_file, kMaxTableBytes);
   if (!on_disk.ok()) return on_disk.status();
   if (*on_disk != RobotToYaml(world.scene().truth))
@@ -137,8 +177,8 @@ Status WriteOrCheckTruth(const SimWorld& world, const std::string& dir, uint64_t
 }  // namespace
 
 bool AcquireOptions::IsValid(std::string* error) const {
-  if (!(settle_seconds >= 0 && settle_seconds <= 600)) {
-    *error = "--settle must be between 0 and 600 seconds, got " + FormatNumber(settle_seconds);
+  if (settle_seconds && !(*settle_seconds >= 0 && *settle_seconds <= 600)) {
+    *error = "--settle must be between 0 and 600 seconds, got " + FormatNumber(*settle_seconds);
     return false;
   }
   if (grab_timeout_ms < 1 || grab_timeout_ms > 600000) {
@@ -178,36 +218,11 @@ int AcquireResult::Count(PoseState state) const {
 
 StatusOr<PoseRecord> AcquirePose(const std::string& dir, int pose_index, const Vector6d& pose, Controller& controller,
                                  FrameSource& camera, const AcquireOptions& options, const JobHooks& hooks) {
-  const auto start = std::chrono::steady_clock::now();
-  PoseRecord record;
-  record.index = pose_index;
-  record.image = AcquiredImageName(pose_index);
-  record.pose = pose;
-  record.holdout = options.holdout_every > 0 && pose_index % options.holdout_every == options.holdout_every - 1;
-  cv::Mat frame;
-  if (Status s = DriveAndCapture(pose, controller, camera, options, hooks, &frame, &record.readings); !s.ok()) return s;
-  StatusOr<std::string> png = EncodePng(frame);  // lossless: the corners are measured in it
-  if (!png.ok()) return png.status().Prefixed(record.image + ": ");
-
-  StatusOr<SessionLock> lock = SessionLock::Acquire(dir, options.wait);
-  if (!lock.ok()) return lock.status();
-  StatusOr<std::set<std::string>> recorded = ImagesWithRows(dir);
-  if (!recorded.ok()) return recorded.status();
-  if (recorded->count(record.image)) return Status::Error(dir + ": " + record.image + " is recorded already");
-  if (Status s = RemoveImageWithoutRow(dir, record.image, hooks); !s.ok()) return s;
-  LegsRow row;
-  row.image = record.image;
-  row.legs = record.readings;
-  row.holdout = record.holdout;
-  const EditOutcome outcome = RecordCaptureBytes(dir, *png, row, {false, options.wait});
-  if (!outcome.status.ok()) return outcome.status;
-  if (outcome.conflict) return Status::Error(outcome.conflict_text);
-  record.seconds = SecondsSince(start);
-  return record;
+  return AcquireOnePose(dir, pose_index, pose, controller, camera, options, hooks, nullptr);
 }
 
 StatusOr<AcquisitionRig> OpenAcquisitionRig(const std::string& dir, const std::string& controller_url,
-                                            const std::string& camera_url, uint64_t seed) {
+                                            const std::string& camera_url, uint64_t seed, TruthRecord truth) {
   AcquisitionRig rig;
   const bool sim = controller_url == "sim" || camera_url == "sim";
   if (camera_url == "sim" && controller_url != "sim")
@@ -234,15 +249,18 @@ StatusOr<AcquisitionRig> OpenAcquisitionRig(const std::string& dir, const std::s
   if (sim) {  // the truth is written only for a rig that opened whole
     StatusOr<SessionLock> lock = SessionLock::Acquire(dir, LockWait::kBriefly);
     if (!lock.ok()) return lock.status();
-    if (Status s = WriteOrCheckTruth(*rig.sim, dir, seed); !s.ok()) return s;
+    if (Status s = WriteOrCheckTruth(*rig.sim, dir, seed, truth); !s.ok()) return s;
   }
   return rig;
 }
 
 StatusOr<AcquireResult> AcquirePlan(const AcquireRequest& request, const JobHooks& hooks) {
   if (std::string error; !request.options.IsValid(&error)) return Status::Error(error);
-  // The plan is checked before a sim world writes its truth into the session.
+  // The plan and the session are checked before a sim world writes its truth
+  // into the session, or a machine is powered on and homed.
   if (StatusOr<std::vector<Vector6d>> poses = LoadRequestedPoses(request); !poses.ok()) return poses.status();
+  if (Status s = CheckSessionTakesCaptures(request.session); !s.ok()) return s;
+  if (StatusOr<Robot> robot = LoadSessionRobot(request.session); !robot.ok()) return robot.status();
   StatusOr<AcquisitionRig> rig = OpenAcquisitionRig(request.session, request.controller, request.camera, request.seed);
   if (!rig.ok()) return rig.status();
   return AcquirePlan(request, *rig->controller, *rig->camera, hooks);
@@ -254,25 +272,65 @@ StatusOr<AcquireResult> AcquirePlan(const AcquireRequest& request, Controller& c
   if (std::string error; !request.options.IsValid(&error)) return Status::Error(error);
   StatusOr<std::vector<Vector6d>> poses = LoadRequestedPoses(request);
   if (!poses.ok()) return poses.status();
+  StatusOr<Robot> robot = LoadSessionRobot(request.session);
+  if (!robot.ok()) return robot.status();
   StatusOr<SessionLock> lock = SessionLock::Acquire(request.session, request.options.wait);
   if (!lock.ok()) return lock.status();
   StatusOr<std::set<std::string>> recorded = ImagesWithRows(request.session);
   if (!recorded.ok()) return recorded.status();
 
-  AcquireResult result{request.session, controller.Describe(), camera.Describe(), {}, 0};
+  AcquireResult result{request.session, controller.Describe(), camera.Describe(), {}, 0, 0, {}};
+  result.settle_seconds = request.options.settle_seconds.value_or(controller.DefaultSettleSeconds());
   const int total = static_cast<int>(poses->size());
-  hooks.Stage("acquire");
-  hooks.Progress(0, total);
+  std::vector<bool> skip(total);
   for (int index = 0; index < total; ++index) {
+    PoseRecord& record = result.poses.emplace_back();
+    record.index = index;
+    record.state = PoseState::kAlreadyRecorded;
+    record.image = AcquiredImageName(index);
+    record.pose = (*poses)[index];
+    skip[index] = recorded->count(record.image) > 0;
+  }
+  result.visit_order = VisitOrder(*robot, *poses, WorkspaceCentre(*robot), skip);
+  hooks.Stage("acquire");
+  hooks.Progress(total - static_cast<int>(result.visit_order.size()), total);
+  int done = total - static_cast<int>(result.visit_order.size());
+  for (const int index : result.visit_order) {
     if (hooks.Cancelled()) return Status::Cancelled();
     StatusOr<PoseRecord> record = RunOnePose(request, index, (*poses)[index], *recorded, controller, camera, hooks);
     if (!record.ok()) return record.status();
-    if (record->state != PoseState::kAlreadyRecorded) hooks.Note(PoseNote(*record, total));
-    result.poses.push_back(*record);
-    hooks.Progress(index + 1, total);
+    hooks.Note(PoseNote(*record, total));
+    result.poses[index] = *record;
+    hooks.Progress(++done, total);
   }
   result.seconds = SecondsSince(start);
   return result;
+}
+
+std::vector<int> VisitOrder(const Robot& robot, const std::vector<Vector6d>& poses, const Vector6d& start,
+                            const std::vector<bool>& skip) {
+  const auto scaled_legs = [&](const Vector6d& pose) {
+    LegReadings legs = InverseKinematics(robot, robot.PoseFromVector(pose));
+    for (int i = 0; i < kNumLegs; ++i) legs[i] /= robot.legs[i].stroke_max - robot.legs[i].stroke_min;
+    return legs;
+  };
+  std::vector<LegReadings> legs;
+  std::vector<int> left;
+  for (size_t k = 0; k < poses.size(); ++k) {
+    legs.push_back(scaled_legs(poses[k]));
+    if (k >= skip.size() || !skip[k]) left.push_back(static_cast<int>(k));
+  }
+  std::vector<int> order;
+  LegReadings here = scaled_legs(start);
+  while (!left.empty()) {
+    // The first of equally near poses, so that the order is the plan's for a tie.
+    auto nearest = std::min_element(left.begin(), left.end(),
+                                    [&](int a, int b) { return (legs[a] - here).norm() < (legs[b] - here).norm(); });
+    order.push_back(*nearest);
+    here = legs[*nearest];
+    left.erase(nearest);
+  }
+  return order;
 }
 
 nlohmann::json ToJson(const AcquireResult& result) {
@@ -297,6 +355,8 @@ nlohmann::json ToJson(const AcquireResult& result) {
           {"already_recorded", result.Count(PoseState::kAlreadyRecorded)},
           {"failed", result.Count(PoseState::kFailed)},
           {"poses", poses},
+          {"visit_order", result.visit_order},
+          {"settle_seconds", result.settle_seconds},
           {"seconds", result.seconds}};
 }
 
@@ -305,7 +365,8 @@ std::string FormatAcquireSummary(const AcquireResult& result) {
   text << "acquired into " << result.session << " with " << result.controller << " and " << result.camera << "\n"
        << "  " << result.Count(PoseState::kRecorded) << " recorded, " << result.Count(PoseState::kAlreadyRecorded)
        << " already recorded, " << result.Count(PoseState::kFailed) << " failed, of " << result.poses.size()
-       << " poses in " << FormatNumber(std::round(result.seconds * 10) / 10) << " s\n";
+       << " poses in " << FormatNumber(std::round(result.seconds * 10) / 10) << " s (settle "
+       << FormatNumber(result.settle_seconds) << " s after each move)\n";
   for (const PoseRecord& r : result.poses)
     if (r.state == PoseState::kFailed) text << "  failed: " << r.image << ": " << r.error << "\n";
   if (result.Count(PoseState::kFailed) > 0) text << "  run hexcal acquire again to retry the failed poses\n";

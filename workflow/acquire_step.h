@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,7 +39,10 @@ namespace hexcal::workflow {
 class SimWorld;
 
 struct AcquireOptions {
-  double settle_seconds = 0;   // waited after each move ends, before the frame, seconds
+  // Waited after each move ends, before the frame, seconds; unset: the
+  // controller's own (Controller::DefaultSettleSeconds: 0 for sim, 0.5 for
+  // LinuxCNC, whose camera needs it or shows the previous pose).
+  std::optional<double> settle_seconds;
   int grab_timeout_ms = 5000;  // a frame later than this is a failed pose, milliseconds
   // Every Nth pose of the plan (rows N-1, 2N-1, ...) is recorded with
   // holdout = 1, kept out of the calibration to validate it; 0 = none.
@@ -65,10 +69,11 @@ struct PoseRecord {
 // "pose_0007.png": the image of plan row `pose_index`.
 std::string AcquiredImageName(int pose_index);
 
-// One pose: move, settle, grab, read the legs, record. Errors: the pose's own
-// (unreachable: bad input; no frame, FK: failed), a cancel (checked between
-// the move and the grab), a busy session, a write that failed, or a row that
-// exists already (bad input: the pose is recorded).
+// One pose: move, settle, grab, read the legs, check them (reading_check.h),
+// record. Errors: the pose's own (unreachable: bad input; no frame, FK:
+// failed), readings refused (failed; nothing recorded), a cancel (checked
+// between the move and the grab), a busy session, a write that failed, or a
+// row that exists already (bad input: the pose is recorded).
 StatusOr<PoseRecord> AcquirePose(const std::string& session_dir, int pose_index, const Vector6d& pose,
                                  Controller& controller, FrameSource& camera, const AcquireOptions& options,
                                  const JobHooks& hooks = {});
@@ -81,8 +86,13 @@ struct AcquisitionRig {
   std::unique_ptr<Controller> controller;
   std::unique_ptr<FrameSource> camera;
 };
+// What a `sim` rig does with its hidden truth: write it into SESSION/truth/
+// (or check it against the one there: acquire), or only check it against one
+// there (verify, which writes nothing into the session).
+enum class TruthRecord { kWriteOrCheck, kCheckOnly };
 StatusOr<AcquisitionRig> OpenAcquisitionRig(const std::string& session_dir, const std::string& controller_url,
-                                            const std::string& camera_url, uint64_t seed);
+                                            const std::string& camera_url, uint64_t seed,
+                                            TruthRecord truth = TruthRecord::kWriteOrCheck);
 
 struct AcquireRequest {
   std::string session;
@@ -97,17 +107,28 @@ struct AcquireResult {
   std::string session, controller, camera;  // the folder and the devices' Describe()
   std::vector<PoseRecord> poses;            // one per plan row, in plan order
   double seconds = 0;                       // the whole run
+  double settle_seconds = 0;                // waited after each move
+  std::vector<int> visit_order;             // the plan rows in the order they were visited
 
   int Count(PoseState state) const;
 };
 
 // Runs the plan with the devices of the request's URLs (OpenAcquisitionRig).
-// Holds the session lock throughout. Stage "acquire", progress per pose, a
-// note per pose. A cancel returns Status::Cancelled; what was recorded stays.
+// Holds the session lock throughout. The poses not recorded yet are visited
+// nearest first (VisitOrder), so that moves are short. Stage "acquire",
+// progress per pose, a note per pose. A cancel returns Status::Cancelled;
+// readings refused stop the run with their error (failed); what was recorded
+// stays.
 StatusOr<AcquireResult> AcquirePlan(const AcquireRequest& request, const JobHooks& hooks = {});
 // The same with devices the caller opened (the GUI keeps its connection).
 StatusOr<AcquireResult> AcquirePlan(const AcquireRequest& request, Controller& controller, FrameSource& camera,
                                     const JobHooks& hooks = {});
+
+// The order of the plan rows not in `skip`: from `start`, each time the
+// nearest pose left, in leg space with each leg's change divided by its
+// stroke (what the moves between them have to cover).
+std::vector<int> VisitOrder(const Robot& robot, const std::vector<Vector6d>& poses, const Vector6d& start,
+                            const std::vector<bool>& skip);
 
 nlohmann::json ToJson(const AcquireResult& result);
 std::string FormatAcquireSummary(const AcquireResult& result);

@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <atomic>
 #include <filesystem>
+#include <functional>
+#include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
@@ -23,6 +25,7 @@
 namespace hexcal::workflow {
 namespace {
 
+using ::hexcal::testing::ReadTextFile;
 using ::hexcal::testing::TempDir;
 using ::hexcal::testing::WriteTextFile;
 
@@ -53,16 +56,19 @@ TEST(AcquireStep, SimRunRecordsEveryPoseWithItsReadings) {
   StatusOr<std::vector<LegsRow>> rows = Rows(s);
   ASSERT_TRUE(rows.ok()) << rows.status().message();
   ASSERT_EQ(rows->size(), 4u);
-  EXPECT_EQ((*rows)[3].image, "pose_0003.png");
-  EXPECT_FALSE((*rows)[0].holdout);
-  EXPECT_TRUE((*rows)[1].holdout);
+  // Rows come in the order the poses were visited (VisitOrder), nearest first.
+  std::map<std::string, LegsRow> by_image;
+  for (const LegsRow& row : *rows) by_image[row.image] = row;
+  ASSERT_EQ(by_image.count("pose_0003.png"), 1u);
+  EXPECT_FALSE(by_image["pose_0000.png"].holdout);
+  EXPECT_TRUE(by_image["pose_0001.png"].holdout);
   // The readings are the nominal IK of the commanded pose (what the
   // controller drives) plus the sensor noise of ±noise.leg (0.001 cm).
   const Robot nominal = *LoadRobot("inria-left-hand");
   Vector6d second;
   second << 1, -0.5, 53, 2, -1, 4;
   const LegReadings driven = InverseKinematics(nominal, nominal.PoseFromVector(second));
-  EXPECT_LE(((*rows)[1].legs - driven).cwiseAbs().maxCoeff(), 0.001 + 1e-12);
+  EXPECT_LE((by_image["pose_0001.png"].legs - driven).cwiseAbs().maxCoeff(), 0.001 + 1e-12);
   EXPECT_TRUE(fs::exists(s + "/truth/robot.yaml"));
   const cv::Mat image = cv::imread(s + "/images/pose_0000.png", cv::IMREAD_UNCHANGED);
   EXPECT_EQ(image.cols, 1024);
@@ -93,6 +99,7 @@ TEST(AcquireStep, AnImageLeftWithoutItsRowByAKillIsRecordedAgain) {
   TempDir dir;
   const std::string s = MakeSession(dir);
   WriteTextFile(s + "/images/pose_0001.png", "half a capture");
+  WriteTextFile(s + "/.acquire-pending", "pose_0001.png\n");  // the kill came between the two writes
   std::vector<std::string> notes;
   JobHooks hooks;
   hooks.note = [&](const std::string& line) { notes.push_back(line); };
@@ -104,6 +111,24 @@ TEST(AcquireStep, AnImageLeftWithoutItsRowByAKillIsRecordedAgain) {
     return line.find("images/pose_0001.png had no row in legs.csv") != std::string::npos;
   });
   EXPECT_NE(noted, notes.end());
+}
+
+// An image without its row that acquire did not write is an operator's: it
+// stays, and its pose fails (before the machine moves) while the run goes on.
+TEST(AcquireStep, AnOperatorsOwnImageIsNeverRemoved) {
+  TempDir dir;
+  const std::string s = MakeSession(dir);
+  WriteTextFile(s + "/images/pose_0002.png", "the operator's own picture");
+  StatusOr<AcquireResult> run = AcquirePlan(AcquireRequest{s});
+  ASSERT_TRUE(run.ok()) << run.status().message();
+  EXPECT_EQ(run->Count(PoseState::kRecorded), 3);
+  ASSERT_EQ(run->poses[2].state, PoseState::kFailed);
+  EXPECT_NE(run->poses[2].error.find("images/pose_0002.png exists without a row in legs.csv and hexcal acquire did "
+                                     "not write it"),
+            std::string::npos)
+      << run->poses[2].error;
+  EXPECT_EQ(ReadTextFile(s + "/images/pose_0002.png"), "the operator's own picture");
+  EXPECT_FALSE(fs::exists(s + "/.acquire-pending"));
 }
 
 TEST(AcquireStep, AnUnreachablePoseFailsAndTheRunGoesOn) {
@@ -141,12 +166,14 @@ TEST(AcquireStep, AFrameThatFailsOnceFailsOnePoseAndTheNextRunRetriesIt) {
   DropsFirstFrame camera(std::move(rig->camera));
   StatusOr<AcquireResult> run = AcquirePlan(AcquireRequest{s}, *rig->controller, camera);
   ASSERT_TRUE(run.ok()) << run.status().message();
-  EXPECT_EQ(run->poses[0].state, PoseState::kFailed);
-  EXPECT_EQ(run->poses[0].error, "test camera: dropped frame");
+  const int first = run->visit_order.at(0);
+  EXPECT_EQ(run->poses[first].state, PoseState::kFailed);
+  EXPECT_EQ(run->poses[first].error, "test camera: dropped frame");
   EXPECT_EQ(run->Count(PoseState::kRecorded), 3);
   StatusOr<AcquireResult> retry = AcquirePlan(AcquireRequest{s}, *rig->controller, camera);
   ASSERT_TRUE(retry.ok()) << retry.status().message();
-  EXPECT_EQ(retry->poses[0].state, PoseState::kRecorded);
+  EXPECT_EQ(retry->visit_order, std::vector<int>{first});
+  EXPECT_EQ(retry->poses[first].state, PoseState::kRecorded);
   EXPECT_EQ(Rows(s)->size(), 4u);
 }
 
@@ -171,6 +198,184 @@ TEST(AcquireStep, OnePoseAtATimeRefusesARecordedPose) {
   StatusOr<PoseRecord> again = AcquirePose(s, 7, pose, *rig->controller, *rig->camera, {});
   ASSERT_FALSE(again.ok());
   EXPECT_NE(again.status().message().find("pose_0007.png is recorded already"), std::string::npos);
+}
+
+// A controller that moves as the sim one does but reports what a faulty one
+// might (issue 33): `lie` turns the sim's readings at the commanded pose into
+// the reported ones. It records the settle times it is asked to wait.
+class LyingController final : public Controller {
+ public:
+  using Lie = std::function<LegReadings(const LegReadings& honest)>;
+  LyingController(Controller& honest, Lie lie) : honest_(honest), lie_(std::move(lie)) {}
+  Status MoveTo(const Vector6d& pose) override { return honest_.MoveTo(pose); }
+  Status WaitSettled(double seconds) override {
+    settles.push_back(seconds);
+    return honest_.WaitSettled(seconds);
+  }
+  StatusOr<LegReadings> ReadLegs() override {
+    StatusOr<LegReadings> honest = honest_.ReadLegs();
+    if (!honest.ok()) return honest;
+    return lie_(*honest);
+  }
+  std::string Describe() const override { return "lying controller"; }
+  double DefaultSettleSeconds() const override { return 0.01; }
+  std::vector<double> settles;
+
+ private:
+  Controller& honest_;
+  Lie lie_;
+};
+
+// The issue's faults: 1e12, a leg at −50 cm, inch-scaled readings, another
+// pose's readings. Each stops the run with the pose, the leg and both values,
+// and nothing (no row, no image) is recorded.
+TEST(AcquireStep, ImplausibleReadingsStopTheRunAndNothingIsRecorded) {
+  const Robot nominal = *LoadRobot("inria-left-hand");
+  // Row 1 is visited first (nearest the centre of the sampling box, z = 53); row 2's readings there.
+  const LegReadings elsewhere =
+      InverseKinematics(nominal, nominal.PoseFromVector((Vector6d() << -1, 0.8, 54, -2, 2, -3).finished()));
+  const std::vector<std::pair<LyingController::Lie, std::string>> faults = {
+      {[](LegReadings legs) {
+         legs[2] = 1e12;
+         return legs;
+       },
+       "leg 3 read 1000000000000 cm, outside its stroke [0, 3.5] cm"},
+      {[](LegReadings legs) {
+         legs[0] = -50;
+         return legs;
+       },
+       "leg 1 read -50 cm, outside its stroke [0, 3.5] cm"},
+      {[&](const LegReadings& legs) {  // joints in inches taken for cm
+         LegReadings scaled;
+         for (int i = 0; i < kNumLegs; ++i)
+           scaled[i] = (legs[i] + nominal.legs[i].offset) / 2.54 - nominal.legs[i].offset;
+         return scaled;
+       },
+       "leg 1 read -"},
+      {[&](const LegReadings&) { return elsewhere; }, "where the commanded pose needs"}};
+  for (const auto& [lie, expected] : faults) {
+    TempDir dir;
+    const std::string s = MakeSession(dir);
+    StatusOr<AcquisitionRig> rig = OpenAcquisitionRig(s, "sim", "sim", 1);
+    ASSERT_TRUE(rig.ok()) << rig.status().message();
+    LyingController controller(*rig->controller, lie);
+    StatusOr<AcquireResult> run = AcquirePlan(AcquireRequest{s}, controller, *rig->camera);
+    ASSERT_FALSE(run.ok()) << expected;
+    EXPECT_EQ(run.status().kind(), StatusKind::kFailed);
+    const std::string& message = run.status().message();
+    EXPECT_NE(message.find("lying controller: pose_0001.png at (1, -0.5, 53, 2, -1, 4): "), std::string::npos)
+        << message;
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+    EXPECT_NE(message.find("nothing recorded for this pose"), std::string::npos) << message;
+    EXPECT_FALSE(fs::exists(s + "/legs.csv"));
+    EXPECT_TRUE(fs::is_empty(s + "/images"));
+  }
+}
+
+TEST(AcquireStep, AnotherPosesReadingsNameBothValuesAndTheTolerance) {
+  TempDir dir;
+  const std::string s = MakeSession(dir);
+  StatusOr<AcquisitionRig> rig = OpenAcquisitionRig(s, "sim", "sim", 1);
+  ASSERT_TRUE(rig.ok()) << rig.status().message();
+  // 0.01 cm too long: beyond 5 x the session's leg noise (0.001 cm).
+  LyingController controller(*rig->controller, [](LegReadings legs) {
+    legs[4] += 0.01;
+    return legs;
+  });
+  StatusOr<AcquireResult> run = AcquirePlan(AcquireRequest{s}, controller, *rig->camera);
+  ASSERT_FALSE(run.ok());
+  EXPECT_NE(run.status().message().find("more than 0.005 cm (5 x the session's leg noise 0.001 cm)"), std::string::npos)
+      << run.status().message();
+  EXPECT_NE(run.status().message().find("leg 5 read "), std::string::npos) << run.status().message();
+}
+
+TEST(AcquireStep, TheSettleTimeIsTheControllersUnlessGiven) {
+  TempDir dir;
+  const std::string s = MakeSession(dir);
+  StatusOr<AcquisitionRig> rig = OpenAcquisitionRig(s, "sim", "sim", 1);
+  ASSERT_TRUE(rig.ok()) << rig.status().message();
+  LyingController controller(*rig->controller, [](const LegReadings& legs) { return legs; });
+  AcquireRequest request{s};
+  request.poses = s + "/plan.csv";
+  StatusOr<AcquireResult> run = AcquirePlan(request, controller, *rig->camera);
+  ASSERT_TRUE(run.ok()) << run.status().message();
+  EXPECT_EQ(controller.settles, std::vector<double>(4, 0.01));
+  EXPECT_EQ(run->settle_seconds, 0.01);
+  fs::remove(s + "/legs.csv");
+  for (const fs::directory_entry& image : fs::directory_iterator(s + "/images")) fs::remove(image.path());
+  controller.settles.clear();
+  request.options.settle_seconds = 0;
+  ASSERT_TRUE(AcquirePlan(request, controller, *rig->camera).ok());
+  EXPECT_EQ(controller.settles, std::vector<double>(4, 0.0));
+}
+
+// A machine stuck in a move (time-out, stopped away from its target): the
+// run stops after that pose instead of sending the next one.
+class StuckController final : public Controller {
+ public:
+  Status MoveTo(const Vector6d&) override {
+    ++moves;
+    return Status::Ok();
+  }
+  Status WaitSettled(double) override { return Status::Failed("test machine: the move did not end"); }
+  StatusOr<LegReadings> ReadLegs() override { return Status::Failed("not reached"); }
+  std::string Describe() const override { return "stuck controller"; }
+  double DefaultSettleSeconds() const override { return 0; }
+  bool Usable() const override { return moves == 0; }
+  int moves = 0;
+};
+
+TEST(AcquireStep, AMachineStuckInAMoveStopsTheRun) {
+  TempDir dir;
+  const std::string s = MakeSession(dir);
+  StatusOr<AcquisitionRig> rig = OpenAcquisitionRig(s, "sim", "sim", 1);
+  ASSERT_TRUE(rig.ok()) << rig.status().message();
+  StuckController controller;
+  StatusOr<AcquireResult> run = AcquirePlan(AcquireRequest{s}, controller, *rig->camera);
+  ASSERT_FALSE(run.ok());
+  EXPECT_EQ(run.status().kind(), StatusKind::kFailed);
+  EXPECT_NE(run.status().message().find("test machine: the move did not end; the run stops here"), std::string::npos)
+      << run.status().message();
+  EXPECT_EQ(controller.moves, 1);
+  EXPECT_FALSE(fs::exists(s + "/legs.csv"));
+}
+
+// A session that cannot take the captures is refused before the controller
+// is opened: the LinuxCNC URL points at a closed port, so an error about the
+// connection would mean the machine had been tried (and powered on, homed).
+TEST(AcquireStep, TheSessionIsCheckedBeforeTheMachineIsOpened) {
+  TempDir dir;
+  const std::string s = MakeSession(dir);
+  ASSERT_TRUE(cv::imwrite(dir.File("still.png"), cv::Mat(8, 8, CV_8UC1, cv::Scalar(0))));
+  AcquireRequest request{s, "linuxcnc://127.0.0.1:1", "file:" + dir.File("still.png")};
+  WriteTextFile(s + "/legs.csv", "image,L1\n\"unclosed\n");
+  StatusOr<AcquireResult> broken_legs = AcquirePlan(request);
+  ASSERT_FALSE(broken_legs.ok());
+  EXPECT_NE(broken_legs.status().message().find("legs.csv"), std::string::npos) << broken_legs.status().message();
+  EXPECT_EQ(broken_legs.status().message().find("LinuxCNC"), std::string::npos) << broken_legs.status().message();
+
+  fs::remove(s + "/legs.csv");
+  fs::remove_all(s + "/images");
+  WriteTextFile(s + "/images", "a file where the folder should be");
+  StatusOr<AcquireResult> no_images = AcquirePlan(request);
+  ASSERT_FALSE(no_images.ok());
+  EXPECT_EQ(no_images.status().kind(), StatusKind::kIo);
+  EXPECT_NE(no_images.status().message().find("cannot write a new file there"), std::string::npos)
+      << no_images.status().message();
+  EXPECT_EQ(ReadTextFile(s + "/images"), "a file where the folder should be");
+}
+
+// Nearest first from the start, in leg space: pure z moves from z = 53.5.
+TEST(AcquireStep, PosesAreVisitedNearestFirst) {
+  const Robot robot = *LoadRobot("inria-left-hand");
+  std::vector<Vector6d> poses;
+  for (const double z : {56.0, 51.0, 53.7, 55.0}) poses.push_back((Vector6d() << 0, 0, z, 0, 0, 0).finished());
+  const Vector6d start = (Vector6d() << 0, 0, 53.5, 0, 0, 0).finished();
+  EXPECT_EQ(VisitOrder(robot, poses, start, {}), (std::vector<int>{2, 3, 0, 1}));
+  EXPECT_EQ(VisitOrder(robot, poses, start, {false, false, false, true}), (std::vector<int>{2, 0, 1}));
+  // The acquire step starts from the centre of the sampling box, where the sim machine starts.
+  poses.insert(poses.begin() + 2, WorkspaceCentre(robot));
+  EXPECT_EQ(VisitOrder(robot, poses, WorkspaceCentre(robot), {}).front(), 2);
 }
 
 TEST(FrameSource, AnImageFileGivesTheSameFrameEveryTime) {

@@ -28,6 +28,8 @@ class SimController final : public Controller {
     return Status::Ok();
   }
   StatusOr<LegReadings> ReadLegs() override { return world_->ReadLegs(); }
+  // The sim camera renders the pose the sim world holds: no latency to wait for.
+  double DefaultSettleSeconds() const override { return 0; }
   std::string Describe() const override {
     return "sim controller (" + world_->scene().nominal.name + ", hidden true robot of seed " +
            std::to_string(world_->scene().seed) + ")";

@@ -16,6 +16,7 @@
 //   StatusOr<LegReadings> legs = (*robot)->ReadLegs();
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <string>
 
@@ -41,6 +42,24 @@ class Controller {
   virtual StatusOr<LegReadings> ReadLegs() = 0;
   // "sim controller (inria-left-hand, seed 1)": for logs.
   virtual std::string Describe() const = 0;
+  // The settle time when the operator gives none, seconds: what this kind of
+  // machine needs before a frame shows the pose it reports (see each one).
+  virtual double DefaultSettleSeconds() const = 0;
+  // False after a move that did not end where it should (a time-out, a stop
+  // away from the target): more moves would fail the same way or worse, so
+  // a run stops and the operator looks at the machine.
+  virtual bool Usable() const { return true; }
+
+  // A flag the caller raises to stop (Ctrl-C, the GUI's Cancel): WaitSettled
+  // then stops the machine's motion and returns Cancelled rather than
+  // waiting for the move or the settle time to end. Null: none.
+  void SetCancelFlag(const std::atomic<bool>* cancel) { cancel_ = cancel; }
+
+ protected:
+  bool CancelRequested() const { return cancel_ != nullptr && cancel_->load(); }
+
+ private:
+  const std::atomic<bool>* cancel_ = nullptr;
 };
 
 struct ControllerOptions {

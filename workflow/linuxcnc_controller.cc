@@ -4,13 +4,15 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <sstream>
 #include <thread>
 #include <vector>
 
+#include "core/straight_moves.h"
 #include "workflow/line_client.h"
-#include "workflow/linuxcnc_reply.h"
 #include "workflow/linuxcnc_geometry.h"
+#include "workflow/linuxcnc_reply.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -35,10 +37,15 @@ class LinuxCncController final : public Controller {
   // The opening sequence of linuxcnc_controller.h.
   Status Open();
   Status MoveTo(const Vector6d& pose) override;
-  // Sends one G0 to a world pose (machine units, degrees); `text` names it in messages.
-  Status SendMove(const Vector6d& world, const std::string& text);
+  // Sends one G0 from `from` to `world` (machine units, degrees); `text` names it in messages.
+  Status SendMove(const Vector6d& from, const Vector6d& world, const std::string& text);
   Status WaitSettled(double settle_seconds) override;
   StatusOr<LegReadings> ReadLegs() override;
+  // A machine reports "in position" before its structure stops ringing, and
+  // a camera's frame lags (hexcal sim-camera renders after the status
+  // update): with 0, frames showed the previous pose (docs/acquisition.md).
+  double DefaultSettleSeconds() const override { return 0.5; }
+  bool Usable() const override { return !stuck_; }
   std::string Describe() const override {
     return "LinuxCNC at " + client_.peer() + " (" + server_ + ", machine in " + MachineUnitName(unit_) + ", robot " +
            robot_.name + " in " + LengthUnitName(robot_.length_unit) + ")";
@@ -68,16 +75,24 @@ class LinuxCncController final : public Controller {
     bool in_position = false;  // and the platform is at the commanded pose
   };
   StatusOr<Motion> PollMotion();
+  // Stops the motion (`set abort`: the planner's queue is dropped and the
+  // machine decelerates) and returns `why` with what the abort answered.
+  Status AbortMotion(Status why);
+  // The settle time, in poll-interval slices so that a cancel ends it.
+  Status Settle(double seconds);
 
   LineClient client_;
   Robot robot_;
   LinuxCncOptions options_;
   MachineUnit unit_ = MachineUnit::kMillimetre;
-  std::string server_ = "linuxcncrsh";  // the HELLO ACK's server name and version
-  Vector6d target_ = Vector6d::Zero();  // the commanded world pose, machine units and degrees
-  std::string target_text_;             // hexcal's pose, for messages
-  std::string lost_;                    // why the connection was given up, if it was
-  bool moving_ = false;                 // a MoveTo was accepted and WaitSettled has not confirmed it
+  std::string server_ = "linuxcncrsh";      // the HELLO ACK's server name and version
+  Vector6d target_ = Vector6d::Zero();      // the commanded world pose, machine units and degrees
+  Vector6d move_start_ = Vector6d::Zero();  // where the move to target_ started, the same units
+  std::string target_text_;                 // hexcal's pose, for messages
+  std::string lost_;                        // why the connection was given up, if it was
+  bool moving_ = false;                     // a MoveTo was accepted and WaitSettled has not confirmed it
+  bool stuck_ = false;                      // a move timed out or stopped away from its target
+  std::optional<Vector6d> last_joints_;     // the joints at the last poll of an idle machine, machine units
 };
 
 StatusOr<std::string> LinuxCncController::Ask(const std::string& command) {
@@ -216,9 +231,11 @@ Status LinuxCncController::Open() {
   return DiscardOldErrors();
 }
 
-Status LinuxCncController::SendMove(const Vector6d& world, const std::string& text) {
+Status LinuxCncController::SendMove(const Vector6d& from, const Vector6d& world, const std::string& text) {
+  move_start_ = from;
   target_ = world;
   target_text_ = text;
+  last_joints_.reset();
   std::string command = unit_ == MachineUnit::kInch ? "set mdi G20 G90 G53 G0" : "set mdi G21 G90 G53 G0";
   static const char* axes[6] = {"X", "Y", "Z", "A", "B", "C"};
   for (int k = 0; k < 6; ++k) command += std::string(" ") + axes[k] + FixedNumber(target_[k]);
@@ -236,20 +253,35 @@ Status LinuxCncController::MoveTo(const Vector6d& pose) {
   // Messages read now belong to earlier commands: WaitSettled's are this move's.
   if (Status s = DiscardOldErrors(); !s.ok()) return s;
   const Vector6d target = GenhexkinsWorldFromPose(robot_, pose, unit_);
-  StatusOr<Vector6d> here = AskSixNumbers("get abs_act_pos", "ABS_ACT_POS");
+  // Where the platform is, as the machine moves from it: the trajectory
+  // planner's pose (exact where the last move ended or stopped; abs_act_pos
+  // can be stale, PollMotion).
+  StatusOr<Vector6d> here = AskSixNumbers("get abs_cmd_pos", "ABS_CMD_POS");
   if (!here.ok()) return here.status();
   // G0 is a straight line in X Y Z A B C, along which a leg can pass its
   // stroke between two poses within it (and stop the machine at a soft
-  // limit): then the move goes through the workspace centre.
-  if (!StraightMoveWithinStrokes(robot_, *here, target, unit_)) {
-    const Vector6d via = GenhexkinsWorldFromPose(robot_, WorkspaceCentre(robot_), unit_);
-    if (!StraightMoveWithinStrokes(robot_, *here, via, unit_) || !StraightMoveWithinStrokes(robot_, via, target, unit_))
-      return Status::Error("pose " + PoseText(pose) + ": no straight move from where the platform is, nor one " +
-                           "through the workspace centre, keeps every leg within its stroke");
-    if (Status s = SendMove(via, "the workspace centre " + PoseText(WorkspaceCentre(robot_))); !s.ok()) return s;
+  // limit): the move goes through waypoints that keep every leg within its
+  // stroke (core/straight_moves.h), each sent as its own G0.
+  const double scale = MachineUnitsPerRobotUnit(robot_, unit_);
+  const auto motion = [scale](Vector6d world) {
+    world.head<3>() /= scale;
+    return world;
+  };
+  StraightMoveOptions options;
+  options.vias = {MotionVectorFromPose(robot_.PoseFromVector(WorkspaceCentre(robot_)))};
+  StatusOr<std::vector<Vector6d>> moves = PlanStraightMoves(robot_, motion(*here), motion(target), options);
+  if (!moves.ok()) return Status::Error("pose " + PoseText(pose) + ": " + moves.status().message());
+  Vector6d from = *here;
+  for (size_t k = 0; k + 1 < moves->size(); ++k) {
+    Vector6d waypoint = (*moves)[k];
+    waypoint.head<3>() *= scale;
+    const std::string text = "waypoint " + std::to_string(k + 1) + " of " + std::to_string(moves->size() - 1) +
+                             " on the way to " + PoseText(pose);
+    if (Status s = SendMove(from, waypoint, text); !s.ok()) return s;
     if (Status s = WaitSettled(0); !s.ok()) return s;
+    from = waypoint;
   }
-  return SendMove(target, PoseText(pose));
+  return SendMove(from, target, PoseText(pose));
 }
 
 StatusOr<LinuxCncController::Motion> LinuxCncController::PollMotion() {
@@ -258,10 +290,28 @@ StatusOr<LinuxCncController::Motion> LinuxCncController::PollMotion() {
   Motion motion;
   motion.idle = UpperCase((*program)[0]) == "IDLE";
   if (!motion.idle) return motion;
-  StatusOr<Vector6d> actual = AskSixNumbers("get abs_act_pos", "ABS_ACT_POS");
-  if (!actual.ok()) return actual.status();
-  motion.in_position = (*actual - target_).cwiseAbs().maxCoeff() <= options_.position_tolerance;
+  // In position: the trajectory planner's pose at the target and the joints
+  // (the drives' feedback) still since the last poll. Not `abs_act_pos`: it
+  // is genhexkins' forward kinematics of the joints, whose Newton iteration
+  // fails at large rotations (genhexkins.fwd-kins-fail) and then reports a
+  // stale pose (seen: the home pose at A = 35°, C = −60°). Nor hexcal's IK of
+  // the target: the machine may run another geometry than the session's
+  // robot (`verify` after a calibration was loaded).
+  StatusOr<Vector6d> commanded = AskSixNumbers("get abs_cmd_pos", "ABS_CMD_POS");
+  if (!commanded.ok()) return commanded.status();
+  StatusOr<Vector6d> joints = AskSixNumbers("get joint_pos", "JOINT_POS");
+  if (!joints.ok()) return joints.status();
+  const bool still = last_joints_ && (*joints - *last_joints_).cwiseAbs().maxCoeff() <= options_.position_tolerance;
+  last_joints_ = *joints;
+  motion.in_position = still && (*commanded - target_).cwiseAbs().maxCoeff() <= options_.position_tolerance;
   return motion;
+}
+
+Status LinuxCncController::AbortMotion(Status why) {
+  moving_ = false;
+  const Status aborted = Expect("set abort", "SET ABORT ACK");
+  const std::string what = aborted.ok() ? "motion stopped (set abort)" : "stopping it failed: " + aborted.message();
+  return why.cancelled() ? Status::Cancelled(why.message() + "; " + what) : Error(why.message() + "; " + what);
 }
 
 Status LinuxCncController::WaitSettled(double settle_seconds) {
@@ -269,26 +319,50 @@ Status LinuxCncController::WaitSettled(double settle_seconds) {
   const Clock::time_point start = Clock::now();
   double idle_since = -1;  // when the machine was first seen idle away from the target, seconds since start
   for (;;) {
+    if (CancelRequested())
+      return AbortMotion(
+          Status::Cancelled("cancelled during the move to " + target_text_ + "; nothing recorded for this pose"));
     StatusOr<std::string> message = NextMachineError();
     if (!message.ok()) return message.status();
-    if (!message->empty()) return Error("the move to " + target_text_ + " failed: " + Excerpt(*message));
+    if (!message->empty()) {
+      // A move refused before it started (a target past a joint limit)
+      // leaves the machine where it was; one stopped on the way (a soft
+      // limit) leaves it where later moves fail too: the run stops (Usable).
+      StatusOr<Vector6d> at = AskSixNumbers("get abs_cmd_pos", "ABS_CMD_POS");
+      stuck_ = !at.ok() || (*at - move_start_).cwiseAbs().maxCoeff() > options_.position_tolerance;
+      moving_ = false;
+      return Error("the move to " + target_text_ + " failed: " + Excerpt(*message));
+    }
     StatusOr<Motion> motion = PollMotion();
     if (!motion.ok()) return motion.status();
     if (motion->in_position) break;
     const double elapsed = SecondsSince(start);
-    if (elapsed > options_.motion_timeout_seconds)
-      return Error("the platform did not reach " + target_text_ + " within " +
-                   FixedNumber(options_.motion_timeout_seconds, 3) + " s");
+    // A move that does not end is the machine's fault: stopped, and the run
+    // with it (Usable), rather than sending the next pose after it.
+    stuck_ = elapsed > options_.motion_timeout_seconds;
+    if (stuck_)
+      return AbortMotion(Status::Failed("the platform did not reach " + target_text_ + " within " +
+                                        FixedNumber(options_.motion_timeout_seconds, 3) + " s"));
     // Idle right after the command may be a move not started yet; idle for
-    // longer is a move that ended elsewhere.
+    // longer is a move that ended elsewhere (a soft limit, an abort).
     if (!motion->idle) idle_since = -1;
     if (motion->idle && idle_since < 0) idle_since = elapsed;
-    if (motion->idle && elapsed - idle_since > options_.idle_grace_seconds)
-      return Error("the machine is idle but not at " + target_text_ + " = machine " + SixText(target_));
+    stuck_ = motion->idle && elapsed - idle_since > options_.idle_grace_seconds;
+    if (stuck_) return Error("the machine is idle but not at " + target_text_ + " = machine " + SixText(target_));
     std::this_thread::sleep_for(options_.poll_interval);
   }
   moving_ = false;
-  if (settle_seconds > 0) std::this_thread::sleep_for(std::chrono::duration<double>(settle_seconds));
+  stuck_ = false;  // a move that ended in position: the machine moves again
+  return Settle(settle_seconds);
+}
+
+Status LinuxCncController::Settle(double seconds) {
+  const Clock::time_point start = Clock::now();
+  while (SecondsSince(start) < seconds) {
+    if (CancelRequested()) return Status::Cancelled("cancelled while settling at " + target_text_);
+    std::this_thread::sleep_for(std::min(std::chrono::duration<double>(options_.poll_interval),
+                                         std::chrono::duration<double>(seconds - SecondsSince(start))));
+  }
   return Status::Ok();
 }
 

@@ -14,8 +14,9 @@
 // workflow/linuxcnc_geometry.h. The pose is first checked against the
 // robot's workspace (a pose out of it is bad input naming the limit).
 // WaitSettled: polls `get error` (a message fails the move, naming it),
-// `get program_status` until IDLE and `get abs_act_pos` until it is the
-// commanded pose, then waits the settle time. ReadLegs: `get joint_pos`,
+// `get program_status` until IDLE, `get abs_cmd_pos` until it is the
+// commanded pose and `get joint_pos` until the joints are still, then waits
+// the settle time. ReadLegs: `get joint_pos`,
 // joint − l in the robot unit.
 //
 //   StatusOr<LinuxCncAddress> address = ParseLinuxCncUrl("linuxcnc://127.0.0.1:5007");
@@ -47,9 +48,10 @@ struct LinuxCncOptions {
   // elsewhere) for this long has failed, seconds.
   double idle_grace_seconds = 2;
   std::chrono::milliseconds poll_interval{20};  // between status polls
-  double position_tolerance = 1e-4;             // in position: |abs_act_pos − target|, machine unit and degrees
-  std::string connect_password = "EMC";         // linuxcncrsh --connectpw
-  std::string enable_password = "EMCTOO";       // linuxcncrsh --enablepw
+  // In position: |abs_cmd_pos − target| and the joints' change between two polls, machine unit and degrees.
+  double position_tolerance = 1e-4;
+  std::string connect_password = "EMC";    // linuxcncrsh --connectpw
+  std::string enable_password = "EMCTOO";  // linuxcncrsh --enablepw
 
   bool IsValid(std::string* error) const;
 };

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cstdio>
 #include <deque>
@@ -52,8 +53,10 @@ struct FakeLinuxCnc {
   std::map<std::string, std::string> overrides;  // line -> reply, before the rules below
   Vector6d world = Vector6d::Zero(), joints = Vector6d::Zero();
   int polls_left = 0;
-  bool moved = false;             // until the first move the platform is at home, the workspace centre
+  bool moved = false;            // until the first move the platform is at home, the workspace centre
   std::vector<std::string> mdi;  // the moves received
+  std::vector<Vector6d> worlds;  // the world poses moved to
+  bool aborted = false;          // `set abort` was received
 
   std::string Reply(const std::string& line) {
     if (auto found = overrides.find(line); found != overrides.end()) return found->second;
@@ -65,6 +68,7 @@ struct FakeLinuxCnc {
     if (line == "get joint_homed")
       return homed ? "JOINT_HOMED YES YES YES YES YES YES\r\n" : "JOINT_HOMED NO YES NO YES YES YES\r\n";
     if (line == "set home -1") homed = true;
+    if (line == "set abort") aborted = true;
     if (line == "get error") {
       if (errors.empty()) return "ERROR OK\r\n";
       const std::string message = "ERROR " + errors.front() + "\r\n";
@@ -79,7 +83,16 @@ struct FakeLinuxCnc {
       if (!moved) world = GenhexkinsWorldFromPose(robot, WorkspaceCentre(robot), unit);
       return SixNumbers("ABS_ACT_POS", polls_left > 0 ? Vector6d::Zero() : world);
     }
-    if (line == "get joint_pos") return SixNumbers("JOINT_POS", joints);
+    if (line == "get abs_cmd_pos") {
+      if (!moved) world = GenhexkinsWorldFromPose(robot, WorkspaceCentre(robot), unit);
+      return SixNumbers("ABS_CMD_POS", world);
+    }
+    if (line == "get joint_pos") {
+      if (!moved)
+        joints =
+            JointsFromReadings(robot, InverseKinematics(robot, robot.PoseFromVector(WorkspaceCentre(robot))), unit);
+      return SixNumbers("JOINT_POS", joints);
+    }
     if (line.rfind("set mdi ", 0) == 0) return Move(line);
     if (line == "quit") return kCloseConnection;
     if (line.rfind("set ", 0) == 0) {  // "set estop off" -> "SET ESTOP ACK"
@@ -99,6 +112,7 @@ struct FakeLinuxCnc {
       const size_t axis = std::string("XYZABC").find(word[0]);
       if (axis != std::string::npos) world[static_cast<int>(axis)] = std::stod(word.substr(1));
     }
+    worlds.push_back(world);
     Pose pose;
     pose.position = world.head<3>() / MachineUnitsPerRobotUnit(robot, unit);
     pose.rotation = RotationFromEuler(world.tail<3>() * kPi / 180, EulerConvention::kXYZ);
@@ -313,6 +327,80 @@ TEST(LinuxCncController, AMoveTheMachineRefusesFailsNamingItsMessage) {
       << settled.message();
   // The old error of FakeLinuxCnc was read away when the machine opened.
   EXPECT_EQ(settled.message().find("joint 0"), std::string::npos);
+  // The fake's planner pose jumped to the target: the move stopped on its
+  // way, where later moves would fail too.
+  EXPECT_FALSE((*machine)->Usable());
+
+  // Refused before it started (the planner still at the start): usable.
+  fake.machine.running_polls = 1;
+  ASSERT_TRUE((*machine)->MoveTo(SomePose()).ok());
+  ASSERT_TRUE((*machine)->WaitSettled(0).ok());
+  fake.machine.running_polls = 1000;
+  Vector6d next = SomePose();
+  next[0] = 0;
+  fake.machine.overrides["get abs_cmd_pos"] = SixNumbers("ABS_CMD_POS", fake.machine.world);
+  ASSERT_TRUE((*machine)->MoveTo(next).ok());
+  fake.machine.errors.push_back("Linear move on line 0 would exceed joint 2's positive limit");
+  EXPECT_FALSE((*machine)->WaitSettled(0).ok());
+  EXPECT_TRUE((*machine)->Usable());
+}
+
+// genhexkins' forward kinematics fails at large rotations and then reports a
+// stale world pose (the home pose, seen at A = 35°, C = −60°): the planner's
+// pose and still joints, not `abs_act_pos`, say whether the platform arrived
+// and where the next move starts.
+TEST(LinuxCncController, AStaleActualPoseIsNotTrusted) {
+  FakeMachine fake;
+  StatusOr<std::unique_ptr<Controller>> machine = fake.Open();
+  ASSERT_TRUE(machine.ok());
+  fake.machine.overrides["get abs_act_pos"] = "ABS_ACT_POS 0 0 535 0 0 0\r\n";
+  ASSERT_TRUE((*machine)->MoveTo(SomePose()).ok());
+  Status settled = (*machine)->WaitSettled(0);
+  EXPECT_TRUE(settled.ok()) << settled.message();
+  Vector6d next = SomePose();
+  next[0] = -1;
+  ASSERT_TRUE((*machine)->MoveTo(next).ok());
+  EXPECT_TRUE((*machine)->WaitSettled(0).ok());
+  // One straight move from where the platform is (SomePose), not from home.
+  EXPECT_EQ(fake.machine.mdi.size(), 2u);
+}
+
+// Ctrl-C during a move (issue 33): the motion is stopped with `set abort`
+// at once, not after the 120 s time-out.
+TEST(LinuxCncController, ACancelStopsTheMotion) {
+  FakeMachine fake;
+  StatusOr<std::unique_ptr<Controller>> machine = fake.Open();
+  ASSERT_TRUE(machine.ok());
+  fake.machine.running_polls = 1000000;
+  std::atomic<bool> cancel{false};
+  (*machine)->SetCancelFlag(&cancel);
+  ASSERT_TRUE((*machine)->MoveTo(SomePose()).ok());
+  cancel = true;
+  const auto start = std::chrono::steady_clock::now();
+  Status stopped = (*machine)->WaitSettled(0);
+  EXPECT_LT(std::chrono::steady_clock::now() - start, 500ms);
+  EXPECT_TRUE(stopped.cancelled()) << stopped.message();
+  EXPECT_NE(stopped.message().find("cancelled during the move to (1, -2, 53, 3, -4, 5); nothing recorded for this "
+                                   "pose; motion stopped (set abort)"),
+            std::string::npos)
+      << stopped.message();
+  EXPECT_TRUE(fake.machine.aborted);
+  EXPECT_TRUE((*machine)->Usable());
+}
+
+// A move that does not end is stopped too, and the controller says it should
+// take no more moves (the acquire run stops instead of timing out per pose).
+TEST(LinuxCncController, ATimedOutMoveIsStoppedAndTheControllerNotUsable) {
+  FakeMachine fake;
+  StatusOr<std::unique_ptr<Controller>> machine = fake.Open();
+  ASSERT_TRUE(machine.ok());
+  fake.machine.overrides["get program_status"] = "PROGRAM_STATUS RUNNING\r\n";
+  ASSERT_TRUE((*machine)->MoveTo(SomePose()).ok());
+  Status slow = (*machine)->WaitSettled(0);
+  EXPECT_EQ(slow.kind(), StatusKind::kFailed);
+  EXPECT_NE(slow.message().find("within 1 s; motion stopped (set abort)"), std::string::npos) << slow.message();
+  EXPECT_TRUE(fake.machine.aborted);
+  EXPECT_FALSE((*machine)->Usable());
 }
 
 TEST(LinuxCncController, MoveErrors) {
@@ -332,11 +420,12 @@ TEST(LinuxCncController, MoveErrors) {
   EXPECT_NE(slow.message().find("did not reach (1, -2, 53, 3, -4, 5) within 1 s"), std::string::npos) << slow.message();
 
   fake.machine.overrides["get program_status"] = "PROGRAM_STATUS IDLE\r\n";
-  fake.machine.overrides["get abs_act_pos"] = "ABS_ACT_POS 0 0 535 0 0 0\r\n";  // reachable, not the target
+  fake.machine.overrides["get abs_cmd_pos"] = "ABS_CMD_POS 0 0 535 0 0 0\r\n";  // reachable, not the target
   ASSERT_TRUE((*machine)->MoveTo(SomePose()).ok());
   Status elsewhere = (*machine)->WaitSettled(0);
   EXPECT_NE(elsewhere.message().find("idle but not at (1, -2, 53, 3, -4, 5)"), std::string::npos)
       << elsewhere.message();
+  fake.machine.overrides.erase("get abs_cmd_pos");
 
   fake.machine.overrides["get joint_pos"] = "JOINT_POS 1 2 3 4 5 nan\r\n";
   StatusOr<LegReadings> nan = (*machine)->ReadLegs();
@@ -347,47 +436,48 @@ TEST(LinuxCncController, MoveErrors) {
   EXPECT_NE((*machine)->ReadLegs().status().message().find("'get joint_pos': 127.0.0.1:"), std::string::npos);
 }
 
-// Strokes set to just hold the legs along the two straight moves from `from`
-// to the workspace centre and on to `to` (64 samples each): then the move
-// from `from` to `to` must take that road, unless its straight path keeps
-// within them too.
-void NarrowStrokesToTheRoadThroughTheCentre(Robot* robot, const Vector6d& from, const Vector6d& to) {
-  const Vector6d centre = WorkspaceCentre(*robot);
-  LegReadings low = LegReadings::Constant(1e9), high = LegReadings::Constant(-1e9);
-  for (const auto& [start, end] : {std::pair(from, centre), std::pair(centre, to)})
-    for (int k = 0; k <= 64; ++k) {
-      const Vector6d pose = start + (end - start) * (k / 64.0);
-      const LegReadings legs = InverseKinematics(*robot, robot->PoseFromVector(pose));
-      low = low.cwiseMin(legs);
-      high = high.cwiseMax(legs);
-    }
-  for (int i = 0; i < kNumLegs; ++i) {
-    robot->legs[i].stroke_min = low[i] - 1e-3;
-    robot->legs[i].stroke_max = high[i] + 1e-3;
-  }
-}
-
-TEST(LinuxCncController, AMoveWhosePathLeavesAStrokeGoesThroughTheCentre) {
+// A sideways move between two poses whose strokes are set to just hold
+// them: a leg is shortest where it is most upright, between the two, so the
+// straight G0 would leave its stroke (checked here, so the case cannot pass
+// vacuously). The controller sends waypoints instead, and every straight
+// segment it sends keeps every leg within its stroke (sampled densely here).
+TEST(LinuxCncController, AMoveWhosePathLeavesAStrokeGoesThroughWaypoints) {
   FakeMachine fake;
   Robot& robot = fake.machine.robot;
   Vector6d from, to;
-  from << 5, 5, 53.5, 0, 0, 0;
-  to << 3, -3, 53.5, 0, 10, 0;
-  NarrowStrokesToTheRoadThroughTheCentre(&robot, from, to);
+  from << -6, -6, 53.5, 0, 0, 0;
+  to << 6, 6, 53.5, 0, 0, 10;
+  const LegReadings a = InverseKinematics(robot, robot.PoseFromVector(from));
+  const LegReadings b = InverseKinematics(robot, robot.PoseFromVector(to));
+  for (int i = 0; i < kNumLegs; ++i) {
+    robot.legs[i].stroke_min = std::min(a[i], b[i]) - 1e-3;
+    robot.legs[i].stroke_max = std::max(a[i], b[i]) + 1e-3;
+  }
   const MachineUnit mm = MachineUnit::kMillimetre;
-  ASSERT_FALSE(StraightMoveWithinStrokes(robot, GenhexkinsWorldFromPose(robot, from, mm),
-                                         GenhexkinsWorldFromPose(robot, to, mm), mm));  // the case is what it says
+  // The largest excess over any stroke along a straight G0 between two world poses.
+  const auto excess = [&](const Vector6d& start, const Vector6d& end) {
+    double worst = -1e9;
+    for (int k = 0; k <= 1000; ++k) {
+      const LegReadings legs =
+          InverseKinematics(robot, PoseFromGenhexkinsWorld(robot, start + (end - start) * (k / 1000.0), mm));
+      for (int i = 0; i < kNumLegs; ++i)
+        worst = std::max({worst, legs[i] - robot.legs[i].stroke_max, robot.legs[i].stroke_min - legs[i]});
+    }
+    return worst;
+  };
+  ASSERT_GT(excess(GenhexkinsWorldFromPose(robot, from, mm), GenhexkinsWorldFromPose(robot, to, mm)), 0.01);
   StatusOr<std::unique_ptr<Controller>> machine = fake.Open();
   ASSERT_TRUE(machine.ok()) << machine.status().message();
   ASSERT_TRUE((*machine)->MoveTo(from).ok());
   ASSERT_TRUE((*machine)->WaitSettled(0).ok());
-  fake.machine.mdi.clear();
+  fake.machine.worlds = {GenhexkinsWorldFromPose(robot, from, mm)};
   Status moved = (*machine)->MoveTo(to);
   ASSERT_TRUE(moved.ok()) << moved.message();
   ASSERT_TRUE((*machine)->WaitSettled(0).ok());
-  ASSERT_EQ(fake.machine.mdi.size(), 2u);
-  EXPECT_NE(fake.machine.mdi[0].find("X0 Y0 Z530 A0 B0 C0"), std::string::npos) << fake.machine.mdi[0];
-  EXPECT_NE(fake.machine.mdi[1].find("X30 Y-30 Z535 A0 B10 C0"), std::string::npos) << fake.machine.mdi[1];
+  ASSERT_GE(fake.machine.worlds.size(), 3u);  // from, a waypoint at least, to
+  EXPECT_NE(fake.machine.mdi.back().find("X60 Y60 Z535 A0 B0 C10"), std::string::npos) << fake.machine.mdi.back();
+  for (size_t k = 1; k < fake.machine.worlds.size(); ++k)
+    EXPECT_LE(excess(fake.machine.worlds[k - 1], fake.machine.worlds[k]), 1e-4 * 3.5) << "segment " << k;
 }
 
 TEST(LinuxCncController, AMdiNakIsNamed) {

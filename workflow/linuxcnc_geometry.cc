@@ -53,17 +53,6 @@ Pose PoseFromGenhexkinsWorld(const Robot& robot, const Vector6d& world, MachineU
   return PoseFromVector(xyz_form, EulerConvention::kXYZ);
 }
 
-bool StraightMoveWithinStrokes(const Robot& robot, const Vector6d& from, const Vector6d& to, MachineUnit unit,
-                               int samples) {
-  for (int k = 0; k <= samples; ++k) {
-    const double t = static_cast<double>(k) / samples;
-    const LegReadings legs = InverseKinematics(robot, PoseFromGenhexkinsWorld(robot, from + t * (to - from), unit));
-    for (int i = 0; i < kNumLegs; ++i)
-      if (!WithinStroke(robot.legs[i], legs[i])) return false;
-  }
-  return true;
-}
-
 LegReadings ReadingsFromJoints(const Robot& robot, const Vector6d& joints, MachineUnit unit) {
   const double scale = MachineUnitsPerRobotUnit(robot, unit);
   LegReadings readings;

@@ -47,13 +47,6 @@ double MachineUnitsPerRobotUnit(const Robot& robot, MachineUnit unit);
 Vector6d GenhexkinsWorldFromPose(const Robot& robot, const Vector6d& pose, MachineUnit unit);
 // The inverse: the platform pose of a genhexkins world pose.
 Pose PoseFromGenhexkinsWorld(const Robot& robot, const Vector6d& world, MachineUnit unit);
-// Whether every leg stays within its stroke along LinuxCNC's path of a G0
-// from `from` to `to` (world poses): a straight line in X Y Z A B C, sampled
-// at `samples` points. A leg can pass its end points on the way, though both
-// poses are within the strokes.
-bool StraightMoveWithinStrokes(const Robot& robot, const Vector6d& from, const Vector6d& to, MachineUnit unit,
-                               int samples = 64);
-
 // hexcal's readings L (robot unit) from genhexkins joints (full leg lengths,
 // machine units): L_i = joint_(i-1) / scale − l_i.
 LegReadings ReadingsFromJoints(const Robot& robot, const Vector6d& joints, MachineUnit unit);

@@ -7,9 +7,10 @@
 
 #include "core/constraints.h"
 #include "core/inverse_kinematics.h"
-#include "workflow/hal_push.h"
+#include "core/straight_moves.h"
 #include "tests/robot_presets.h"
 #include "tests/test_support.h"
+#include "workflow/hal_push.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -145,9 +146,15 @@ TEST(LinuxCncGeometry, AStraightMoveWhoseMiddleLeavesAStrokeIsRefused) {
     middle_outside |= !WithinStroke(robot.legs[i], m[i]);
   }
   ASSERT_TRUE(middle_outside);
-  const auto world = [&](const Vector6d& pose) { return GenhexkinsWorldFromPose(robot, pose, MachineUnit::kMillimetre); };
-  EXPECT_FALSE(StraightMoveWithinStrokes(robot, world(from), world(to), MachineUnit::kMillimetre));
-  EXPECT_TRUE(StraightMoveWithinStrokes(robot, world(from), world(from), MachineUnit::kMillimetre));
+  const auto world = [&](const Vector6d& pose) {
+    return GenhexkinsWorldFromPose(robot, pose, MachineUnit::kMillimetre);
+  };
+  // genhexkins' world is core/straight_moves.h's motion space in machine units.
+  const auto motion = [&](const Vector6d& pose) { return MotionVectorFromPose(robot.PoseFromVector(pose)); };
+  EXPECT_TRUE(MatrixNear(world(to).head<3>() / 10, motion(to).head<3>(), 1e-12));
+  EXPECT_TRUE(MatrixNear(world(to).tail<3>(), motion(to).tail<3>(), 1e-12));
+  EXPECT_FALSE(StraightSegmentHolds(robot, motion(from), motion(to), motion(from), {}));
+  EXPECT_TRUE(StraightSegmentHolds(robot, motion(from), motion(from), motion(from), {}));
   // Round trip of the world form.
   const Pose back = PoseFromGenhexkinsWorld(robot, world(to), MachineUnit::kMillimetre);
   EXPECT_TRUE(MatrixNear(robot.VectorFromPose(back), to, 1e-9));

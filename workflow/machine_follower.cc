@@ -18,6 +18,9 @@ namespace fs = std::filesystem;
 // The status reader: LinuxCNC's status channel every argv[1] seconds, as
 // "STATUS homed j0..j5 X Y Z A B C", or "DOWN why" while no machine runs. A
 // new stat() each time, so that a restarted machine's channel is the one read.
+// X..C is the commanded world pose (`position`), not `actual_position`:
+// that is genhexkins' FK of the joints, which fails at large rotations and
+// then holds a stale pose (docs/acquisition.md).
 constexpr const char* kStatusReader = R"(import sys, time
 import linuxcnc
 while True:
@@ -25,7 +28,7 @@ while True:
         s = linuxcnc.stat()
         s.poll()
         homed = all(j["homed"] for j in s.joint[:6])
-        print("STATUS", int(homed), *s.joint_actual_position[:6], *s.actual_position[:6], flush=True)
+        print("STATUS", int(homed), *s.joint_actual_position[:6], *s.position[:6], flush=True)
     except linuxcnc.error as e:
         print("DOWN", str(e).replace("\n", " "), flush=True)
     time.sleep(float(sys.argv[1]))
@@ -125,14 +128,12 @@ Status MachineFollower::Follow(const std::string& line) {
   // Before homing, joint positions are counts from power-on, not leg lengths.
   if (!status->homed) return Status::Failed("the machine is not homed: the platform stays where it is");
   if (Status s = RefreshRobot(); !s.ok()) return s;
-  const bool moved =
-      !have_joints_ || (status->joints - last_joints_).cwiseAbs().maxCoeff() > options_.joint_tolerance;
+  const bool moved = !have_joints_ || (status->joints - last_joints_).cwiseAbs().maxCoeff() > options_.joint_tolerance;
   if (!moved) return Status::Ok();
-  // The machine's world pose (its model's FK of the joints) is within the
-  // model's error of the true pose: the true FK starts there.
+  // The machine's commanded world pose is within the model's error (and the
+  // drives' following error) of the true pose: the true FK starts there.
   const Pose near = PoseFromGenhexkinsWorld(robot_, status->world, options_.unit);
-  if (Status s = world_->DriveLegs(ReadingsFromJoints(robot_, status->joints, options_.unit), near); !s.ok())
-    return s;
+  if (Status s = world_->DriveLegs(ReadingsFromJoints(robot_, status->joints, options_.unit), near); !s.ok()) return s;
   last_joints_ = status->joints;
   have_joints_ = true;
   SetFrame(world_->RenderFrame());

@@ -9,6 +9,8 @@
 #include "core/csv.h"
 #include "core/inverse_kinematics.h"
 #include "core/robot_io.h"
+#include "core/straight_moves.h"
+#include "workflow/controller.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -134,9 +136,9 @@ std::string FormatPrediction(const PlanOutcome& outcome) {
   std::ostringstream out;
   out << std::setprecision(3);
   if (outcome.finite_primary) {
-    out << "  " << (outcome.setup.planner.continuous ? "continuous search" : "continuous polish") << " from the finite plan: "
-        << CriterionName(outcome.setup.planner.criterion) << " " << *outcome.finite_primary << " -> "
-        << outcome.plan.final_primary << "\n";
+    out << "  " << (outcome.setup.planner.continuous ? "continuous search" : "continuous polish")
+        << " from the finite plan: " << CriterionName(outcome.setup.planner.criterion) << " " << *outcome.finite_primary
+        << " -> " << outcome.plan.final_primary << "\n";
   }
   if (!p.valid) return out.str() + "  predicted error: none (a leg's parameters are not identified)\n";
   out << "  predicted with noise ±" << outcome.noise.position << unit << ", ±" << outcome.noise.angle_deg << " deg, ±"
@@ -150,6 +152,19 @@ std::string FormatPrediction(const PlanOutcome& outcome) {
 }
 
 }  // namespace
+
+std::vector<std::string> UnreachablePoses(const Robot& robot, const std::vector<Vector6d>& poses) {
+  // Where acquire starts (VisitOrder) and the sim machine stands: a LinuxCNC
+  // machine's home is usually near it (the README's is 0.5 cm above).
+  const Vector6d centre = MotionVectorFromPose(robot.PoseFromVector(WorkspaceCentre(robot)));
+  std::vector<std::string> unreachable;
+  for (size_t k = 0; k < poses.size(); ++k) {
+    StatusOr<std::vector<Vector6d>> moves =
+        PlanStraightMoves(robot, centre, MotionVectorFromPose(robot.PoseFromVector(poses[k])));
+    if (!moves.ok()) unreachable.push_back("pose " + std::to_string(k + 1) + ": " + moves.status().message());
+  }
+  return unreachable;
+}
 
 nlohmann::json ToJson(const PlanOutcome& outcome) {
   const PlannerOptions& options = outcome.setup.planner;
@@ -175,6 +190,7 @@ nlohmann::json ToJson(const PlanOutcome& outcome) {
     j["finite_iterations"] = outcome.finite_iterations;
   }
   j["length_unit"] = outcome.length_unit;
+  j["unreachable_from_centre"] = outcome.unreachable;
   j["predicted"] = ToJson(outcome.prediction, outcome.noise, /*weighted=*/false);
   if (const std::optional<PlanCertificate>& cert = outcome.certificate) {
     j["d_efficiency"] = cert->d_efficiency;
@@ -216,6 +232,9 @@ std::string FormatPlanSummary(const PlanOutcome& outcome) {
         << ")\n";
   }
   out << FormatPrediction(outcome);
+  if (outcome.unreachable.empty())
+    out << "  moves: every pose reachable from the centre of the sampling box by straight moves within the strokes\n";
+  for (const std::string& why : outcome.unreachable) out << "  not reachable by straight moves: " << why << "\n";
   if (!outcome.out.empty()) out << "written to " << outcome.out << "\n";
   return out.str();
 }
@@ -301,9 +320,9 @@ StatusOr<PlanOutcome> RunPlan(const PlanningModel& given_model, const PlanSetup&
   StatusOr<std::vector<Vector6d>> initial = InitialPoses(model, setup.init, finite.num_poses, finite.seed);
   if (!initial.ok()) return initial.status();
   hooks.Stage("candidates");
-  StatusOr<CandidatePool> pool = BuildCandidatePool(model, candidates_file, setup.candidate_kinds,
-                                                    setup.candidate_count, setup.planner.continuous, finite.seed,
-                                                    hooks);
+  StatusOr<CandidatePool> pool =
+      BuildCandidatePool(model, candidates_file, setup.candidate_kinds, setup.candidate_count, setup.planner.continuous,
+                         finite.seed, hooks);
   if (!pool.ok()) return pool.status();
   hooks.Stage("planning");
   // The pool's rows once, for the search and the certificates.
@@ -326,6 +345,7 @@ StatusOr<PlanOutcome> RunPlan(const PlanningModel& given_model, const PlanSetup&
   outcome.noise = model.noise.value_or(NoiseModel{});
   outcome.prediction = PredictPlanError(model.robot, outcome.plan.poses, outcome.noise, /*weighted=*/false,
                                         ValidationPoses(model.robot));
+  outcome.unreachable = UnreachablePoses(model.robot, outcome.plan.poses);
   return outcome;
 }
 

@@ -53,10 +53,18 @@ struct PlanOutcome {
   // The finite phase's criterion and iterations, when a continuous phase followed it.
   std::optional<double> finite_primary;
   int finite_iterations = 0;
-  NoiseModel noise;                            // the prediction's (the model's, else the paper's)
-  PlanPrediction prediction;                   // for calibrate's default, unweighted
-  std::string length_unit{};                   // the robot's, for the figures
+  NoiseModel noise;           // the prediction's (the model's, else the paper's)
+  PlanPrediction prediction;  // for calibrate's default, unweighted
+  std::string length_unit{};  // the robot's, for the figures
+  // The poses a straight-line controller (LinuxCNC's G0) cannot reach from the
+  // centre of the sampling box through moves within the strokes
+  // (core/straight_moves.h), as "pose K: why"; empty when it reaches all.
+  std::vector<std::string> unreachable{};
 };
+
+// The poses a straight-line controller cannot reach from the centre of the
+// sampling box (PlanOutcome::unreachable).
+std::vector<std::string> UnreachablePoses(const Robot& robot, const std::vector<Vector6d>& poses);
 
 // The summary `hexcal plan --json` prints.
 nlohmann::json ToJson(const PlanOutcome& outcome);

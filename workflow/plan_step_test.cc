@@ -8,16 +8,17 @@
 #include "core/csv.h"
 #include "core/noise_model.h"
 #include "core/outlier_screening.h"
+#include "core/robot_io.h"
 #include "tests/test_support.h"
 
 namespace hexcal::workflow {
 namespace {
 
-using ::testing::HasSubstr;
 using hexcal::testing::ReadTextFile;
 using hexcal::testing::SourceDir;
 using hexcal::testing::TempDir;
 using hexcal::testing::WriteTextFile;
+using ::testing::HasSubstr;
 
 PlanRequest SmallRequest(const TempDir& dir) {
   PlanRequest request;
@@ -44,8 +45,11 @@ TEST(PlanSetupOptions, DefaultsAreThePlannersAndTextRoundTrips) {
 TEST(PlanSetupOptions, EntriesSetTheFieldsAndRefuseBadValues) {
   PlanSetup setup;
   ASSERT_TRUE(ApplyOptionEntries(PlanSetupOptions(),
-                                 {{"secondary", "O4"}, {"tabu", "4"}, {"candidate_kind", "random,boundary"},
-                                  {"continuous", "true"}, {"certificate", "false"}},
+                                 {{"secondary", "O4"},
+                                  {"tabu", "4"},
+                                  {"candidate_kind", "random,boundary"},
+                                  {"continuous", "true"},
+                                  {"certificate", "false"}},
                                  &setup, "flags")
                   .ok());
   EXPECT_EQ(setup.planner.secondary, Criterion::kO4);
@@ -111,6 +115,19 @@ TEST(PlanFromRequest, WritesThePlanAndHistory) {
   EXPECT_EQ(json["criterion"], "S");
   EXPECT_DOUBLE_EQ(json["predicted"]["mean_error"].get<double>(), outcome->prediction.mean_error);
   EXPECT_EQ(json["length_unit"], "cm");
+  // Every planned pose can be reached by a straight-line controller (issue 33).
+  EXPECT_TRUE(json["unreachable_from_centre"].empty()) << json["unreachable_from_centre"];
+  EXPECT_NE(FormatPlanSummary(*outcome).find("moves: every pose reachable from the centre"), std::string::npos);
+}
+
+// A pose out of the strokes cannot be reached, and says why.
+TEST(PlanFromRequest, UnreachablePosesNameTheirReason) {
+  const Robot robot = *LoadRobot("inria-left-hand");
+  const std::vector<Vector6d> poses = {(Vector6d() << 0, 0, 53.5, 0, 0, 0).finished(),
+                                       (Vector6d() << 0, 0, 70, 0, 0, 0).finished()};
+  const std::vector<std::string> unreachable = UnreachablePoses(robot, poses);
+  ASSERT_EQ(unreachable.size(), 1u);
+  EXPECT_EQ(unreachable[0].rfind("pose 2: ", 0), 0u) << unreachable[0];
 }
 
 // Flags override the settings file, which overrides the defaults.
@@ -119,7 +136,8 @@ TEST(PlanFromRequest, SettingsFileThenEntries) {
   WriteTextFile(dir.File("plan.yaml"), "planner:\n  poses: 9\n  tabu: 2\n  certificate: false\nnoise:\n  leg: 0.002\n");
   PlanRequest request = SmallRequest(dir);
   request.settings = dir.File("plan.yaml");
-  request.planner_entries = {{"candidate_count", "300"}, {"iterations", "10"}, {"tabu", "3"}, {"candidate_kind", "random"}};
+  request.planner_entries = {
+      {"candidate_count", "300"}, {"iterations", "10"}, {"tabu", "3"}, {"candidate_kind", "random"}};
   StatusOr<PlanOutcome> outcome = PlanFromRequest(request);
   ASSERT_TRUE(outcome.ok()) << outcome.status().message();
   EXPECT_EQ(outcome->setup.planner.num_poses, 9);

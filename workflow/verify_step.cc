@@ -1,12 +1,12 @@
 #include "workflow/verify_step.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
-#include <sstream>
-
 #include <opencv2/imgproc.hpp>
+#include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/csv.h"
@@ -36,8 +36,10 @@ StatusOr<CheckInputs> LoadCheckInputs(const std::string& dir) {
   if (!models.ok()) return models.status();
   const SessionConfig& config = models->config;
   if (!config.base_from_camera || !config.platform_from_target)
-    return Status::Error(dir + ": the session has no registered camera and target frames; calibrate it first "
-                               "(hexcal calibrate --session " + dir + ")");
+    return Status::Error(dir +
+                         ": the session has no registered camera and target frames; calibrate it first "
+                         "(hexcal calibrate --session " +
+                         dir + ")");
   Registration frames;
   frames.base_from_camera = *config.base_from_camera;
   frames.platform_from_target = *config.platform_from_target;
@@ -63,24 +65,51 @@ void CompareWithCommanded(const CheckInputs& in, const BoardPose& board, PoseChe
   check->reprojection_rms_px = board.rms_px;
 }
 
+std::string FrameName(int index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "check_%04d.png", index);
+  return name;
+}
+
 Status KeepFrame(const std::string& folder, int index, const cv::Mat& frame) {
   StatusOr<std::string> png = EncodePng(frame);
   if (!png.ok()) return png.status();
-  char name[32];
-  std::snprintf(name, sizeof name, "check_%04d.png", index);
-  return WriteFileAtomically((std::filesystem::path(folder) / name).string(), *png);
+  return WriteFileAtomically((std::filesystem::path(folder) / FrameName(index)).string(), *png);
+}
+
+// --keep-images, checked before anything moves: never the session's images/
+// (or a folder in it: those are the recorded captures), and no frame file
+// replaced without --force; then the folder is made.
+Status CheckImagesOut(const VerifyRequest& request, size_t count) {
+  namespace fs = std::filesystem;
+  if (request.images_out.empty()) return Status::Ok();
+  std::error_code error;
+  const fs::path images = fs::weakly_canonical(SessionPaths(request.session).images, error);
+  const fs::path out = fs::weakly_canonical(request.images_out, error);
+  const auto [end, rest] = std::mismatch(images.begin(), images.end(), out.begin(), out.end());
+  if (!error && end == images.end())
+    return Status::Error("--keep-images " + request.images_out + ": that is the session's images/ folder, " +
+                         "which holds the recorded captures: keep the frames in another folder");
+  for (size_t k = 0; k < count && !request.force; ++k) {
+    const fs::path frame = fs::path(request.images_out) / FrameName(static_cast<int>(k));
+    if (fs::exists(fs::symlink_status(frame, error)))
+      return Status::Error("--keep-images: " + frame.string() + " exists: use another folder, or --force to replace");
+  }
+  fs::create_directories(request.images_out, error);
+  if (error) return Status::IoError(request.images_out + ": cannot create the folder: " + error.message());
+  return Status::Ok();
 }
 
 // One pose: move, settle, grab, measure, compare. Device errors are the pose's.
-PoseCheck CheckOnePose(const VerifyRequest& request, const CheckInputs& in, AcquisitionRig& rig,
-                       TagDetector& detector, int index, const Vector6d& pose) {
+PoseCheck CheckOnePose(const VerifyRequest& request, const CheckInputs& in, AcquisitionRig& rig, TagDetector& detector,
+                       int index, const Vector6d& pose) {
   PoseCheck check;
   check.index = index;
   check.commanded = pose;
   Status moved = rig.controller->MoveTo(pose);
   if (moved.ok()) moved = rig.controller->WaitSettled(request.settle_seconds);
-  StatusOr<cv::Mat> frame = moved.ok() ? rig.camera->Grab(std::chrono::milliseconds(request.grab_timeout_ms))
-                                       : StatusOr<cv::Mat>(moved);
+  StatusOr<cv::Mat> frame =
+      moved.ok() ? rig.camera->Grab(std::chrono::milliseconds(request.grab_timeout_ms)) : StatusOr<cv::Mat>(moved);
   if (!frame.ok()) {
     check.problem = frame.status().message();
     return check;
@@ -137,15 +166,12 @@ StatusOr<VerifyResult> VerifyPoses(const VerifyRequest& request, const JobHooks&
   StatusOr<std::vector<Vector6d>> poses =
       LoadPoses(request.poses.empty() ? SessionPaths(request.session).plan : request.poses);
   if (!poses.ok()) return poses.status();
-  if (!request.images_out.empty()) {
-    std::error_code error;
-    std::filesystem::create_directories(request.images_out, error);
-    if (error) return Status::IoError(request.images_out + ": cannot create the folder: " + error.message());
-  }
-  StatusOr<std::unique_ptr<TagDetector>> detector = TagDetector::Create(
-      ForTarget(DetectorOptions{}, in->target), std::make_shared<const IdealPixelMap>(in->camera));
+  if (Status s = CheckImagesOut(request, poses->size()); !s.ok()) return s;
+  StatusOr<std::unique_ptr<TagDetector>> detector =
+      TagDetector::Create(ForTarget(DetectorOptions{}, in->target), std::make_shared<const IdealPixelMap>(in->camera));
   if (!detector.ok()) return detector.status();
-  StatusOr<AcquisitionRig> rig = OpenAcquisitionRig(request.session, request.controller, request.camera, request.seed);
+  StatusOr<AcquisitionRig> rig =
+      OpenAcquisitionRig(request.session, request.controller, request.camera, request.seed, TruthRecord::kCheckOnly);
   if (!rig.ok()) return rig.status();
   VerifyResult result;
   result.session = request.session;
@@ -182,12 +208,18 @@ nlohmann::json ToJson(const VerifyResult& result) {
     if (!check.problem.empty()) pose["problem"] = check.problem;  // no pose seen, or its frame not kept
     poses.push_back(pose);
   }
-  return {{"session", result.session},     {"controller", result.controller},
-          {"camera", result.camera},       {"length_unit", result.length_unit},
-          {"seen", result.Seen()},         {"failed", static_cast<int>(result.poses.size()) - result.Seen()},
-          {"position_rms", result.position_rms},       {"position_max", result.position_max},
-          {"orientation_rms", result.orientation_rms}, {"orientation_max", result.orientation_max},
-          {"seconds", result.seconds},     {"poses", poses}};
+  return {{"session", result.session},
+          {"controller", result.controller},
+          {"camera", result.camera},
+          {"length_unit", result.length_unit},
+          {"seen", result.Seen()},
+          {"failed", static_cast<int>(result.poses.size()) - result.Seen()},
+          {"position_rms", result.position_rms},
+          {"position_max", result.position_max},
+          {"orientation_rms", result.orientation_rms},
+          {"orientation_max", result.orientation_max},
+          {"seconds", result.seconds},
+          {"poses", poses}};
 }
 
 std::string FormatVerifySummary(const VerifyResult& result) {

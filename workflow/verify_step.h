@@ -16,11 +16,10 @@
 //   if (checked.ok()) std::cout << FormatVerifySummary(*checked);
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/job_hooks.h"
 #include "core/robot.h"
@@ -35,8 +34,11 @@ struct VerifyRequest {
   std::string poses{};             // pose CSV (x,y,z,q1,q2,q3); empty: SESSION/plan.csv
   double settle_seconds = 0.5;     // after each move, before the frame
   int grab_timeout_ms = 5000;
-  uint64_t seed = 1;               // of the sim world (sim URLs only)
-  std::string images_out{};        // a folder to keep each frame in (check_000k.png); empty: none
+  uint64_t seed = 1;  // of the sim world (sim URLs only)
+  // A folder to keep each frame in (check_000k.png); empty: none. Never the
+  // session's images/; a check_000k.png there already is refused unless `force`.
+  std::string images_out{};
+  bool force = false;  // replace check_000k.png files in images_out
 };
 
 struct PoseCheck {
@@ -59,10 +61,11 @@ struct VerifyResult {
   int Seen() const;
 };
 
-// Opens the devices (OpenAcquisitionRig), then each pose: move, settle, grab,
-// measure the board, compare. A pose that fails (unreachable, no frame, the
-// board not measured) is reported and the run goes on. Errors: no frames
-// registered in the session (calibrate first), bad poses, devices, a cancel.
+// Opens the devices (OpenAcquisitionRig, which writes nothing into the
+// session: a `sim` world's truth is checked against the session's, not
+// written), then each pose: move, settle, grab, measure the board, compare. A pose that fails (unreachable, no frame,
+// the board not measured) is reported and the run goes on. Errors: no frames registered in the session (calibrate
+// first), bad poses, devices, a cancel.
 StatusOr<VerifyResult> VerifyPoses(const VerifyRequest& request, const JobHooks& hooks = {});
 
 nlohmann::json ToJson(const VerifyResult& result);

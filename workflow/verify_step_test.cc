@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "core/robot_io.h"
 #include "core/session.h"
 #include "tests/test_support.h"
@@ -17,6 +19,7 @@
 namespace hexcal::workflow {
 namespace {
 
+using ::hexcal::testing::ReadTextFile;
 using ::hexcal::testing::TempDir;
 using ::hexcal::testing::WriteTextFile;
 
@@ -39,18 +42,58 @@ TEST(Verify, ASessionWithoutRegisteredFramesIsRefused) {
   EXPECT_NE(checked.status().message().find("calibrate it first"), std::string::npos) << checked.status().message();
 }
 
+// The world of seed 1, as the sim controller will draw it; its true frames
+// go into the session, as a perfect registration would put them.
+std::shared_ptr<SimWorld> RegisterTrueFrames(const std::string& s) {
+  StatusOr<std::shared_ptr<SimWorld>> world = SimWorld::ForSession(s, 1);
+  EXPECT_TRUE(world.ok()) << world.status().message();
+  StatusOr<SessionConfig> config = LoadSessionConfig(s);
+  EXPECT_TRUE(config.ok());
+  config->base_from_camera = (*world)->scene().base_from_camera;
+  config->platform_from_target = (*world)->scene().platform_from_target;
+  EXPECT_TRUE(SaveSessionConfig(s, *config).ok());
+  return *world;
+}
+
+// verify writes nothing into the session (issue 33): not the sim world's
+// truth, not frames into images/; kept frames are not replaced without force.
+TEST(Verify, WritesNothingIntoTheSessionAndReplacesNoFrameUnasked) {
+  TempDir dir;
+  const std::string s = MakeSession(dir);
+  RegisterTrueFrames(s);
+  VerifyRequest request{s};
+  request.poses = dir.File("check.csv");
+  request.settle_seconds = 0;
+  request.images_out = s + "/images/../images/checks";
+  StatusOr<VerifyResult> into_images = VerifyPoses(request);
+  ASSERT_FALSE(into_images.ok());
+  EXPECT_EQ(into_images.status().kind(), StatusKind::kBadInput);
+  EXPECT_NE(into_images.status().message().find("the session's images/ folder"), std::string::npos)
+      << into_images.status().message();
+
+  request.images_out = dir.File("frames");
+  std::filesystem::create_directories(dir.File("frames"));
+  WriteTextFile(dir.File("frames/check_0001.png"), "an earlier frame");
+  StatusOr<VerifyResult> over = VerifyPoses(request);
+  ASSERT_FALSE(over.ok());
+  EXPECT_NE(over.status().message().find("check_0001.png exists: use another folder, or --force to replace"),
+            std::string::npos)
+      << over.status().message();
+  EXPECT_FALSE(std::filesystem::exists(dir.File("frames/check_0000.png")));  // refused before anything moved
+
+  request.force = true;
+  StatusOr<VerifyResult> forced = VerifyPoses(request);
+  ASSERT_TRUE(forced.ok()) << forced.status().message();
+  EXPECT_NE(ReadTextFile(dir.File("frames/check_0001.png")), "an earlier frame");
+  EXPECT_FALSE(std::filesystem::exists(s + "/truth"));
+  EXPECT_TRUE(std::filesystem::is_empty(s + "/images"));
+}
+
 TEST(Verify, TheCameraSeesWhereTheTrueRobotPutThePlatform) {
   TempDir dir;
   const std::string s = MakeSession(dir);
-  // The world of seed 1, as the sim controller will draw it; its true frames
-  // go into the session, as a perfect registration would put them.
-  StatusOr<std::shared_ptr<SimWorld>> world = SimWorld::ForSession(s, 1);
-  ASSERT_TRUE(world.ok()) << world.status().message();
-  StatusOr<SessionConfig> config = LoadSessionConfig(s);
-  ASSERT_TRUE(config.ok());
-  config->base_from_camera = (*world)->scene().base_from_camera;
-  config->platform_from_target = (*world)->scene().platform_from_target;
-  ASSERT_TRUE(SaveSessionConfig(s, *config).ok());
+  std::shared_ptr<SimWorld> world_ptr = RegisterTrueFrames(s);
+  std::shared_ptr<SimWorld>* world = &world_ptr;
 
   VerifyRequest request{s};
   request.poses = dir.File("check.csv");

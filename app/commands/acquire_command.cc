@@ -3,8 +3,8 @@
 //
 // Moves the robot to each planned pose and records an image and the leg
 // readings there (workflow/acquire_step.h, docs/acquisition.md). Ctrl-C stops
-// before the current pose's frame or after its record (exit 1, cancelled);
-// running the command again goes on from there.
+// before the current pose's frame (a machine's move at once) or after its
+// record (exit 1, cancelled); running the command again goes on from there.
 #include <atomic>
 #include <csignal>
 #include <iostream>
@@ -20,6 +20,7 @@ namespace {
 struct AcquireCliOptions {
   workflow::AcquireRequest request;
   bool wait = false, json = false;
+  double settle = 0;  // --settle, when given, seconds
 };
 
 std::atomic<bool> interrupted{false};
@@ -60,9 +61,10 @@ void AddAcquireCommand(CLI::App& app, int* exit_code) {
       ->required();
   sub->add_option("--camera", request.camera, std::string("camera: ") + workflow::kFrameSourceForms)->required();
   sub->add_option("--poses", request.poses, "pose CSV (x,y,z,q1,q2,q3); default: the session's plan.csv");
-  sub->add_option("--settle", request.options.settle_seconds, "seconds to wait after each move, before the frame")
-      ->check(CLI::Range(0.0, 600.0))
-      ->capture_default_str();
+  // Given or not: without it the controller's own default applies (0 s sim, 0.5 s LinuxCNC).
+  sub->add_option("--settle", cli->settle,
+                  "seconds to wait after each move, before the frame; default: the controller's (sim 0, LinuxCNC 0.5)")
+      ->check(CLI::Range(0.0, 600.0));
   sub->add_option("--holdout-every", request.options.holdout_every,
                   "hold out every Nth pose (rows N-1, 2N-1, ...) to validate the calibration; 0 = none")
       ->check(CountRange(0, 1000000))
@@ -72,7 +74,10 @@ void AddAcquireCommand(CLI::App& app, int* exit_code) {
   sub->add_flag("--wait", cli->wait,
                 "when another program writes the session, wait for it instead of stopping (exit 3)");
   sub->add_flag("--json", cli->json, "print one JSON object on stdout (progress on stderr)");
-  sub->callback([=] { *exit_code = RunAcquireCommand(*cli, std::cout, std::cerr); });
+  sub->callback([=] {
+    if (sub->count("--settle") > 0) cli->request.options.settle_seconds = cli->settle;
+    *exit_code = RunAcquireCommand(*cli, std::cout, std::cerr);
+  });
 }
 
 }  // namespace hexcal::cli

@@ -1,5 +1,5 @@
 // hexcal verify --session DIR --controller URL --camera URL [--poses FILE] [--settle SECONDS]
-//               [--keep-images DIR] [--seed N] [--json]
+//               [--keep-images DIR [--force]] [--seed N] [--json]
 //
 // Drives the controller to each pose and checks through the camera where the
 // platform really is, in the session's registered frames
@@ -63,7 +63,9 @@ void AddVerifyCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--settle", request.settle_seconds, "seconds to wait after each move, before the frame")
       ->check(CLI::Range(0.0, 600.0))
       ->capture_default_str();
-  sub->add_option("--keep-images", request.images_out, "a folder to keep each frame in (check_000k.png)");
+  sub->add_option("--keep-images", request.images_out,
+                  "a folder to keep each frame in (check_000k.png; not the session's images/)");
+  sub->add_flag("--force", request.force, "replace check_000k.png files in the --keep-images folder");
   sub->add_option("--seed", request.seed, "seed of the sim world's hidden truth (sim only)")->capture_default_str();
   sub->add_flag("--json", cli->json, "print one JSON object on stdout (progress on stderr)");
   sub->callback([=] { *exit_code = RunVerifyCommand(*cli, std::cout, std::cerr); });

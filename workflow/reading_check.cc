@@ -1,0 +1,64 @@
+#include "workflow/reading_check.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/csv.h"
+#include "core/robot_io.h"
+#include "core/session.h"
+#include "workflow/controller.h"
+#include "workflow/session_calibrate.h"
+
+namespace hexcal::workflow {
+namespace {
+
+std::string Number(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  if (std::abs(value) >= 1e6) return FormatNumber(value);
+  return FormatNumber(std::round(value * 1e6) / 1e6);
+}
+
+}  // namespace
+
+ReadingCheck MakeReadingCheck(Robot robot, const NoiseModel& noise) {
+  const std::string unit = LengthUnitName(robot.length_unit);
+  const double floor = kFollowingErrorFloorMetres / MetresPerUnit(robot.length_unit);
+  const double from_noise = kReadingNoiseFactor * noise.leg;
+  ReadingCheck check{std::move(robot), std::max(from_noise, floor), ""};
+  check.basis = from_noise >= floor
+                    ? Number(kReadingNoiseFactor) + " x the session's leg noise " + Number(noise.leg) + " " + unit
+                    : "the floor for a controller's following error, " + Number(floor) + " " + unit;
+  return check;
+}
+
+StatusOr<ReadingCheck> SessionReadingCheck(const std::string& dir) {
+  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
+  if (!config.ok()) return config.status();
+  StatusOr<Robot> robot = LoadRobot(ResolveSessionFile(dir, config->robot));
+  if (!robot.ok()) return robot.status();
+  return MakeReadingCheck(std::move(*robot), config->noise);
+}
+
+Status CheckReadings(const ReadingCheck& check, const std::string& pose_name, const Vector6d& pose,
+                     const LegReadings& readings) {
+  const std::string unit = " " + std::string(LengthUnitName(check.robot.length_unit));
+  const std::string where = pose_name + " at " + PoseText(pose);
+  const LegReadings expected = InverseKinematics(check.robot, check.robot.PoseFromVector(pose));
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Leg& leg = check.robot.legs[i];
+    const std::string leg_text = where + ": leg " + std::to_string(i + 1) + " read " + Number(readings[i]) + unit;
+    if (!std::isfinite(readings[i])) return Status::Failed(leg_text + ", not a number; nothing recorded for this pose");
+    if (readings[i] < leg.stroke_min - check.tolerance || readings[i] > leg.stroke_max + check.tolerance)
+      return Status::Failed(leg_text + ", outside its stroke [" + Number(leg.stroke_min) + ", " +
+                            Number(leg.stroke_max) + "]" + unit + " (the controller's units or scale?); " +
+                            "nothing recorded for this pose");
+    if (std::abs(readings[i] - expected[i]) > check.tolerance)
+      return Status::Failed(leg_text + " where the commanded pose needs " + Number(expected[i]) + unit + ", " +
+                            Number(std::abs(readings[i] - expected[i])) + unit + " apart, more than " +
+                            Number(check.tolerance) + unit + " (" + check.basis + "); nothing recorded for this pose");
+  }
+  return Status::Ok();
+}
+
+}  // namespace hexcal::workflow
