@@ -5,6 +5,8 @@
 #include <cmath>
 #include <optional>
 
+#include "vision/bilinear.h"
+
 namespace hexcal {
 namespace {
 
@@ -15,16 +17,6 @@ constexpr int kMinSamples = 16;
 constexpr double kPxPerSample = 8.0;
 constexpr int kMaxPasses = 4;
 constexpr double kSettledPx = 0.02;
-
-// Bilinear grey at (x, y), OpenCV pixel convention; nullopt outside the image.
-std::optional<double> GreyAt(const cv::Mat& gray, double x, double y) {
-  if (!(x >= 0 && y >= 0 && x <= gray.cols - 1 && y <= gray.rows - 1)) return std::nullopt;
-  const int x0 = std::min(static_cast<int>(x), gray.cols - 2), y0 = std::min(static_cast<int>(y), gray.rows - 2);
-  const double fx = x - x0, fy = y - y0;
-  const uint8_t* row0 = gray.ptr<uint8_t>(y0);
-  const uint8_t* row1 = gray.ptr<uint8_t>(y0 + 1);
-  return (1 - fy) * ((1 - fx) * row0[x0] + fx * row0[x0 + 1]) + fy * ((1 - fx) * row1[x0] + fx * row1[x0 + 1]);
-}
 
 // A line as a point on it and its unit normal.
 struct Line {
@@ -45,8 +37,8 @@ std::optional<Line> SnapEdge(const cv::Mat& gray, const Eigen::Vector2d& a, cons
     for (double t = -kSearchPx; t <= kSearchPx + 1e-9; t += kSearchStepPx) {
       const Eigen::Vector2d light = on_edge + (t + kHalfBaselinePx) * outward;
       const Eigen::Vector2d dark = on_edge + (t - kHalfBaselinePx) * outward;
-      const std::optional<double> g_light = GreyAt(gray, light.x(), light.y());
-      const std::optional<double> g_dark = GreyAt(gray, dark.x(), dark.y());
+      const std::optional<double> g_light = BilinearGrey(gray, light.x(), light.y());
+      const std::optional<double> g_dark = BilinearGrey(gray, dark.x(), dark.y());
       if (!g_light || !g_dark || *g_light <= *g_dark) continue;
       const double weight = (*g_light - *g_dark) * (*g_light - *g_dark);
       weighted_offset += weight * t;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "vision/bilinear.h"
 #include "vision/tag_family.h"
 
 namespace hexcal {
@@ -36,13 +37,7 @@ Eigen::Matrix3d CellsToPixels(const std::array<Eigen::Vector2d, 4>& corners, dou
 // Bilinear grey value at (x, y), OpenCV convention; NaN outside the image.
 double Sample(const cv::Mat& gray, const Eigen::Matrix3d& cells_to_pixels, double x, double y) {
   const Eigen::Vector3d p = cells_to_pixels * Eigen::Vector3d(x, y, 1);
-  const double u = p.x() / p.z(), v = p.y() / p.z();
-  if (!(u >= 0 && v >= 0 && u <= gray.cols - 1 && v <= gray.rows - 1)) return std::numeric_limits<double>::quiet_NaN();
-  const int u0 = std::min(static_cast<int>(u), gray.cols - 2), v0 = std::min(static_cast<int>(v), gray.rows - 2);
-  const double fu = u - u0, fv = v - v0;
-  const uint8_t* row0 = gray.ptr<uint8_t>(v0);
-  const uint8_t* row1 = gray.ptr<uint8_t>(v0 + 1);
-  return (1 - fv) * ((1 - fu) * row0[u0] + fu * row0[u0 + 1]) + fv * ((1 - fu) * row1[u0] + fu * row1[u0 + 1]);
+  return BilinearGrey(gray, p.x() / p.z(), p.y() / p.z()).value_or(std::numeric_limits<double>::quiet_NaN());
 }
 
 // A plane a + b x + c y through grey samples, least squares.
