@@ -7,6 +7,7 @@
 
 #include "tests/test_support.h"
 #include "vision/camera.h"
+#include "vision/camera_expect.h"
 
 namespace hexcal {
 namespace {
@@ -14,17 +15,6 @@ namespace {
 using ::hexcal::testing::SourceDir;
 using ::testing::HasSubstr;
 using ::testing::Not;
-
-void ExpectSameCamera(const Camera& a, const Camera& b) {
-  EXPECT_EQ(a.model, b.model);
-  EXPECT_EQ(a.width, b.width);
-  EXPECT_EQ(a.height, b.height);
-  EXPECT_EQ(a.fx, b.fx);
-  EXPECT_EQ(a.fy, b.fy);
-  EXPECT_EQ(a.cx, b.cx);
-  EXPECT_EQ(a.cy, b.cy);
-  for (size_t i = 0; i < a.distortion.size(); ++i) EXPECT_EQ(a.distortion[i], b.distortion[i]) << i;
-}
 
 std::string ParseError(const std::string& text) {
   StatusOr<Camera> camera = ParseCameraFile(text, "cam.yaml");

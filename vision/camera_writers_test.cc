@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "vision/camera.h"
+#include "vision/camera_expect.h"
 
 namespace hexcal {
 namespace {
@@ -18,17 +19,6 @@ namespace {
 using ::testing::HasSubstr;
 
 constexpr CameraFileFormat kFormats[] = {CameraFileFormat::kOpenCv, CameraFileFormat::kRos, CameraFileFormat::kKalibr};
-
-void ExpectSameCamera(const Camera& a, const Camera& b) {
-  EXPECT_EQ(a.model, b.model);
-  EXPECT_EQ(a.width, b.width);
-  EXPECT_EQ(a.height, b.height);
-  EXPECT_EQ(a.fx, b.fx);
-  EXPECT_EQ(a.fy, b.fy);
-  EXPECT_EQ(a.cx, b.cx);
-  EXPECT_EQ(a.cy, b.cy);
-  for (size_t i = 0; i < a.distortion.size(); ++i) EXPECT_EQ(a.distortion[i], b.distortion[i]) << i;
-}
 
 // Numbers whose text is easy to get wrong: a whole fx (903 reads as a YAML
 // int), 1e-05 (a YAML 1.1 string unless it has a '.'), 1/3e4 (17 digits), a
