@@ -85,13 +85,23 @@ std::optional<FisheyeStart> EquidistantStart(const std::vector<const BoardObserv
   if (!std::isfinite(score[best])) return std::nullopt;
   // Golden-section search between the best trial's neighbours.
   double low = trial_f[best > 0 ? best - 1 : best], high = trial_f[std::min(best + 1, trial_f.size() - 1)];
+  // Each step keeps one of its two inner points, so one new median is computed.
   const double golden = 0.5 * (std::sqrt(5.0) - 1);
+  double a = high - golden * (high - low), b = low + golden * (high - low);
+  double at_a = MedianRms(views, a, centre), at_b = MedianRms(views, b, centre);
   for (int step = 0; step < kGoldenSteps; ++step) {
-    const double a = high - golden * (high - low), b = low + golden * (high - low);
-    if (MedianRms(views, a, centre) < MedianRms(views, b, centre)) {
+    if (at_a < at_b) {
       high = b;
+      b = a;
+      at_b = at_a;
+      a = high - golden * (high - low);
+      at_a = MedianRms(views, a, centre);
     } else {
       low = a;
+      a = b;
+      at_a = at_b;
+      b = low + golden * (high - low);
+      at_b = MedianRms(views, b, centre);
     }
   }
   FisheyeStart start;
