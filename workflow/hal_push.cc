@@ -2,11 +2,13 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
-#include <fstream>
+#include <cstdlib>
 #include <sstream>
 #include <vector>
 
+#include "core/atomic_file.h"
 #include "workflow/child_process.h"
 
 namespace hexcal::workflow {
@@ -14,16 +16,6 @@ namespace {
 
 constexpr size_t kMaxOutputBytes = 1 << 16;
 constexpr size_t kQuotedOutputChars = 300;
-
-StatusOr<int> CountSetpLines(const std::string& hal_file) {
-  std::ifstream in(hal_file);
-  if (!in) return Status::Error(hal_file + ": cannot read the HAL file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  const int count = CountHalPins(text.str());
-  if (count == 0) return Status::Error(hal_file + ": no setp lines: not a file of hexcal export --format linuxcnc-hal");
-  return count;
-}
 
 // Runs argv to its end: the exit status and the output's last kMaxOutputBytes.
 Status RunCapturing(const std::vector<std::string>& argv, int* exit_status, std::string* output) {
@@ -49,32 +41,75 @@ int CountHalPins(const std::string& hal_text) {
 }
 
 StatusOr<int> PushHalFile(const std::string& halcmd, const std::string& hal_file) {
-  StatusOr<int> pins = CountSetpLines(hal_file);
-  if (!pins.ok()) return pins.status();
+  StatusOr<std::string> text = ReadFileToString(hal_file);
+  if (!text.ok()) return text.status();
+  const int pins = CountHalPins(*text);
+  if (pins == 0) return Status::Error(hal_file + ": no setp lines: not a file of hexcal export --format linuxcnc-hal");
+  StatusOr<std::string> ran = RunHalText(halcmd, *text);
+  if (!ran.ok()) return ran.status();
+  return pins;
+}
+
+StatusOr<std::string> RunHalText(const std::string& halcmd, const std::string& hal_text) {
+  char path[] = "/tmp/hexcal-hal.XXXXXX";
+  const int fd = mkstemp(path);
+  if (fd < 0) return Status::IoError("cannot make a temporary HAL file in /tmp");
+  const bool written = write(fd, hal_text.data(), hal_text.size()) == static_cast<ssize_t>(hal_text.size());
+  close(fd);
   int exit_status = 0;
   std::string output;
-  if (Status s = RunCapturing({halcmd, "-f", hal_file}, &exit_status, &output); !s.ok()) return s;
+  Status ran = written ? RunCapturing({halcmd, "-f", path}, &exit_status, &output)
+                       : Status::IoError("cannot write a temporary HAL file in /tmp");
+  unlink(path);
+  if (!ran.ok()) return ran;
   if (exit_status != 0) {
     const std::string tail =
         output.size() > kQuotedOutputChars ? "..." + output.substr(output.size() - kQuotedOutputChars) : output;
-    return Status::Failed(halcmd + " -f " + hal_file + " exited " + std::to_string(exit_status) +
+    return Status::Failed(halcmd + " exited " + std::to_string(exit_status) +
                           " (is the machine running, and are RTAPI_UID and RTAPI_FIFO_PATH the machine's?): " + tail);
   }
-  return *pins;
+  return output;
 }
 
-std::string HomeOffsetShifts(const Robot& running, const Robot& calibrated, MachineUnit unit) {
-  const double scale = MachineUnitsPerRobotUnit(calibrated, unit);
-  std::ostringstream out;
-  for (int i = 0; i < kNumLegs; ++i) {
-    const double shift = (calibrated.legs[i].offset - running.legs[i].offset) * scale;
-    if (std::abs(shift) <= 1e-9) continue;
-    // Six decimals: 1 nm on a mm machine, below any encoder.
-    out << "[JOINT_" << i << "] HOME and HOME_OFFSET: add " << FixedNumber(shift, 6) << " " << MachineUnitName(unit)
-        << " (leg " << i + 1 << ": l " << FixedNumber(running.legs[i].offset * scale, 6) << " -> "
-        << FixedNumber(calibrated.legs[i].offset * scale, 6) << ")\n";
+StatusOr<std::vector<double>> ReadHalPins(const std::string& halcmd, const std::vector<std::string>& pins) {
+  std::string text;
+  for (const std::string& pin : pins) text += "getp " + pin + "\n";
+  StatusOr<std::string> output = RunHalText(halcmd, text);
+  if (!output.ok()) return output.status();
+  std::istringstream lines(*output);
+  std::vector<double> values;
+  for (std::string line; std::getline(lines, line) && values.size() < pins.size();) {
+    char* end = nullptr;
+    const double value = std::strtod(line.c_str(), &end);
+    if (end == line.c_str() || !std::isfinite(value))
+      return Status::Failed(halcmd + ": getp " + pins[values.size()] + " gave no number");
+    values.push_back(value);
   }
-  return out.str();
+  if (values.size() != pins.size()) return Status::Failed(halcmd + ": fewer values than getp lines");
+  return values;
+}
+
+StatusOr<std::array<double, 6>> HomeShifts(const Robot& running, const Robot& calibrated, MachineUnit unit) {
+  const double running_scale = MachineUnitsPerRobotUnit(running, unit);
+  const double scale = MachineUnitsPerRobotUnit(calibrated, unit);
+  double size = 0;  // the running robot's, machine units
+  for (const Leg& leg : running.legs) size = std::max({size, leg.a_in_base.norm(), leg.b_in_platform.norm()});
+  size *= running_scale;
+  std::array<double, 6> shifts{};
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Leg &was = running.legs[i], &now = calibrated.legs[i];
+    shifts[i] = now.offset * scale - was.offset * running_scale;
+    const double moved = std::max({(now.a_in_base * scale - was.a_in_base * running_scale).norm(),
+                                   (now.b_in_platform * scale - was.b_in_platform * running_scale).norm(),
+                                   std::abs(shifts[i])});
+    if (!(moved <= kSameMachineShare * size)) {
+      return Status::Error("leg " + std::to_string(i + 1) + " of robot '" + CommentText(calibrated.name) +
+                           "' is " + FixedNumber(moved, 6) + " " + MachineUnitName(unit) + " from the running robot '" +
+                           CommentText(running.name) + "''s (more than " + FixedNumber(100 * kSameMachineShare) +
+                           " % of its size): not the same machine, or a robot file in another length unit");
+    }
+  }
+  return shifts;
 }
 
 }  // namespace hexcal::workflow

@@ -4,7 +4,8 @@
 // servo cycle, so the change acts at once: the world pose is held and the
 // joints step (../shared/devices.md). The offsets l are not pins: they are the
 // joints' home positions in the machine's INI, so they change only with the
-// INI and homing again (HomeOffsetShifts says by how much).
+// INI and homing again (HomeShifts says by how much, workflow/linuxcnc_ini.h
+// changes the INI, workflow/linuxcnc_push.h does all of it on a live machine).
 //
 // halcmd must reach the running machine's HAL: as root, with the same
 // RTAPI_UID and RTAPI_FIFO_PATH as the machine (scripts/linuxcnc-sim.sh env).
@@ -12,7 +13,9 @@
 //   StatusOr<int> pins = PushHalFile("halcmd", "calibrated.hal");  // 37 pins set
 #pragma once
 
+#include <array>
 #include <string>
+#include <vector>
 
 #include "core/robot.h"
 #include "core/status.h"
@@ -27,10 +30,24 @@ int CountHalPins(const std::string& hal_text);
 // name halcmd and quote at most the last 300 characters of its output.
 StatusOr<int> PushHalFile(const std::string& halcmd, const std::string& hal_file);
 
-// The lines of an INI's [JOINT_n] sections that must change when the machine
-// moves from robot `running` to robot `calibrated`: HOME and HOME_OFFSET
-// shift by (l_calibrated − l_running) × scale, the leg's reading at the home
-// switch being unchanged. Empty when no offset moved by more than 1e-9.
-std::string HomeOffsetShifts(const Robot& running, const Robot& calibrated, MachineUnit unit);
+// Runs `halcmd -f` on `hal_text` (from a private temporary file): its
+// output, or the error of PushHalFile.
+StatusOr<std::string> RunHalText(const std::string& halcmd, const std::string& hal_text);
+
+// The values of HAL pins now (`getp` through one halcmd run), in order.
+// halcmd prints float pins with 7 significant digits.
+StatusOr<std::vector<double>> ReadHalPins(const std::string& halcmd, const std::vector<std::string>& pins);
+
+// An anchor point or offset l of the calibrated robot may differ from the
+// running one's by this share of the robot's size at most: more is another
+// robot, or a file in another length unit.
+constexpr double kSameMachineShare = 0.1;
+
+// How far each joint's home moves (machine units) when the machine goes from
+// robot `running` to robot `calibrated`: l_calibrated − l_running, each robot
+// converted from its own length unit, so that the leg's reading at the home
+// switch is unchanged. Bad input naming the leg when the two robots are not
+// the same machine (kSameMachineShare).
+StatusOr<std::array<double, 6>> HomeShifts(const Robot& running, const Robot& calibrated, MachineUnit unit);
 
 }  // namespace hexcal::workflow

@@ -46,6 +46,9 @@ class LinuxCncController final : public Controller {
   // update): with 0, frames showed the previous pose (docs/acquisition.md).
   double DefaultSettleSeconds() const override { return 0.5; }
   bool Usable() const override { return !stuck_; }
+  // Homes every joint, homed or not, until the joints are at `joints`
+  // (machine units) within `tolerance`, and returns to MDI mode (RehomeLinuxCnc).
+  Status Rehome(const Vector6d& joints, double tolerance);
   std::string Describe() const override {
     return "LinuxCNC at " + client_.peer() + " (" + server_ + ", machine in " + MachineUnitName(unit_) + ", robot " +
            robot_.name + " in " + LengthUnitName(robot_.length_unit) + ")";
@@ -67,6 +70,8 @@ class LinuxCncController final : public Controller {
   Status CheckUnits();
   Status HomeIfNeeded();
   StatusOr<bool> AllHomed();
+  // Polls AllHomed until it is `homed`, within `seconds`.
+  Status WaitHomed(bool homed, double seconds);
   // The oldest error message the machine has not reported yet; empty if none.
   StatusOr<std::string> NextMachineError();
   Status DiscardOldErrors();
@@ -181,18 +186,50 @@ StatusOr<bool> LinuxCncController::AllHomed() {
   return std::all_of(homed->begin(), homed->end(), [](const std::string& word) { return UpperCase(word) == "YES"; });
 }
 
+Status LinuxCncController::WaitHomed(bool homed, double seconds) {
+  const Clock::time_point start = Clock::now();
+  for (;;) {
+    StatusOr<bool> all = AllHomed();
+    if (!all.ok() || *all == homed) return all.status();
+    if (SecondsSince(start) >= seconds) break;
+    std::this_thread::sleep_for(options_.poll_interval);
+  }
+  return Error(std::string(homed ? "the joints were not homed" : "homing did not start") + " within " +
+               FixedNumber(seconds, 3) + " s");
+}
+
 Status LinuxCncController::HomeIfNeeded() {
   StatusOr<bool> homed = AllHomed();
   if (!homed.ok() || *homed) return homed.status();
   if (Status s = Expect("set mode manual", "SET MODE ACK"); !s.ok()) return s;
   if (Status s = Expect("set home -1", "SET HOME ACK"); !s.ok()) return s;
+  return WaitHomed(true, options_.motion_timeout_seconds);
+}
+
+Status LinuxCncController::Rehome(const Vector6d& joints, double tolerance) {
+  // Homing needs joint mode; a homed joint is homed again (seen with
+  // LinuxCNC 2.9: at once when HOME_SEARCH_VEL is 0, so "homed" never reads
+  // NO: the end is the joints at their new HOME).
+  if (Status s = Expect("set mode manual", "SET MODE ACK"); !s.ok()) return s;
+  if (Status s = Expect("set teleop_enable off", "SET TELEOP_ENABLE ACK"); !s.ok()) return s;
+  if (Status s = Expect("set home -1", "SET HOME ACK"); !s.ok()) return s;
   const Clock::time_point start = Clock::now();
-  while (SecondsSince(start) < options_.motion_timeout_seconds) {
+  for (;;) {
+    StatusOr<bool> homed = AllHomed();
+    if (!homed.ok()) return homed.status();
+    StatusOr<Vector6d> now = AskSixNumbers("get joint_pos", "JOINT_POS");
+    if (!now.ok()) return now.status();
+    if (*homed && ((*now - joints).cwiseAbs().maxCoeff() <= tolerance)) break;
+    if (SecondsSince(start) >= options_.motion_timeout_seconds) {
+      StatusOr<std::string> error = NextMachineError();
+      return Error("homing again did not bring the joints to " + SixText(joints) + " within " +
+                   FixedNumber(options_.motion_timeout_seconds, 3) + " s: they are at " + SixText(*now) +
+                   (error.ok() && !error->empty() ? " (" + *error + ")" : ""));
+    }
     std::this_thread::sleep_for(options_.poll_interval);
-    homed = AllHomed();
-    if (!homed.ok() || *homed) return homed.status();
   }
-  return Error("the joints were not homed within " + FixedNumber(options_.motion_timeout_seconds, 3) + " s");
+  last_joints_.reset();
+  return Expect("set mode mdi", "SET MODE ACK");
 }
 
 StatusOr<std::string> LinuxCncController::NextMachineError() {
@@ -420,6 +457,12 @@ StatusOr<std::unique_ptr<Controller>> OpenLinuxCncController(const LinuxCncAddre
   auto controller = std::make_unique<LinuxCncController>(std::move(*client), robot, options);
   if (Status s = controller->Open(); !s.ok()) return s;
   return std::unique_ptr<Controller>(std::move(controller));
+}
+
+Status RehomeLinuxCnc(Controller& controller, const Vector6d& joints, double tolerance) {
+  auto* machine = dynamic_cast<LinuxCncController*>(&controller);
+  if (machine == nullptr) return Status::Error(controller.Describe() + " is not a LinuxCNC machine: nothing to home");
+  return machine->Rehome(joints, tolerance);
 }
 
 }  // namespace hexcal::workflow

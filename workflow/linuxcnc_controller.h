@@ -62,4 +62,12 @@ struct LinuxCncOptions {
 StatusOr<std::unique_ptr<Controller>> OpenLinuxCncController(const LinuxCncAddress& address, const Robot& robot,
                                                              const LinuxCncOptions& options = {});
 
+// Homes every joint of a `linuxcnc://` controller again, as after new joint
+// homes were set (workflow/linuxcnc_push.h): `set mode manual`,
+// `set teleop_enable off` (homing needs joint mode), `set home -1`, then
+// polls until every joint is homed and at `joints` (its new HOME, machine
+// units) within `tolerance`, and `set mode mdi`. A controller of another kind
+// is bad input.
+Status RehomeLinuxCnc(Controller& controller, const Vector6d& joints, double tolerance);
+
 }  // namespace hexcal::workflow

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <sstream>
 
@@ -20,7 +22,27 @@ std::string Lower(std::string text) {
 void AppendPoint(std::ostringstream& hal, const std::string& pin_prefix, const Eigen::Vector3d& point, double scale) {
   static const char* axes[3] = {"x", "y", "z"};
   for (int k = 0; k < 3; ++k)
-    hal << "setp " << pin_prefix << "." << axes[k] << " " << FixedNumber(point[k] * scale) << "\n";
+    hal << "setp " << pin_prefix << "." << axes[k] << " " << ExactFixedNumber(point[k] * scale) << "\n";
+}
+
+std::string PrintfFixed(double value, int decimals) {
+  const int size = std::snprintf(nullptr, 0, "%.*f", decimals, value);
+  std::string text(static_cast<size_t>(size) + 1, '\0');
+  std::snprintf(text.data(), text.size(), "%.*f", decimals, value);
+  text.pop_back();
+  return text;
+}
+
+// The farthest anchor point from its frame's origin, metres; NaN if one is not finite.
+double RobotSizeMetres(const Robot& robot) {
+  double size = 0;
+  for (const Leg& leg : robot.legs) {
+    const bool finite = leg.a_in_base.allFinite() && leg.b_in_platform.allFinite() && std::isfinite(leg.offset) &&
+                        std::isfinite(leg.stroke_min) && std::isfinite(leg.stroke_max);
+    if (!finite) return std::nan("");
+    size = std::max({size, leg.a_in_base.norm(), leg.b_in_platform.norm()});
+  }
+  return size * MetresPerUnit(robot.length_unit);
 }
 
 }  // namespace
@@ -68,9 +90,7 @@ Vector6d JointsFromReadings(const Robot& robot, const LegReadings& readings, Mac
 }
 
 std::string FixedNumber(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  std::string fixed = text;
+  std::string fixed = PrintfFixed(value, decimals);
   if (fixed.find('.') != std::string::npos) {
     fixed.erase(fixed.find_last_not_of('0') + 1);
     if (fixed.back() == '.') fixed.pop_back();
@@ -78,11 +98,47 @@ std::string FixedNumber(double value, int decimals) {
   return fixed == "-0" ? "0" : fixed;
 }
 
+std::string ExactFixedNumber(double value) {
+  for (int decimals = 0; decimals < 17; ++decimals) {
+    const std::string text = FixedNumber(value, decimals);
+    if (std::strtod(text.c_str(), nullptr) == value) return text;
+  }
+  return FixedNumber(value, 17);
+}
+
+Status CheckRobotForMachine(const Robot& robot) {
+  const double size = RobotSizeMetres(robot);
+  if (std::isnan(size)) return Status::Error("robot '" + CommentText(robot.name) + "': a value is not finite");
+  if (size < kMinMachineRobotMetres || size > kMaxMachineRobotMetres) {
+    char shown[32];
+    std::snprintf(shown, sizeof shown, "%.3g", size);
+    return Status::Error("robot '" + CommentText(robot.name) + "': its farthest anchor point is " + shown +
+                         " m from its frame's origin, outside [" +
+                         FixedNumber(kMinMachineRobotMetres) + ", " + FixedNumber(kMaxMachineRobotMetres) +
+                         "] m: is its length_unit right?");
+  }
+  return Status::Ok();
+}
+
+std::string CommentText(const std::string& name) {
+  std::string text;
+  for (unsigned char c : name) {
+    if (c >= 0x20 && c < 0x7f) {
+      text += static_cast<char>(c);
+    } else {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", c);
+      text += escaped;
+    }
+  }
+  return text;
+}
+
 std::string GenhexkinsHal(const Robot& robot, MachineUnit unit) {
   const double scale = MachineUnitsPerRobotUnit(robot, unit);
   const char* name = MachineUnitName(unit);
   std::ostringstream hal;
-  hal << "# genhexkins geometry of robot '" << robot.name << "', written by hexcal export (docs/acquisition.md).\n"
+  hal << "# genhexkins geometry of robot '" << CommentText(robot.name) << "', written by hexcal export (docs/acquisition.md).\n"
       << "# Lengths in " << name << " (the INI's [TRAJ] LINEAR_UNITS = " << name << "); the robot file is in "
       << LengthUnitName(robot.length_unit) << ".\n"
       << "# base.N = a_(N+1) in the base frame, platform.N = b_(N+1) in the platform frame;\n"

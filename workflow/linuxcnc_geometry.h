@@ -30,6 +30,7 @@
 #include "core/inverse_kinematics.h"
 #include "core/pose.h"
 #include "core/robot.h"
+#include "core/status.h"
 
 namespace hexcal::workflow {
 
@@ -56,11 +57,28 @@ Vector6d JointsFromReadings(const Robot& robot, const LegReadings& readings, Mac
 // `value` with `decimals` decimals, trailing zeros dropped ("535", "-0.25"):
 // G-code and HAL take no exponents.
 std::string FixedNumber(double value, int decimals = 9);
+// `value` in fixed notation with the fewest decimals (at most 17) that read
+// back as the same double: full precision without an exponent.
+std::string ExactFixedNumber(double value);
+
+// The sizes a robot may have to be written for a machine: its anchor points
+// within kMaxMachineRobotMetres of the origin, the farthest at least
+// kMinMachineRobotMetres (a robot file in the wrong unit is 1000 times off).
+constexpr double kMinMachineRobotMetres = 1e-3;
+constexpr double kMaxMachineRobotMetres = 100;
+// Bad input naming the robot and the size when it is outside those bounds or
+// a value is not finite.
+Status CheckRobotForMachine(const Robot& robot);
+
+// A name for a HAL or INI comment: every byte that is not printable ASCII
+// (a line break would end the comment and start a command) as \xNN.
+std::string CommentText(const std::string& name);
 
 // A HAL file for the robot's geometry: `setp genhexkins.base.N.{x,y,z}` and
 // `setp genhexkins.platform.N.{x,y,z}` for N = 0..5 in machine units,
 // spindle-offset 0, and comments giving each joint's offset l (machine units)
-// for the INI's joint home positions.
+// for the INI's joint home positions. Values at full precision
+// (ExactFixedNumber); the robot is one CheckRobotForMachine accepts.
 std::string GenhexkinsHal(const Robot& robot, MachineUnit unit);
 
 }  // namespace hexcal::workflow

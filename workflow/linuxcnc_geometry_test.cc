@@ -161,13 +161,65 @@ TEST(LinuxCncGeometry, AStraightMoveWhoseMiddleLeavesAStrokeIsRefused) {
 }
 
 TEST(LinuxCncGeometry, HomeShiftsAreTheOffsetChangesInMachineUnits) {
-  const Robot running = Preset("inria-left-hand");
+  const Robot running = Preset("inria-left-hand");  // cm
   Robot calibrated = running;
   calibrated.legs[2].offset += 0.041;  // cm
-  const std::string shifts = HomeOffsetShifts(running, calibrated, MachineUnit::kMillimetre);
-  EXPECT_NE(shifts.find("[JOINT_2] HOME and HOME_OFFSET: add 0.41 mm"), std::string::npos) << shifts;
-  EXPECT_EQ(shifts.find("[JOINT_0]"), std::string::npos) << shifts;
-  EXPECT_EQ(HomeOffsetShifts(running, running, MachineUnit::kMillimetre), "");
+  StatusOr<std::array<double, 6>> shifts = HomeShifts(running, calibrated, MachineUnit::kMillimetre);
+  ASSERT_TRUE(shifts.ok()) << shifts.status().message();
+  EXPECT_NEAR((*shifts)[2], 0.41, 1e-12);
+  EXPECT_EQ((*shifts)[0], 0);
+  // The same robots, one in mm: each converted from its own unit (issue 33:
+  // "add -4702.464 mm" came from reading the mm robot's l as cm).
+  Robot running_mm = running;
+  running_mm.length_unit = LengthUnit::kMillimetre;
+  for (Leg& leg : running_mm.legs) {
+    leg.a_in_base *= 10, leg.b_in_platform *= 10, leg.offset *= 10;
+    leg.stroke_min *= 10, leg.stroke_max *= 10;
+  }
+  shifts = HomeShifts(running_mm, calibrated, MachineUnit::kInch);
+  ASSERT_TRUE(shifts.ok()) << shifts.status().message();
+  EXPECT_NEAR((*shifts)[2], 0.41 / 25.4, 1e-12);
+  // A calibrated file whose unit is wrong is not the same machine.
+  Robot wrong_unit = calibrated;
+  wrong_unit.length_unit = LengthUnit::kMillimetre;
+  shifts = HomeShifts(running, wrong_unit, MachineUnit::kMillimetre);
+  ASSERT_FALSE(shifts.ok());
+  EXPECT_NE(shifts.status().message().find("not the same machine, or a robot file in another length unit"),
+            std::string::npos);
+}
+
+TEST(LinuxCncGeometry, ExactFixedNumbersReadBackAsTheSameDouble) {
+  for (double value : {0.0, 1.0, -0.25, 522.496, 0.1 + 0.2, 1.0 / 3.0, 1234567.891011, -1e-9, 3e-12, 98765.4321e3}) {
+    const std::string text = ExactFixedNumber(value);
+    EXPECT_EQ(std::strtod(text.c_str(), nullptr), value) << text;
+    EXPECT_EQ(text.find_first_of("eE"), std::string::npos) << text;
+  }
+  EXPECT_EQ(ExactFixedNumber(522.496), "522.496");
+  EXPECT_EQ(ExactFixedNumber(-0.0), "0");
+}
+
+TEST(LinuxCncGeometry, RobotsOutsideMachineSizesAreRefused) {
+  Robot robot = Preset("inria-left-hand");
+  EXPECT_TRUE(CheckRobotForMachine(robot).ok());
+  for (double scale : {1e70, 1e-12}) {
+    Robot scaled = robot;
+    for (Leg& leg : scaled.legs) leg.a_in_base *= scale, leg.b_in_platform *= scale;
+    const Status checked = CheckRobotForMachine(scaled);
+    EXPECT_FALSE(checked.ok()) << scale;
+    EXPECT_NE(checked.message().find("is its length_unit right?"), std::string::npos) << checked.message();
+  }
+  robot.legs[4].offset = std::nan("");
+  EXPECT_NE(CheckRobotForMachine(robot).message().find("not finite"), std::string::npos);
+}
+
+TEST(LinuxCncGeometry, NamesCannotBecomeHalCommands) {
+  Robot robot = Preset("inria-left-hand");
+  robot.name = "evil\nloadusr /bin/sh -c reboot\r\x1b";
+  const std::string hal = GenhexkinsHal(robot, MachineUnit::kMillimetre);
+  std::istringstream lines(hal);
+  for (std::string line; std::getline(lines, line);)
+    EXPECT_TRUE(line.empty() || line[0] == '#' || line.rfind("setp ", 0) == 0) << line;
+  EXPECT_NE(hal.find("evil\\x0aloadusr /bin/sh -c reboot\\x0d\\x1b"), std::string::npos) << hal;
 }
 
 }  // namespace

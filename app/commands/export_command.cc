@@ -1,13 +1,16 @@
 // hexcal export --robot R --format linuxcnc-hal|robot --out FILE [--machine-unit mm|inch] [--force]
-//               [--push [--yes] [--halcmd PATH] [--running-robot FILE]]
+//               [--push --running-robot FILE --ini FILE --controller URL [--yes] [--halcmd PATH]]
 //
 // Writes a robot's geometry for a controller: `linuxcnc-hal` is the
 // `setp genhexkins.base.N.*` / `platform.N.*` lines of LinuxCNC's hexapod
 // kinematics, in the machine's linear unit (workflow/linuxcnc_geometry.h,
-// docs/acquisition.md). Written atomically. --push then loads it into the
-// running machine (workflow/hal_push.h) once the operator confirms.
+// docs/acquisition.md). Written atomically. --push then loads the whole
+// robot into the running machine once the operator confirms: the pins, the
+// joints' homes in the INI, homing again (workflow/linuxcnc_push.h). A push
+// that is refused writes nothing.
 #include <unistd.h>
 
+#include <cstdio>
 #include <iostream>
 #include <memory>
 
@@ -17,6 +20,7 @@
 #include "core/robot_io.h"
 #include "workflow/hal_push.h"
 #include "workflow/linuxcnc_geometry.h"
+#include "workflow/linuxcnc_push.h"
 
 namespace hexcal::cli {
 namespace {
@@ -25,48 +29,86 @@ struct ExportOptions {
   std::string robot, format = "linuxcnc-hal", out, machine_unit = "mm";
   bool force = false;
   bool push = false, yes = false;  // --push: into the running machine, after a confirmation (or --yes)
-  std::string halcmd = "halcmd", running_robot;
+  std::string halcmd = "halcmd", running_robot, ini, controller;
 };
 
 // The operator's yes: --yes, or "y" typed at a terminal. A push changes a
 // moving machine's kinematics, so a script must say --yes.
-Status Confirm(const ExportOptions& options, const Robot& robot, int pins, std::ostream& out) {
+Status Confirm(const ExportOptions& options, const Robot& robot, std::ostream& out) {
   if (options.yes) return Status::Ok();
   if (!isatty(STDIN_FILENO))
     return Status::Error("--push changes the kinematics of a running machine: confirm with --yes "
                          "(standard input is not a terminal)");
-  out << "Set " << pins << " genhexkins pins of the running LinuxCNC to robot '" << robot.name
-      << "'? The world pose is held, so the legs step to the new geometry's lengths. [y/N] " << std::flush;
+  out << "Load robot '" << workflow::CommentText(robot.name)
+      << "' into the running LinuxCNC? The platform moves to its home switches, the genhexkins pins and the INI's "
+         "joint homes change and the machine homes again. [y/N] "
+      << std::flush;
   std::string answer;
   std::getline(std::cin, answer);
   if (answer == "y" || answer == "Y" || answer == "yes") return Status::Ok();
   return Status::Cancelled();
 }
 
-// --push: the written HAL file into the running machine (workflow/hal_push.h),
-// then what the INI must change for the offsets l, which are not pins.
-int PushToMachine(const ExportOptions& options, const Robot& robot, workflow::MachineUnit unit, std::ostream& out,
-                  std::ostream& err) {
-  const int pins = workflow::CountHalPins(workflow::GenhexkinsHal(robot, unit));
-  if (Status s = Confirm(options, robot, pins, out); !s.ok()) {
-    if (s.cancelled()) return out << "not pushed: the machine is unchanged\n", kExitFailure;
-    return ReportError(err, "export", s);
-  }
-  StatusOr<int> pushed = workflow::PushHalFile(options.halcmd, options.out);
-  if (!pushed.ok()) return ReportError(err, "export", pushed.status());
-  out << "pushed " << *pushed << " pins into the running LinuxCNC (" << options.halcmd << " -f " << options.out
-      << ")\n";
-  if (options.running_robot.empty()) {
-    out << "the offsets l are the joints' homes (INI [JOINT_n] HOME, HOME_OFFSET): give --running-robot to see "
-           "how they change, then home again\n";
-    return kExitOk;
-  }
+// --push's flags.
+Status CheckPushFlags(const ExportOptions& options) {
+  for (const auto& [flag, value] : {std::pair{"--running-robot", &options.running_robot},
+                                    std::pair{"--ini", &options.ini}, std::pair{"--controller", &options.controller}})
+    if (value->empty())
+      return Status::Error(std::string("--push needs ") + flag +
+                           " (the robot the machine runs with, its INI and its linuxcncrsh address: "
+                           "the offsets l are the joints' homes, which change in the INI and by homing again)");
+  return Status::Ok();
+}
+
+// --push's plan (workflow/linuxcnc_push.h): every check before anything is written.
+StatusOr<workflow::PushPlan> PlanMachinePush(const ExportOptions& options, const Robot& robot,
+                                             workflow::PushRequest* request) {
   StatusOr<Robot> running = LoadRobot(options.running_robot);
-  if (!running.ok()) return ReportError(err, "export", running.status());
-  const std::string shifts = workflow::HomeOffsetShifts(*running, robot, unit);
-  out << (shifts.empty() ? "the offsets l are unchanged: no INI change\n"
-                         : "the offsets l changed: in the machine's INI, then home again:\n" + shifts);
+  if (!running.ok()) return running.status();
+  *request = {*running, robot, options.ini, options.running_robot, options.controller, options.halcmd};
+  StatusOr<workflow::PushPlan> plan = workflow::PlanPush(*request);
+  if (plan.ok() && workflow::MachineUnitName(plan->ini.unit) != std::string(options.machine_unit))
+    return Status::Error("--machine-unit is " + options.machine_unit + " but the INI's [TRAJ] LINEAR_UNITS is " +
+                         workflow::MachineUnitName(plan->ini.unit));
+  return plan;
+}
+
+int PushToMachine(const workflow::PushRequest& request, const workflow::PushPlan& plan, std::ostream& out,
+                  std::ostream& err) {
+  StatusOr<workflow::PushReport> pushed = workflow::PushCalibration(request, plan, out);
+  if (!pushed.ok()) return ReportError(err, "export", pushed.status());
+  char home_error[32];
+  std::snprintf(home_error, sizeof home_error, "%.2g", pushed->home_error);
+  out << "pushed " << pushed->pins << " pins into the running LinuxCNC and homed again (every joint within "
+      << home_error << " " << workflow::MachineUnitName(pushed->unit) << " of its new HOME)\n";
+  out << (pushed->ini_changes.empty() ? "the offsets l are unchanged: the INI's joint homes stay\n"
+                                      : "the INI's joint homes and limits moved with the offsets l:\n" +
+                                            pushed->ini_changes);
+  for (const std::string& file : pushed->files) out << "replaced " << file << "\n";
   return kExitOk;
+}
+
+// --format linuxcnc-hal: the pins file, then --push. A push is planned and
+// confirmed before --out is written: a refused push writes nothing.
+int ExportLinuxCncHal(const ExportOptions& options, const Robot& robot, workflow::MachineUnit unit, std::ostream& out,
+                      std::ostream& err) {
+  workflow::PushRequest request;
+  StatusOr<workflow::PushPlan> plan = workflow::PushPlan{};
+  if (options.push) {
+    if (Status s = CheckPushFlags(options); !s.ok()) return ReportError(err, "export", s);
+    plan = PlanMachinePush(options, robot, &request);
+    if (!plan.ok()) return ReportError(err, "export", plan.status());
+    if (Status s = Confirm(options, robot, out); !s.ok()) {
+      if (s.cancelled()) return out << "not pushed: nothing was written and the machine is unchanged\n", kExitFailure;
+      return ReportError(err, "export", s);
+    }
+  }
+  if (Status s = WriteFileAtomically(options.out, workflow::GenhexkinsHal(robot, unit)); !s.ok())
+    return ReportError(err, "export", s);
+  out << "wrote " << options.out << ": genhexkins geometry of robot '" << workflow::CommentText(robot.name)
+      << "' in " << workflow::MachineUnitName(unit) << " (robot file in " << LengthUnitName(robot.length_unit)
+      << ")\n";
+  return options.push ? PushToMachine(request, *plan, out, err) : kExitOk;
 }
 
 int RunExport(const ExportOptions& options, std::ostream& out, std::ostream& err) {
@@ -78,22 +120,20 @@ int RunExport(const ExportOptions& options, std::ostream& out, std::ostream& err
     return ReportError(err, "export",
                        Status::Error("--machine-unit: '" + options.machine_unit +
                                      "' is not a LinuxCNC linear unit; accepted: mm, inch"));
+  if (options.push && options.format != "linuxcnc-hal")
+    return ReportError(err, "export", Status::Error("--push needs --format linuxcnc-hal"));
   if (Status s = CheckOutputFree(options.out, options.force); !s.ok()) return ReportError(err, "export", s);
   StatusOr<Robot> robot = LoadRobot(options.robot);
   if (!robot.ok()) return ReportError(err, "export", robot.status());
-  if (options.push && options.format != "linuxcnc-hal")
-    return ReportError(err, "export", Status::Error("--push needs --format linuxcnc-hal"));
-  if (options.format == "robot") {  // a preset as a file, e.g. the robot a machine runs with
-    if (Status s = WriteFileAtomically(options.out, RobotToYaml(*robot)); !s.ok()) return ReportError(err, "export", s);
-    out << "wrote " << options.out << ": robot '" << robot->name << "' (" << LengthUnitName(robot->length_unit)
-        << ")\n";
-    return kExitOk;
+  if (options.format == "linuxcnc-hal") {
+    if (Status s = workflow::CheckRobotForMachine(*robot); !s.ok()) return ReportError(err, "export", s);
+    return ExportLinuxCncHal(options, *robot, *unit, out, err);
   }
-  if (Status s = WriteFileAtomically(options.out, workflow::GenhexkinsHal(*robot, *unit)); !s.ok())
-    return ReportError(err, "export", s);
-  out << "wrote " << options.out << ": genhexkins geometry of robot '" << robot->name << "' in "
-      << workflow::MachineUnitName(*unit) << " (robot file in " << LengthUnitName(robot->length_unit) << ")\n";
-  return options.push ? PushToMachine(options, *robot, *unit, out, err) : kExitOk;
+  // A preset as a file, e.g. the robot a machine runs with.
+  if (Status s = WriteFileAtomically(options.out, RobotToYaml(*robot)); !s.ok()) return ReportError(err, "export", s);
+  out << "wrote " << options.out << ": robot '" << workflow::CommentText(robot->name) << "' ("
+      << LengthUnitName(robot->length_unit) << ")\n";
+  return kExitOk;
 }
 
 }  // namespace
@@ -110,11 +150,15 @@ void AddExportCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   sub->add_flag("--force", options->force, "overwrite an existing --out file");
   sub->add_flag("--push", options->push,
-                "also load the pins into the running LinuxCNC with halcmd, after a confirmation");
+                "also load the robot into the running LinuxCNC (pins, INI joint homes, homing again), after a "
+                "confirmation");
   sub->add_flag("--yes", options->yes, "confirm --push without asking (scripts)");
   sub->add_option("--halcmd", options->halcmd, "the halcmd to run for --push")->capture_default_str();
   sub->add_option("--running-robot", options->running_robot,
-                  "with --push: the robot file the machine runs with now, to print the INI's home changes");
+                  "with --push: the robot file the machine runs with now (replaced by --robot after the push)");
+  sub->add_option("--ini", options->ini, "with --push: the machine's INI (its joint homes and limits are updated)");
+  sub->add_option("--controller", options->controller,
+                  "with --push: the machine's linuxcncrsh, linuxcnc://HOST:PORT (to home it again)");
   sub->callback([=] { *exit_code = RunExport(*options, std::cout, std::cerr); });
 }
 

@@ -8,8 +8,10 @@
 # the machine through a 16-pose plan and grabs each frame with the `aravis:`
 # camera; `calibrate --session` must then beat the nominal robot against the
 # hidden truth (truth_error.py). The calibrated geometry then goes into
-# LinuxCNC (export --push, and a restart for the offsets l) and `hexcal
-# verify` must see the commanded poses 3 times closer through the camera.
+# LinuxCNC (export --push: pins, the INI's joint homes, homing again; no
+# restart) and `hexcal verify` must see the commanded poses 5 times closer
+# through the camera. The push's refusals (no terminal, a robot file in the
+# wrong unit or scale, an INI that is not the machine's) change nothing.
 # Skipped (77) without LinuxCNC, without Aravis in this build, or when
 # another LinuxCNC runs on the host.
 set -eu
@@ -52,26 +54,49 @@ verify() {  # verify OUT.json
 }
 verify "$dir/before.json"
 
-# Into the running machine: the pins by halcmd (refused without --yes when no
-# terminal confirms), read back; the offsets l through the INI and homing
-# again, here a restart of the simulated machine from the calibrated robot.
+# Into the running machine: refused without --yes when no terminal confirms,
+# and for files that are not this machine's, each time with nothing written
+# or changed; then the push itself, the pins read back.
 calibrated=$s/results/calibrated.yaml
-code=0
-"$hexcal" export --robot "$calibrated" --out "$dir/calibrated.hal" --push </dev/null >/dev/null 2>"$dir/push.err" ||
-  code=$?
-[ "$code" -eq 2 ] && grep -q "confirm with --yes" "$dir/push.err"
 eval "$("$sim" env "$dir/machine")"
-"$hexcal" export --robot "$calibrated" --out "$dir/calibrated.hal" --force --push --yes \
-  --running-robot "$dir/machine/robot.yaml" >"$dir/push.out"
-grep -q "pushed 37 pins into the running LinuxCNC" "$dir/push.out"
-grep -q "the offsets l changed" "$dir/push.out"
+m=$dir/machine
+cp "$m/machine.ini" "$m/genhexkins.hal" "$m/robot.yaml" "$dir/"
+push() {  # push OUT ROBOT [ARGS...]: export --push of ROBOT into the machine of $m
+  local out=$1 robot=$2
+  shift 2
+  "$hexcal" export --robot "$robot" --out "$out" --push --running-robot "$m/robot.yaml" --ini "$m/machine.ini" \
+    --controller "linuxcnc://127.0.0.1:$port" "$@"
+}
+refused() {  # refused PATTERN ROBOT [ARGS...]: exit 2, PATTERN in stderr, nothing written or changed
+  local pattern=$1 code=0
+  shift
+  push "$dir/refused.hal" "$@" </dev/null >/dev/null 2>"$dir/push.err" || code=$?
+  [ "$code" -eq 2 ] && grep -q -- "$pattern" "$dir/push.err" || { echo "exit $code"; cat "$dir/push.err"; exit 1; }
+  [ ! -e "$dir/refused.hal" ] || { echo "a refused push wrote its --out file"; exit 1; }
+  for file in machine.ini genhexkins.hal robot.yaml; do cmp -s "$dir/$file" "$m/$file"; done
+}
+refused "confirm with --yes" "$calibrated"
+for unit in mm m; do
+  sed "s/^length_unit: cm/length_unit: $unit/" "$calibrated" >"$dir/$unit.yaml"
+  refused "not the same machine, or a robot file in another length unit" "$dir/$unit.yaml" --yes
+done
+sed 's/^\(HOME_OFFSET = \)\([0-9]\)/\19\2/' "$dir/machine.ini" >"$dir/other.ini"
+code=0
+"$hexcal" export --robot "$calibrated" --out "$dir/refused.hal" --push --yes --running-robot "$m/robot.yaml" \
+  --ini "$dir/other.ini" --controller "linuxcnc://127.0.0.1:$port" >/dev/null 2>"$dir/push.err" || code=$?
+[ "$code" -eq 2 ] && grep -q "the files do not describe the running machine; nothing was changed" "$dir/push.err" ||
+  { cat "$dir/push.err"; exit 1; }
+[ ! -e "$dir/refused.hal" ]
+push "$dir/calibrated.hal" "$calibrated" --yes >"$dir/push.out" || { cat "$dir/push.out"; exit 1; }
+grep -q "pushed 61 pins into the running LinuxCNC and homed again" "$dir/push.out" || { cat "$dir/push.out"; exit 1; }
+grep -q "^\[JOINT_0\] HOME_OFFSET " "$dir/push.out"
+cmp -s "$dir/calibrated.hal" "$m/genhexkins.hal"
+"$hexcal" export --robot "$calibrated" --format robot --out "$dir/running-now.yaml" >/dev/null
+cmp -s "$dir/running-now.yaml" "$m/robot.yaml"  # the machine's robot file is the calibrated robot now
 # halcmd prints 7 significant digits.
 expected=$(sed -n 's/^setp genhexkins.base.2.y //p' "$dir/calibrated.hal")
 python3 -c "import sys; assert abs(float(sys.argv[1]) - float(sys.argv[2])) < 1e-4, sys.argv[1:]" \
   "$(halcmd getp genhexkins.base.2.y)" "$expected"
-"$sim" stop "$dir/machine" >/dev/null
-"$sim" start "$dir/machine" --robot "$calibrated" --home "0 0 53.5 0 0 0" --port "$port" --hexcal "$hexcal" >/dev/null
-camera=$("$sim" camera "$dir/machine" --session "$s" --seed 2 --hexcal "$hexcal")
 verify "$dir/after.json"
 
 python3 - "$dir/before.json" "$dir/after.json" <<'PY'
@@ -81,7 +106,7 @@ assert before["seen"] == 8 and after["seen"] == 8, (before["seen"], after["seen"
 print("controller's pose error through the camera, 8 poses: position RMS %.5f -> %.5f cm (max %.5f -> %.5f), "
       "orientation RMS %.4f -> %.4f deg" % (before["position_rms"], after["position_rms"], before["position_max"],
       after["position_max"], before["orientation_rms"], after["orientation_rms"]))
-assert after["position_rms"] * 3 < before["position_rms"], (before["position_rms"], after["position_rms"])
+assert after["position_rms"] * 5 < before["position_rms"], (before["position_rms"], after["position_rms"])
 assert after["orientation_rms"] * 2 < before["orientation_rms"], (before["orientation_rms"], after["orientation_rms"])
 PY
 echo "closed loop: ok"

@@ -10,7 +10,8 @@
 # `export --push` asks the operator to type y at a terminal: the block runs
 # under script(1) with "y" as its typed input.
 # Then: every one of the plan's 16 poses acquired, the calibration's verdict
-# not poor and its held-out error good. Skipped (77) without LinuxCNC or Aravis in this build, when
+# not poor and its held-out error good, and `verify` after the push at least
+# 5 times closer than before it (position RMS, issue 33). Skipped (77) without LinuxCNC or Aravis in this build, when
 # another LinuxCNC runs on the host, or when port 5007 is taken.
 set -eu
 hexcal=$(realpath "$1")
@@ -49,8 +50,15 @@ grep -q "16 recorded, 0 already recorded, 0 failed, of 16 poses" "$dir/log" ||
 # calibration achieved is the held-out error: it must be good.
 grep -Eq "^Verdict: (good|acceptable)" "$dir/log" && grep -q "^  good       held-out error" "$dir/log" ||
   { cat "$dir/log"; echo "the calibration's verdict is poor, or its held-out error is not good"; exit 1; }
-grep -q "pushed 37 pins into the running LinuxCNC" "$dir/log" || { cat "$dir/log"; exit 1; }
+grep -q "pushed 61 pins into the running LinuxCNC and homed again" "$dir/log" || { cat "$dir/log"; exit 1; }
+python3 - "$dir/log" <<'PY' || { cat "$dir/log"; exit 1; }
+import re, sys
+rms = [float(v) for v in re.findall(r"^commanded against seen: position RMS ([0-9.e+-]+)", open(sys.argv[1]).read(), re.M)]
+assert len(rms) == 2, rms
+print("verify before and after the push: position RMS %.5f -> %.5f (%.1f times closer)" % (rms[0], rms[1], rms[0] / rms[1]))
+assert rms[1] * 5 <= rms[0], rms
+PY
 sed 's/.*\] [0-9]*% ([0-9/]*)//' "$dir/log" |
-  grep -E "recorded, |^held-out validation|^Verdict|held-out error|commanded against seen|pushed"
+  grep -E "recorded, |^held-out validation|^Verdict|held-out error|commanded against seen|pushed|^\[JOINT_0\] HOME "
 python3 -c "import sys; print('README machine loop: ok in %.0f s' % (float(sys.argv[2]) - float(sys.argv[1])))" \
   "$start" "$end"
