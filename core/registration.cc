@@ -303,17 +303,6 @@ StatusOr<std::vector<Measurement>> MapToBase(const Robot& nominal, const Registr
   return measurements;
 }
 
-// The images holding a reading excluded as an outlier, ascending.
-std::vector<int> ImagesWithExcludedOutliers(const CalibrationResult& calibration) {
-  std::vector<int> images;
-  for (const LegCalibration& leg : calibration.legs)
-    for (const RowOutlier& o : leg.outliers)
-      if (o.excluded) images.push_back(o.measurement);
-  std::sort(images.begin(), images.end());
-  images.erase(std::unique(images.begin(), images.end()), images.end());
-  return images;
-}
-
 // Registration, mapping and calibration on every image but `left_out`'s registration.
 Status RegisterAndCalibrate(const Robot& nominal, const CameraCalibrationInput& input,
                             const std::vector<Pose>& nominal_poses, const std::vector<int>& left_out,
@@ -330,29 +319,6 @@ Status RegisterAndCalibrate(const Robot& nominal, const CameraCalibrationInput& 
   if (!calibration.ok()) return calibration.status();
   result->calibration = std::move(*calibration);
   result->registration_left_out = left_out;
-  return Status::Ok();
-}
-
-// FK of the calibrated robot against X B_j Y⁻¹, over the images without an
-// excluded outlier (a reading known to be wrong sends FK anywhere).
-Status CalibratedClosure(const CameraCalibrationInput& input, CameraCalibrationResult* result) {
-  const Robot& robot = result->calibration.robot;
-  const std::vector<int>& skip = result->registration_left_out;
-  double position_sum = 0, angle_sum = 0;
-  int count = 0;
-  for (size_t j = 0; j < input.legs.size(); ++j) {
-    if (std::binary_search(skip.begin(), skip.end(), static_cast<int>(j))) continue;
-    const Pose mapped = robot.PoseFromVector(result->measurements[j].pose);
-    StatusOr<LocalFkResult> fk = ForwardKinematicsLocal(robot, input.legs[j], mapped);
-    if (!fk.ok())
-      return Status::Error("pose " + std::to_string(j + 1) + " with the calibrated robot: " + fk.status().message());
-    position_sum += (fk->pose.position - mapped.position).squaredNorm();
-    const double angle = RadToDeg(RotationDistance(fk->pose.rotation, mapped.rotation));
-    angle_sum += angle * angle;
-    ++count;
-  }
-  result->calibrated_position_rms = std::sqrt(position_sum / count);
-  result->calibrated_angle_rms_deg = std::sqrt(angle_sum / count);
   return Status::Ok();
 }
 
@@ -383,8 +349,44 @@ StatusOr<CameraCalibrationResult> CalibrateFromCameraPoses(const Robot& nominal,
         !s.ok())
       return s;
   }
-  if (Status s = CalibratedClosure(input, &result); !s.ok()) return s;
+  if (Status s = ComputeCalibratedClosure(&result); !s.ok()) return s;
   return result;
+}
+
+std::vector<int> ImagesWithExcludedOutliers(const CalibrationResult& calibration) {
+  std::vector<int> images;
+  for (const LegCalibration& leg : calibration.legs)
+    for (const RowOutlier& o : leg.outliers)
+      if (o.excluded) images.push_back(o.measurement);
+  std::sort(images.begin(), images.end());
+  images.erase(std::unique(images.begin(), images.end()), images.end());
+  return images;
+}
+
+// A reading known to be wrong sends FK anywhere: the images holding one count
+// in no RMS, but each keeps its row, which names it.
+Status ComputeCalibratedClosure(CameraCalibrationResult* result) {
+  std::vector<int> skip = ImagesWithExcludedOutliers(result->calibration);
+  skip.insert(skip.end(), result->registration_left_out.begin(), result->registration_left_out.end());
+  std::sort(skip.begin(), skip.end());
+  skip.erase(std::unique(skip.begin(), skip.end()), skip.end());
+  result->closure_left_out = skip;
+  StatusOr<ValidationReport> all = Validate(result->calibration.robot, result->measurements);
+  if (!all.ok()) return all.status();
+  result->closure_rows = all->rows;
+  double position_sum = 0, angle_sum = 0;
+  int count = 0;
+  for (size_t j = 0; j < all->rows.size(); ++j) {
+    const ValidationRow& row = all->rows[j];
+    if (!row.ok || std::binary_search(skip.begin(), skip.end(), static_cast<int>(j))) continue;
+    position_sum += row.position_error * row.position_error;
+    angle_sum += row.orientation_error_deg * row.orientation_error_deg;
+    ++count;
+  }
+  if (count == 0) return Status::Failed("closure with the calibrated robot: forward kinematics converged on no image");
+  result->calibrated_position_rms = std::sqrt(position_sum / count);
+  result->calibrated_angle_rms_deg = std::sqrt(angle_sum / count);
+  return Status::Ok();
 }
 
 }  // namespace hexcal

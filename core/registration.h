@@ -47,6 +47,7 @@
 #include "core/pose.h"
 #include "core/robot.h"
 #include "core/status.h"
+#include "core/validation.h"
 
 namespace hexcal {
 
@@ -111,9 +112,23 @@ struct CameraCalibrationResult {
   // Images left out of the registration and the closure below: those holding
   // a reading excluded as an outlier (calibration_options.outliers), indices.
   std::vector<int> registration_left_out;
-  // Closure errors with the calibrated robot (its FK against X B_j Y⁻¹).
+  // Closure errors with the calibrated robot (its FK against X B_j Y⁻¹):
+  // the RMS over the images in neither list below, and each image's own row
+  // (ok false where FK did not converge).
   double calibrated_position_rms = 0, calibrated_angle_rms_deg = 0;
+  std::vector<ValidationRow> closure_rows;
+  // Images left out of the closure's RMS: registration_left_out and those
+  // holding a reading the calibration excluded, ascending.
+  std::vector<int> closure_left_out;
 };
+
+// The images holding a reading excluded as an outlier, ascending indices.
+std::vector<int> ImagesWithExcludedOutliers(const CalibrationResult& calibration);
+
+// Fills the closure fields of `result` from its calibration and measurements
+// (the calibrated robot's FK against each measurement's pose). Fails when FK
+// converges on none of the images that count.
+Status ComputeCalibratedClosure(CameraCalibrationResult* result);
 
 // The covariance of nominal.VectorFromPose(X · B · Y⁻¹) from that of
 // VectorFromPose(B, kXYZ) (robot unit², degrees²): J Σ Jᵀ, J by central differences.

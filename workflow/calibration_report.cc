@@ -230,7 +230,9 @@ nlohmann::json ToJson(const CalibrationReport& report) {
           {"length_unit", report.length_unit},
           {"registration", RegistrationJson(report.registration)},
           {"closure_after_calibration",
-           {{"position_rms", report.closure_position_rms}, {"angle_rms_deg", report.closure_angle_rms_deg}}},
+           {{"position_rms", report.closure_position_rms},
+            {"angle_rms_deg", report.closure_angle_rms_deg},
+            {"by_image", ImageClosuresJson(report.closure_by_image)}}},
           {"validation", report.validation ? ValidationJson(*report.validation) : nlohmann::json(nullptr)},
           {"calibrated_robot", report.calibrated_robot},
           {"robot", RobotJson(report.robot)},
@@ -260,6 +262,7 @@ StatusOr<CalibrationReport> CalibrationReportFromJson(const nlohmann::json& json
   JsonFields closure = fields.Object("closure_after_calibration");
   report.closure_position_rms = closure.Number("position_rms");
   report.closure_angle_rms_deg = closure.Number("angle_rms_deg");
+  report.closure_by_image = ImageClosuresFromJson(closure, "by_image");
   if (fields.Has("validation")) report.validation = ValidationFromJson(fields.Object("validation"));
   report.calibrated_robot = fields.String("calibrated_robot");
   report.robot = RobotFromJson(fields.Object("robot"));

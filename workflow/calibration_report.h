@@ -17,6 +17,7 @@
 #include "core/noise_model.h"
 #include "core/robot.h"
 #include "core/status.h"
+#include "workflow/image_closure.h"
 #include "workflow/pixel_fit_summary.h"
 
 namespace hexcal::workflow {
@@ -96,6 +97,8 @@ struct CalibrationReport {
   std::string length_unit;
   RegistrationSummary registration;
   double closure_position_rms = 0, closure_angle_rms_deg = 0;  // with the calibrated robot
+  // Each calibration image's closure (image_closure.h); empty in reports that predate it.
+  std::vector<ImageClosure> closure_by_image;
   std::optional<ValidationSummary> validation;                 // none without held-out images
   std::string calibrated_robot;                                // path of results/calibrated.yaml
   Robot robot;                                                 // the calibrated robot (legs only)

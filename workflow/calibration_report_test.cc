@@ -175,6 +175,34 @@ TEST(CalibrationReport, SummaryNamesEachOutlier) {
   EXPECT_THAT(FormatCalibrationSummary(few), HasSubstr("note: 7 calibration images are too few to screen"));
 }
 
+CalibrationReport ReportWithImageClosures() {
+  CalibrationReport report = ReportWithOutliers(false);
+  report.closure_position_rms = 0.004;
+  report.closure_by_image = {{"img_003.png", 5, true, 0.006, 0.01, false, {}},
+                             {"img_007.png", 9, true, 8.5, 12.5, true, {1, 2, 3, 4, 5}},
+                             {"img_011.png", std::nullopt, false, 0, 0, true, {6}}};
+  return report;
+}
+
+TEST(CalibrationReport, ImageClosuresRoundTripAndNameTheLeftOutImages) {
+  const nlohmann::json json = ToJson(ReportWithImageClosures());
+  StatusOr<CalibrationReport> read = CalibrationReportFromJson(json, "report.json");
+  ASSERT_TRUE(read.ok()) << read.status().message();
+  EXPECT_EQ(ToJson(*read), json);
+  ASSERT_EQ(read->closure_by_image.size(), 3u);
+  EXPECT_EQ(read->closure_by_image[1].excluded_legs, (std::vector<int>{1, 2, 3, 4, 5}));
+  const std::string text = FormatCalibrationSummary(*read);
+  EXPECT_THAT(text, HasSubstr("left out: img_007.png (legs.csv line 9), closure 8.5 cm, 12.5 deg: its board pose "
+                              "disagrees with 5 of 6 legs: a swapped or mislabelled image?"));
+  EXPECT_THAT(text, HasSubstr("left out: img_011.png, closure unknown (FK did not converge): a wrong reading on leg 6"));
+  EXPECT_THAT(text, HasSubstr("closure by image: worst img_003.png (legs.csv line 5) 0.006 cm, 0.01 deg (1.5× the RMS)"));
+  nlohmann::json old = json;  // reports that predate it
+  old["closure_after_calibration"].erase("by_image");
+  read = CalibrationReportFromJson(old, "report.json");
+  ASSERT_TRUE(read.ok()) << read.status().message();
+  EXPECT_TRUE(read->closure_by_image.empty());
+}
+
 std::string ErrorOf(const std::string& text) {
   StatusOr<nlohmann::json> json = ParseJsonText(text, "r.json");
   if (!json.ok()) return json.status().message();

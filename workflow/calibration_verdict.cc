@@ -61,6 +61,7 @@ Verdict MakeVerdict(const CalibrationReport& report, const std::optional<Verdict
   if (!report.legs.empty()) verdict.Add(CheckResiduals(report));
   if (report.noise) verdict.Add(CheckParameterSigmas(report));
   if (!report.parameters.empty()) verdict.Add(CheckParameterChanges(report));
+  if (std::optional<Finding> camera = CheckCameraScale(report)) verdict.Add(*camera);
   if (truth) verdict.Add(CheckTruth(*truth));
   if (std::optional<Finding> conditioning = CheckConditioning(report)) verdict.Add(*conditioning);
   verdict.Add(CheckPoses(report));

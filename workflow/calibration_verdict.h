@@ -44,6 +44,11 @@ constexpr double kSigmaRatioGood = 2, kSigmaRatioAcceptable = 4;
 // together of a few per cent is absorbed (2.75 % in the demo). Above 5 %
 // suspect the nominal file, above 20 % a wrong unit or robot.
 constexpr double kChangeFractionGood = 0.05, kChangeFractionAcceptable = 0.20;
+// The calibration from pixels' focal lengths and target scale against the
+// files': 0.5 % is about what a good intrinsic calibration guarantees (TUM
+// VI's published f against a refit differ by 0.2 %); beyond 5 % the files
+// are not this camera's or board's.
+constexpr double kScaleChangeGood = 0.005, kScaleChangeAcceptable = 0.05;
 // Demo only: fraction of parameters within 3σ of the truth (99.7 % expected).
 constexpr double kWithin3SigmaGood = 0.90, kWithin3SigmaAcceptable = 0.75;
 // σ_max/σ_min of a leg's weighted identification Jacobian: noise is amplified
@@ -57,8 +62,13 @@ constexpr int kCalibrationImagesGood = 21;
 constexpr int kHeldOutImagesGood = 5;
 // Images without a usable board pose, as a fraction of all images.
 constexpr double kUnusableFractionAcceptable = 0.25;
-// Leg readings flagged as outliers, as a fraction of all calibration readings.
+// Leg readings flagged as outliers and kept in the fit (--keep-outliers), as
+// a fraction of all calibration readings: any is at best acceptable.
 constexpr double kOutlierFractionAcceptable = 0.05;
+// Calibration images left out for an excluded reading (a wrong reading, a
+// swapped image), each named: 1 in 20 leaves the fit on the rest good, more
+// than 3 in 20 says the session's images and readings do not belong together.
+constexpr double kLeftOutImageFractionGood = 0.05, kLeftOutImageFractionAcceptable = 0.15;
 
 struct Finding {
   std::string aspect;  // "held-out error", "residuals", "parameters (σ)", ...

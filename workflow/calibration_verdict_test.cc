@@ -205,15 +205,55 @@ TEST(Verdict, UnusableImages) {
   EXPECT_EQ(LevelOf(report, "unusable images"), VerdictLevel::kPoor);
 }
 
-TEST(Verdict, OutliersNameTheWorstReading) {
+TEST(Verdict, OutliersNameTheImagesLeftOutAndTheirCause) {
   CalibrationReport report = GoodReport();
-  report.outliers = {{"view_0003.png", 5, 2, 0.01, 6.2, true}, {"view_0007.png", 9, 3, 0.1, -48, true}};
+  report.calibration_images = 40;
+  // One image with a wrong reading, one whose board pose disagrees with 5 legs: 2 of 40 left out.
+  report.outliers = {{"view_0003.png", 5, 2, 0.01, 6.2, true}};
+  for (int leg = 1; leg <= 5; ++leg) report.outliers.push_back({"view_0007.png", 9, leg, 3.4, -4800, true});
+  const Finding good = FindingOf(MakeVerdict(report), "outliers");
+  EXPECT_EQ(good.level, VerdictLevel::kGood);
+  EXPECT_THAT(good.figure, HasSubstr("2 calibration images of 40 left out for 6 flagged readings: view_0003.png "
+                                     "(legs.csv line 5), a wrong reading on leg 2; view_0007.png (legs.csv line 9), "
+                                     "a swapped or mislabelled image?"));
+  EXPECT_THAT(good.meaning, HasSubstr("its board pose disagrees with 5 of 6 legs"));
+  report.calibration_images = 20;  // 10 %
+  EXPECT_EQ(LevelOf(report, "outliers"), VerdictLevel::kAcceptable);
+  report.calibration_images = 10;  // 20 %
+  const Finding poor = FindingOf(MakeVerdict(report), "outliers");
+  EXPECT_EQ(poor.level, VerdictLevel::kPoor);
+  EXPECT_THAT(poor.advice, HasSubstr("check that images and legs.csv rows belong together"));
+}
+
+TEST(Verdict, OutliersKeptInTheFitNameTheWorstReading) {
+  CalibrationReport report = GoodReport();
+  report.outliers = {{"view_0003.png", 5, 2, 0.01, 6.2, false}, {"view_0007.png", 9, 3, 0.1, -48, false}};
   const Finding acceptable = FindingOf(MakeVerdict(report), "outliers");
   EXPECT_EQ(acceptable.level, VerdictLevel::kAcceptable);
   EXPECT_EQ(acceptable.advice,
-            "check the readings of image view_0007.png (legs.csv line 9), leg 3: its residual is 48σ");
-  for (int j = 0; j < 10; ++j) report.outliers.push_back({"view_0010.png", 12, 1 + j % 6, 0.01, 6, true});
+            "check the readings of image view_0007.png (legs.csv line 9), leg 3: its residual is 48σ; without "
+            "--keep-outliers it is left out");
+  for (int j = 0; j < 10; ++j) report.outliers.push_back({"view_0010.png", 12, 1 + j % 6, 0.01, 6, false});
   EXPECT_EQ(LevelOf(report, "outliers"), VerdictLevel::kPoor);
+}
+
+TEST(Verdict, AFocalErrorIsNamedAsSuchNotTheRobotFile) {
+  CalibrationReport report = GoodReport();
+  report.from_pixels = PixelFitSummary{};
+  report.from_pixels->estimated = {{"fx", 948.36, 903.167, 0.041}, {"fy", 948.36, 903.167, 0.041}};
+  const Finding camera = FindingOf(MakeVerdict(report), "camera (scale)");
+  EXPECT_EQ(camera.level, VerdictLevel::kAcceptable);
+  EXPECT_THAT(camera.figure, HasSubstr("largest change 4.77 % (fx 948 -> 903"));
+  EXPECT_THAT(camera.meaning, HasSubstr("the camera file's fx is 5 % off"));
+  EXPECT_THAT(camera.advice, HasSubstr("recalibrate the camera"));
+  for (ParameterEstimate& p : report.parameters)
+    if (p.name == "az") p.estimate = p.nominal + 3.5;  // the frames' shift the focal error caused
+  const Finding change = FindingOf(MakeVerdict(report), "parameters (change)");
+  EXPECT_EQ(change.level, VerdictLevel::kPoor);
+  EXPECT_THAT(change.advice, HasSubstr("recalibrate the camera (hexcal intrinsics)"));
+  report.from_pixels->estimated = {{"fx", 903.2, 903.167, 0.041}, {"target_scale", 1, 1.0004, 0.0002}};
+  EXPECT_EQ(LevelOf(report, "camera (scale)"), VerdictLevel::kGood);
+  EXPECT_THAT(FindingOf(MakeVerdict(report), "parameters (change)").advice, HasSubstr("check the nominal robot file"));
 }
 
 TEST(Verdict, TextAndJsonForms) {
@@ -314,9 +354,10 @@ TEST_F(DemoVerdict, WrongReadingAndOptimisticNoiseAreFlagged) {
   SpoilReading(Session(), 0.1);  // 1 mm on a cm robot: hundreds of σ
   StatusOr<CalibrationReport> spoilt = CalibrateSession({Session()});
   ASSERT_TRUE(spoilt.ok()) << spoilt.status().message();
+  // One of the demo's 24 calibration images left out, named: good on the rest.
   const Finding outliers = FindingOf(MakeVerdict(*spoilt), "outliers");
-  EXPECT_EQ(outliers.level, VerdictLevel::kAcceptable);
-  EXPECT_THAT(outliers.advice, HasSubstr("leg 3"));
+  EXPECT_EQ(outliers.level, VerdictLevel::kGood);
+  EXPECT_THAT(outliers.figure, HasSubstr("a wrong reading on leg 3"));
 
   StatusOr<SessionConfig> config = LoadSessionConfig(Session());
   ASSERT_TRUE(config.ok());

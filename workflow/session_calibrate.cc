@@ -245,6 +245,10 @@ CalibrationReport MakeReport(const std::string& dir, const SessionInputs& in, co
                          VectorFromPose(reg.platform_from_target, EulerConvention::kXYZ)};
   report.closure_position_rms = result.calibrated_position_rms;
   report.closure_angle_rms_deg = result.calibrated_angle_rms_deg;
+  std::vector<ImageName> names;
+  for (const LegsRow* row : split.calibration_rows)
+    names.push_back({row->image, row->line > 0 ? std::optional<int>(row->line) : std::nullopt});
+  report.closure_by_image = ClosureByImage(result, names);
   report.calibrated_robot = (fs::path(SessionPaths(dir).results) / kCalibratedRobot).string();
   report.robot = result.calibration.robot;
   FillParameters(result.calibration, &report);
@@ -373,13 +377,9 @@ StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const OpenSession
   if (!fit.ok()) return fit.status().cancelled() ? fit.status() : fit.status().AsFailure();
   const TwoStageComparison two_stage = TwoStageFigures(*result, *validation);
   result->calibration = fit->fit.calibration;  // with its own screening's outliers
-  std::vector<Measurement> camera_rows = result->measurements;
-  MapFittedPoses(in.nominal, result->registration, fit->calibration_poses, &camera_rows);
-  StatusOr<ValidationReport> closure = Validate(result->calibration.robot, camera_rows);
-  if (!closure.ok()) return closure.status().AsFailure();
-  result->calibrated_position_rms = closure->position.rms;
-  result->calibrated_angle_rms_deg = closure->orientation_deg.rms;
-  result->measurements = std::move(camera_rows);  // calibration_measurements.csv: with the fitted camera
+  // calibration_measurements.csv: with the fitted camera.
+  MapFittedPoses(in.nominal, result->registration, fit->calibration_poses, &result->measurements);
+  if (Status s = ComputeCalibratedClosure(result); !s.ok()) return s.AsFailure();
   MapFittedPoses(in.nominal, result->registration, fit->held_out_poses, held_out);
   StatusOr<std::optional<ValidationSummary>> again = ValidateHeldOut(in, split.held_out, *held_out, *result);
   if (!again.ok()) return again.status();
@@ -602,6 +602,7 @@ std::string FormatCalibrationSummary(const CalibrationReport& report) {
   if (report.from_pixels) out << FormatPixelFitSummary(*report.from_pixels, unit);
   if (report.camera_frame_residuals) out << FormatCameraFrameLine(*report.camera_frame_residuals, unit) << "\n";
   out << OutlierLines(report);
+  out << ImageClosureLines(report.closure_by_image, report.closure_position_rms, unit);
   out << "wrote " << report.calibrated_robot << ", " << CalibrationReportPath(report.session) << ", frames in "
       << SessionPaths(report.session).config << "\n";
   return out.str();

@@ -23,6 +23,12 @@ std::optional<Finding> CheckConditioning(const CalibrationReport& report);  // n
 Finding CheckPoses(const CalibrationReport& report);
 Finding CheckUnusableImages(const CalibrationReport& report);
 Finding CheckOutliers(const CalibrationReport& report);
+// None without a calibration from pixels that estimated fx, fy or the target's scale.
+std::optional<Finding> CheckCameraScale(const CalibrationReport& report);
+// The estimate among fx, fy and target_scale that moved most from its file value, relatively.
+std::optional<PixelEstimateSummary> LargestScaleChange(const CalibrationReport& report);
+// "the camera file's fx is 5 % off (the fit's 903 ± 0.04 against the file's 948)".
+std::string ScaleChangeText(const PixelEstimateSummary& change);
 
 // Level of a figure where smaller is better / larger is better.
 VerdictLevel LevelAtMost(double value, double good, double acceptable);

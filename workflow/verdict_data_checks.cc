@@ -1,5 +1,5 @@
 // The data findings of the verdict (calibration_verdict.h): how many poses,
-// unusable images, outlier readings.
+// unusable images, outlier readings and the images they take out.
 #include <algorithm>
 #include <cmath>
 
@@ -52,29 +52,79 @@ Finding CheckUnusableImages(const CalibrationReport& report) {
   return finding;
 }
 
-Finding CheckOutliers(const CalibrationReport& report) {
+namespace {
+
+// The images holding a reading the screening excluded, each with those legs,
+// in the report's order (legs.csv's).
+std::vector<ImageClosure> LeftOutImages(const CalibrationReport& report) {
+  std::vector<ImageClosure> images;
+  for (const OutlierReading& o : report.outliers) {
+    if (!o.excluded) continue;
+    if (images.empty() || images.back().image != o.image) images.push_back({o.image, o.legs_line, false, 0, 0, true, {}});
+    images.back().excluded_legs.push_back(o.leg);
+  }
+  return images;
+}
+
+// Readings kept in the fit although flagged (--keep-outliers): the fit rests on them.
+Finding CheckKeptOutliers(const CalibrationReport& report, int kept) {
   const int readings = 6 * std::max(report.calibration_images, 1);
-  const int flagged = static_cast<int>(report.outliers.size());
-  const double fraction = static_cast<double>(flagged) / readings;
-  const VerdictLevel level = flagged == 0                             ? VerdictLevel::kGood
-                             : fraction <= kOutlierFractionAcceptable ? VerdictLevel::kAcceptable
-                                                                      : VerdictLevel::kPoor;
+  const double fraction = static_cast<double>(kept) / readings;
+  const VerdictLevel level = fraction <= kOutlierFractionAcceptable ? VerdictLevel::kAcceptable : VerdictLevel::kPoor;
   Finding finding{"outliers",
                   level,
-                  Plural(flagged, "reading") + " of " + std::to_string(readings) + " flagged",
-                  "good: none, acceptable ≤ " + Figure(100 * kOutlierFractionAcceptable) + " % of the readings",
-                  "every leg reading agrees with its image's camera pose within the noise.",
+                  Plural(kept, "flagged reading") + " of " + std::to_string(readings) + " kept in the fit",
+                  "good: none kept, acceptable ≤ " + Figure(100 * kOutlierFractionAcceptable) + " % of the readings",
+                  "some leg readings disagree with the camera by far more than the noise: a wrong reading or image.",
                   ""};
-  if (report.screening && !report.screening->screened) {
-    finding.figure += " (not screened: too few images)";
-  }
-  if (level == VerdictLevel::kGood) return finding;
-  auto by_z = [](const OutlierReading& a, const OutlierReading& b) { return std::abs(a.z) < std::abs(b.z); };
+  auto by_z = [](const OutlierReading& a, const OutlierReading& b) {
+    return (a.excluded ? 0 : std::abs(a.z)) < (b.excluded ? 0 : std::abs(b.z));
+  };
   const OutlierReading& worst = *std::max_element(report.outliers.begin(), report.outliers.end(), by_z);
-  finding.meaning = "some leg readings disagree with the camera by far more than the noise: a wrong reading or image.";
   finding.advice = "check the readings of image " + worst.image +
                    (worst.legs_line ? " (legs.csv line " + std::to_string(*worst.legs_line) + ")" : "") + ", leg " +
-                   std::to_string(worst.leg) + ": its residual is " + Figure(std::abs(worst.z)) + "σ";
+                   std::to_string(worst.leg) + ": its residual is " + Figure(std::abs(worst.z)) +
+                   "σ; without --keep-outliers it is left out";
+  return finding;
+}
+
+}  // namespace
+
+// Excluded readings take their image out of the registration, the fit of
+// that leg and the closure (core/registration.h): the calibration rests on
+// the rest. A few images so left out, each named with its cause, leave it
+// good; many say the session is unreliable.
+Finding CheckOutliers(const CalibrationReport& report) {
+  const int kept = static_cast<int>(std::count_if(report.outliers.begin(), report.outliers.end(),
+                                                  [](const OutlierReading& o) { return !o.excluded; }));
+  if (kept > 0) return CheckKeptOutliers(report, kept);
+  const std::vector<ImageClosure> left_out = LeftOutImages(report);
+  const int images = std::max(report.calibration_images, 1);
+  const double fraction = static_cast<double>(left_out.size()) / images;
+  const VerdictLevel level = fraction <= kLeftOutImageFractionGood         ? VerdictLevel::kGood
+                             : fraction <= kLeftOutImageFractionAcceptable ? VerdictLevel::kAcceptable
+                                                                           : VerdictLevel::kPoor;
+  Finding finding{"outliers",
+                  level,
+                  Plural(static_cast<int>(left_out.size()), "calibration image") + " of " + std::to_string(images) +
+                      " left out for " + Plural(static_cast<int>(report.outliers.size()), "flagged reading"),
+                  "good ≤ " + Figure(100 * kLeftOutImageFractionGood) + " %, acceptable ≤ " +
+                      Figure(100 * kLeftOutImageFractionAcceptable) + " % of the calibration images",
+                  "every leg reading agrees with its image's camera pose within the noise.",
+                  ""};
+  if (report.screening && !report.screening->screened) finding.figure += " (not screened: too few images)";
+  if (left_out.empty()) return finding;
+  constexpr size_t kNamed = 3;  // in the figure; the meaning names every one
+  for (size_t k = 0; k < left_out.size() && k < kNamed; ++k)
+    finding.figure += std::string(k == 0 ? ": " : "; ") + ImageLabel(left_out[k]) + ", " + ShortCause(left_out[k]);
+  if (left_out.size() > kNamed) finding.figure += "; ...";
+  finding.meaning = "left out of the registration, the fit and the closure:";
+  for (const ImageClosure& image : left_out) finding.meaning += " " + ImageLabel(image) + ", " + LeftOutCause(image) + ";";
+  finding.meaning.back() = '.';
+  if (level != VerdictLevel::kGood)
+    finding.advice = "more than " + Figure(100 * kLeftOutImageFractionGood) +
+                     " % of the calibration images left out: check that images and legs.csv rows belong together, "
+                     "and add poses";
   return finding;
 }
 

@@ -91,9 +91,18 @@ Finding CheckParameterChanges(const CalibrationReport& report) {
                   "the changes from nominal are of the size of build tolerances and the registration's gauge." +
                       MostIdentified(report.parameters),
                   ""};
-  if (finding.level != VerdictLevel::kGood) {
-    finding.meaning = ParameterLabel(*largest) + " moved by more than a build error explains.";
-    finding.advice = "check the nominal robot file (values, unit " + unit + ") and the readings' zero offsets";
+  if (finding.level == VerdictLevel::kGood) return finding;
+  finding.meaning = ParameterLabel(*largest) + " moved by more than a build error explains.";
+  finding.advice = "check the nominal robot file (values, unit " + unit + ") and the readings' zero offsets";
+  // A focal or scale error moves the registered frames, and the parameters
+  // follow them: the camera is the suspect, not the robot file.
+  const std::optional<PixelEstimateSummary> scale = LargestScaleChange(report);
+  if (scale && std::abs(scale->estimate / scale->file_value - 1) > kScaleChangeGood) {
+    finding.meaning += " " + ScaleChangeText(*scale) + ": the frames were registered with it.";
+    finding.advice = scale->name == "target_scale"
+                         ? "check the target file's tag size, then calibrate again"
+                         : "recalibrate the camera (hexcal intrinsics) or make results/camera.yaml the session's "
+                           "camera, then calibrate again; if the changes stay, check the nominal robot file";
   }
   return finding;
 }
