@@ -201,6 +201,19 @@ void AddLibraryTags(const cv::Mat& gray, LibraryDetector& library, const TagCode
   }
 }
 
+// Whether the candidates so far hold an accepted decode of every tag in
+// options.expected_ids (none expected: false, every pass runs).
+bool EveryExpectedTagAccepted(const std::vector<Candidate>& candidates, const DetectorOptions& options,
+                              int width_at_border, const cv::Mat& gray) {
+  if (options.expected_ids.empty()) return false;
+  std::vector<int> accepted;
+  for (const Candidate& c : candidates)
+    if (RejectionReason(c.tag, options, width_at_border, gray).empty()) accepted.push_back(c.tag.id);
+  std::sort(accepted.begin(), accepted.end());
+  return std::all_of(options.expected_ids.begin(), options.expected_ids.end(),
+                     [&](int id) { return std::binary_search(accepted.begin(), accepted.end(), id); });
+}
+
 // The same tag decoded from several quads (the passes above, or its outer
 // edge and a ring just inside it): keep the decode with the fewer corrected
 // bits, then the preferred source, then the larger margin.
@@ -232,10 +245,13 @@ Detections TagDetector::Detect(const cv::Mat& gray) {
   // as rejected rather than silently missing.
   const int report_hamming = std::max(1, options_.max_hamming);
   std::vector<Candidate> candidates;
-  DecodeQuads(gray, impl_->plain_quads->Find(gray), QuadSource::kImage, impl_->codebook, report_hamming, candidates);
-  DecodeQuads(gray, impl_->grown_quads->Find(gray), QuadSource::kGrownWhite, impl_->codebook, report_hamming,
-              candidates);
   if (impl_->floor) AddLibraryTags(gray, *impl_->floor, impl_->codebook, report_hamming, candidates);
+  if (!EveryExpectedTagAccepted(candidates, options_, impl_->codebook.width_at_border(), gray)) {
+    DecodeQuads(gray, impl_->plain_quads->Find(gray), QuadSource::kImage, impl_->codebook, report_hamming,
+                candidates);
+    DecodeQuads(gray, impl_->grown_quads->Find(gray), QuadSource::kGrownWhite, impl_->codebook, report_hamming,
+                candidates);
+  }
   Detections result;
   for (const DecodedTag& decode : DropRepeatedDecodes(std::move(candidates))) {
     const std::string reason = RejectionReason(decode, options_, impl_->codebook.width_at_border(), gray);
@@ -292,6 +308,8 @@ BoardObservation MatchToTarget(const Target& target, const Detections& detection
 DetectorOptions ForTarget(DetectorOptions options, const Target& target) {
   options.family = target.family;
   options.border_bits = target.border_bits;
+  options.expected_ids = target.TagIds();
+  std::sort(options.expected_ids.begin(), options.expected_ids.end());
   return options;
 }
 

@@ -51,6 +51,11 @@ struct DetectorOptions {
   // reads the same tag in its quad): never fewer tags than the library. Off
   // only to measure hexcal's own passes.
   bool library_floor = true;
+  // The target's tag ids (ForTarget sets them): when the library's pass
+  // alone finds every one of them, accepted, hexcal's own passes are skipped,
+  // since they could add no tag of the target (measure's usual image, at
+  // about the library's cost; docs/performance.md). Empty: every pass runs.
+  std::vector<int> expected_ids;
 
   bool IsValid(std::string* error) const;
 };
@@ -106,8 +111,8 @@ class TagDetector {
   std::unique_ptr<Impl> impl_;
 };
 
-// `options` with the target's family and border (every detector of a job
-// that measures a target is made through this).
+// `options` with the target's family, border and tag ids (every detector of
+// a job that measures a target is made through this).
 DetectorOptions ForTarget(DetectorOptions options, const Target& target);
 
 // One detector per worker of a batch job, each single-threaded (the workers
