@@ -18,6 +18,7 @@
 #include "ui/acquire_panel.h"
 #include "ui/background_job.h"
 #include "ui/error_dialog.h"
+#include "ui/text_wrap.h"
 #include "ui/image_view.h"
 #include "ui/quantity_format.h"
 #include "vision/image_codecs.h"
@@ -78,10 +79,10 @@ void AcquirePanel::Connected(std::shared_ptr<workflow::AcquisitionRig> rig, cons
     return ShowError(this, "Connect", Message(opened));
   }
   rig_ = std::move(rig);
-  devices_->setText(QString("Connected: %1; %2.")
+  devices_->setText(Breakable(QString("Connected: %1; %2.")
                         .arg(rig_->controller ? QString::fromStdString(rig_->controller->Describe())
                                               : "no controller (move the robot by hand, type the readings)",
-                             QString::fromStdString(rig_->camera->Describe())));
+                             QString::fromStdString(rig_->camera->Describe()))));  // a file: camera's path
   connect_->setText("Disconnect");
   GrabLiveFrame();
 }

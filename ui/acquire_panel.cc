@@ -21,6 +21,7 @@
 #include "core/inverse_kinematics.h"
 #include "ui/background_job.h"
 #include "ui/error_dialog.h"
+#include "ui/text_wrap.h"
 #include "ui/image_view.h"
 #include "ui/quantity_format.h"
 #include "workflow/acquire_step.h"
@@ -276,7 +277,7 @@ void AcquirePanel::SkipPose() {
 
 void AcquirePanel::SetOutcome(const QString& text) {
   outcome_ = text;
-  status_->setText(text);
+  status_->setText(Breakable(text));  // it may quote a long path
 }
 
 }  // namespace hexcal::ui

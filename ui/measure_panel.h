@@ -47,6 +47,7 @@ class MeasurePanel : public QWidget {
 
  private:
   bool CameraAndTargetReady(const QString& step);
+  void ShowReadingsHint();  // how many images lack readings, after every refill
   void StartJob(const QString& what, JobWork work);
 
   SessionState* session_;

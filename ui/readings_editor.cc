@@ -30,6 +30,9 @@ ReadingsEditor::ReadingsEditor(SessionState* session, QWidget* parent)
   setObjectName("legs_table");
   setHorizontalHeaderLabels({"image", "L1", "L2", "L3", "L4", "L5", "L6", "holdout (0/1)"});
   horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  // The image column as wide as an acquired image's name (widen it for longer ones).
+  horizontalHeader()->setSectionResizeMode(0, QHeaderView::Interactive);
+  setColumnWidth(0, fontMetrics().horizontalAdvance("pose_0000.png") + 24);
   setToolTip("Leg readings at each image (robot unit): type them, or paste lines of six numbers with Ctrl+V. "
              "legs.csv is saved at once. holdout 1 keeps the image out of the calibration to validate it.");
   connect(this, &QTableWidget::cellChanged, this, &ReadingsEditor::OnCellEdited);
@@ -40,6 +43,13 @@ int ReadingsEditor::MissingRows() const {
 }
 
 void ReadingsEditor::Refill() {
+  // Refilling now would put the file's value into the open editor (the text
+  // typed so far lost, Enter then committing theirs): wait until it closes.
+  if (state() == QAbstractItemView::EditingState) {
+    refill_pending_ = true;
+    return;
+  }
+  refill_pending_ = false;
   filling_ = true;
   rows_.clear();
   if (session_->IsOpen()) {
@@ -60,6 +70,7 @@ void ReadingsEditor::Refill() {
     setItem(r, kHoldoutColumn, Cell(row.holdout ? "1" : "0", true));
   }
   filling_ = false;
+  emit Refilled();
 }
 
 void ReadingsEditor::OnCellEdited(int row, int column) {
@@ -139,6 +150,11 @@ int ReadingsEditor::PasteReadings(const QString& text, int first) {
   for (const auto& [shown, legs] : pasted) written += WriteRow(shown.image, legs, shown.holdout, /*overwrite=*/true);
   if (written > 0) emit Note(QString("pasted the readings of %1 images into legs.csv").arg(written));
   return written;
+}
+
+void ReadingsEditor::closeEditor(QWidget* editor, QAbstractItemDelegate::EndEditHint hint) {
+  QTableWidget::closeEditor(editor, hint);
+  if (refill_pending_) Refill();  // after the commit, which was checked against the rows shown
 }
 
 void ReadingsEditor::keyPressEvent(QKeyEvent* event) {

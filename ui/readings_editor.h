@@ -4,6 +4,10 @@
 // type into; its row enters legs.csv when the sixth reading is typed. Ctrl+V
 // pastes lines of six numbers (a spreadsheet's rows) from the current row on.
 // Every change goes to legs.csv at once, as it is on disk (session_edits.h).
+// A reload while a cell is being edited leaves the editor and its text alone:
+// the table is refilled when the editor closes, and the typed value is
+// applied against the value shown when typing began, so a change of the same
+// cell on disk meanwhile asks Use mine / Keep theirs (issue 35).
 #pragma once
 
 #include <QTableWidget>
@@ -33,9 +37,12 @@ class ReadingsEditor : public QTableWidget {
  signals:
   // A sentence for the operator: what was written, or why not.
   void Note(const QString& text);
+  // The rows shown are the file's again (MissingRows may have changed).
+  void Refilled();
 
  protected:
   void keyPressEvent(QKeyEvent* event) override;
+  void closeEditor(QWidget* editor, QAbstractItemDelegate::EndEditHint hint) override;
 
  private:
   void OnCellEdited(int row, int column);
@@ -48,6 +55,7 @@ class ReadingsEditor : public QTableWidget {
   // Readings typed into a blank row, kept until its sixth arrives.
   std::map<std::string, std::array<std::optional<double>, kNumLegs>> typed_;
   bool filling_ = false;
+  bool refill_pending_ = false;  // a reload came while a cell was being edited
 };
 
 }  // namespace hexcal::ui
