@@ -218,7 +218,11 @@ void AcquirePanel::Refresh() {
   } else {
     SelectPose(current_);
   }
-  if (poses == 0) SetOutcome("No plan yet: plan the poses first (Plan step), then come back to record them.");
+  if (poses == 0) {
+    SetOutcome(kNoPlan);
+  } else if (outcome_ == kNoPlan) {
+    SetOutcome({});  // a plan came: the line would send the operator back for nothing
+  }
 }
 
 void AcquirePanel::ResetForSession() {

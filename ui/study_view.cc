@@ -193,7 +193,7 @@ void StudyView::Finish(const std::shared_ptr<StatusOr<workflow::StudyOutcome>>& 
   SetOutcome(QString("done in %1 s on %2 threads; kept in %3.")
                  .arg(done.seconds, 0, 'f', 1)
                  .arg(done.threads)
-                 .arg(QString::fromStdString(done.saved)));
+                 .arg(session_->InSession(QString::fromStdString(done.saved) + "/")));  // "study/"
   session_->Reload();  // shows what study/ now holds
 }
 

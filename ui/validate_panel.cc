@@ -72,6 +72,7 @@ ValidatePanel::ValidatePanel(SessionState* session, QWidget* parent) : QWidget(p
   validation_layout->addWidget(status_);
   validation_layout->addWidget(summary_);
   validation_layout->addLayout(charts, 1);
+  validation_layout->addStretch(0);  // the room of the figures when there are none
   study_ = new StudyView(session_);
   tabs_ = new QTabWidget;
   tabs_->addTab(validation, "Held-out validation");
@@ -95,6 +96,11 @@ void ValidatePanel::Refresh() {
   ShowChart(position_chart_, charts::ValidationPerImageChart({}, charts::ValidationQuantity::kPosition, ""));
   ShowChart(orientation_chart_, charts::ValidationPerImageChart({}, charts::ValidationQuantity::kOrientation, ""));
   verdict_->Clear();
+  // Figures only when there are some: empty axes and a table of dashes said nothing.
+  const bool validated = report.ok() && report->validation.has_value();
+  for (QWidget* figures : {static_cast<QWidget*>(summary_), static_cast<QWidget*>(position_chart_),
+                           static_cast<QWidget*>(orientation_chart_)})
+    figures->setVisible(validated);
   if (!report.ok()) return status_->setText(Breakable(QString::fromStdString(report.status().message())));
   verdict_->Show(workflow::MakeVerdict(*report));
   if (!report->validation) {

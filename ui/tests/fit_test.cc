@@ -126,19 +126,22 @@ TEST(UiFit, EveryPanelFitsBeforeAndAfterEveryJob) {
   ExpectFits(&window, "study", "done");
 }
 
-// The calibrated session with an image of a long name added (no readings
-// yet, results stale), a camera file of a long path, and a poor verdict.
+// The calibrated session, then with an image of a long name added (no
+// readings yet, results stale), a camera file of a long path, and a poor verdict.
 TEST(UiFit, LongNamesStaleResultsAndAPoorVerdictFit) {
   QTemporaryDir temp;
   const QString dir = temp.filePath(kLongFolder);
   ASSERT_TRUE(CopyFolder(sessions_dir + "/calibrated", dir));
+  MainWindow window;
+  window.show();
+  ASSERT_TRUE(window.OpenSession(dir));
+  ExpectFits(&window, "validate", "held-out");  // 4 held-out images, up to date
+
   const QString long_image = "an_image_whose_file_name_goes_on_and_on_without_a_single_space_to_break_it_0001.png";
   const QStringList images = QDir(dir + "/images").entryList(QDir::Files, QDir::Name);
   ASSERT_FALSE(images.isEmpty());
   ASSERT_TRUE(QFile::copy(dir + "/images/" + images.front(), dir + "/images/" + long_image));
-  MainWindow window;
-  window.show();
-  ASSERT_TRUE(window.OpenSession(dir));
+  window.Session()->Reload();
   MeasurePanel* measure = window.Measure();
   const QList<QListWidgetItem*> found = measure->ImageList()->findItems(long_image, Qt::MatchStartsWith);
   ASSERT_EQ(found.size(), 1);
