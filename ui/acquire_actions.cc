@@ -23,6 +23,7 @@
 #include "ui/quantity_format.h"
 #include "vision/image_codecs.h"
 #include "workflow/acquire_step.h"
+#include "workflow/reading_check.h"
 #include "workflow/readings_table.h"
 #include "workflow/session_edits.h"
 
@@ -158,6 +159,13 @@ void AcquirePanel::CapturePose(const std::optional<LegReadings>& typed) {
       ShowFrame(overlay);
       const std::optional<LegReadings> readings = typed ? typed : AskReadings(index);
       if (!readings) return SetOutcome("not recorded: no readings entered.");
+      const Status plausible = workflow::CheckTypedReadings(
+          workflow::MakeReadingCheck(session_->NominalRobot(), session_->Config().noise),
+          workflow::AcquiredImageName(index), *readings);
+      if (!plausible.ok()) {
+        SetOutcome("not recorded: " + Message(plausible));
+        return ShowError(this, "Capture", Message(plausible) + "\nCapture again and check the readings.");
+      }
       LegsRow row;
       row.image = workflow::AcquiredImageName(index);
       row.legs = *readings;

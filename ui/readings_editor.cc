@@ -83,6 +83,10 @@ void ReadingsEditor::OnCellEdited(int row, int column) {
                      column == kHoldoutColumn ? "holdout is 0 or 1." : "A reading is a number in the robot unit.");
   }
   const workflow::ReadingsRow shown = rows_[row];
+  if (column != kHoldoutColumn) {
+    const Status plausible = workflow::CheckTypedReading(Check(), shown.image, column - 1, value);
+    if (!plausible.ok()) return Refuse(plausible);
+  }
   if (shown.recorded) return EditRecorded(shown, column, value);
   EditBlank(row, column, value);
 }
@@ -145,11 +149,32 @@ int ReadingsEditor::PasteReadings(const QString& text, int first) {
       emit Note(QString("pasted line %1 is not six numbers: stopped there").arg(k + 1));
       break;
     }
+    LegReadings readings;
+    for (int i = 0; i < kNumLegs; ++i) readings[i] = (*legs)[i];
+    const Status plausible =
+        workflow::CheckTypedReadings(Check(), "pasted line " + std::to_string(k + 1), readings);
+    if (!plausible.ok()) {
+      emit Note(QString::fromStdString(plausible.message()) + ": stopped there");
+      break;
+    }
     pasted.push_back({rows_[row++], *legs});
   }
   for (const auto& [shown, legs] : pasted) written += WriteRow(shown.image, legs, shown.holdout, /*overwrite=*/true);
   if (written > 0) emit Note(QString("pasted the readings of %1 images into legs.csv").arg(written));
   return written;
+}
+
+workflow::ReadingCheck ReadingsEditor::Check() const {
+  return workflow::MakeReadingCheck(session_->NominalRobot(), session_->Config().noise);
+}
+
+// A reading beyond its stroke is not written: the table shows the file again
+// and the operator is told which value, in which row, was refused.
+void ReadingsEditor::Refuse(const Status& why) {
+  Refill();
+  const QString message = QString::fromStdString(why.message());
+  emit Note(message);
+  ShowError(this, "Leg readings", message);
 }
 
 void ReadingsEditor::closeEditor(QWidget* editor, QAbstractItemDelegate::EndEditHint hint) {

@@ -3,6 +3,8 @@
 // workflow::ReadReadingsTable, so an image without readings has a blank row to
 // type into; its row enters legs.csv when the sixth reading is typed. Ctrl+V
 // pastes lines of six numbers (a spreadsheet's rows) from the current row on.
+// A reading outside its leg's stroke is refused, naming the image, the leg
+// and the value (workflow::CheckTypedReading).
 // Every change goes to legs.csv at once, as it is on disk (session_edits.h).
 // A reload while a cell is being edited leaves the editor and its text alone:
 // the table is refilled when the editor closes, and the typed value is
@@ -17,6 +19,7 @@
 #include <vector>
 
 #include "ui/session_state.h"
+#include "workflow/reading_check.h"
 #include "workflow/readings_table.h"
 
 namespace hexcal::ui {
@@ -49,6 +52,9 @@ class ReadingsEditor : public QTableWidget {
   void EditRecorded(const workflow::ReadingsRow& shown, int column, double value);
   void EditBlank(int row, int column, double value);
   bool WriteRow(const std::string& image, const std::array<double, kNumLegs>& legs, bool holdout, bool overwrite);
+  // The session's check of typed readings: its robot's strokes, its noise (workflow/reading_check.h).
+  workflow::ReadingCheck Check() const;
+  void Refuse(const Status& why);
 
   SessionState* session_;
   std::vector<workflow::ReadingsRow> rows_;
