@@ -21,9 +21,9 @@
 #include "core/inverse_kinematics.h"
 #include "ui/background_job.h"
 #include "ui/error_dialog.h"
-#include "ui/text_wrap.h"
 #include "ui/image_view.h"
 #include "ui/quantity_format.h"
+#include "ui/text_wrap.h"
 #include "workflow/acquire_step.h"
 #include "workflow/readings_table.h"
 

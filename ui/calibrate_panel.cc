@@ -19,9 +19,9 @@
 #include "ui/background_job.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
-#include "ui/text_wrap.h"
 #include "ui/quantity_format.h"
 #include "ui/run_log.h"
+#include "ui/text_wrap.h"
 #include "ui/verdict_view.h"
 #include "workflow/calibration_verdict.h"
 #include "workflow/session_calibrate.h"
@@ -76,8 +76,7 @@ CalibratePanel::CalibratePanel(SessionState* session, QWidget* parent)
   parameters_ = new QTableWidget(0, 7);
   parameters_->setObjectName("parameter_table");
   verdict_ = new VerdictView;
-  parameters_->setHorizontalHeaderLabels(
-      {"leg", "parameter", "nominal", "calibrated", "change", "σ", "identified"});
+  parameters_->setHorizontalHeaderLabels({"leg", "parameter", "nominal", "calibrated", "change", "σ", "identified"});
   // |change|/σ far above 3 says the parameter was identified, not that something is wrong.
   parameters_->horizontalHeaderItem(6)->setToolTip(
       "|change|/σ: well above 3 (change ≫ σ) means the calibration identified this parameter and found it "

@@ -58,7 +58,7 @@ class CalibratePanel : public QWidget {
   QPushButton *run_, *cancel_;
   QProgressBar* progress_;
   QLabel *status_, *summary_;
-  RunLog* run_log_;  // the lines the last run printed, folded
+  RunLog* run_log_;       // the lines the last run printed, folded
   VerdictView* verdict_;  // the verdict on results/report.json
   QTableWidget* parameters_;
   QtCharts::QChartView* residuals_;

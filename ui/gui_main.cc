@@ -31,8 +31,8 @@ int main(int argc, char** argv) {
       {"panel",
        "Panel to show: robot, plan, acquire, measure, calibrate, validate, study (the Validate step's study tab).",
        "NAME"});
-  parser.addOption({"size", "Window size, WIDTHxHEIGHT (default 1280x720; on screen, at most the screen's).", "WxH",
-                    "1280x720"});
+  parser.addOption(
+      {"size", "Window size, WIDTHxHEIGHT (default 1280x720; on screen, at most the screen's).", "WxH", "1280x720"});
   parser.addOption({"controller", "Acquire step: connect this controller at start (sim, none).", "URL"});
   parser.addOption({"camera", "Acquire step: connect this camera at start (sim, v4l2:N, file:PATH).", "URL"});
   parser.addOption({"demo", "Open the demo session (hexcal demo makes it the first time, about 15 s)."});

@@ -19,13 +19,13 @@
 #include "core/csv.h"
 #include "ui/background_job.h"
 #include "ui/error_dialog.h"
-#include "ui/text_wrap.h"
 #include "ui/image_overlay.h"
 #include "ui/image_view.h"
 #include "ui/quantity_format.h"
+#include "ui/text_wrap.h"
+#include "vision/measure.h"
 #include "workflow/measure_step.h"
 #include "workflow/session_measure.h"
-#include "vision/measure.h"
 
 namespace hexcal::ui {
 namespace {
@@ -110,6 +110,13 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
   connect(legs_, &ReadingsEditor::Note, this, [this](const QString& note) { status_->setText(Breakable(note)); });
   connect(legs_, &ReadingsEditor::Refilled, this, &MeasurePanel::ShowReadingsHint);
 
+  ArrangeWidgets(buttons);
+  connect(session_, &SessionState::Switched, this, &MeasurePanel::ResetForSession);
+  connect(session_, &SessionState::Changed, this, &MeasurePanel::Refresh);
+}
+
+// The image list and its buttons left of the image, the readings below.
+void MeasurePanel::ArrangeWidgets(QLayout* buttons) {
   auto* left = new QWidget;
   auto* left_layout = new QVBoxLayout(left);
   left_layout->addWidget(new QLabel("Images (status from measurements.csv)"));
@@ -140,8 +147,6 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
   vertical->setSizes({360, 200});  // the image list's rows and the buttons first; five rows of readings
   auto* layout = new QVBoxLayout(this);
   layout->addWidget(vertical);
-  connect(session_, &SessionState::Switched, this, &MeasurePanel::ResetForSession);
-  connect(session_, &SessionState::Changed, this, &MeasurePanel::Refresh);
 }
 
 void MeasurePanel::ResetForSession() {
@@ -174,7 +179,8 @@ void MeasurePanel::Refresh() {
   images_->blockSignals(false);
   // Keep the selection; show the first image when there was none.
   if (images_->count() > 0) images_->setCurrentRow(current >= 0 && current < images_->count() ? current : 0);
-  if (!session_->LegsError().isEmpty()) status_->setText(Breakable("legs.csv: " + session_->InSession(session_->LegsError())));
+  if (!session_->LegsError().isEmpty())
+    status_->setText(Breakable("legs.csv: " + session_->InSession(session_->LegsError())));
   legs_->Refill();
 }
 
@@ -220,10 +226,10 @@ void MeasurePanel::ShowImage(int row) {
       picture_->SetImage(overlay.image);
       shown_status_ = overlay.status;
       picture_info_->setText(Breakable(QString("%1: %2 — %3 target tags, reprojection RMS %4  "
-                                     "(green: detected tags and ids; red: the board reprojected)")
-                                 .arg(QFileInfo(file).fileName(), overlay.status)
-                                 .arg(overlay.tags)
-                                 .arg(FormatPixels(overlay.rms_px))));
+                                               "(green: detected tags and ids; red: the board reprojected)")
+                                           .arg(QFileInfo(file).fileName(), overlay.status)
+                                           .arg(overlay.tags)
+                                           .arg(FormatPixels(overlay.rms_px))));
     };
   });
 }

@@ -22,14 +22,14 @@
 #include "charts/qt_chart.h"
 #include "core/csv.h"
 #include "core/inverse_kinematics.h"
+#include "core/session_lock.h"
 #include "ui/background_job.h"
 #include "ui/charts.h"
-#include "core/session_lock.h"
 #include "ui/error_dialog.h"
-#include "ui/text_wrap.h"
 #include "ui/plan_options.h"
-#include "ui/quantity_format.h"
 #include "ui/plan_visibility.h"
+#include "ui/quantity_format.h"
+#include "ui/text_wrap.h"
 #include "workflow/plan_step.h"
 
 namespace hexcal::ui {

@@ -151,8 +151,7 @@ int ReadingsEditor::PasteReadings(const QString& text, int first) {
     }
     LegReadings readings;
     for (int i = 0; i < kNumLegs; ++i) readings[i] = (*legs)[i];
-    const Status plausible =
-        workflow::CheckTypedReadings(Check(), "pasted line " + std::to_string(k + 1), readings);
+    const Status plausible = workflow::CheckTypedReadings(Check(), "pasted line " + std::to_string(k + 1), readings);
     if (!plausible.ok()) {
       emit Note(QString::fromStdString(plausible.message()) + ": stopped there");
       break;

@@ -226,16 +226,17 @@ void StudyView::ShowStudy(const workflow::SessionStudy& study) {
                                       : QString();
   rank_->setText(stale.isEmpty() ? "<b>" + rank.toHtmlEscaped() + "</b>"
                                  : stale + "<b>" + rank.toHtmlEscaped() + "</b>");
-  about_->setText(Breakable(QString("IOOPS on %1%2 chose %3 of the %4 measured poses; %5 random %3-subsets (seed %6), each "
-                          "calibrated from the nominal robot and validated by FK on the %7 poses it leaves out. "
-                          "Made %8.")
-                      .arg(CriterionName(r.criterion), r.weighted_selection ? " (weighted rows)" : " (unweighted)")
-                      .arg(r.select)
-                      .arg(r.measured)
-                      .arg(r.random_count)
-                      .arg(r.seed)
-                      .arg(r.measured - r.select)
-                      .arg(QString::fromStdString(r.created))));
+  about_->setText(
+      Breakable(QString("IOOPS on %1%2 chose %3 of the %4 measured poses; %5 random %3-subsets (seed %6), each "
+                        "calibrated from the nominal robot and validated by FK on the %7 poses it leaves out. "
+                        "Made %8.")
+                    .arg(CriterionName(r.criterion), r.weighted_selection ? " (weighted rows)" : " (unweighted)")
+                    .arg(r.select)
+                    .arg(r.measured)
+                    .arg(r.random_count)
+                    .arg(r.seed)
+                    .arg(r.measured - r.select)
+                    .arg(QString::fromStdString(r.created))));
   const QString unit = QString::fromStdString(r.length_unit);
   for (int row = 0; row < 6; ++row) {
     const workflow::StudyMetric& m = r.Metric(kRows[row]);

@@ -24,14 +24,9 @@
 #include "core/inverse_kinematics.h"
 #include "core/robot_io.h"
 #include "core/session.h"
-#include "vision/camera.h"
-#include "vision/target.h"
-#include "workflow/plan_step.h"
 #include "ui/acquire_panel.h"
 #include "ui/background_job.h"
 #include "ui/calibrate_panel.h"
-#include "ui/verdict_view.h"
-#include "workflow/calibration_verdict.h"
 #include "ui/error_dialog.h"
 #include "ui/help_browser.h"
 #include "ui/image_overlay.h"
@@ -48,6 +43,11 @@
 #include "ui/screenshot.h"
 #include "ui/tests/gui_test_support.h"
 #include "ui/validate_panel.h"
+#include "ui/verdict_view.h"
+#include "vision/camera.h"
+#include "vision/target.h"
+#include "workflow/calibration_verdict.h"
+#include "workflow/plan_step.h"
 
 namespace hexcal::ui {
 namespace {

@@ -84,8 +84,8 @@ bool IsControl(const QWidget* w) {
   // Scroll bars and the headers' sections belong to their view; a combo box's
   // or spin box's line edit to its box.
   if (qobject_cast<const QScrollBar*>(w) || qobject_cast<const QHeaderView*>(w)) return false;
-  if (qobject_cast<const QLineEdit*>(w) && (qobject_cast<const QComboBox*>(w->parentWidget()) ||
-                                            qobject_cast<const QAbstractSpinBox*>(w->parentWidget())))
+  if (qobject_cast<const QLineEdit*>(w) &&
+      (qobject_cast<const QComboBox*>(w->parentWidget()) || qobject_cast<const QAbstractSpinBox*>(w->parentWidget())))
     return false;
   return qobject_cast<const QAbstractButton*>(w) || qobject_cast<const QLineEdit*>(w) ||
          qobject_cast<const QComboBox*>(w) || qobject_cast<const QAbstractSpinBox*>(w) ||

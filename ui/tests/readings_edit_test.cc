@@ -61,8 +61,7 @@ class ReadingsEditTest : public ::testing::Test {
     table_ = window_.Measure()->LegsTable();
     ASSERT_GE(table_->rowCount(), 2);
     // The table's rows are legs.csv's, in its order: row k of one is row k of the other.
-    for (int r = 0; r < 2; ++r)
-      ASSERT_EQ(table_->item(r, 0)->text().toStdString(), window_.Session()->Legs()[r].image);
+    for (int r = 0; r < 2; ++r) ASSERT_EQ(table_->item(r, 0)->text().toStdString(), window_.Session()->Legs()[r].image);
   }
   void TearDown() override { SetConflictAnswerer({}); }
 

@@ -22,8 +22,8 @@
 #include "ui/error_dialog.h"
 #include "ui/main_window.h"
 #include "ui/screenshot.h"
-#include "ui/tests/gui_test_support.h"
 #include "ui/study_view.h"
+#include "ui/tests/gui_test_support.h"
 #include "ui/validate_panel.h"
 #include "workflow/session_study.h"
 
