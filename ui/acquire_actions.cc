@@ -20,8 +20,10 @@
 #include "ui/error_dialog.h"
 #include "ui/image_view.h"
 #include "ui/quantity_format.h"
+#include "ui/text_wrap.h"
 #include "vision/image_codecs.h"
 #include "workflow/acquire_step.h"
+#include "workflow/reading_check.h"
 #include "workflow/readings_table.h"
 #include "workflow/session_edits.h"
 
@@ -78,10 +80,10 @@ void AcquirePanel::Connected(std::shared_ptr<workflow::AcquisitionRig> rig, cons
     return ShowError(this, "Connect", Message(opened));
   }
   rig_ = std::move(rig);
-  devices_->setText(QString("Connected: %1; %2.")
-                        .arg(rig_->controller ? QString::fromStdString(rig_->controller->Describe())
-                                              : "no controller (move the robot by hand, type the readings)",
-                             QString::fromStdString(rig_->camera->Describe())));
+  devices_->setText(Breakable(QString("Connected: %1; %2.")
+                                  .arg(rig_->controller ? QString::fromStdString(rig_->controller->Describe())
+                                                        : "no controller (move the robot by hand, type the readings)",
+                                       QString::fromStdString(rig_->camera->Describe()))));  // a file: camera's path
   connect_->setText("Disconnect");
   GrabLiveFrame();
 }
@@ -157,6 +159,13 @@ void AcquirePanel::CapturePose(const std::optional<LegReadings>& typed) {
       ShowFrame(overlay);
       const std::optional<LegReadings> readings = typed ? typed : AskReadings(index);
       if (!readings) return SetOutcome("not recorded: no readings entered.");
+      const Status plausible =
+          workflow::CheckTypedReadings(workflow::MakeReadingCheck(session_->NominalRobot(), session_->Config().noise),
+                                       workflow::AcquiredImageName(index), *readings);
+      if (!plausible.ok()) {
+        SetOutcome("not recorded: " + Message(plausible));
+        return ShowError(this, "Capture", Message(plausible) + "\nCapture again and check the readings.");
+      }
       LegsRow row;
       row.image = workflow::AcquiredImageName(index);
       row.legs = *readings;

@@ -23,6 +23,7 @@
 #include "ui/error_dialog.h"
 #include "ui/image_view.h"
 #include "ui/quantity_format.h"
+#include "ui/text_wrap.h"
 #include "workflow/acquire_step.h"
 #include "workflow/readings_table.h"
 
@@ -217,7 +218,11 @@ void AcquirePanel::Refresh() {
   } else {
     SelectPose(current_);
   }
-  if (poses == 0) SetOutcome("No plan yet: plan the poses first (Plan step), then come back to record them.");
+  if (poses == 0) {
+    SetOutcome(kNoPlan);
+  } else if (outcome_ == kNoPlan) {
+    SetOutcome({});  // a plan came: the line would send the operator back for nothing
+  }
 }
 
 void AcquirePanel::ResetForSession() {
@@ -276,7 +281,7 @@ void AcquirePanel::SkipPose() {
 
 void AcquirePanel::SetOutcome(const QString& text) {
   outcome_ = text;
-  status_->setText(text);
+  status_->setText(Breakable(text));  // it may quote a long path
 }
 
 }  // namespace hexcal::ui

@@ -103,6 +103,8 @@ class AcquirePanel : public QWidget {
   std::map<int, QString> marks_;  // poses skipped or failed this session: why
   QString outcome_;
   static constexpr const char* kAllDone = "Every planned pose is recorded or skipped: go on to Measure and Calibrate.";
+  static constexpr const char* kNoPlan =
+      "No plan yet: plan the poses first (Plan step), then come back to record them.";
 };
 
 }  // namespace hexcal::ui

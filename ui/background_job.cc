@@ -52,11 +52,16 @@ bool BackgroundJob::Start(const QString& what, JobWork work) {
 void BackgroundJob::Cancel() { cancel_ = true; }
 
 void ShowProgressOn(BackgroundJob* job, QProgressBar* bar) {
+  // Shown while a job reports progress, hidden after: a full bar left behind
+  // says "done" about a job long over, and takes a row a small screen needs.
+  bar->setVisible(false);
   QObject::connect(job, &BackgroundJob::Progress, bar, [bar](int done, int total, const QString& what) {
     bar->setFormat(what + " %v/%m");
     bar->setRange(0, total);
     bar->setValue(done);
+    bar->setVisible(true);
   });
+  QObject::connect(job, &BackgroundJob::Finished, bar, [bar] { bar->setVisible(false); });
 }
 
 void BackgroundJob::Abandon() {

@@ -64,7 +64,8 @@ class BackgroundJob : public QObject {
   QString what_;
 };
 
-// The job's progress on `bar`: "measuring 3/16", a busy bar while the total is 0.
+// The job's progress on `bar`: "measuring 3/16", a busy bar while the total is 0;
+// the bar is shown only while a job reports progress.
 void ShowProgressOn(BackgroundJob* job, QProgressBar* bar);
 
 }  // namespace hexcal::ui

@@ -6,7 +6,7 @@
 #include <QLabel>
 #include <QProgressBar>
 #include <QPushButton>
-#include <QSplitter>
+#include <QTabWidget>
 #include <QTableWidget>
 #include <QVBoxLayout>
 #include <filesystem>
@@ -20,10 +20,10 @@
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
 #include "ui/quantity_format.h"
+#include "ui/run_log.h"
+#include "ui/text_wrap.h"
 #include "ui/verdict_view.h"
 #include "workflow/calibration_verdict.h"
-#include "workflow/camera_frame_diagnosis.h"
-#include "workflow/pixel_fit_summary.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_results.h"
 
@@ -34,19 +34,6 @@ namespace fs = std::filesystem;
 
 std::string ResultsFile(const SessionState& session, const char* name) {
   return (fs::path(session.Paths().results) / name).string();
-}
-
-// The lines `hexcal calibrate --session` prints for the calibration from
-// pixels and the camera-frame residuals, as HTML lines.
-QString MethodLines(const workflow::CalibrationReport& report) {
-  std::string text = report.from_pixels ? workflow::FormatPixelFitSummary(*report.from_pixels, report.length_unit)
-                                        : "two-stage calibration (legs fitted to the board poses)\n";
-  if (report.camera_frame_residuals)
-    text += workflow::FormatCameraFrameLine(*report.camera_frame_residuals, report.length_unit) + "\n";
-  QString html;
-  for (const QString& line : QString::fromStdString(text).split('\n', Qt::SkipEmptyParts))
-    html += "<br>" + line.toHtmlEscaped();
-  return html;
 }
 
 // Sorts by the number it holds, whatever its text.
@@ -89,8 +76,7 @@ CalibratePanel::CalibratePanel(SessionState* session, QWidget* parent)
   parameters_ = new QTableWidget(0, 7);
   parameters_->setObjectName("parameter_table");
   verdict_ = new VerdictView;
-  parameters_->setHorizontalHeaderLabels(
-      {"leg", "parameter", "nominal", "calibrated", "change", "σ", "identified (|change|/σ)"});
+  parameters_->setHorizontalHeaderLabels({"leg", "parameter", "nominal", "calibrated", "change", "σ", "identified"});
   // |change|/σ far above 3 says the parameter was identified, not that something is wrong.
   parameters_->horizontalHeaderItem(6)->setToolTip(
       "|change|/σ: well above 3 (change ≫ σ) means the calibration identified this parameter and found it "
@@ -108,20 +94,8 @@ CalibratePanel::CalibratePanel(SessionState* session, QWidget* parent)
   });
   ShowProgressOn(job_, progress_);
 
-  auto* controls = new QHBoxLayout;
-  controls->addWidget(run_);
-  controls->addWidget(cancel_);
-  controls->addWidget(progress_, 1);
-  auto* splitter = new QSplitter(Qt::Vertical);
-  splitter->addWidget(parameters_);
-  splitter->addWidget(residuals_);
-  splitter->setSizes({400, 400});
-  auto* layout = new QVBoxLayout(this);
-  layout->addLayout(controls);
-  layout->addWidget(status_);
-  layout->addWidget(summary_);
-  layout->addWidget(verdict_);
-  layout->addWidget(splitter, 1);
+  run_log_ = new RunLog;
+  ArrangeWidgets();
   connect(job_, &BackgroundJob::Finished, this, [this] {
     run_->setEnabled(true);
     cancel_->setEnabled(false);
@@ -130,15 +104,38 @@ CalibratePanel::CalibratePanel(SessionState* session, QWidget* parent)
   connect(session_, &SessionState::Changed, this, &CalibratePanel::Refresh);
 }
 
+// The summary once (counts, closure, the fit from pixels), the verdict, and
+// the table and the chart as tabs, so that the table keeps a usable height
+// at 1024×600 whatever the verdict says; the raw lines fold into the run log.
+void CalibratePanel::ArrangeWidgets() {
+  auto* controls = new QHBoxLayout;
+  controls->addWidget(run_);
+  controls->addWidget(cancel_);
+  controls->addWidget(progress_, 1);
+  controls->addStretch();
+  auto* results = new QTabWidget;
+  results->setObjectName("calibrate_tabs");
+  results->addTab(parameters_, "Parameters");
+  results->addTab(residuals_, "Leg residuals");
+  auto* layout = new QVBoxLayout(this);
+  layout->addLayout(controls);
+  layout->addWidget(status_);
+  layout->addWidget(run_log_);
+  layout->addWidget(summary_);
+  layout->addWidget(verdict_);
+  layout->addWidget(results, 1);
+}
+
 void CalibratePanel::ResetForSession() {
   job_->Abandon();
   progress_->reset();
+  run_log_->SetText({});
   SetOutcome({});
 }
 
 void CalibratePanel::SetOutcome(const QString& text) {
   outcome_ = text;
-  status_->setText(text);
+  status_->setText(Breakable(text));  // a stale note may quote a long path
 }
 
 void CalibratePanel::Run() {
@@ -158,21 +155,21 @@ void CalibratePanel::Run() {
     StatusOr<workflow::CalibrationReport> report =
         workflow::CalibrateSession({dir}, context);
     const Status status = report.ok() ? Status::Ok() : report.status();
-    const std::string text = report.ok() ? workflow::FormatCalibrationSummary(*report) : "";
-    return [this, status, text] { Finish(status, QString::fromStdString(text)); };
+    return [this, status] { Finish(status); };
   });
 }
 
-void CalibratePanel::Finish(const Status& status, const QString& report) {
+void CalibratePanel::Finish(const Status& status) {
+  // One line here: the figures are in the summary below, the printed lines in the run log.
   if (status.cancelled()) {
     SetOutcome("cancelled: results/ is unchanged.");
   } else if (!status.ok()) {
-    SetOutcome("failed.");
+    SetOutcome("failed: " + QString::fromStdString(status.message()).trimmed() + " results/ is unchanged.");
     ShowError(this, "Calibrate",
               QString::fromStdString(status.message()).trimmed() +
                   "\nCheck the Measure step: enough images with an ok target pose and their readings.");
   } else {
-    SetOutcome("done. " + report.trimmed());
+    SetOutcome("done: results/ written; the lines `hexcal calibrate --session` prints are in the run log.");
   }
   session_->Reload();
 }
@@ -190,6 +187,7 @@ void CalibratePanel::Refresh() {
   parameters_->setRowCount(0);
   summary_->clear();
   verdict_->Clear();
+  run_log_->SetText({});
   const StatusOr<workflow::SessionResults>& loaded = session_->Results();
   if (!session_->IsOpen() || !loaded.ok()) {
     summary_->setText(session_->IsOpen() ? QString::fromStdString(loaded.status().message()).toHtmlEscaped() : "");
@@ -199,7 +197,9 @@ void CalibratePanel::Refresh() {
   const workflow::CalibrationReport& report = loaded->report;
   const workflow::RegistrationSummary& reg = report.registration;
   const QString unit = QString::fromStdString(report.length_unit);
-  summary_->setText(QString("%1 images: %2 for calibration, %3 held out, %4 without a usable target pose.<br>"
+  // The counts and the closure once; the rest of what the CLI prints (the
+  // fit from pixels, the camera-frame residuals, outliers) in the run log.
+  summary_->setText(QString("%1 images: %2 for calibration, %3 held out, %4 without a usable target pose. "
                             "Closure (camera vs robot) RMS: nominal robot %5, %6; calibrated %7, %8.")
                         .arg(report.images)
                         .arg(report.calibration_images)
@@ -208,10 +208,10 @@ void CalibratePanel::Refresh() {
                         .arg(FormatLength(reg.position_rms, unit).toHtmlEscaped(), FormatAngle(reg.angle_rms_deg),
                              FormatLength(report.closure_position_rms, unit).toHtmlEscaped(),
                              FormatAngle(report.closure_angle_rms_deg)) +
-                    MethodLines(report) +
-                    (session_->ResultsNote().isEmpty()
+                    (session_->ResultsNote().isEmpty() || outcome_ == idle_  // the line above says it
                          ? QString()
-                         : "<br><b>Stale:</b> " + session_->ResultsNote().toHtmlEscaped()));
+                         : "<br><b>Stale:</b> " + Breakable(session_->ResultsNote()).toHtmlEscaped()));
+  run_log_->SetText(QString::fromStdString(workflow::FormatCalibrationSummary(report)).trimmed());
   verdict_->Show(workflow::MakeVerdict(report));
   FillParameterTable(report.parameters, QString::fromStdString(report.length_unit));
   PlotResiduals();

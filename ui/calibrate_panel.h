@@ -2,9 +2,11 @@
 // (register the camera with the nominal robot, calibrate the 42 parameters,
 // validate on held-out images) on a worker thread, with its progress (the
 // images it measures, then the legs) and Cancel throughout.
-// Shows the verdict (ui/verdict_view.h) and the 42 parameters (nominal,
-// calibrated, change, σ, identified) from results/report.json and the leg residuals of the nominal and the calibrated
-// robot on the calibration poses.
+// Shows, from results/report.json, one line of counts and closure, the lines
+// the CLI prints folded in a run log (ui/run_log.h), the verdict
+// (ui/verdict_view.h), and two tabs: the 42 parameters (nominal, calibrated,
+// change, σ, identified) and the leg residuals of the nominal and the
+// calibrated robot on the calibration poses.
 #pragma once
 
 #include <QWidget>
@@ -25,6 +27,7 @@ class QChartView;
 namespace hexcal::ui {
 
 class BackgroundJob;
+class RunLog;
 class VerdictView;
 
 class CalibratePanel : public QWidget {
@@ -34,6 +37,7 @@ class CalibratePanel : public QWidget {
   BackgroundJob* Job() const { return job_; }
   QTableWidget* ParameterTable() const { return parameters_; }
   VerdictView* VerdictWidget() const { return verdict_; }
+  RunLog* Log() const { return run_log_; }
   const QString& LastOutcome() const { return outcome_; }
 
  public slots:
@@ -43,7 +47,8 @@ class CalibratePanel : public QWidget {
   void ResetForSession();
 
  private:
-  void Finish(const Status& status, const QString& report);
+  void ArrangeWidgets();
+  void Finish(const Status& status);
   void PlotResiduals();
   void FillParameterTable(const std::vector<workflow::ParameterEstimate>& rows, const QString& unit);
   void SetOutcome(const QString& text);
@@ -53,6 +58,7 @@ class CalibratePanel : public QWidget {
   QPushButton *run_, *cancel_;
   QProgressBar* progress_;
   QLabel *status_, *summary_;
+  RunLog* run_log_;       // the lines the last run printed, folded
   VerdictView* verdict_;  // the verdict on results/report.json
   QTableWidget* parameters_;
   QtCharts::QChartView* residuals_;

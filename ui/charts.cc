@@ -54,13 +54,18 @@ void Compact(QtCharts::QChart* chart) {
 QtCharts::QChartView* MakeChartView(const charts::ChartSpec& spec) {
   auto* view = new QtCharts::QChartView(charts::NewQtChart(spec));
   view->setRenderHint(QPainter::Antialiasing);
-  view->setMinimumHeight(250);
+  view->setMinimumHeight(160);  // room for the axes at 1024×600; layouts give more
   Compact(view->chart());
   return view;
 }
 
 void ShowChart(QtCharts::QChartView* view, const charts::ChartSpec& spec) {
-  charts::FillQtChart(view->chart(), spec);
+  // A new chart, not the old one refilled: refilled while its view was hidden
+  // (the Plan panel's indices during a run), the removed axes stayed drawn
+  // over the new ones.
+  QtCharts::QChart* old = view->chart();
+  view->setChart(charts::NewQtChart(spec));
+  delete old;  // setChart gives up the old one
   Compact(view->chart());
 }
 

@@ -7,6 +7,7 @@
 namespace hexcal::ui {
 namespace {
 bool interactive = true;
+ConflictAnswerer answerer;  // empty: ask in a message box
 
 void Show(QWidget* parent, QMessageBox::Icon icon, const QString& what, const QString& message) {
   QMessageBox box(icon, "hexcal — " + what, message, QMessageBox::Ok, parent);
@@ -14,9 +15,23 @@ void Show(QWidget* parent, QMessageBox::Icon icon, const QString& what, const QS
   box.exec();
 }
 
+// "Use mine" (true) or "Keep theirs" (false).
+bool AskUseMine(QWidget* parent, const QString& what, const QString& text) {
+  if (answerer) return answerer(what, text);
+  if (!interactive) return false;  // keep theirs: never write over what another program wrote
+  QMessageBox box(QMessageBox::Question, "hexcal — " + what, text, QMessageBox::NoButton, parent);
+  box.setTextFormat(Qt::PlainText);
+  box.setInformativeText("Apply your change over it, or keep the file as it is on disk (your change is dropped)?");
+  QPushButton* mine = box.addButton("Use mine", QMessageBox::AcceptRole);
+  box.addButton("Keep theirs", QMessageBox::RejectRole);
+  box.exec();
+  return box.clickedButton() == mine;
+}
+
 }  // namespace
 
 void SetInteractive(bool value) { interactive = value; }
+void SetConflictAnswerer(ConflictAnswerer value) { answerer = std::move(value); }
 bool Interactive() { return interactive; }
 
 void ShowError(QWidget* parent, const QString& what, const QString& message) {
@@ -36,16 +51,8 @@ bool ApplySessionEdit(QWidget* parent, const QString& what,
                       const std::function<workflow::EditOutcome(bool overwrite)>& edit) {
   workflow::EditOutcome done = edit(false);
   if (done.conflict) {
-    const QString text = QString::fromStdString(done.conflict_text);
     std::cerr << "hexcal-gui: " << what.toStdString() << ": " << done.conflict_text << "\n";
-    if (!interactive) return false;  // keep theirs: never write over what another program wrote
-    QMessageBox box(QMessageBox::Question, "hexcal — " + what, text, QMessageBox::NoButton, parent);
-    box.setTextFormat(Qt::PlainText);
-    box.setInformativeText("Apply your change over it, or keep the file as it is on disk (your change is dropped)?");
-    QPushButton* mine = box.addButton("Use mine", QMessageBox::AcceptRole);
-    box.addButton("Keep theirs", QMessageBox::RejectRole);
-    box.exec();
-    if (box.clickedButton() != mine) return false;
+    if (!AskUseMine(parent, what, QString::fromStdString(done.conflict_text))) return false;
     done = edit(true);
   }
   if (!done.status.ok()) {

@@ -25,4 +25,10 @@ void ShowInfo(QWidget* parent, const QString& what, const QString& message);
 bool ApplySessionEdit(QWidget* parent, const QString& what,
                       const std::function<workflow::EditOutcome(bool overwrite)>& edit);
 
+// Who answers the conflict question: the operator in a message box, unless
+// tests set an answer (true: "Use mine"). `text` says what changed on disk.
+using ConflictAnswerer = std::function<bool(const QString& what, const QString& text)>;
+// An empty function restores the message box (keep theirs when not interactive).
+void SetConflictAnswerer(ConflictAnswerer answerer);
+
 }  // namespace hexcal::ui

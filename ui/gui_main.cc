@@ -31,7 +31,8 @@ int main(int argc, char** argv) {
       {"panel",
        "Panel to show: robot, plan, acquire, measure, calibrate, validate, study (the Validate step's study tab).",
        "NAME"});
-  parser.addOption({"size", "Window size for --screenshot, WIDTHxHEIGHT (default 1280x720).", "WxH", "1280x720"});
+  parser.addOption(
+      {"size", "Window size, WIDTHxHEIGHT (default 1280x720; on screen, at most the screen's).", "WxH", "1280x720"});
   parser.addOption({"controller", "Acquire step: connect this controller at start (sim, none).", "URL"});
   parser.addOption({"camera", "Acquire step: connect this camera at start (sim, v4l2:N, file:PATH).", "URL"});
   parser.addOption({"demo", "Open the demo session (hexcal demo makes it the first time, about 15 s)."});
@@ -54,7 +55,13 @@ int main(int argc, char** argv) {
     std::cerr << "hexcal-gui: --size: '" << parser.value("size").toStdString() << "' is not WIDTHxHEIGHT (e.g. 1280x720)\n";
     return 2;
   }
-  window.resize(size[0].toInt(), size[1].toInt());
+  // A screenshot is exactly the size asked for; on screen the window stays within the screen.
+  const QSize wanted(size[0].toInt(), size[1].toInt());
+  if (screenshot.isEmpty()) {
+    window.FitScreen(wanted);
+  } else {
+    window.resize(wanted);
+  }
   window.show();
   if (parser.isSet("camera") && window.Session()->IsOpen())
     window.Acquire()->Connect(parser.value("controller").isEmpty() ? "none" : parser.value("controller"),

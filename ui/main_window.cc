@@ -5,6 +5,7 @@
 #include <QFileDialog>
 #include <QHBoxLayout>
 #include <QMenuBar>
+#include <QScreen>
 #include <QSettings>
 #include <QStackedWidget>
 #include <QStandardPaths>
@@ -18,6 +19,7 @@
 #include "ui/help_browser.h"
 #include "ui/measure_panel.h"
 #include "ui/new_session_dialog.h"
+#include "ui/panel_scroll.h"
 #include "ui/plan_panel.h"
 #include "ui/robot_panel.h"
 #include "ui/step_list.h"
@@ -43,13 +45,18 @@ MainWindow::MainWindow(QWidget* parent)
   measure_ = new MeasurePanel(session_);
   calibrate_ = new CalibratePanel(session_);
   validate_ = new ValidatePanel(session_);
+  // Each panel in a scroll area: however much a panel holds (a long verdict,
+  // a long file name), it cannot make the window larger than the screen; the
+  // panels are laid out to need no scrolling at 1024×600 (ui/tests/fit_test.cc).
   for (QWidget* panel : std::initializer_list<QWidget*>{robot_, plan_, acquire_, measure_, calibrate_, validate_})
-    stack_->addWidget(panel);
+    stack_->addWidget(new PanelScroll(panel));
   connect(steps_, &QListWidget::currentRowChanged, stack_, &QStackedWidget::setCurrentIndex);
   connect(plan_, &PlanPanel::PoseSelected, robot_, &RobotPanel::ShowPlannedPose);
   connect(session_, &SessionState::Changed, this, [this] {
     setWindowTitle("hexcal — " + session_->Dir());
-    statusBar()->showMessage("session " + session_->Dir() + " (every change is saved to the folder)");
+    // The folder elided in the middle: a long path would cut off the sentence.
+    const QString dir = statusBar()->fontMetrics().elidedText(session_->Dir(), Qt::ElideMiddle, width() / 2);
+    statusBar()->showMessage("session " + dir + " (every change is saved to the folder)");
   });
   auto* central = new QWidget;
   auto* layout = new QHBoxLayout(central);
@@ -59,7 +66,14 @@ MainWindow::MainWindow(QWidget* parent)
   BuildMenus();
   steps_->setCurrentRow(0);
   statusBar()->showMessage("Open a session (File > Open) or the demo session (File > Open demo session).");
-  resize(1280, 720);  // the smallest screen it is made for (docs/gui.md)
+  FitScreen(QSize(1280, 720));
+}
+
+void MainWindow::FitScreen(const QSize& wanted) {
+  // 1280×720, the screen it is made for, or the screen when smaller (1024×600).
+  const QRect screen = this->screen()->availableGeometry();
+  resize(wanted.boundedTo(screen.size()));
+  move(screen.topLeft());
 }
 
 void MainWindow::BuildMenus() {
@@ -102,6 +116,7 @@ bool MainWindow::ShowPanelNamed(const QString& name) {
     validate_->ShowStudyTab();
     return true;
   }
+  if (name.compare("validate", Qt::CaseInsensitive) == 0) validate_->ShowValidationTab();
   for (int k = 0; k < kNumSteps; ++k)
     if (name.compare(StepName(static_cast<Step>(k)), Qt::CaseInsensitive) == 0) {
       ShowStep(static_cast<Step>(k));

@@ -39,6 +39,8 @@ class MainWindow : public QMainWindow {
   void ShowStep(Step step);
   // "robot", "plan", "acquire", "measure", "calibrate", "validate" (any case); false if unknown.
   bool ShowPanelNamed(const QString& name);
+  // Resizes to `wanted`, within the screen's available area, at its top left.
+  void FitScreen(const QSize& wanted);
 
  public slots:
   void NewSession();

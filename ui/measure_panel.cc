@@ -1,6 +1,7 @@
 #include "ui/measure_panel.h"
 
 #include <QFileInfo>
+#include <QGridLayout>
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
@@ -21,9 +22,10 @@
 #include "ui/image_overlay.h"
 #include "ui/image_view.h"
 #include "ui/quantity_format.h"
+#include "ui/text_wrap.h"
+#include "vision/measure.h"
 #include "workflow/measure_step.h"
 #include "workflow/session_measure.h"
-#include "vision/measure.h"
 
 namespace hexcal::ui {
 namespace {
@@ -73,12 +75,13 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
   report_->setMaximumHeight(140);
   report_->setVisible(false);  // shown with an intrinsics report: room for the image until then
 
-  auto* buttons = new QVBoxLayout;
+  // Two buttons a row: one a row left the image list two rows at 1024×600.
+  auto* buttons = new QGridLayout;
   const auto add_button = [&](const QString& text, const QString& tip, auto slot) {
     auto* button = new QPushButton(text);
     button->setToolTip(tip);
     connect(button, &QPushButton::clicked, this, slot);
-    buttons->addWidget(button);
+    buttons->addWidget(button, buttons->count() / 2, buttons->count() % 2);
     return button;
   };
   add_button("Load image folder…", "Copy the PNG/JPEG/TIFF images of a folder into the session's images/",
@@ -104,8 +107,16 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
     pending_row_ = -1;
     ShowImage(row);
   });
-  connect(legs_, &ReadingsEditor::Note, status_, &QLabel::setText);
+  connect(legs_, &ReadingsEditor::Note, this, [this](const QString& note) { status_->setText(Breakable(note)); });
+  connect(legs_, &ReadingsEditor::Refilled, this, &MeasurePanel::ShowReadingsHint);
 
+  ArrangeWidgets(buttons);
+  connect(session_, &SessionState::Switched, this, &MeasurePanel::ResetForSession);
+  connect(session_, &SessionState::Changed, this, &MeasurePanel::Refresh);
+}
+
+// The image list and its buttons left of the image, the readings below.
+void MeasurePanel::ArrangeWidgets(QLayout* buttons) {
   auto* left = new QWidget;
   auto* left_layout = new QVBoxLayout(left);
   left_layout->addWidget(new QLabel("Images (status from measurements.csv)"));
@@ -122,6 +133,8 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
   top->addWidget(left);
   top->addWidget(centre);
   top->setStretchFactor(1, 3);
+  // The image gets the width a long status line would take (the label's preferred width).
+  top->setSizes({320, 700});
   auto* vertical = new QSplitter(Qt::Vertical);
   vertical->addWidget(top);
   auto* readings = new QWidget;
@@ -131,10 +144,9 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
   readings_layout->addWidget(legs_, 1);
   vertical->addWidget(readings);
   vertical->setStretchFactor(0, 3);
+  vertical->setSizes({360, 200});  // the image list's rows and the buttons first; five rows of readings
   auto* layout = new QVBoxLayout(this);
   layout->addWidget(vertical);
-  connect(session_, &SessionState::Switched, this, &MeasurePanel::ResetForSession);
-  connect(session_, &SessionState::Changed, this, &MeasurePanel::Refresh);
 }
 
 void MeasurePanel::ResetForSession() {
@@ -167,15 +179,19 @@ void MeasurePanel::Refresh() {
   images_->blockSignals(false);
   // Keep the selection; show the first image when there was none.
   if (images_->count() > 0) images_->setCurrentRow(current >= 0 && current < images_->count() ? current : 0);
-  if (!session_->LegsError().isEmpty()) status_->setText("legs.csv: " + session_->LegsError());
+  if (!session_->LegsError().isEmpty())
+    status_->setText(Breakable("legs.csv: " + session_->InSession(session_->LegsError())));
   legs_->Refill();
+}
+
+void MeasurePanel::ShowReadingsHint() {
   const int missing = legs_->MissingRows();
-  readings_hint_->setText(missing == 0 ? QString("Leg readings (robot unit, %1) of each image:")
-                                             .arg(LengthUnitName(session_->NominalRobot().length_unit))
+  const QString unit = LengthUnitName(session_->NominalRobot().length_unit);
+  readings_hint_->setText(missing == 0 ? QString("Leg readings (robot unit, %1) of each image:").arg(unit)
                                        : QString("%1 image(s) have no readings yet: type L1..L6 (%2) in their rows, "
                                                  "or paste lines of six numbers with Ctrl+V.")
                                              .arg(missing)
-                                             .arg(LengthUnitName(session_->NominalRobot().length_unit)));
+                                             .arg(unit));
 }
 
 void MeasurePanel::StartJob(const QString& what, JobWork work) {
@@ -201,7 +217,7 @@ void MeasurePanel::ShowImage(int row) {
     return;
   }
   const QString file = images_->item(row)->data(Qt::UserRole).toString();
-  picture_info_->setText("detecting " + QFileInfo(file).fileName() + "…");
+  picture_info_->setText(Breakable("detecting " + QFileInfo(file).fileName() + "…"));
   const Camera camera = *session_->SessionCamera();
   const Target target = *session_->SessionTarget();
   preview_->Start("detecting", [this, file, camera, target](const JobContext&) -> GuiContinuation {
@@ -209,11 +225,11 @@ void MeasurePanel::ShowImage(int row) {
     return [this, file, overlay] {
       picture_->SetImage(overlay.image);
       shown_status_ = overlay.status;
-      picture_info_->setText(QString("%1: %2 — %3 target tags, reprojection RMS %4  "
-                                     "(green: detected tags and ids; red: the board reprojected)")
-                                 .arg(QFileInfo(file).fileName(), overlay.status)
-                                 .arg(overlay.tags)
-                                 .arg(FormatPixels(overlay.rms_px)));
+      picture_info_->setText(Breakable(QString("%1: %2 — %3 target tags, reprojection RMS %4  "
+                                               "(green: detected tags and ids; red: the board reprojected)")
+                                           .arg(QFileInfo(file).fileName(), overlay.status)
+                                           .arg(overlay.tags)
+                                           .arg(FormatPixels(overlay.rms_px))));
     };
   });
 }

@@ -12,6 +12,7 @@
 #include "ui/session_state.h"
 
 class QLabel;
+class QLayout;
 class QListWidget;
 class QPlainTextEdit;
 class QProgressBar;
@@ -46,7 +47,9 @@ class MeasurePanel : public QWidget {
   void ShowImage(int row);
 
  private:
+  void ArrangeWidgets(QLayout* buttons);
   bool CameraAndTargetReady(const QString& step);
+  void ShowReadingsHint();  // how many images lack readings, after every refill
   void StartJob(const QString& what, JobWork work);
 
   SessionState* session_;

@@ -9,6 +9,7 @@
 #include <QProgressBar>
 #include <QPushButton>
 #include <QScrollArea>
+#include <QScrollBar>
 #include <QSplitter>
 #include <QTabWidget>
 #include <QTableWidget>
@@ -21,13 +22,14 @@
 #include "charts/qt_chart.h"
 #include "core/csv.h"
 #include "core/inverse_kinematics.h"
+#include "core/session_lock.h"
 #include "ui/background_job.h"
 #include "ui/charts.h"
-#include "core/session_lock.h"
 #include "ui/error_dialog.h"
 #include "ui/plan_options.h"
-#include "ui/quantity_format.h"
 #include "ui/plan_visibility.h"
+#include "ui/quantity_format.h"
+#include "ui/text_wrap.h"
 #include "workflow/plan_step.h"
 
 namespace hexcal::ui {
@@ -73,9 +75,14 @@ PlanPanel::PlanPanel(SessionState* session, QWidget* parent)
   connect(export_button, &QPushButton::clicked, this, &PlanPanel::ExportPlan);
   ShowProgressOn(job_, progress_);
 
+  // The options scroll up and down, never sideways: the column is as wide as the form.
   auto* scroll = new QScrollArea;
+  scroll->setObjectName("plan_options_scroll");
   scroll->setWidget(options_);
   scroll->setWidgetResizable(true);
+  scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  scroll->setMinimumWidth(options_->minimumSizeHint().width() + scroll->verticalScrollBar()->sizeHint().width() +
+                          2 * scroll->frameWidth());
   auto* left = new QWidget;
   auto* left_layout = new QVBoxLayout(left);
   left_layout->addWidget(scroll, 1);
@@ -86,7 +93,6 @@ PlanPanel::PlanPanel(SessionState* session, QWidget* parent)
   left_layout->addLayout(buttons);
   left_layout->addWidget(progress_);
   left_layout->addWidget(status_);
-  left_layout->addWidget(export_button);
 
   table_ = new QTableWidget(0, kColumns.size());
   table_->setObjectName("pose_table");
@@ -99,8 +105,11 @@ PlanPanel::PlanPanel(SessionState* session, QWidget* parent)
   connect(table_, &QTableWidget::currentCellChanged, this, [this](int row) {
     if (row >= 0 && table_->item(row, 0)) emit PoseSelected(table_->item(row, 0)->data(Qt::UserRole).toInt());
   });
-  auto* delete_button = new QPushButton("Delete selected poses");
-  auto* add_button = new QPushButton("Add pose (home, then edit)");
+  // Short texts, the rest in the tooltips: the row must fit the table's width at 1024×600.
+  auto* delete_button = new QPushButton("Delete selected");
+  delete_button->setToolTip("Delete the selected poses; the others are renumbered");
+  auto* add_button = new QPushButton("Add pose");
+  add_button->setToolTip("Add a pose at home, to edit in the table");
   connect(delete_button, &QPushButton::clicked, this, &PlanPanel::DeleteSelectedPoses);
   connect(add_button, &QPushButton::clicked, this, &PlanPanel::AddPose);
   auto* table_box = new QWidget;
@@ -110,6 +119,7 @@ PlanPanel::PlanPanel(SessionState* session, QWidget* parent)
   table_buttons->addWidget(add_button);
   table_buttons->addWidget(delete_button);
   table_buttons->addStretch();
+  table_buttons->addWidget(export_button);
   table_layout->addLayout(table_buttons);
 
   indices_ = charts::ObservabilityChart({});
@@ -158,7 +168,7 @@ StatusOr<PlanningModel> PlanPanel::Model() const {
 
 void PlanPanel::SetOutcome(const QString& text) {
   outcome_ = text;
-  status_->setText(text);
+  status_->setText(Breakable(text));  // it may quote a long path
 }
 
 void PlanPanel::Run() {
@@ -229,9 +239,7 @@ void PlanPanel::Finish(const Status& status, const workflow::PlanOutcome& outcom
   StatusOr<SessionLock> lock = SessionLock::Acquire(session_->Dir().toStdString(), LockWait::kBriefly);
   const Status history = lock.ok() ? workflow::WriteHistoryCsv(HistoryPath(*session_), result) : lock.status();
   if (!history.ok()) ShowError(this, "Plan", QString::fromStdString(history.message()));
-  // The bar stops where the planner converged; show it complete.
-  progress_->setFormat("done");
-  progress_->setValue(progress_->maximum());
+  PlotHistory();  // the whole run, as plan_history.csv now holds it (SetPlan's refresh read the old one)
   SetOutcome(QString("done: %1 iterations in %2 s%3; O1 %4 → %5, O3 %6 → %7")
                  .arg(result.iterations)
                  .arg(result.seconds, 0, 'g', 2)
@@ -319,7 +327,9 @@ void PlanPanel::PlotLegLengths() {
 }
 
 void PlanPanel::PlotIteration(const PlanIteration& step) {
-  if (step.iteration == 0) {
+  // The first step seen makes the chart, whatever its number: appended to the
+  // empty chart of Run(), the points were drawn against its 0..1 axis.
+  if (step.iteration == 0 || indices_.series.empty() || indices_.series.front().points.empty()) {
     indices_ = charts::ObservabilityChart({step});
     return ShowChart(indices_chart_, indices_);
   }

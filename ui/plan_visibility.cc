@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "core/pose.h"
+#include "ui/text_wrap.h"
 
 namespace hexcal::ui {
 namespace {
@@ -69,14 +70,16 @@ VisibilityForm::VisibilityForm(SessionState* session, QWidget* parent) : QWidget
     connect(file_, &QLineEdit::editingFinished, this, changed);
   }
   connect(session_, &SessionState::Changed, this, &VisibilityForm::Describe);
-  auto* file_row = new QHBoxLayout;
+  file_row_ = new QWidget;  // shown for a settings file only: the Plan column is short at 1024×600
+  auto* file_row = new QHBoxLayout(file_row_);
+  file_row->setContentsMargins(0, 0, 0, 0);
   file_row->addWidget(file_, 1);
   file_row->addWidget(browse);
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
   layout->addWidget(new QLabel("Camera visibility:"));
   layout->addWidget(source_);
-  layout->addLayout(file_row);
+  layout->addWidget(file_row_);
   layout->addWidget(summary_);
   Describe();
 }
@@ -121,11 +124,11 @@ void VisibilityForm::Reset() {
 }
 
 void VisibilityForm::Describe() {
-  file_->setEnabled(source_->currentIndex() == kFile);
+  file_row_->setVisible(source_->currentIndex() == kFile);
   if (!session_->IsOpen() || source_->currentIndex() == kOff)
     return summary_->setText("Poses are planned without regard to the camera.");
   StatusOr<std::optional<MeasurementConstraints>> constraints = Constraints();
-  if (!constraints.ok()) return summary_->setText(QString::fromStdString(constraints.status().message()));
+  if (!constraints.ok()) return summary_->setText(Breakable(QString::fromStdString(constraints.status().message())));
   summary_->setText(DescribeConstraints(**constraints, LengthUnitName(session_->NominalRobot().length_unit)));
 }
 

@@ -40,6 +40,7 @@ class VisibilityForm : public QWidget {
   SessionState* session_;
   QComboBox* source_;
   QLineEdit* file_;
+  QWidget* file_row_;  // the file and its browse button
   QLabel* summary_;
 };
 

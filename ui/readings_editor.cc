@@ -30,6 +30,9 @@ ReadingsEditor::ReadingsEditor(SessionState* session, QWidget* parent)
   setObjectName("legs_table");
   setHorizontalHeaderLabels({"image", "L1", "L2", "L3", "L4", "L5", "L6", "holdout (0/1)"});
   horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  // The image column as wide as an acquired image's name (widen it for longer ones).
+  horizontalHeader()->setSectionResizeMode(0, QHeaderView::Interactive);
+  setColumnWidth(0, fontMetrics().horizontalAdvance("pose_0000.png") + 24);
   setToolTip("Leg readings at each image (robot unit): type them, or paste lines of six numbers with Ctrl+V. "
              "legs.csv is saved at once. holdout 1 keeps the image out of the calibration to validate it.");
   connect(this, &QTableWidget::cellChanged, this, &ReadingsEditor::OnCellEdited);
@@ -40,6 +43,13 @@ int ReadingsEditor::MissingRows() const {
 }
 
 void ReadingsEditor::Refill() {
+  // Refilling now would put the file's value into the open editor (the text
+  // typed so far lost, Enter then committing theirs): wait until it closes.
+  if (state() == QAbstractItemView::EditingState) {
+    refill_pending_ = true;
+    return;
+  }
+  refill_pending_ = false;
   filling_ = true;
   rows_.clear();
   if (session_->IsOpen()) {
@@ -60,6 +70,7 @@ void ReadingsEditor::Refill() {
     setItem(r, kHoldoutColumn, Cell(row.holdout ? "1" : "0", true));
   }
   filling_ = false;
+  emit Refilled();
 }
 
 void ReadingsEditor::OnCellEdited(int row, int column) {
@@ -72,6 +83,10 @@ void ReadingsEditor::OnCellEdited(int row, int column) {
                      column == kHoldoutColumn ? "holdout is 0 or 1." : "A reading is a number in the robot unit.");
   }
   const workflow::ReadingsRow shown = rows_[row];
+  if (column != kHoldoutColumn) {
+    const Status plausible = workflow::CheckTypedReading(Check(), shown.image, column - 1, value);
+    if (!plausible.ok()) return Refuse(plausible);
+  }
   if (shown.recorded) return EditRecorded(shown, column, value);
   EditBlank(row, column, value);
 }
@@ -134,11 +149,36 @@ int ReadingsEditor::PasteReadings(const QString& text, int first) {
       emit Note(QString("pasted line %1 is not six numbers: stopped there").arg(k + 1));
       break;
     }
+    LegReadings readings;
+    for (int i = 0; i < kNumLegs; ++i) readings[i] = (*legs)[i];
+    const Status plausible = workflow::CheckTypedReadings(Check(), "pasted line " + std::to_string(k + 1), readings);
+    if (!plausible.ok()) {
+      emit Note(QString::fromStdString(plausible.message()) + ": stopped there");
+      break;
+    }
     pasted.push_back({rows_[row++], *legs});
   }
   for (const auto& [shown, legs] : pasted) written += WriteRow(shown.image, legs, shown.holdout, /*overwrite=*/true);
   if (written > 0) emit Note(QString("pasted the readings of %1 images into legs.csv").arg(written));
   return written;
+}
+
+workflow::ReadingCheck ReadingsEditor::Check() const {
+  return workflow::MakeReadingCheck(session_->NominalRobot(), session_->Config().noise);
+}
+
+// A reading beyond its stroke is not written: the table shows the file again
+// and the operator is told which value, in which row, was refused.
+void ReadingsEditor::Refuse(const Status& why) {
+  Refill();
+  const QString message = QString::fromStdString(why.message());
+  emit Note(message);
+  ShowError(this, "Leg readings", message);
+}
+
+void ReadingsEditor::closeEditor(QWidget* editor, QAbstractItemDelegate::EndEditHint hint) {
+  QTableWidget::closeEditor(editor, hint);
+  if (refill_pending_) Refill();  // after the commit, which was checked against the rows shown
 }
 
 void ReadingsEditor::keyPressEvent(QKeyEvent* event) {

@@ -3,7 +3,13 @@
 // workflow::ReadReadingsTable, so an image without readings has a blank row to
 // type into; its row enters legs.csv when the sixth reading is typed. Ctrl+V
 // pastes lines of six numbers (a spreadsheet's rows) from the current row on.
+// A reading outside its leg's stroke is refused, naming the image, the leg
+// and the value (workflow::CheckTypedReading).
 // Every change goes to legs.csv at once, as it is on disk (session_edits.h).
+// A reload while a cell is being edited leaves the editor and its text alone:
+// the table is refilled when the editor closes, and the typed value is
+// applied against the value shown when typing began, so a change of the same
+// cell on disk meanwhile asks Use mine / Keep theirs (issue 35).
 #pragma once
 
 #include <QTableWidget>
@@ -13,6 +19,7 @@
 #include <vector>
 
 #include "ui/session_state.h"
+#include "workflow/reading_check.h"
 #include "workflow/readings_table.h"
 
 namespace hexcal::ui {
@@ -33,21 +40,28 @@ class ReadingsEditor : public QTableWidget {
  signals:
   // A sentence for the operator: what was written, or why not.
   void Note(const QString& text);
+  // The rows shown are the file's again (MissingRows may have changed).
+  void Refilled();
 
  protected:
   void keyPressEvent(QKeyEvent* event) override;
+  void closeEditor(QWidget* editor, QAbstractItemDelegate::EndEditHint hint) override;
 
  private:
   void OnCellEdited(int row, int column);
   void EditRecorded(const workflow::ReadingsRow& shown, int column, double value);
   void EditBlank(int row, int column, double value);
   bool WriteRow(const std::string& image, const std::array<double, kNumLegs>& legs, bool holdout, bool overwrite);
+  // The session's check of typed readings: its robot's strokes, its noise (workflow/reading_check.h).
+  workflow::ReadingCheck Check() const;
+  void Refuse(const Status& why);
 
   SessionState* session_;
   std::vector<workflow::ReadingsRow> rows_;
   // Readings typed into a blank row, kept until its sixth arrives.
   std::map<std::string, std::array<std::optional<double>, kNumLegs>> typed_;
   bool filling_ = false;
+  bool refill_pending_ = false;  // a reload came while a cell was being edited
 };
 
 }  // namespace hexcal::ui

@@ -70,6 +70,13 @@ void SessionState::LoadStatus() {
                                           : StatusOr<workflow::SessionStudy>(Status::Error(kNoStudyYet));
 }
 
+QString SessionState::InSession(const QString& text) const {
+  if (dir_.isEmpty()) return text;
+  QString shorter = text;
+  if (!dir_.endsWith('/')) shorter.replace(dir_ + "/", QString());  // the folder as opened
+  return shorter.replace(QDir::cleanPath(dir_) + "/", QString());
+}
+
 std::string SessionState::Resolve(const std::string& name) const {
   return workflow::ResolveSessionFile(dir_.toStdString(), name);
 }

@@ -62,6 +62,9 @@ class SessionState : public QObject {
   const std::optional<Target>& SessionTarget() const { return target_; }
   // Full path of a name in session.yaml (robot, camera, target).
   std::string Resolve(const std::string& name) const;
+  // `text` with the session folder's path taken out of the paths it quotes
+  // ("images/a.png", not "/home/…/run1/images/a.png"): shorter on screen.
+  QString InSession(const QString& text) const;
 
   const std::vector<Vector6d>& Plan() const { return plan_; }
   // plan.csv becomes `poses`, unless it changed on disk since it was shown

@@ -16,6 +16,7 @@
 #include "ui/background_job.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
+#include "ui/text_wrap.h"
 #include "workflow/session_study.h"
 #include "workflow/study_options.h"
 
@@ -39,9 +40,9 @@ QString MetricText(double value) { return std::isfinite(value) ? QString::number
 QString RowHeader(SubsetMetric metric, const QString& unit) {
   switch (metric) {
     case SubsetMetric::kHeldOutPosition:
-      return "held-out position RMS (" + unit + ")";
+      return "held-out position (" + unit + ")";
     case SubsetMetric::kHeldOutOrientation:
-      return "held-out orientation RMS (°)";
+      return "held-out orientation (°)";
     default:
       return SubsetMetricName(metric);
   }
@@ -87,19 +88,25 @@ StudyView::StudyView(SessionState* session, QWidget* parent)
   about_->setWordWrap(true);
   table_ = new QTableWidget(6, 5);
   table_->setObjectName("study_table");
-  table_->setHorizontalHeaderLabels({"selected", "random mean", "random median", "random p5 – p95", "beats"});
+  // Two-line headers: the five columns then fit the panel at 1024×600.
+  table_->setHorizontalHeaderLabels({"selected", "random\nmean", "random\nmedian", "random\np5 – p95", "beats"});
   table_->horizontalHeaderItem(4)->setToolTip(
       "The percentage of random subsets the selected one does better than: a lower held-out error, a higher "
       "index (ties count half).");
   for (int r = 0; r < 6; ++r) table_->setVerticalHeaderItem(r, new QTableWidgetItem(RowHeader(kRows[r], "cm")));
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   table_->horizontalHeader()->setStretchLastSection(true);
-  table_->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
   table_->verticalHeader()->setDefaultSectionSize(22);
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
-  table_->setFixedHeight(6 * 22 + table_->horizontalHeader()->sizeHint().height() + 4);
   for (SubsetMetric metric : kSubsetMetrics) charts_[ChartIndex(metric)] = MakeChartView(EmptyChart(metric, "cm"));
+  // Table 5 and the figures as tabs: one above the other left the charts
+  // no room at 1024×600.
   auto* figures = new QTabWidget;
+  figures->setObjectName("study_tabs");
+  auto* table_tab = new QWidget;
+  auto* table_layout = new QVBoxLayout(table_tab);
+  table_layout->addWidget(table_);  // the tab's height: at 1024×600 it also scrolls sideways
+  figures->addTab(table_tab, "Table 5");
   figures->addTab(ChartPair(charts_[4], charts_[5]), "Fig. 19: held-out errors");
   figures->addTab(ChartPair(charts_[0], charts_[1]), "Fig. 18: O1, O2");
   figures->addTab(ChartPair(charts_[2], charts_[3]), "Fig. 18: O3, O4");
@@ -115,11 +122,10 @@ StudyView::StudyView(SessionState* session, QWidget* parent)
   left->addStretch();
   auto* left_widget = new QWidget;
   left_widget->setLayout(left);
-  left_widget->setFixedWidth(300);
+  left_widget->setFixedWidth(260);
   auto* right = new QVBoxLayout;
   right->addWidget(rank_);
   right->addWidget(about_);
-  right->addWidget(table_);
   right->addWidget(figures, 1);
   auto* layout = new QHBoxLayout(this);
   layout->addWidget(left_widget);
@@ -143,7 +149,7 @@ void StudyView::SetOption(const std::string& key, const std::string& text) { opt
 
 void StudyView::SetOutcome(const QString& text) {
   outcome_ = text;
-  outcome_label_->setText(text);
+  outcome_label_->setText(Breakable(text));  // it quotes the session's folder
 }
 
 // A session switch: the old session's job and texts go, the options back to their defaults.
@@ -187,7 +193,7 @@ void StudyView::Finish(const std::shared_ptr<StatusOr<workflow::StudyOutcome>>& 
   SetOutcome(QString("done in %1 s on %2 threads; kept in %3.")
                  .arg(done.seconds, 0, 'f', 1)
                  .arg(done.threads)
-                 .arg(QString::fromStdString(done.saved)));
+                 .arg(session_->InSession(QString::fromStdString(done.saved) + "/")));  // "study/"
   session_->Reload();  // shows what study/ now holds
 }
 
@@ -220,16 +226,17 @@ void StudyView::ShowStudy(const workflow::SessionStudy& study) {
                                       : QString();
   rank_->setText(stale.isEmpty() ? "<b>" + rank.toHtmlEscaped() + "</b>"
                                  : stale + "<b>" + rank.toHtmlEscaped() + "</b>");
-  about_->setText(QString("IOOPS on %1%2 chose %3 of the %4 measured poses; %5 random %3-subsets (seed %6), each "
-                          "calibrated from the nominal robot and validated by FK on the %7 poses it leaves out. "
-                          "Made %8.")
-                      .arg(CriterionName(r.criterion), r.weighted_selection ? " (weighted rows)" : " (unweighted)")
-                      .arg(r.select)
-                      .arg(r.measured)
-                      .arg(r.random_count)
-                      .arg(r.seed)
-                      .arg(r.measured - r.select)
-                      .arg(QString::fromStdString(r.created)));
+  about_->setText(
+      Breakable(QString("IOOPS on %1%2 chose %3 of the %4 measured poses; %5 random %3-subsets (seed %6), each "
+                        "calibrated from the nominal robot and validated by FK on the %7 poses it leaves out. "
+                        "Made %8.")
+                    .arg(CriterionName(r.criterion), r.weighted_selection ? " (weighted rows)" : " (unweighted)")
+                    .arg(r.select)
+                    .arg(r.measured)
+                    .arg(r.random_count)
+                    .arg(r.seed)
+                    .arg(r.measured - r.select)
+                    .arg(QString::fromStdString(r.created))));
   const QString unit = QString::fromStdString(r.length_unit);
   for (int row = 0; row < 6; ++row) {
     const workflow::StudyMetric& m = r.Metric(kRows[row]);

@@ -48,7 +48,7 @@ class StudyView : public QWidget {
   void SetOption(const std::string& key, const std::string& text);
   QLabel* RankLine() const { return rank_; }
   QTableWidget* Table() const { return table_; }
-  // "done in 4.2 s; kept in DIR/study", "cancelled: study/ is unchanged", ...
+  // "done in 4.2 s on 2 threads; kept in study/.", "cancelled: study/ is unchanged.", ...
   const QString& LastOutcome() const { return outcome_; }
 
  public slots:

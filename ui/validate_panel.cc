@@ -20,6 +20,7 @@
 #include "ui/error_dialog.h"
 #include "ui/quantity_format.h"
 #include "ui/study_view.h"
+#include "ui/text_wrap.h"
 #include "ui/verdict_view.h"
 #include "workflow/calibration_verdict.h"
 #include "workflow/session_report.h"
@@ -47,7 +48,11 @@ ValidatePanel::ValidatePanel(SessionState* session, QWidget* parent) : QWidget(p
   summary_->setVerticalHeaderLabels({"position RMS", "position max", "orientation RMS", "orientation max"});
   summary_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
   summary_->setEditTriggers(QAbstractItemView::NoEditTriggers);
-  summary_->setMaximumHeight(160);
+  // Its four rows exactly, each one line high: the charts below get the rest.
+  summary_->verticalHeader()->setDefaultSectionSize(summary_->fontMetrics().height() + 8);
+  summary_->setVerticalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  summary_->setFixedHeight(4 * summary_->verticalHeader()->defaultSectionSize() +
+                           summary_->horizontalHeader()->sizeHint().height() + 2 * summary_->frameWidth());
   position_chart_ = MakeChartView(charts::ValidationPerImageChart({}, charts::ValidationQuantity::kPosition, ""));
   orientation_chart_ = MakeChartView(charts::ValidationPerImageChart({}, charts::ValidationQuantity::kOrientation, ""));
   auto* export_robot = new QPushButton("Export calibrated robot…");
@@ -67,6 +72,7 @@ ValidatePanel::ValidatePanel(SessionState* session, QWidget* parent) : QWidget(p
   validation_layout->addWidget(status_);
   validation_layout->addWidget(summary_);
   validation_layout->addLayout(charts, 1);
+  validation_layout->addStretch(0);  // the room of the figures when there are none
   study_ = new StudyView(session_);
   tabs_ = new QTabWidget;
   tabs_->addTab(validation, "Held-out validation");
@@ -79,6 +85,8 @@ ValidatePanel::ValidatePanel(SessionState* session, QWidget* parent) : QWidget(p
 
 void ValidatePanel::ShowStudyTab() { tabs_->setCurrentWidget(study_); }
 
+void ValidatePanel::ShowValidationTab() { tabs_->setCurrentIndex(0); }
+
 void ValidatePanel::Refresh() {
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 2; ++c) summary_->setItem(r, c, new QTableWidgetItem("—"));
@@ -88,7 +96,12 @@ void ValidatePanel::Refresh() {
   ShowChart(position_chart_, charts::ValidationPerImageChart({}, charts::ValidationQuantity::kPosition, ""));
   ShowChart(orientation_chart_, charts::ValidationPerImageChart({}, charts::ValidationQuantity::kOrientation, ""));
   verdict_->Clear();
-  if (!report.ok()) return status_->setText(QString::fromStdString(report.status().message()));
+  // Figures only when there are some: empty axes and a table of dashes said nothing.
+  const bool validated = report.ok() && report->validation.has_value();
+  for (QWidget* figures : {static_cast<QWidget*>(summary_), static_cast<QWidget*>(position_chart_),
+                           static_cast<QWidget*>(orientation_chart_)})
+    figures->setVisible(validated);
+  if (!report.ok()) return status_->setText(Breakable(QString::fromStdString(report.status().message())));
   verdict_->Show(workflow::MakeVerdict(*report));
   if (!report->validation) {
     status_->setText(

@@ -31,6 +31,7 @@ class ValidatePanel : public QWidget {
   VerdictView* VerdictWidget() const { return verdict_; }
   StudyView* Study() const { return study_; }
   void ShowStudyTab();
+  void ShowValidationTab();
 
  public slots:
   void Refresh();

@@ -2,9 +2,16 @@
 
 #include <QHBoxLayout>
 #include <QLabel>
+#include <QScrollArea>
+#include <QScrollBar>
+#include <algorithm>
 
 namespace hexcal::ui {
 namespace {
+
+// A poor verdict's findings beyond these lines scroll, so that the table
+// under the verdict keeps its rows at 1024×600 (issue 35).
+constexpr int kFindingLines = 4;
 
 QString Colour(workflow::VerdictLevel level) { return workflow::VerdictLevelColour(level); }
 
@@ -52,11 +59,32 @@ VerdictView::VerdictView(QWidget* parent) : QWidget(parent) {
   findings_->setTextFormat(Qt::RichText);  // every text from the report is escaped
   findings_->setWordWrap(true);
   findings_->setAlignment(Qt::AlignTop | Qt::AlignLeft);
+  findings_scroll_ = new QScrollArea;
+  findings_scroll_->setObjectName("verdict_findings_scroll");
+  findings_scroll_->setFrameShape(QFrame::NoFrame);
+  findings_scroll_->setWidgetResizable(true);
+  findings_scroll_->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  findings_scroll_->setWidget(findings_);
   auto* layout = new QHBoxLayout(this);
   layout->setContentsMargins(0, 2, 0, 2);
-  layout->addWidget(level_);
-  layout->addWidget(findings_, 1);
+  layout->addWidget(level_, 0, Qt::AlignTop);
+  layout->addWidget(findings_scroll_, 1);
   Clear();
+}
+
+// The findings' height at the width they have, up to kFindingLines lines.
+void VerdictView::FitFindings() {
+  const int scrollbar = findings_scroll_->verticalScrollBar()->sizeHint().width();
+  const int width = std::max(findings_scroll_->width() - scrollbar, 50);
+  const int most = findings_->fontMetrics().lineSpacing() * kFindingLines + 4;
+  const int height = std::max(std::min(findings_->heightForWidth(width), most), level_->sizeHint().height());
+  if (findings_scroll_->minimumHeight() != height || findings_scroll_->maximumHeight() != height)
+    findings_scroll_->setFixedHeight(height);
+}
+
+void VerdictView::resizeEvent(QResizeEvent* event) {
+  QWidget::resizeEvent(event);
+  FitFindings();
 }
 
 void VerdictView::Show(const workflow::Verdict& verdict) {
@@ -69,6 +97,7 @@ void VerdictView::Show(const workflow::Verdict& verdict) {
       "The worst of the findings; hover over them for each figure, threshold and meaning "
       "(docs/calibration.md, \"Verdict\").");
   setVisible(true);
+  FitFindings();
 }
 
 void VerdictView::Clear() {

@@ -61,4 +61,22 @@ Status CheckReadings(const ReadingCheck& check, const std::string& pose_name, co
   return Status::Ok();
 }
 
+Status CheckTypedReading(const ReadingCheck& check, const std::string& where, int leg, double value) {
+  const std::string unit = " " + std::string(LengthUnitName(check.robot.length_unit));
+  const Leg& stroke = check.robot.legs[leg];
+  const std::string reading = where + ": L" + std::to_string(leg + 1) + " = " + Number(value);
+  if (!std::isfinite(value)) return Status::Error(reading + " is not a finite number; not saved");
+  if (value < stroke.stroke_min - check.tolerance || value > stroke.stroke_max + check.tolerance)
+    return Status::Error(reading + unit + " is outside leg " + std::to_string(leg + 1) + "'s stroke [" +
+                         Number(stroke.stroke_min) + ", " + Number(stroke.stroke_max) + "]" + unit +
+                         "; not saved (a typo, or a reading in another unit?)");
+  return Status::Ok();
+}
+
+Status CheckTypedReadings(const ReadingCheck& check, const std::string& where, const LegReadings& readings) {
+  for (int i = 0; i < kNumLegs; ++i)
+    if (Status s = CheckTypedReading(check, where, i, readings[i]); !s.ok()) return s;
+  return Status::Ok();
+}
+
 }  // namespace hexcal::workflow

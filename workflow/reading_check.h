@@ -42,4 +42,13 @@ StatusOr<ReadingCheck> SessionReadingCheck(const std::string& session_dir);
 Status CheckReadings(const ReadingCheck& check, const std::string& pose_name, const Vector6d& pose,
                      const LegReadings& readings);
 
+// Readings an operator typed or pasted (the GUI's readings table and its
+// by-hand capture dialog; issue 35): each finite and within its leg's stroke,
+// with the same tolerance. Not compared with the IK of a commanded pose: a
+// robot moved by hand is only near it, and an image loaded from a folder has
+// none. An error (bad input) naming `where` ("view_0003.png", "pasted line
+// 2"), the leg, the value and the stroke; OK when plausible.
+Status CheckTypedReading(const ReadingCheck& check, const std::string& where, int leg, double value);
+Status CheckTypedReadings(const ReadingCheck& check, const std::string& where, const LegReadings& readings);
+
 }  // namespace hexcal::workflow

@@ -24,14 +24,9 @@
 #include "core/inverse_kinematics.h"
 #include "core/robot_io.h"
 #include "core/session.h"
-#include "vision/camera.h"
-#include "vision/target.h"
-#include "workflow/plan_step.h"
 #include "ui/acquire_panel.h"
 #include "ui/background_job.h"
 #include "ui/calibrate_panel.h"
-#include "ui/verdict_view.h"
-#include "workflow/calibration_verdict.h"
 #include "ui/error_dialog.h"
 #include "ui/help_browser.h"
 #include "ui/image_overlay.h"
@@ -46,35 +41,18 @@
 #include "ui/robot_scene.h"
 #include "ui/robot_view.h"
 #include "ui/screenshot.h"
+#include "ui/tests/gui_test_support.h"
 #include "ui/validate_panel.h"
+#include "ui/verdict_view.h"
+#include "vision/camera.h"
+#include "vision/target.h"
+#include "workflow/calibration_verdict.h"
+#include "workflow/plan_step.h"
 
 namespace hexcal::ui {
 namespace {
 
 QString sessions_dir;  // argv[1]: what make_session wrote
-
-// Runs the event loop until `done` or the timeout; the workers deliver their
-// results through it.
-bool WaitFor(const std::function<bool()>& done, int timeout_ms = 60000) {
-  QElapsedTimer timer;
-  timer.start();
-  while (!done()) {
-    if (timer.elapsed() > timeout_ms) return false;
-    QApplication::processEvents(QEventLoop::AllEvents, 20);
-    QThread::msleep(5);
-  }
-  QApplication::processEvents();
-  return true;
-}
-
-bool CopyFolder(const QString& from, const QString& to) {
-  QDir().mkpath(to);
-  for (const QFileInfo& entry : QDir(from).entryInfoList(QDir::Files | QDir::Dirs | QDir::NoDotAndDotDot)) {
-    const QString target = to + "/" + entry.fileName();
-    if (entry.isDir() ? !CopyFolder(entry.filePath(), target) : !QFile::copy(entry.filePath(), target)) return false;
-  }
-  return true;
-}
 
 std::string ReadTextFile(const std::string& path) {
   QFile file(QString::fromStdString(path));
@@ -288,12 +266,12 @@ TEST(UiFlow, ExternalChangesSurviveEditsAndQuit) {
   EXPECT_EQ(window->Session()->Plan().size(), 3u);
 
   // The operator types L1 of the first image: applied to the file on disk.
-  table->item(0, 1)->setText(QString::number(shown[0].legs[0] + 0.25, 'g', 12));
+  table->item(0, 1)->setText("1.75");  // within the stroke, 0..3.5 cm
   StatusOr<CsvTable> after_edit = ReadCsv(s + "/legs.csv");
   ASSERT_TRUE(after_edit.ok());
   EXPECT_EQ(after_edit->rows.size(), shown.size() + 1);
   EXPECT_EQ(after_edit->rows.back()[0], "theirs.png");
-  EXPECT_NEAR(*ParseNumber(after_edit->rows[0][1]), shown[0].legs[0] + 0.25, 1e-9);
+  EXPECT_NEAR(*ParseNumber(after_edit->rows[0][1]), 1.75, 1e-9);
 
   // The same cell changed on disk under the operator's next edit: theirs stays.
   const std::string legs_before_clash = ReadTextFile(s + "/legs.csv");
@@ -301,7 +279,7 @@ TEST(UiFlow, ExternalChangesSurviveEditsAndQuit) {
   const std::string old_cell = after_edit->rows[1][2];
   clashed.replace(clashed.find("," + old_cell + ","), old_cell.size() + 2, ",99.5,");
   WriteTextFile(s + "/legs.csv", clashed);
-  table->item(1, 2)->setText("42");
+  table->item(1, 2)->setText("2.5");
   EXPECT_EQ(ReadTextFile(s + "/legs.csv"), clashed);
 
   window.reset();  // quit: nothing is written back
@@ -428,9 +406,9 @@ TEST(UiFlow, ImagesWithoutReadingsGetRowsToTypeAndPasteInto) {
   auto* hint = measure->findChild<QLabel*>("readings_hint");
   ASSERT_NE(hint, nullptr);
   EXPECT_TRUE(hint->text().contains("16 image(s) have no readings yet")) << hint->text().toStdString();
-  for (int i = 0; i < kNumLegs; ++i) table->item(0, 1 + i)->setText(QString::number(50 + i));
+  for (int i = 0; i < kNumLegs; ++i) table->item(0, 1 + i)->setText(QString::number(1 + 0.1 * i));  // cm
   EXPECT_EQ(CsvRows(dir + "/legs.csv"), 1);
-  EXPECT_EQ(table->PasteReadings("60\t61\t62\t63\t64\t65\n70,71,72,73,74,75\n", 1), 2);
+  EXPECT_EQ(table->PasteReadings("2.0\t2.1\t2.2\t2.3\t2.4\t2.5\n3.0,3.1,3.2,3.3,3.4,3.5\n", 1), 2);
   EXPECT_EQ(CsvRows(dir + "/legs.csv"), 3);
   EXPECT_EQ(table->MissingRows(), 13);
   // Calibrating now names what is missing and how to enter it.

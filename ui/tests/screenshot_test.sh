@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # screenshot_test.sh HEXCAL_GUI SESSIONS: `hexcal-gui --screenshot` writes a PNG of
-# every panel of the calibrated session at 1280x720 — no panel needs a wider or
-# taller window (the Acquire panel connected to the sim devices; `study`, the
-# Validate step's study tab) — and refuses
-# a bad panel, size or folder.
+# every panel of the calibrated session at the size asked for, 1280x720 (the
+# Acquire panel connected to the sim devices; `study`, the Validate step's
+# study tab), and refuses a bad panel, size or folder. Whether every panel
+# fits that size is ui/tests/fit_test.cc's check.
 set -eu
 gui=$1 sessions=$2
 dir=$(mktemp -d)

@@ -23,6 +23,7 @@
 #include "ui/main_window.h"
 #include "ui/screenshot.h"
 #include "ui/study_view.h"
+#include "ui/tests/gui_test_support.h"
 #include "ui/validate_panel.h"
 #include "workflow/session_study.h"
 
@@ -30,27 +31,6 @@ namespace hexcal::ui {
 namespace {
 
 QString sessions_dir;  // argv[1]: what make_session wrote
-
-bool WaitFor(const std::function<bool()>& done, int timeout_ms = 60000) {
-  QElapsedTimer timer;
-  timer.start();
-  while (!done()) {
-    if (timer.elapsed() > timeout_ms) return false;
-    QApplication::processEvents(QEventLoop::AllEvents, 20);
-    QThread::msleep(5);
-  }
-  QApplication::processEvents();
-  return true;
-}
-
-bool CopyFolder(const QString& from, const QString& to) {
-  QDir().mkpath(to);
-  for (const QFileInfo& entry : QDir(from).entryInfoList(QDir::Files | QDir::Dirs | QDir::NoDotAndDotDot)) {
-    const QString target = to + "/" + entry.fileName();
-    if (entry.isDir() ? !CopyFolder(entry.filePath(), target) : !QFile::copy(entry.filePath(), target)) return false;
-  }
-  return true;
-}
 
 QByteArray ReadBytes(const QString& path) {
   QFile file(path);

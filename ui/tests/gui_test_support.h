@@ -1,0 +1,37 @@
+// What the GUI tests share: waiting on the event loop for a worker's result,
+// copying a test session, and the check that a window fits its screen with
+// no control clipped (issue 35). Run under xvfb-run (ui/CMakeLists.txt).
+//
+//   ASSERT_TRUE(WaitFor([&] { return !panel->Job()->Running(); }));
+//   EXPECT_EQ(FitProblems(&window), std::vector<std::string>{}) << "after calibrating";
+#pragma once
+
+#include <QString>
+#include <functional>
+#include <string>
+#include <vector>
+
+class QWidget;
+
+namespace hexcal::ui {
+
+// Runs the event loop until `done` or the timeout; the workers deliver their
+// results through it.
+bool WaitFor(const std::function<bool()>& done, int timeout_ms = 60000);
+bool CopyFolder(const QString& from, const QString& to);
+// Lets the layouts settle (a few rounds of events), then returns.
+void Settle(int ms = 150);
+
+// Why `window` does not fit its screen; empty when it does. Checked:
+// the window's frame inside the screen's available area; the shown panel
+// (a QScrollArea named "panel_scroll") needs no scrolling; every visible
+// button, field, combo box, spin box, slider, chart and table lies whole
+// inside each of its ancestors (a control half outside its viewport is
+// clipped; in a scroll area made to scroll, like the Plan options, only
+// sideways) and has the height its text needs; every visible table shows at
+// least kUsableRows rows, or all of them; every visible word-wrapped label
+// has the height its text needs.
+std::vector<std::string> FitProblems(QWidget* window);
+constexpr int kUsableRows = 4;
+
+}  // namespace hexcal::ui
