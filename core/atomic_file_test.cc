@@ -181,6 +181,19 @@ TEST(AtomicFileTest, ReadingALinkToADeviceIsRefused) {
   EXPECT_EQ(read.status().message(), path + ": not a regular file (a character device)");
 }
 
+// Issue 36: a dangling link said "no such file" though ls lists the name.
+TEST(AtomicFileTest, ReadingADanglingLinkSaysItIsOne) {
+  TempDir dir;
+  const std::string path = dir.File("camera.yaml");
+  std::filesystem::create_symlink(dir.File("gone.yaml"), path);
+  StatusOr<std::string> read = ReadFileToString(path);
+  ASSERT_FALSE(read.ok());
+  EXPECT_EQ(read.status().message(), path + ": a symbolic link to a missing file");
+  EXPECT_EQ(CheckFileForReading(path, kMaxImageBytes).message(), path + ": a symbolic link to a missing file");
+  EXPECT_EQ(CheckFileForReading(dir.File("none.png"), kMaxImageBytes).message(),
+            dir.File("none.png") + ": no such file");
+}
+
 TEST(AtomicFileTest, ReadingAFileOverItsSizeCapIsRefused) {
   TempDir dir;
   const std::string path = dir.File("robot.yaml");

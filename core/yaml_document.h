@@ -22,7 +22,8 @@
 
 namespace hexcal {
 
-// `label` starts every message, e.g. "target file 'board.yaml'".
+// `label` starts every message, e.g. "target file 'board.yaml'". A mapping
+// that names a key twice is refused: "...: camera_matrix.rows: duplicate key (lines 3 and 7)".
 StatusOr<YAML::Node> LoadYamlDocument(const std::string& text, const std::string& label);
 
 // The (key, scalar text) entries of a mapping, for ApplyOptionEntries
