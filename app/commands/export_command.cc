@@ -1,4 +1,4 @@
-// hexcal export --robot R --format linuxcnc-hal|robot --out FILE [--machine-unit mm|inch] [--force]
+// hexcal export --robot R --format linuxcnc-hal|robot --out FILE [--machine-unit mm|inch] [--force] [--json]
 //               [--push [--yes] [--halcmd PATH] [--running-robot FILE]]
 //
 // Writes a robot's geometry for a controller: `linuxcnc-hal` is the
@@ -23,7 +23,7 @@ namespace {
 
 struct ExportOptions {
   std::string robot, format = "linuxcnc-hal", out, machine_unit = "mm";
-  bool force = false;
+  bool force = false, json = false;
   bool push = false, yes = false;  // --push: into the running machine, after a confirmation (or --yes)
   std::string halcmd = "halcmd", running_robot;
 };
@@ -69,6 +69,23 @@ int PushToMachine(const ExportOptions& options, const Robot& robot, workflow::Ma
   return kExitOk;
 }
 
+void PrintWritten(const ExportOptions& options, const Robot& robot, workflow::MachineUnit unit, std::ostream& out) {
+  const bool hal = options.format == "linuxcnc-hal";
+  if (options.json) {
+    nlohmann::json json{{"out", options.out},
+                        {"format", options.format},
+                        {"robot", robot.name},
+                        {"length_unit", LengthUnitName(robot.length_unit)}};
+    if (hal) json["machine_unit"] = workflow::MachineUnitName(unit);
+    out << JsonText(json);
+  } else if (hal) {
+    out << "wrote " << options.out << ": genhexkins geometry of robot '" << robot.name << "' in "
+        << workflow::MachineUnitName(unit) << " (robot file in " << LengthUnitName(robot.length_unit) << ")\n";
+  } else {
+    out << "wrote " << options.out << ": robot '" << robot.name << "' (" << LengthUnitName(robot.length_unit) << ")\n";
+  }
+}
+
 int RunExport(const ExportOptions& options, std::ostream& out, std::ostream& err) {
   if (options.format != "linuxcnc-hal" && options.format != "robot")
     return ReportError(err, "export",
@@ -83,16 +100,13 @@ int RunExport(const ExportOptions& options, std::ostream& out, std::ostream& err
   if (!robot.ok()) return ReportError(err, "export", robot.status());
   if (options.push && options.format != "linuxcnc-hal")
     return ReportError(err, "export", Status::Error("--push needs --format linuxcnc-hal"));
-  if (options.format == "robot") {  // a preset as a file, e.g. the robot a machine runs with
-    if (Status s = WriteFileAtomically(options.out, RobotToYaml(*robot)); !s.ok()) return ReportError(err, "export", s);
-    out << "wrote " << options.out << ": robot '" << robot->name << "' (" << LengthUnitName(robot->length_unit)
-        << ")\n";
-    return kExitOk;
-  }
-  if (Status s = WriteFileAtomically(options.out, workflow::GenhexkinsHal(*robot, *unit)); !s.ok())
+  // --push asks on the terminal and prints halcmd's answers: not one JSON object.
+  if (options.push && options.json) return ReportError(err, "export", Status::Error("--json cannot go with --push"));
+  const bool hal = options.format == "linuxcnc-hal";  // else the robot file, e.g. of a preset a machine runs with
+  if (Status s = WriteFileAtomically(options.out, hal ? workflow::GenhexkinsHal(*robot, *unit) : RobotToYaml(*robot));
+      !s.ok())
     return ReportError(err, "export", s);
-  out << "wrote " << options.out << ": genhexkins geometry of robot '" << robot->name << "' in "
-      << workflow::MachineUnitName(*unit) << " (robot file in " << LengthUnitName(robot->length_unit) << ")\n";
+  PrintWritten(options, *robot, *unit, out);
   return options.push ? PushToMachine(options, *robot, *unit, out, err) : kExitOk;
 }
 
@@ -109,6 +123,7 @@ void AddExportCommand(CLI::App& app, int* exit_code) {
                   "the machine's [TRAJ] LINEAR_UNITS: mm or inch (lengths are converted from the robot's unit)")
       ->capture_default_str();
   sub->add_flag("--force", options->force, "overwrite an existing --out file");
+  sub->add_flag("--json", options->json, "print one JSON object on stdout (not with --push)");
   sub->add_flag("--push", options->push,
                 "also load the pins into the running LinuxCNC with halcmd, after a confirmation");
   sub->add_flag("--yes", options->yes, "confirm --push without asking (scripts)");

@@ -97,13 +97,11 @@ int RunRender(const RenderCliOptions& cli, std::ostream& out, std::ostream& err)
     return ReportError(err, "render", s.AsFailure());
   }
   if (cli.json) {
-    out << nlohmann::json{{"images", views.size()},
-                          {"out", cli.out},
-                          {"seed", cli.render.seed},
-                          {"visible_corners", visible},
-                          {"ground_truth", truth_path}}
-               .dump(2)
-        << "\n";
+    out << JsonText(nlohmann::json{{"images", views.size()},
+                                   {"out", cli.out},
+                                   {"seed", cli.render.seed},
+                                   {"visible_corners", visible},
+                                   {"ground_truth", truth_path}});
   } else {
     out << views.size() << " images written to " << cli.out << " (" << camera->width << " x " << camera->height
         << ", seed " << cli.render.seed << "); ground truth in " << truth_path << " and corners.csv\n";

@@ -66,7 +66,7 @@ int RunTargetCheck(const TargetOptions& options, std::ostream& out, std::ostream
   StatusOr<Target> target = LoadTarget(options.target);
   if (!target.ok()) return ReportError(err, "target check", target.status());
   if (options.json) {
-    out << nlohmann::json{{"ok", true}, {"target", TargetJson(*target)}}.dump(2) << "\n";
+    out << JsonText(nlohmann::json{{"ok", true}, {"target", TargetJson(*target)}});
   } else {
     out << "ok: " << DescribeTarget(*target) << "\n";
   }
@@ -82,7 +82,7 @@ int RunTargetPrint(const TargetOptions& options, std::ostream& out, std::ostream
   }
   const std::vector<std::string> caption = TargetPrintCaption(*target);
   if (options.json) {
-    out << nlohmann::json{{"out", options.out}, {"dpi", options.dpi}, {"target", TargetJson(*target)}}.dump(2) << "\n";
+    out << JsonText(nlohmann::json{{"out", options.out}, {"dpi", options.dpi}, {"target", TargetJson(*target)}});
   } else {
     out << "target written to " << options.out << ": " << DescribeTarget(*target) << "\n" << caption[1] << "\n";
   }

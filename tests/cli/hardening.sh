@@ -140,6 +140,142 @@ exit_codes)
   expect 2 "at least 7 poses" plan $R --poses 6 --out p.csv
   expect 2 "--poses must be at least 7" simulate $R --poses 5
   ;;
+special_files_everywhere)
+  # Issue 36: a FIFO, a device, a folder and a dangling link at every place a
+  # file is read. Each gets its own message (core/atomic_file.h
+  # OpenFileForReading), exit 2, never a hang. One line a place:
+  #   FILE (made, @F@ in ARGS) | kinds it does not apply to | ARGS
+  places=$(cat <<'EOF'
+r.yaml | | robot check ./@F@
+t.yaml | | target check --target @F@
+c.yaml | | measure --camera @F@ --images IMAGE --out m.csv
+p.yaml | | plan ROBOT --settings @F@ --out p.csv
+poses.csv | | ik ROBOT --poses @F@
+m.csv | | calibrate ROBOT --measurements @F@ --out cal.yaml
+s1/session.yaml | | session status s1
+s2/plan.csv | | acquire --session s2 --controller sim --camera sim
+s3/legs.csv | | calibrate --session s3
+img.png | folder | detect --images @F@
+img.png | folder | measure --camera sim-4.2mm-1024x768 --images @F@ --out m.csv
+from.png | | session record s4 --image a.png LEGS --from @F@
+s5/images/a.png | | session record s5 --image a.png LEGS
+v.png | | acquire --session s6 --controller sim --camera file:@F@
+EOF
+)
+  for kind in fifo device folder dangling; do
+    case $kind in
+      fifo) message="not a regular file \(a FIFO\)" ;;
+      device) message="not a regular file \(a character device\)" ;;
+      folder) message="is a directory, not a file" ;;
+      dangling) message="a symbolic link to a missing file" ;;
+    esac
+    while IFS='|' read -r name skip args; do
+      name=$(echo $name)
+      case " $skip " in *" $kind "*) continue ;; esac
+      mkdir "$kind" && cd "$kind" || exit 1
+      for s in s1 s2 s3 s4 s5 s6; do
+        case "$args" in *" $s"*) ;; *) continue ;; esac
+        "$hexcal" session init $s $R --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 >/dev/null || exit 1
+      done
+      [ -d s6 ] && cp "$POSES" s6/plan.csv
+      rm -f "$name"
+      mkdir -p "$(dirname "$name")"
+      case $kind in
+        fifo) mkfifo "$name" ;;
+        device) ln -s /dev/zero "$name" ;;
+        folder) mkdir "$name" ;;
+        dangling) ln -s "$work/gone" "$name" ;;
+      esac
+      args=${args//@F@/$name} args=${args//ROBOT/$R} args=${args//LEGS/--legs 1,1,1,1,1,1}
+      # shellcheck disable=SC2086
+      expect 2 "$(basename "$name").*$message" ${args//IMAGE/$data/bad_inputs/image_garbage.png}
+      cd "$work" && rm -rf "$kind"
+    done <<<"$places"
+  done
+  ;;
+exit_table)
+  # Issue 36: one table of exit codes for every command (docs/cli.md), each
+  # error after "hexcal COMMAND: ", CLI11's own refusals too; every command
+  # takes --json but sim-camera (a server until Ctrl-C; README.md says so).
+  # One line a command: COMMAND | a command line with a bad input (exit 2).
+  "$hexcal" session init s $R --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 >/dev/null || exit 1
+  commands=$(cat <<'EOF'
+robot check | robot check ./missing.yaml
+robot show | robot show ./missing.yaml
+ik | ik --robot missing.yaml --poses POSES
+fk | fk ROBOT --legs 1,2
+candidates | candidates ROBOT --count 0 --out c.csv
+indices | indices ROBOT --poses missing.csv
+demo | demo --poses 5 --out d
+plan | plan ROBOT --poses 6 --out p.csv
+calibrate | calibrate ROBOT --measurements missing.csv --out cal.yaml
+validate | validate ROBOT --measurements missing.csv
+simulate | simulate ROBOT --runs 0
+study | study --session missing
+target check | target check --target missing.yaml
+target print | target print --target missing.yaml --out t.pdf
+detect | detect --images missing
+render | render --camera missing.yaml --poses POSES --out r
+intrinsics | intrinsics --images missing --out cam.yaml
+measure | measure --camera missing.yaml --images missing --out m.csv
+session init | session init s2 --robot missing.yaml --camera sim-4.2mm-1024x768 --target aprilgrid-6x6
+session status | session status missing
+session record | session record s --image a.png --legs 0x10,1,1,1,1,1
+report | report --session missing --out r.html
+acquire | acquire --session missing --controller sim --camera sim
+verify | verify --session missing --controller sim --camera sim --poses POSES
+sim-camera | sim-camera --session missing --machine-robot missing.yaml
+export | export --robot missing.yaml --out x.hal
+camera show | camera show missing.yaml
+camera convert | camera convert missing.yaml --to ros --out x.yaml
+EOF
+)
+  while IFS='|' read -r command args; do
+    command=$(echo $command) args=${args//ROBOT/$R}
+    # shellcheck disable=SC2086
+    expect 2 "^hexcal $command: " ${args//POSES/$POSES}
+    # shellcheck disable=SC2086
+    expect 2 "^hexcal $command: " $command --no-such-option
+    # shellcheck disable=SC2086
+    if [ "$command" != sim-camera ] && ! "$hexcal" $command --help | grep -q -- "--json"; then
+      echo "FAIL: hexcal $command takes no --json"; failures=$((failures + 1))
+    fi
+  done <<<"$commands"
+  leftovers=$(ls -A | grep -v "^s$")
+  [ -n "$leftovers" ] && { echo "FAIL: files left behind: $leftovers"; failures=$((failures + 1)); }
+  ;;
+text_and_numbers)
+  # Issue 36: JSON output never throws on invalid UTF-8 (it is replaced by
+  # U+FFFD, as in the session's manifest); a control character in an image
+  # name is refused, legs.csv cannot hold it; numbers are decimal and exact.
+  latin1=$(printf 't\351.png')
+  output=$(timeout 20 "$hexcal" target print --out "$latin1" --json 2>&1)
+  rc=$?
+  if [ "$rc" -ne 0 ] || ! python3 -c 'import json,sys; o=json.loads(sys.stdin.read()); assert o["out"] == "t\ufffd.png", o["out"]' <<<"$output"; then
+    echo "FAIL: exit $rc, not one JSON object with out t\ufffd.png: $output"; failures=$((failures + 1))
+  else
+    echo "ok: hexcal target print --out t\\351.png --json"
+  fi
+  "$hexcal" session init s $R --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 >/dev/null || exit 1
+  IMG=$data/bad_inputs/image_no_target.png
+  expect 2 "a control character in an image name; legs.csv cannot hold it" session record s --image "$(printf 'a\nb.png')" \
+    --legs 1,1,1,1,1,1 --from "$IMG"
+  expect 2 "'a\\\\x1b\[2Jb.png': a control character" session record s --image "$(printf 'a\033[2Jb.png')" \
+    --legs 1,1,1,1,1,1 --from "$IMG"
+  [ -e s/legs.csv ] && { echo "FAIL: legs.csv written"; failures=$((failures + 1)); }
+  [ -n "$(ls -A s/images)" ] && { echo "FAIL: an image was copied: $(ls -A s/images)"; failures=$((failures + 1)); }
+  expect 2 "--legs: '0x10' is not a finite number" session record s --image a.png --legs 0x10,1,1,1,1,1 --from "$IMG"
+  expect 2 "--seed: must be at most 9007199254740992, got 9007199254740993" study --session s --seed 9007199254740993
+  expect 2 "--seed: '0x10' is not a whole number in decimal digits" candidates $R --count 5 --seed 0x10 --out c.csv
+  expect 2 "--seed: '010': a leading 0" candidates $R --count 5 --seed 010 --out c.csv
+  expect 2 "--seed: -1 is negative" acquire --session s --controller sim --camera sim --seed -1
+  expect 2 "--seed: 18446744073709551616 is outside \[0, 18446744073709551615\]" acquire --session s \
+    --controller sim --camera sim --seed 18446744073709551616
+  expect 2 "--settle: '0x1p3' is not a finite decimal number" acquire --session s --controller sim --camera sim \
+    --settle 0x1p3
+  [ -e s/legs.csv ] && { echo "FAIL: legs.csv written"; failures=$((failures + 1)); }
+  [ -e c.csv ] && { echo "FAIL: c.csv written"; failures=$((failures + 1)); }
+  ;;
 *)
   echo "unknown case $case"; exit 2
   ;;
