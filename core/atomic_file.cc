@@ -185,6 +185,18 @@ Status WriteFileAtomically(const std::string& path, const std::string& contents)
   return SyncDirectory(path, dir);
 }
 
+Status CreateFolders(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) return Status::Ok();
+  std::filesystem::create_directories(path, error);
+  if (!error && std::filesystem::is_directory(path, error)) return Status::Ok();
+  const std::string reason = error ? error.message() : std::string("a file of that name is in the way");
+  const int code = error ? error.value() : 0;
+  const std::string message = path + ": cannot create the folder: " + reason;
+  const bool disk_refused = code == ENOSPC || code == EDQUOT || code == EIO || code == EROFS;
+  return disk_refused ? Status::IoError(message) : Status::Error(message);
+}
+
 Status CheckOutputFree(const std::string& path, bool force) {
   struct stat info;
   // stat follows links: the rename would replace a link to /dev/sda or to a

@@ -43,6 +43,13 @@ constexpr size_t kMaxImageBytes = 512 * kMiB;  // PNG, JPEG, TIFF
 // file (a FIFO); hexcal replaces only files". An empty path is free.
 Status CheckOutputFree(const std::string& path, bool force);
 
+// Creates the folder `path` and its missing parents, with one message and one
+// kind of error in every command (issue 36: exit 1 in some, 2 in others): a
+// path that cannot be a folder (a file in the way, no permission, a name too
+// long) is bad input; a disk that refuses (full, read-only, an I/O error) is
+// an I/O error. "PATH: cannot create the folder: Not a directory".
+Status CreateFolders(const std::string& path);
+
 // The whole file as bytes. Errors: missing file, a dangling symbolic link, a
 // directory, not a regular file (a FIFO, a device, a socket: refused at once,
 // never waited on, also behind a symlink), larger than `max_bytes`, unreadable.

@@ -194,6 +194,18 @@ TEST(AtomicFileTest, ReadingADanglingLinkSaysItIsOne) {
             dir.File("none.png") + ": no such file");
 }
 
+// Issue 36: one kind of error for a folder that cannot be made, whoever makes it.
+TEST(AtomicFileTest, CreateFoldersNamesAFileInTheWayAsBadInput) {
+  TempDir dir;
+  EXPECT_TRUE(CreateFolders(dir.File("a/b/c")).ok());
+  EXPECT_TRUE(CreateFolders(dir.File("a/b/c")).ok());
+  WriteTextFile(dir.File("file"), "x");
+  const Status under_a_file = CreateFolders(dir.File("file/sub"));
+  EXPECT_EQ(under_a_file.kind(), StatusKind::kBadInput);
+  EXPECT_EQ(under_a_file.message(), dir.File("file/sub") + ": cannot create the folder: Not a directory");
+  EXPECT_EQ(CreateFolders(dir.File("file")).kind(), StatusKind::kBadInput);
+}
+
 TEST(AtomicFileTest, ReadingAFileOverItsSizeCapIsRefused) {
   TempDir dir;
   const std::string path = dir.File("robot.yaml");

@@ -49,11 +49,8 @@ int RunRender(const RenderCliOptions& cli, std::ostream& out, std::ostream& err)
   namespace fs = std::filesystem;
   const fs::path folder(cli.out);
   const std::string truth_path = (folder / "ground_truth.csv").string();
-  std::error_code fs_error;
   if (Status s = CheckOutputFree(truth_path, cli.force); !s.ok()) return ReportError(err, "render", s);
-  fs::create_directories(folder, fs_error);
-  if (fs_error)
-    return ReportError(err, "render", Status::Error(cli.out + ": cannot create the folder: " + fs_error.message()));
+  if (Status s = CreateFolders(cli.out); !s.ok()) return ReportError(err, "render", s);
 
   const Renderer renderer(*camera, *target, cli.render);
   std::vector<RenderedView> views(vectors->size());

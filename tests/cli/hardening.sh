@@ -139,6 +139,16 @@ exit_codes)
   expect 2 "--count: 0 is outside" candidates $R --count 0 --out c.csv
   expect 2 "at least 7 poses" plan $R --poses 6 --out p.csv
   expect 2 "--poses must be at least 7" simulate $R --poses 5
+  # A folder that cannot be made is bad input everywhere (issue 36: verify
+  # gave 1, session init and render 2); a full or read-only disk would be 1.
+  : >afile
+  expect 2 "afile/s: cannot create the folder: Not a directory" session init afile/s $R \
+    --camera sim-4.2mm-1024x768 --target aprilgrid-6x6
+  expect 2 "afile/r: cannot create the folder: Not a directory" render --poses "$data/poses/vision_views.csv" \
+    --out afile/r
+  "$hexcal" demo --poses 8 --holdout 0 --out demo >/dev/null 2>&1 || { echo "FAIL: demo"; failures=$((failures + 1)); }
+  expect 2 "afile/x: cannot create the folder: Not a directory" verify --session demo --controller sim --camera sim \
+    --poses "$POSES" --keep-images afile/x
   ;;
 special_files_everywhere)
   # Issue 36: a FIFO, a device, a folder and a dangling link at every place a
