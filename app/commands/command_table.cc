@@ -4,6 +4,7 @@
 #include <string>
 
 #include "app/commands/cli_common.h"
+#include "app/commands/terminal_text.h"
 
 namespace hexcal::cli {
 
@@ -65,6 +66,7 @@ int RunHexcal(int argc, const char* const* argv) {
   app.set_version_flag("--version", "hexcal 0.1.0");
   int exit_code = kExitOk;
   AddAllCommands(app, &exit_code);
+  const TerminalEscaping escaping;  // names from files never reach the terminal raw
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

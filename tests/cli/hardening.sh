@@ -266,6 +266,13 @@ text_and_numbers)
   else
     echo "ok: hexcal target print --out t\\351.png --json"
   fi
+  # An escape sequence in a robot's name is shown escaped, never sent raw.
+  "$hexcal" export $R --format robot --out red.yaml >/dev/null || exit 1
+  sed -i 's/^name: .*/name: "bad\\e[31mred"/' red.yaml
+  expect 0 "ok: robot 'bad\\\\x1b\[31mred' is valid" robot check ./red.yaml
+  if timeout 20 "$hexcal" robot show ./red.yaml 2>&1 | grep -q "$(printf '\033')"; then
+    echo "FAIL: robot show sends the escape sequence raw"; failures=$((failures + 1))
+  fi
   "$hexcal" session init s $R --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 >/dev/null || exit 1
   IMG=$data/bad_inputs/image_no_target.png
   expect 2 "a control character in an image name; legs.csv cannot hold it" session record s --image "$(printf 'a\nb.png')" \
