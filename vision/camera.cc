@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/csv.h"
+#include "vision/image_header.h"
 
 namespace hexcal {
 namespace {
@@ -264,6 +265,12 @@ FieldOfView CameraFieldOfView(const Camera& camera) {
 Status Camera::Validate() const {
   if (width <= 0 || height <= 0) {
     return Status::Error("image size " + std::to_string(width) + " x " + std::to_string(height) + ": must be positive");
+  }
+  // No image hexcal reads is larger (image_header.h): a camera of 10^6 x 10^6
+  // pixels made acquire allocate 4 TB and abort with std::bad_alloc (issue 36).
+  if (static_cast<uint64_t>(width) * static_cast<uint64_t>(height) > kMaxImagePixels) {
+    return Status::Error("image size " + std::to_string(width) + " x " + std::to_string(height) + ": over the " +
+                         std::to_string(kMaxImagePixels / 1'000'000) + "-megapixel limit of an image hexcal reads");
   }
   for (const auto& [name, f] : {std::pair{"fx", fx}, std::pair{"fy", fy}}) {
     if (!std::isfinite(f)) return Status::Error(std::string("focal length ") + name + ": not a finite number");
