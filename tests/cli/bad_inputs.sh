@@ -76,6 +76,7 @@ camera_opencv_loop.yaml | 2 | image_width: missing | measure --camera @IN@ --ima
 camera_parser_exception.yaml | 2 | YAML syntax error at line 9 | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_duplicate_key.yaml | 2 | camera_matrix.rows: duplicate key \(lines 6 and 8\) | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_huge_resolution.yaml | 2 | image size 1000000 x 1000000: over the 150-megapixel limit | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_camchain_cam1_only.yaml | 2 | cam1: a Kalibr camchain without cam0; hexcal reads cam0 | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_zero_size.yaml | 2 | image size 0 x 768: must be positive | render --camera @IN@ --poses POSES --out @OUT@
 image_empty.png | 1 | empty file | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
 image_header_only.png | 1 | truncated PNG \(no IEND chunk\) | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
