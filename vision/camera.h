@@ -176,7 +176,7 @@ StatusOr<std::string> CameraToText(const Camera& camera, CameraFileFormat format
 // OpenCV FileStorage YAML (read with yaml-cpp) or XML (cv::FileStorage),
 // recognised by its "%YAML:1." or "<?xml" header; else a Kalibr camchain
 // (a `cam0` key, or `camera_model` / `intrinsics` at the top level; of several
-// cameras cam0 is read) or ROS camera_info YAML. Messages read
+// cameras cam0 is read, a camchain without cam0 is refused) or ROS camera_info YAML. Messages read
 // "camera file '<path>': <key>: <problem>" and never quote the file beyond a short value.
 StatusOr<Camera> ParseCameraFile(const std::string& text, const std::string& source);
 // A file, or the name "sim-4.2mm-1024x768" (SimulatedCamera) when no such file exists.

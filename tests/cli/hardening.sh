@@ -281,6 +281,9 @@ text_and_numbers)
     --legs 1,1,1,1,1,1 --from "$IMG"
   [ -e s/legs.csv ] && { echo "FAIL: legs.csv written"; failures=$((failures + 1)); }
   [ -n "$(ls -A s/images)" ] && { echo "FAIL: an image was copied: $(ls -A s/images)"; failures=$((failures + 1)); }
+  # session.yaml with a key twice: the first was read, the second ignored.
+  cp -r s dup && cp "$data/../../fuzz/seeds/session_duplicate_key.yaml" dup/session.yaml
+  expect 2 "dup/session.yaml: frames.base_from_camera: duplicate key \(lines 6 and 7\)" session status dup
   expect 2 "--legs: '0x10' is not a finite number" session record s --image a.png --legs 0x10,1,1,1,1,1 --from "$IMG"
   expect 2 "--seed: must be at most 9007199254740992, got 9007199254740993" study --session s --seed 9007199254740993
   expect 2 "--seed: '0x10' is not a whole number in decimal digits" candidates $R --count 5 --seed 0x10 --out c.csv
