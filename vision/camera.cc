@@ -289,6 +289,25 @@ Status Camera::Validate() const {
                            CameraModelName(model) + " model has " + std::to_string(NumCoefficients()));
     }
   }
+  return ValidateRanges();
+}
+
+// Plausible values, far outside any real camera's (issue 36: a focal length of
+// 1e300 or 1e-300, k1 = 1e300 or a principal point at -5000 px were accepted).
+Status Camera::ValidateRanges() const {
+  const auto outside = [](const std::string& key, double value, double min, double max, const std::string& unit) {
+    return Status::Error(key + " = " + FormatNumber(value) + unit + " is outside [" + FormatNumber(min) + ", " +
+                         FormatNumber(max) + "]" + unit);
+  };
+  for (const auto& [name, f] : {std::pair{"fx", fx}, std::pair{"fy", fy}})
+    if (f < kMinFocalPixels || f > kMaxFocalPixels) return outside(name, f, kMinFocalPixels, kMaxFocalPixels, " px");
+  if (cx < -width || cx > 2.0 * width) return outside("cx", cx, -width, 2.0 * width, " px");
+  if (cy < -height || cy > 2.0 * height) return outside("cy", cy, -height, 2.0 * height, " px");
+  for (size_t i = 0; i < distortion.size(); ++i) {
+    if (std::abs(distortion[i]) > kMaxDistortionCoefficient)
+      return outside("distortion coefficient " + std::to_string(i + 1), distortion[i], -kMaxDistortionCoefficient,
+                     kMaxDistortionCoefficient, "");
+  }
   return Status::Ok();
 }
 

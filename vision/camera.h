@@ -90,8 +90,19 @@ struct Camera {
   // to 180° (on the branch where θ_d grows); nullopt where the model does not invert.
   std::optional<double> OffAxisAngle(const Eigen::Vector2d& pixel) const;
 
+  // Finite values, a positive size within kMaxImagePixels and the ranges below.
   Status Validate() const;
+
+ private:
+  Status ValidateRanges() const;
 };
+
+// Plausible camera values (Camera::Validate): far beyond any real lens and
+// sensor, so that only a typo or a wrong unit meets them.
+constexpr double kMinFocalPixels = 0.01;           // fx, fy
+constexpr double kMaxFocalPixels = 1e7;            // fx, fy
+constexpr double kMaxDistortionCoefficient = 1e6;  // |k| of every model
+// cx within [-width, 2 width], cy within [-height, 2 height].
 
 // The ideal pixel (Camera::IdealPixel) of every pixel centre of the image,
 // computed once per camera: the edge fit (edge_refine.h) looks it up for

@@ -63,6 +63,8 @@ target_nan_size.yaml | 2 | tag_size: '.nan' is not a finite number | target prin
 target_huge_grid.yaml | 2 | exceed the 587 tags of tag36h11 | target print --target @IN@ --out @OUT@.pdf
 target_unknown_family.yaml | 2 | family: 'tag99h99' is not supported | target print --target @IN@ --out @OUT@.pdf
 target_wrong_unit.yaml | 2 | length_unit: expected mm, cm or m | target print --target @IN@ --out @OUT@.pdf
+target_tag_size_huge.yaml | 2 | tag_size: 1e\+300 mm is outside \[0.1, 10000\] mm | target print --target @IN@ --out @OUT@.pdf
+target_tag_size_tiny.yaml | 2 | tag_size: 1e-300 mm is outside \[0.1, 10000\] mm | target print --target @IN@ --out @OUT@.pdf
 target_duplicate_key.yaml | 2 | tag_size: duplicate key \(lines 5 and 7\) | target print --target @IN@ --out @OUT@.pdf
 target_nan_size.yaml | 2 | tag_size: '.nan' is not a finite number | measure --camera sim-4.2mm-1024x768 --target @IN@ --images IMAGE --out @OUT@
 camera_empty.yaml | 2 | empty file | measure --camera @IN@ --images IMAGE --out @OUT@
@@ -77,6 +79,9 @@ camera_parser_exception.yaml | 2 | YAML syntax error at line 9 | measure --camer
 camera_duplicate_key.yaml | 2 | camera_matrix.rows: duplicate key \(lines 6 and 8\) | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_huge_resolution.yaml | 2 | image size 1000000 x 1000000: over the 150-megapixel limit | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_camchain_cam1_only.yaml | 2 | cam1: a Kalibr camchain without cam0; hexcal reads cam0 | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_focal_huge.yaml | 2 | fx = 1e\+300 px is outside \[0.01, 10000000\] px | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_principal_point_far.yaml | 2 | cx = -5000 px is outside \[-1024, 2048\] px | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_k1_huge.yaml | 2 | distortion coefficient 1 = 1e\+300 is outside \[-1000000, 1000000\] | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_zero_size.yaml | 2 | image size 0 x 768: must be positive | render --camera @IN@ --poses POSES --out @OUT@
 image_empty.png | 1 | empty file | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
 image_header_only.png | 1 | truncated PNG \(no IEND chunk\) | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
