@@ -108,7 +108,7 @@ void AddTargetCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   print_sub->add_option("--out", print->out, "output file, .pdf or .png")->required();
   print_sub->add_option("--dpi", print->dpi, "PNG resolution, dots per inch")
-      ->check(CLI::Range(30.0, 2400.0))
+      ->check(CLI::Range(kMinPrintDpi, kMaxPrintDpi))
       ->capture_default_str();
   print_sub->add_flag("--force", print->force, "overwrite --out if it exists");
   print_sub->add_flag("--json", print->json, "print one JSON object on stdout");

@@ -95,6 +95,8 @@ count_bounds)
   expect 2 "--threads: 9999 is outside" measure --camera c.yaml --images . --out m.csv --threads 9999
   expect 2 "--min-views: 0 is outside" intrinsics --images . --out cam.yaml --min-views 0
   expect 2 "--dpi: Value 1e6 not in range" target print --out t.png --dpi 1e6
+  expect 0 "--dpi FLOAT:FLOAT in \[50 - 1200\]" target print --help  # the range it enforces (issue 36)
+  expect 2 "--dpi: Value 40 not in range" target print --out t.png --dpi 40
   mkdir in
   awk 'BEGIN { print "x,y,z,q1,q2,q3"; for (i = 0; i < 5001; ++i) print "0,0,50,0,0,0" }' >in/many_poses.csv
   expect 2 "many_poses.csv: 5001 poses, more than the 5000 images render writes at once" render \
