@@ -298,6 +298,16 @@ text_and_numbers)
   [ -e s/legs.csv ] && { echo "FAIL: legs.csv written"; failures=$((failures + 1)); }
   [ -e c.csv ] && { echo "FAIL: c.csv written"; failures=$((failures + 1)); }
   ;;
+session_paths)
+  # Issue 36: session init keeps a file's path relative to the session folder,
+  # so the session works from any directory (it kept the path as typed).
+  mkdir -p here/runs && "$hexcal" export $R --format robot --out here/robot.yaml >/dev/null || exit 1
+  (cd here && "$hexcal" session init runs/s --robot robot.yaml --camera sim-4.2mm-1024x768 \
+    --target aprilgrid-6x6 >/dev/null) || { echo "FAIL: session init"; failures=$((failures + 1)); }
+  grep -qx "robot: ../../robot.yaml" here/runs/s/session.yaml || {
+    echo "FAIL: session.yaml: $(grep robot: here/runs/s/session.yaml)"; failures=$((failures + 1)); }
+  expect 0 "robot +done" session status here/runs/s
+  ;;
 *)
   echo "unknown case $case"; exit 2
   ;;
