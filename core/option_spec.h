@@ -169,7 +169,8 @@ Status ApplyOptionEntries(const OptionTable<T>& table, const std::vector<std::pa
     if (spec == nullptr) {
       std::string keys;
       for (const OptionSpec<T>& known : table) keys += (keys.empty() ? "" : ", ") + known.key;
-      return Status::Error(section + "." + key.substr(0, 40) + ": unknown key (" + keys + ")");
+      const std::string shown = IsPlainName(key) ? key : "(a key that is not a name)";
+      return Status::Error(section + "." + shown + ": unknown key (" + keys + ")");
     }
     if (Status s = ApplyOptionText(*spec, text, values, section + "." + key); !s.ok()) return s;
   }

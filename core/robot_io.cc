@@ -118,9 +118,9 @@ class RobotYamlReader {
         return Error(path.empty() ? "top level" : path, "a key is " + Describe(entry.first));
       }
       const std::string& key = entry.first.Scalar();
-      if (!seen.insert(key).second) return Error(Child(path, key), "duplicate key");
+      if (!seen.insert(key).second) return Error(Child(path, YamlKeyText(entry.first)), "duplicate key");
       if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
-        return Error(Child(path, key), "unknown key (allowed: " + Join(allowed, ", ") + ")");
+        return Error(Child(path, YamlKeyText(entry.first)), "unknown key (allowed: " + Join(allowed, ", ") + ")");
       }
     }
     for (const std::string& key : required) {

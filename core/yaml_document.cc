@@ -1,7 +1,5 @@
 #include "core/yaml_document.h"
 
-#include <algorithm>
-#include <cctype>
 #include <map>
 
 #include "core/csv.h"
@@ -13,14 +11,6 @@ namespace {
 // Nodes a duplicate-key walk visits at most: a 4 MiB file has fewer, but an
 // alias may be visited once per reference (a "billion laughs" document).
 constexpr int kMaxNodesChecked = 1000000;
-
-// A key as shown in a path: itself when it is a plain name, else an escaped excerpt.
-std::string KeyText(const std::string& key) {
-  const bool plain = !key.empty() && key.size() <= 40 && std::all_of(key.begin(), key.end(), [](unsigned char c) {
-    return std::isalnum(c) != 0 || c == '_' || c == '-';
-  });
-  return plain ? key : Excerpt(key);
-}
 
 // The first mapping under `node` that names a key twice: yaml-cpp keeps both
 // entries and a lookup finds the first, so `fx: 500` then `fx: 1e300` read as
@@ -38,7 +28,7 @@ Status CheckUniqueKeys(const YAML::Node& node, const std::string& label, const s
   if (!node.IsMap()) return Status::Ok();
   std::map<std::string, int> lines;  // key -> the line it is first on
   for (const auto& entry : node) {
-    const std::string key = entry.first.IsScalar() ? KeyText(entry.first.Scalar()) : "?";
+    const std::string key = YamlKeyText(entry.first);
     const std::string key_path = path.empty() ? key : path + "." + key;
     if (entry.first.IsScalar()) {
       const int line = entry.first.Mark().line + 1;
@@ -53,6 +43,11 @@ Status CheckUniqueKeys(const YAML::Node& node, const std::string& label, const s
 }
 
 }  // namespace
+
+std::string YamlKeyText(const YAML::Node& key) {
+  if (key.IsScalar() && IsPlainName(key.Scalar())) return key.Scalar();
+  return "the key on line " + std::to_string(key.Mark().line + 1);
+}
 
 StatusOr<YAML::Node> LoadYamlDocument(const std::string& text, const std::string& label) {
   try {
@@ -75,7 +70,8 @@ StatusOr<std::vector<std::pair<std::string, std::string>>> ScalarEntries(const Y
   for (const auto& item : map) {
     if (!item.first.IsScalar()) return Status::Error(where + ": a key that is not a name");
     const std::string key = item.first.Scalar();
-    if (!item.second.IsScalar()) return Status::Error(where + "." + key.substr(0, 40) + ": expected a single value");
+    if (!item.second.IsScalar())
+      return Status::Error(where + "." + YamlKeyText(item.first) + ": expected a single value");
     entries.emplace_back(key, item.second.Scalar());
   }
   return entries;

@@ -120,6 +120,18 @@ no_content_leak)
     fi
   done
   expect 2 "found 'root:x:0:0:root:/root:/b\.\.\.'" robot check ./passwd
+  # A shadow file parses as a mapping whose one key is its first line: that
+  # key was echoed whole as the "unknown key" (issue 36).
+  printf 'root:$6$SECRETsalt$SECREThash:19000:0:99999:7:::\n' >shadow
+  expect 2 "robot file './shadow': the key on line 1: unknown key" robot show ./shadow
+  expect 2 "the key on line 1: unknown key" target check --target shadow
+  expect 2 "plan settings 'shadow': the key on line 1: unknown key" plan $R --settings shadow --out p.csv
+  for args in "robot show ./shadow" "target check --target shadow" "plan $R --settings shadow --out p.csv"; do
+    # shellcheck disable=SC2086
+    if timeout 20 "$hexcal" $args 2>&1 | grep -q SECRET; then
+      echo "FAIL: the error quotes the file: hexcal $args"; failures=$((failures + 1))
+    fi
+  done
   ;;
 exit_codes)
   # The same fault gives the same code in every command: bad input 2, a failed
