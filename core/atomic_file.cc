@@ -124,6 +124,17 @@ Status CheckReadableFile(const std::string& path, const struct stat& info, size_
   return Status::Ok();
 }
 
+// open(2) failed: a dangling link says "no such file" in errno's words, yet
+// the name is there (ls shows it), so it gets its own message.
+Status OpenError(const std::string& path, int error_number) {
+  struct stat link;
+  if (error_number == ENOENT && ::lstat(path.c_str(), &link) == 0 && S_ISLNK(link.st_mode))
+    return Status::Error(path + ": a symbolic link to a missing file");
+  if (error_number == ENOENT) return Status::Error(path + ": no such file");
+  if (error_number == ELOOP) return Status::Error(path + ": a loop of symbolic links");
+  return ErrnoError(path, "cannot open", error_number);
+}
+
 // Reads to the end, but never more than max_bytes: the file may grow while read.
 StatusOr<std::string> ReadAll(int fd, const std::string& path, size_t max_bytes) {
   std::string contents;
@@ -174,6 +185,18 @@ Status WriteFileAtomically(const std::string& path, const std::string& contents)
   return SyncDirectory(path, dir);
 }
 
+Status CreateFolders(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) return Status::Ok();
+  std::filesystem::create_directories(path, error);
+  if (!error && std::filesystem::is_directory(path, error)) return Status::Ok();
+  const std::string reason = error ? error.message() : std::string("a file of that name is in the way");
+  const int code = error ? error.value() : 0;
+  const std::string message = path + ": cannot create the folder: " + reason;
+  const bool disk_refused = code == ENOSPC || code == EDQUOT || code == EIO || code == EROFS;
+  return disk_refused ? Status::IoError(message) : Status::Error(message);
+}
+
 Status CheckOutputFree(const std::string& path, bool force) {
   struct stat info;
   // stat follows links: the rename would replace a link to /dev/sda or to a
@@ -190,14 +213,11 @@ Status CheckOutputFree(const std::string& path, bool force) {
   return Status::Error(path + ": exists; use --force to overwrite it");
 }
 
-StatusOr<std::string> ReadFileToString(const std::string& path, size_t max_bytes) {
+StatusOr<int> OpenFileForReading(const std::string& path, size_t max_bytes) {
   // O_NONBLOCK: opening a FIFO must not wait for a writer; fstat of the opened
   // descriptor (not stat of the path) so that a swapped file cannot slip by.
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
-  if (fd < 0) {
-    if (errno == ENOENT) return Status::Error(path + ": no such file");
-    return ErrnoError(path, "cannot open", errno);
-  }
+  if (fd < 0) return OpenError(path, errno);
   struct stat info;
   if (::fstat(fd, &info) != 0) {
     const int stat_errno = errno;
@@ -208,8 +228,21 @@ StatusOr<std::string> ReadFileToString(const std::string& path, size_t max_bytes
     ::close(fd);
     return s;
   }
-  StatusOr<std::string> contents = ReadAll(fd, path, max_bytes);
-  ::close(fd);
+  return fd;
+}
+
+Status CheckFileForReading(const std::string& path, size_t max_bytes) {
+  StatusOr<int> fd = OpenFileForReading(path, max_bytes);
+  if (!fd.ok()) return fd.status();
+  ::close(*fd);
+  return Status::Ok();
+}
+
+StatusOr<std::string> ReadFileToString(const std::string& path, size_t max_bytes) {
+  StatusOr<int> fd = OpenFileForReading(path, max_bytes);
+  if (!fd.ok()) return fd.status();
+  StatusOr<std::string> contents = ReadAll(*fd, path, max_bytes);
+  ::close(*fd);
   return contents;
 }
 

@@ -43,9 +43,27 @@ constexpr size_t kMaxImageBytes = 512 * kMiB;  // PNG, JPEG, TIFF
 // file (a FIFO); hexcal replaces only files". An empty path is free.
 Status CheckOutputFree(const std::string& path, bool force);
 
-// The whole file as bytes. Errors: missing file, a directory, not a regular
-// file (a FIFO, a device, a socket: refused at once, never waited on, also
-// behind a symlink), larger than `max_bytes`, unreadable.
+// Creates the folder `path` and its missing parents, with one message and one
+// kind of error in every command (issue 36: exit 1 in some, 2 in others): a
+// path that cannot be a folder (a file in the way, no permission, a name too
+// long) is bad input; a disk that refuses (full, read-only, an I/O error) is
+// an I/O error. "PATH: cannot create the folder: Not a directory".
+Status CreateFolders(const std::string& path);
+
+// The whole file as bytes. Errors: missing file, a dangling symbolic link, a
+// directory, not a regular file (a FIFO, a device, a socket: refused at once,
+// never waited on, also behind a symlink), larger than `max_bytes`, unreadable.
 StatusOr<std::string> ReadFileToString(const std::string& path, size_t max_bytes = kMaxYamlBytes);
+
+// The one check of every file hexcal reads (issue 36): opens `path` without
+// blocking (a FIFO with no writer) and refuses what ReadFileToString refuses,
+// each with its own message ("PATH: not a regular file (a FIFO)", "PATH: a
+// symbolic link to a missing file", "PATH: is a directory, not a file").
+// Returns the open descriptor, which the caller closes.
+StatusOr<int> OpenFileForReading(const std::string& path, size_t max_bytes);
+
+// OpenFileForReading's checks for a file that another library opens by its
+// path (a video for OpenCV, an image listed for a later read).
+Status CheckFileForReading(const std::string& path, size_t max_bytes);
 
 }  // namespace hexcal

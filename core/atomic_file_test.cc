@@ -181,6 +181,31 @@ TEST(AtomicFileTest, ReadingALinkToADeviceIsRefused) {
   EXPECT_EQ(read.status().message(), path + ": not a regular file (a character device)");
 }
 
+// Issue 36: a dangling link said "no such file" though ls lists the name.
+TEST(AtomicFileTest, ReadingADanglingLinkSaysItIsOne) {
+  TempDir dir;
+  const std::string path = dir.File("camera.yaml");
+  std::filesystem::create_symlink(dir.File("gone.yaml"), path);
+  StatusOr<std::string> read = ReadFileToString(path);
+  ASSERT_FALSE(read.ok());
+  EXPECT_EQ(read.status().message(), path + ": a symbolic link to a missing file");
+  EXPECT_EQ(CheckFileForReading(path, kMaxImageBytes).message(), path + ": a symbolic link to a missing file");
+  EXPECT_EQ(CheckFileForReading(dir.File("none.png"), kMaxImageBytes).message(),
+            dir.File("none.png") + ": no such file");
+}
+
+// Issue 36: one kind of error for a folder that cannot be made, whoever makes it.
+TEST(AtomicFileTest, CreateFoldersNamesAFileInTheWayAsBadInput) {
+  TempDir dir;
+  EXPECT_TRUE(CreateFolders(dir.File("a/b/c")).ok());
+  EXPECT_TRUE(CreateFolders(dir.File("a/b/c")).ok());
+  WriteTextFile(dir.File("file"), "x");
+  const Status under_a_file = CreateFolders(dir.File("file/sub"));
+  EXPECT_EQ(under_a_file.kind(), StatusKind::kBadInput);
+  EXPECT_EQ(under_a_file.message(), dir.File("file/sub") + ": cannot create the folder: Not a directory");
+  EXPECT_EQ(CreateFolders(dir.File("file")).kind(), StatusKind::kBadInput);
+}
+
 TEST(AtomicFileTest, ReadingAFileOverItsSizeCapIsRefused) {
   TempDir dir;
   const std::string path = dir.File("robot.yaml");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cassert>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -327,6 +328,12 @@ std::string Excerpt(const std::string& text, size_t max_chars) {
     }
   }
   return quoted + (shown < text.size() ? "...'" : "'");
+}
+
+bool IsPlainName(const std::string& key) {
+  return !key.empty() && key.size() <= 40 && std::all_of(key.begin(), key.end(), [](unsigned char c) {
+    return std::isalnum(c) != 0 || c == '_' || c == '-';
+  });
 }
 
 std::string FormatSignificant(double v, int digits) {

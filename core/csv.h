@@ -78,6 +78,12 @@ std::string FormatSignificant(double v, int digits = 3);
 //   Excerpt("root:x:0:0:root:/root:/bin/bash\n...")  ->  'root:x:0:0:root:/root:/b...'
 constexpr size_t kExcerptChars = 24;
 std::string Excerpt(const std::string& text, size_t max_chars = kExcerptChars);
+
+// Whether a key from a file may be shown in an error as it is: a name of
+// letters, digits, '_' and '-', at most 40 characters. Anything else is shown
+// by where it is, never by its text (issue 36: /etc/shadow's first line was
+// echoed as an "unknown key").
+bool IsPlainName(const std::string& key);
 // FormatCsv written with WriteFileAtomically.
 Status WriteCsv(const std::string& path, const std::vector<std::string>& header,
                 const std::vector<std::vector<std::string>>& rows);

@@ -10,6 +10,7 @@
 //   Status s = ApplyOptionText(FindOption(table, "leg"), "0.002", &noise, "plan.yaml: noise.leg");
 #pragma once
 
+#include <charconv>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -109,6 +110,24 @@ Status CheckChoices(const OptionSpec<T>& spec, const std::vector<std::string>& i
   return Status::Ok();
 }
 
+// An integer option's text: plain decimal digits ("1e3", "10.0" and "0x10"
+// are refused) that a double holds exactly. A double rounds 9007199254740993
+// to ...992, which then passed a range ending at 2^53 (study --seed, issue 36):
+// such a number is beyond every integer option's range, on its side of zero.
+inline Status CheckIntegerText(const std::string& text, double value, double min, double max, const std::string& where,
+                               const std::string& unit) {
+  const size_t sign = !text.empty() && (text[0] == '+' || text[0] == '-') ? 1 : 0;
+  long long exact = 0;
+  const char* last = text.data() + text.size();
+  const auto [end, error] = std::from_chars(text.data() + (sign && text[0] == '+' ? 1 : 0), last, exact);
+  if (text.size() == sign || end != last || (error != std::errc() && error != std::errc::result_out_of_range))
+    return Status::Error(where + ": expected a whole number in decimal digits, got " + Excerpt(text));
+  if (error == std::errc() && std::abs(value) <= 9007199254740992.0 && static_cast<long long>(value) == exact)
+    return Status::Ok();
+  if (value < 0) return Status::Error(where + ": must be at least " + FormatNumber(min) + unit + ", got " + text);
+  return Status::Error(where + ": must be at most " + FormatNumber(max) + unit + ", got " + text);
+}
+
 template <typename T>
 Status ApplyOptionText(const OptionSpec<T>& spec, const std::string& text, T* values, const std::string& where) {
   if (spec.type == OptionType::kChoice || spec.type == OptionType::kChoiceList) {
@@ -129,6 +148,9 @@ Status ApplyOptionText(const OptionSpec<T>& spec, const std::string& text, T* va
   if (spec.type == OptionType::kInteger && *value != std::floor(*value))
     return Status::Error(where + ": expected a whole number, got " + FormatNumber(*value));
   const std::string unit = spec.unit.empty() ? "" : " " + spec.unit;
+  if (spec.type == OptionType::kInteger) {
+    if (Status s = CheckIntegerText(text, *value, spec.min, spec.max, where, unit); !s.ok()) return s;
+  }
   if (*value < spec.min)
     return Status::Error(where + ": must be at least " + FormatNumber(spec.min) + unit + ", got " + FormatNumber(*value));
   if (*value > spec.max)
@@ -147,7 +169,8 @@ Status ApplyOptionEntries(const OptionTable<T>& table, const std::vector<std::pa
     if (spec == nullptr) {
       std::string keys;
       for (const OptionSpec<T>& known : table) keys += (keys.empty() ? "" : ", ") + known.key;
-      return Status::Error(section + "." + key.substr(0, 40) + ": unknown key (" + keys + ")");
+      const std::string shown = IsPlainName(key) ? key : "(a key that is not a name)";
+      return Status::Error(section + "." + shown + ": unknown key (" + keys + ")");
     }
     if (Status s = ApplyOptionText(*spec, text, values, section + "." + key); !s.ok()) return s;
   }

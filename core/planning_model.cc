@@ -171,7 +171,8 @@ StatusOr<Pose> PoseNode(const YAML::Node& node, const std::string& path, const s
   for (const auto& item : node) {
     if (!item.first.IsScalar()) return SettingsError(path, key, "a key that is not a name");
     const std::string name = item.first.as<std::string>();
-    if (name != "position" && name != "rotation_deg") return SettingsError(path, key + "." + name, "unknown key");
+    if (name != "position" && name != "rotation_deg")
+      return SettingsError(path, key + "." + YamlKeyText(item.first), "unknown key");
   }
   StatusOr<Eigen::Vector3d> position = Vector3(node["position"], path, key + ".position");
   if (!position.ok()) return position.status();
@@ -193,7 +194,7 @@ StatusOr<PlanSettings> ReadPlanSettings(const YAML::Node& root, const std::strin
   for (const auto& item : root) {
     if (!item.first.IsScalar()) return SettingsError(path, "top level", "a key that is not a name");
     const std::string key = item.first.as<std::string>();
-    if (!kKeys.count(key)) return SettingsError(path, key, "unknown key");
+    if (!kKeys.count(key)) return SettingsError(path, YamlKeyText(item.first), "unknown key");
   }
   PlanSettings settings;
   if (root["noise"]) {

@@ -118,9 +118,9 @@ class RobotYamlReader {
         return Error(path.empty() ? "top level" : path, "a key is " + Describe(entry.first));
       }
       const std::string& key = entry.first.Scalar();
-      if (!seen.insert(key).second) return Error(Child(path, key), "duplicate key");
+      if (!seen.insert(key).second) return Error(Child(path, YamlKeyText(entry.first)), "duplicate key");
       if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
-        return Error(Child(path, key), "unknown key (allowed: " + Join(allowed, ", ") + ")");
+        return Error(Child(path, YamlKeyText(entry.first)), "unknown key (allowed: " + Join(allowed, ", ") + ")");
       }
     }
     for (const std::string& key : required) {
@@ -352,7 +352,8 @@ StatusOr<Robot> ParseRobotYaml(const std::string& text, const std::string& sourc
 
 StatusOr<Robot> LoadRobot(const std::string& path_or_preset) {
   std::error_code error;
-  if (std::filesystem::exists(path_or_preset, error)) {
+  // symlink_status: a dangling link is a file that is meant, not a preset's name.
+  if (std::filesystem::exists(std::filesystem::symlink_status(path_or_preset, error))) {
     StatusOr<std::string> text = ReadFileToString(path_or_preset);
     if (!text.ok()) {
       // ReadFileToString starts its messages with the path; say it once.

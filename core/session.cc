@@ -119,10 +119,8 @@ Status InitSession(const std::string& dir, const SessionConfig& config) {
   std::error_code fs_error;
   if (fs::exists(paths.config, fs_error))
     return Status::Error(paths.config + ": exists; a session is never initialised twice");
-  for (const std::string& folder : {paths.dir, paths.images, paths.results}) {
-    fs::create_directories(folder, fs_error);
-    if (fs_error) return Status::Error(folder + ": cannot create the folder (" + fs_error.message() + ")");
-  }
+  for (const std::string& folder : {paths.dir, paths.images, paths.results})
+    if (Status s = CreateFolders(folder); !s.ok()) return s;
   return SaveSessionConfig(dir, config);
 }
 

@@ -8,6 +8,8 @@
 #include <cstring>
 #include <vector>
 
+#include "core/atomic_file.h"
+
 namespace hexcal {
 namespace {
 
@@ -101,18 +103,9 @@ std::string Sha256Hex(std::string_view bytes) {
 }
 
 StatusOr<std::string> Sha256OfFile(const std::string& path, size_t max_bytes) {
-  // O_NONBLOCK: opening a FIFO must not wait for a writer; it is refused below.
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-  if (fd < 0) return Status::Error(path + ": cannot open: " + std::strerror(errno));
-  struct stat info;
-  if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
-    ::close(fd);
-    return Status::Error(path + ": not a regular file");
-  }
-  if (static_cast<uint64_t>(info.st_size) > max_bytes) {
-    ::close(fd);
-    return Status::Error(path + ": larger than " + std::to_string(max_bytes >> 20) + " MiB");
-  }
+  StatusOr<int> opened = OpenFileForReading(path, max_bytes);  // the checks of every read
+  if (!opened.ok()) return opened.status();
+  const int fd = *opened;
   Sha256 hash;
   std::vector<char> block(1 << 16);
   uint64_t total = 0;  // the file may grow while it is read

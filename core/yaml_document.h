@@ -22,8 +22,15 @@
 
 namespace hexcal {
 
-// `label` starts every message, e.g. "target file 'board.yaml'".
+// `label` starts every message, e.g. "target file 'board.yaml'". A mapping
+// that names a key twice is refused: "...: camera_matrix.rows: duplicate key (lines 3 and 7)".
 StatusOr<YAML::Node> LoadYamlDocument(const std::string& text, const std::string& label);
+
+// A mapping's key as an error may show it: the key itself when it is a name
+// (IsPlainName, core/csv.h), else "the key on line N". A file named in place
+// of a robot or a target (/etc/shadow) had its first line echoed as the
+// "unknown key" (issue 36); errors name keys, never contents.
+std::string YamlKeyText(const YAML::Node& key);
 
 // The (key, scalar text) entries of a mapping, for ApplyOptionEntries
 // (core/option_spec.h); `where` names the section in errors ("plan.yaml: noise").

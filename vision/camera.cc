@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/csv.h"
+#include "vision/image_header.h"
 
 namespace hexcal {
 namespace {
@@ -265,6 +266,12 @@ Status Camera::Validate() const {
   if (width <= 0 || height <= 0) {
     return Status::Error("image size " + std::to_string(width) + " x " + std::to_string(height) + ": must be positive");
   }
+  // No image hexcal reads is larger (image_header.h): a camera of 10^6 x 10^6
+  // pixels made acquire allocate 4 TB and abort with std::bad_alloc (issue 36).
+  if (static_cast<uint64_t>(width) * static_cast<uint64_t>(height) > kMaxImagePixels) {
+    return Status::Error("image size " + std::to_string(width) + " x " + std::to_string(height) + ": over the " +
+                         std::to_string(kMaxImagePixels / 1'000'000) + "-megapixel limit of an image hexcal reads");
+  }
   for (const auto& [name, f] : {std::pair{"fx", fx}, std::pair{"fy", fy}}) {
     if (!std::isfinite(f)) return Status::Error(std::string("focal length ") + name + ": not a finite number");
   }
@@ -281,6 +288,25 @@ Status Camera::Validate() const {
       return Status::Error("distortion_coefficients: coefficient " + std::to_string(i + 1) + " is not 0; the " +
                            CameraModelName(model) + " model has " + std::to_string(NumCoefficients()));
     }
+  }
+  return ValidateRanges();
+}
+
+// Plausible values, far outside any real camera's (issue 36: a focal length of
+// 1e300 or 1e-300, k1 = 1e300 or a principal point at -5000 px were accepted).
+Status Camera::ValidateRanges() const {
+  const auto outside = [](const std::string& key, double value, double min, double max, const std::string& unit) {
+    return Status::Error(key + " = " + FormatNumber(value) + unit + " is outside [" + FormatNumber(min) + ", " +
+                         FormatNumber(max) + "]" + unit);
+  };
+  for (const auto& [name, f] : {std::pair{"fx", fx}, std::pair{"fy", fy}})
+    if (f < kMinFocalPixels || f > kMaxFocalPixels) return outside(name, f, kMinFocalPixels, kMaxFocalPixels, " px");
+  if (cx < -width || cx > 2.0 * width) return outside("cx", cx, -width, 2.0 * width, " px");
+  if (cy < -height || cy > 2.0 * height) return outside("cy", cy, -height, 2.0 * height, " px");
+  for (size_t i = 0; i < distortion.size(); ++i) {
+    if (std::abs(distortion[i]) > kMaxDistortionCoefficient)
+      return outside("distortion coefficient " + std::to_string(i + 1), distortion[i], -kMaxDistortionCoefficient,
+                     kMaxDistortionCoefficient, "");
   }
   return Status::Ok();
 }

@@ -90,8 +90,19 @@ struct Camera {
   // to 180° (on the branch where θ_d grows); nullopt where the model does not invert.
   std::optional<double> OffAxisAngle(const Eigen::Vector2d& pixel) const;
 
+  // Finite values, a positive size within kMaxImagePixels and the ranges below.
   Status Validate() const;
+
+ private:
+  Status ValidateRanges() const;
 };
+
+// Plausible camera values (Camera::Validate): far beyond any real lens and
+// sensor, so that only a typo or a wrong unit meets them.
+constexpr double kMinFocalPixels = 0.01;           // fx, fy
+constexpr double kMaxFocalPixels = 1e7;            // fx, fy
+constexpr double kMaxDistortionCoefficient = 1e6;  // |k| of every model
+// cx within [-width, 2 width], cy within [-height, 2 height].
 
 // The ideal pixel (Camera::IdealPixel) of every pixel centre of the image,
 // computed once per camera: the edge fit (edge_refine.h) looks it up for
@@ -176,7 +187,7 @@ StatusOr<std::string> CameraToText(const Camera& camera, CameraFileFormat format
 // OpenCV FileStorage YAML (read with yaml-cpp) or XML (cv::FileStorage),
 // recognised by its "%YAML:1." or "<?xml" header; else a Kalibr camchain
 // (a `cam0` key, or `camera_model` / `intrinsics` at the top level; of several
-// cameras cam0 is read) or ROS camera_info YAML. Messages read
+// cameras cam0 is read, a camchain without cam0 is refused) or ROS camera_info YAML. Messages read
 // "camera file '<path>': <key>: <problem>" and never quote the file beyond a short value.
 StatusOr<Camera> ParseCameraFile(const std::string& text, const std::string& source);
 // A file, or the name "sim-4.2mm-1024x768" (SimulatedCamera) when no such file exists.

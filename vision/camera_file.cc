@@ -145,6 +145,8 @@ class CameraReader {
     return WithYamlBackstop<Camera>(label_, [&]() -> StatusOr<Camera> {
       if (root["cam0"]) return ReadKalibr(root["cam0"], "cam0");
       if (root["camera_model"] || root["intrinsics"]) return ReadKalibr(root, "");
+      // A camchain of cam1 only read as ROS said "image_width: missing" (issue 36).
+      if (root["cam1"]) return Error("cam1: a Kalibr camchain without cam0; hexcal reads cam0");
       return ReadRos(root);
     });
   }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/parallel.h"
 
@@ -35,8 +36,14 @@ StatusOr<std::vector<std::string>> ListImages(const std::string& folder_or_file)
   namespace fs = std::filesystem;
   std::error_code error;
   const fs::file_status status = fs::status(folder_or_file, error);
-  if (error || !fs::exists(status)) return Status::Error(folder_or_file + ": no such file or folder");
-  if (!fs::is_directory(status)) return std::vector<std::string>{folder_or_file};
+  if (!fs::is_directory(status)) {
+    std::error_code link_error;
+    const bool link = fs::is_symlink(fs::symlink_status(folder_or_file, link_error));
+    if ((error || !fs::exists(status)) && !link) return Status::Error(folder_or_file + ": no such file or folder");
+    // One image: a FIFO, a device or a dangling link is bad input here, not an unreadable row later.
+    if (Status s = CheckFileForReading(folder_or_file, kMaxImageBytes); !s.ok()) return s;
+    return std::vector<std::string>{folder_or_file};
+  }
   std::vector<std::string> files;
   for (fs::directory_iterator it(folder_or_file, error), end; !error && it != end; it.increment(error)) {
     if (!it->is_directory(error) && HasImageExtension(it->path())) files.push_back(it->path().string());

@@ -150,6 +150,15 @@ Status Target::Validate() const {
   if (!(tag_size > 0) || !std::isfinite(tag_size)) {
     return Status::Error("tag_size: must be a positive length, found " + FormatNumber(tag_size));
   }
+  // A printable tag: 0.1 mm to 10 m. 1e300 mm printed a PDF 301 digits wide;
+  // 1e-300 made every pose a rounding error (issue 36).
+  const double unit = MetresPerUnit(length_unit);
+  if (tag_size * unit < kMinTagSizeMetres || tag_size * unit > kMaxTagSizeMetres) {
+    const std::string name = LengthUnitName(length_unit);
+    return Status::Error("tag_size: " + FormatNumber(tag_size) + " " + name + " is outside [" +
+                         FormatNumber(kMinTagSizeMetres / unit) + ", " + FormatNumber(kMaxTagSizeMetres / unit) + "] " +
+                         name);
+  }
   // AprilTag needs white around each black square to find it: at least one
   // bit cell between neighbours and at the edge of the sheet.
   if (border_bits != 1 && border_bits != 2) {

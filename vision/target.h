@@ -67,7 +67,7 @@ struct Target {
   std::string family = "tag36h11";
   int rows = 6;  // grid and id matrix; 0 for a tag list
   int cols = 6;
-  double tag_size = 30;      // black square's edge, length_unit
+  double tag_size = 30;      // black square's edge, length_unit; 0.1 mm to 10 m (Validate)
   double tag_spacing = 0.3;  // gap between neighbouring black squares / tag_size; grid and id matrix
   int first_id = 0;          // grid only
   LengthUnit length_unit = LengthUnit::kMillimetre;
@@ -125,6 +125,10 @@ struct Target {
 // 30 mm tags, 9 mm gaps), also available as the name "aprilgrid-6x6".
 Target DefaultTarget();
 constexpr const char* kDefaultTargetName = "aprilgrid-6x6";
+
+// The plausible edge of a printed tag's black square (Target::Validate).
+constexpr double kMinTagSizeMetres = 1e-4;
+constexpr double kMaxTagSizeMetres = 10;
 
 // Parses and validates target YAML; messages read
 // "target file '<source>': <key>: <problem>".

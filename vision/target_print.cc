@@ -291,7 +291,9 @@ std::string TargetPdf(const Target& target) {
 }
 
 StatusOr<std::string> TargetPng(const Target& target, double dpi) {
-  if (!(dpi >= 50 && dpi <= 1200)) return Status::Error("--dpi: " + Fixed(dpi, 1) + " is outside [50, 1200]");
+  if (!(dpi >= kMinPrintDpi && dpi <= kMaxPrintDpi))
+    return Status::Error("--dpi: " + Fixed(dpi, 1) + " is outside [" + Fixed(kMinPrintDpi, 0) + ", " +
+                         Fixed(kMaxPrintDpi, 0) + "]");
   const auto [content_w, content_h] = ContentSize(target);
   const double page_w = content_w + 2 * kPageMarginMm, page_h = content_h + 2 * kPageMarginMm;
   if (std::max(page_w, page_h) * dpi / 25.4 > 30000) {

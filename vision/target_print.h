@@ -26,6 +26,11 @@ StatusOr<std::string> TargetPng(const Target& target, double dpi);
 // By the extension of `path` (.pdf or .png, any case), written atomically.
 Status WriteTargetPrint(const Target& target, const std::string& path, double dpi);
 
+// The PNG resolutions WriteTargetPrint takes, the one range `target print
+// --dpi` and its help show (the help said [30 - 2400], issue 36).
+constexpr double kMinPrintDpi = 50;
+constexpr double kMaxPrintDpi = 1200;
+
 // Lines printed under the target (also in the PDF).
 std::vector<std::string> TargetPrintCaption(const Target& target);
 

@@ -63,7 +63,7 @@ class TargetReader {
       const bool known = std::any_of(std::begin(kKeys), std::end(kKeys), [&](const KeyPair& pair) {
         return key == pair.hexcal || (*pair.kalibr && key == pair.kalibr);
       });
-      if (!known) return Error(key, "unknown key; expected " + KnownKeys());
+      if (!known) return Error(YamlKeyText(item.first), "unknown key; expected " + KnownKeys());
     }
     *kalibr_names = false;
     for (const KeyPair& pair : kKeys) {
@@ -195,7 +195,7 @@ class TargetReader {
       for (const auto& item : tag) {
         const std::string key = item.first.Scalar();
         if (key != "id" && key != "x" && key != "y")
-          return Error("tags", where + ": unknown key '" + key + "'; " + expected);
+          return Error("tags", where + ": unknown key '" + YamlKeyText(item.first) + "'; " + expected);
       }
       for (const char* key : {"id", "x", "y"}) {
         if (!tag[key]) return Error("tags", where + ": " + key + " missing; " + expected);

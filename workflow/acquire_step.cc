@@ -67,7 +67,7 @@ bool StopsTheRun(const Status& status) {
 StatusOr<std::vector<Vector6d>> LoadRequestedPoses(const AcquireRequest& request) {
   const std::string path = request.poses.empty() ? SessionPaths(request.session).plan : request.poses;
   std::error_code error;
-  if (request.poses.empty() && !fs::exists(path, error))
+  if (request.poses.empty() && !fs::exists(fs::symlink_status(path, error)))  // a dangling link is named by LoadPoses
     return Status::Error(path + ": no plan in the session; run hexcal plan --out " + path + " or pass --poses FILE");
   return LoadPoses(path);
 }

@@ -84,9 +84,7 @@ DemoScene MakeDemoScene(const Robot& nominal, const Camera& camera, const Target
 
 Status WriteSceneTruth(const DemoScene& scene, const std::string& dir) {
   const fs::path truth_dir = fs::path(dir) / "truth";
-  std::error_code error;
-  fs::create_directories(truth_dir, error);
-  if (error) return Status::IoError(truth_dir.string() + ": cannot create the folder: " + error.message());
+  if (Status s = CreateFolders(truth_dir.string()); !s.ok()) return s;
   if (Status s = SaveRobot(scene.truth, (truth_dir / "robot.yaml").string()); !s.ok()) return s;
   return WriteFileAtomically((truth_dir / "frames.yaml").string(), FramesYaml(scene));
 }

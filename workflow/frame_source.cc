@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <limits>
 #include <opencv2/videoio.hpp>
 
+#include "core/atomic_file.h"
 #include "vision/image_codecs.h"
 #include "workflow/sim_world.h"
 
@@ -110,8 +112,8 @@ bool IsStillImage(const std::string& path) {
 
 StatusOr<std::unique_ptr<FrameSource>> OpenFile(const std::string& url, const std::string& path) {
   if (path.empty()) return BadUrl(url, "no path after 'file:'");
-  std::error_code error;
-  if (!fs::is_regular_file(path, error)) return Status::Error(url + ": " + path + ": no such file");
+  // A FIFO or /dev/zero said "no such file"; a video has no size cap of its own.
+  if (Status s = CheckFileForReading(path, std::numeric_limits<size_t>::max()); !s.ok()) return s.Prefixed(url + ": ");
   if (IsStillImage(path)) {
     StatusOr<cv::Mat> image = ReadImageFile(path);
     if (!image.ok()) return image.status().Prefixed(url + ": ");

@@ -26,12 +26,18 @@ EditOutcome Done() { return EditOutcome{}; }
 // a path that leads out of the session.
 Status CheckImageName(const std::string& name) {
   if (name.empty() || name == "." || name == ".." || name.find_first_of(std::string("/\0", 2)) != std::string::npos)
-    return Status::Error("'" + Excerpt(name) + "': not an image file name (a name inside images/, no folders)");
+    return Status::Error(Excerpt(name) + ": not an image file name (a name inside images/, no folders)");
+  // legs.csv holds one row a line: a line break in a name split the row and no
+  // command could read the file again (issue 36); other control bytes would
+  // reach terminals raw.
+  const auto control = [](unsigned char c) { return c < 0x20 || c == 0x7f; };
+  if (std::any_of(name.begin(), name.end(), control))
+    return Status::Error(Excerpt(name) + ": a control character in an image name; legs.csv cannot hold it");
   std::string extension = fs::path(name).extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   for (const char* known : {".png", ".jpg", ".jpeg", ".tif", ".tiff"})
     if (extension == known) return Status::Ok();
-  return Status::Error("'" + Excerpt(name) + "': not a .png, .jpg or .tif name");
+  return Status::Error(Excerpt(name) + ": not a .png, .jpg or .tif name");
 }
 
 // Readings are finite numbers: a NaN written into legs.csv would make every

@@ -25,7 +25,9 @@ namespace fs = std::filesystem;
 StepReport PlanStep(const std::string& dir, const StatusOr<Robot>& robot) {
   const std::string path = SessionPaths(dir).plan;
   std::error_code error;
-  if (!fs::exists(path, error)) return {"plan", StepStatus::kTodo, "no plan.csv: hexcal plan --out " + path};
+  // symlink_status: a dangling link is a broken plan, named so, not a missing one.
+  if (!fs::exists(fs::symlink_status(path, error)))
+    return {"plan", StepStatus::kTodo, "no plan.csv: hexcal plan --out " + path};
   StatusOr<std::vector<Vector6d>> plan = LoadPoses(path);
   if (!plan.ok()) return {"plan", StepStatus::kBroken, plan.status().message()};
   const std::string count = std::to_string(plan->size()) + " poses";
@@ -60,7 +62,7 @@ int RecordedPlanPoses(const std::string& dir, const std::vector<LegsRow>& rows, 
 StepReport ReadingsStep(const std::string& dir, std::vector<LegsRow>* rows) {
   const SessionPaths paths(dir);
   std::error_code error;
-  if (!fs::exists(paths.legs, error))
+  if (!fs::exists(fs::symlink_status(paths.legs, error)))
     return {"readings", StepStatus::kTodo,
             "no legs.csv: acquire the planned poses (hexcal acquire) or enter the readings of each image"};
   StatusOr<std::vector<LegsRow>> legs = LoadSessionLegs(dir);

@@ -170,6 +170,15 @@ TEST(StudyOptions, SetTheRequestAndTheDocsListEveryOption) {
   EXPECT_EQ(request.study.subsets, 50);
   EXPECT_THAT(ApplyOptionEntries(StudyOptions(), {{"select", "6"}}, &request, "study").message(),
               HasSubstr("study.select: must be at least 7 poses, got 6"));
+  // Issue 36: integers are read exactly, never rounded through a double.
+  EXPECT_EQ(ApplyOptionEntries(StudyOptions(), {{"seed", "9007199254740993"}}, &request, "study").message(),
+            "study.seed: must be at most 9007199254740992, got 9007199254740993");
+  EXPECT_EQ(ApplyOptionEntries(StudyOptions(), {{"seed", "99999999999999999999"}}, &request, "study").message(),
+            "study.seed: must be at most 9007199254740992, got 99999999999999999999");
+  EXPECT_EQ(ApplyOptionEntries(StudyOptions(), {{"subsets", "1e3"}}, &request, "study").message(),
+            "study.subsets: expected a whole number in decimal digits, got '1e3'");
+  ASSERT_TRUE(ApplyOptionEntries(StudyOptions(), {{"seed", "9007199254740992"}}, &request, "study").ok());
+  EXPECT_EQ(request.study.seed, 9007199254740992u);
   const std::string docs = hexcal::testing::ReadTextFile((hexcal::testing::SourceDir() / "docs" / "cli.md").string());
   const std::string table = OptionsMarkdownTable(StudyOptions());
   EXPECT_NE(docs.find(table), std::string::npos) << "docs/cli.md needs this table:\n" << table;

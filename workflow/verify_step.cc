@@ -95,9 +95,7 @@ Status CheckImagesOut(const VerifyRequest& request, size_t count) {
     if (fs::exists(fs::symlink_status(frame, error)))
       return Status::Error("--keep-images: " + frame.string() + " exists: use another folder, or --force to replace");
   }
-  fs::create_directories(request.images_out, error);
-  if (error) return Status::IoError(request.images_out + ": cannot create the folder: " + error.message());
-  return Status::Ok();
+  return CreateFolders(request.images_out);
 }
 
 // One pose: move, settle, grab, measure, compare. Device errors are the pose's.

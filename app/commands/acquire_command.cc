@@ -42,7 +42,7 @@ int RunAcquireCommand(AcquireCliOptions cli, std::ostream& out, std::ostream& er
   std::signal(SIGINT, SIG_DFL);
   if (!result.ok()) return ReportError(err, "acquire", result.status());
   if (cli.json) {
-    out << workflow::ToJson(*result).dump(2) << "\n";
+    out << JsonText(workflow::ToJson(*result));
   } else {
     out << workflow::FormatAcquireSummary(*result);
   }

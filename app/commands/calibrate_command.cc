@@ -49,7 +49,7 @@ int RunCalibrateSession(const CalibrateCliOptions& cli, std::ostream& out, std::
   if (cli.json) {
     nlohmann::json json = workflow::ToJson(*report);
     json["verdict"] = verdict.ToJson();
-    out << json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+    out << JsonText(json);
   } else {
     out << workflow::FormatCalibrationSummary(*report) << verdict.ToText();
   }
@@ -181,13 +181,11 @@ int RunCalibrate(const CalibrateCliOptions& cli, std::ostream& out, std::ostream
   if (cli.json) {
     nlohmann::json legs = nlohmann::json::array();
     for (const LegCalibration& leg : result->legs) legs.push_back(LegJson(leg));
-    out << nlohmann::json{{"out", cli.out},
-                          {"measurements", result->num_measurements},
-                          {"length_unit", LengthUnitName(result->robot.length_unit)},
-                          {"robot", RobotJson(result->robot)},
-                          {"legs", legs}}
-               .dump(2)
-        << "\n";
+    out << JsonText(nlohmann::json{{"out", cli.out},
+                                   {"measurements", result->num_measurements},
+                                   {"length_unit", LengthUnitName(result->robot.length_unit)},
+                                   {"robot", RobotJson(result->robot)},
+                                   {"legs", legs}});
   } else {
     PrintReport(cli, *result, out);
   }

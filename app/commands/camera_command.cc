@@ -93,7 +93,7 @@ int RunCameraShow(const CameraShowOptions& options, std::ostream& out, std::ostr
   StatusOr<Camera> camera = LoadCamera(options.camera);
   if (!camera.ok()) return ReportError(err, "camera show", camera.status());
   if (options.json) {
-    out << CameraJson(options.camera, *camera).dump(2) << "\n";
+    out << JsonText(CameraJson(options.camera, *camera));
   } else {
     PrintCamera(options.camera, *camera, out);
   }
@@ -120,11 +120,8 @@ int RunCameraConvert(const CameraConvertOptions& options, std::ostream& out, std
   if (!text.ok()) return ReportError(err, "camera convert", text.status().Prefixed(options.camera + ": "));
   if (Status s = WriteFileAtomically(options.out, *text); !s.ok()) return ReportError(err, "camera convert", s);
   if (options.json) {
-    out << nlohmann::json{{"out", options.out},
-                          {"to", CameraFileFormatName(*format)},
-                          {"camera", CameraJson(options.camera, *camera)}}
-               .dump(2)
-        << "\n";
+    out << JsonText(nlohmann::json{
+        {"out", options.out}, {"to", CameraFileFormatName(*format)}, {"camera", CameraJson(options.camera, *camera)}});
   } else {
     out << "wrote " << options.out << ": " << CameraFileFormatName(*format) << " file of the "
         << CameraModelName(camera->model) << " camera " << options.camera << " (" << camera->width << " x "

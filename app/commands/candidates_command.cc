@@ -54,7 +54,7 @@ int RunCandidates(const CandidatesCliOptions& cli, std::ostream& out, std::ostre
       j["real_modes"] = set->real_modes;
     else
       j["seed"] = cli.seed;
-    out << j.dump(2) << "\n";
+    out << JsonText(j);
   } else {
     out << set->poses.size() << " " << cli.kind << " candidate poses written to " << cli.out;
     if (*kind == CandidateKind::kBoundary) {

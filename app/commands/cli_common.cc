@@ -2,6 +2,10 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cstdint>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -31,6 +35,10 @@ int ReportError(std::ostream& err, const std::string& command, const Status& sta
   return ExitCodeFor(status);
 }
 
+std::string JsonText(const nlohmann::json& json) {
+  return json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
 CLI::Validator CountRange(long long min, long long max, const std::string& why) {
   const std::string range = "[" + std::to_string(min) + ", " + std::to_string(max) + "]";
   return CLI::Validator(
@@ -47,6 +55,47 @@ CLI::Validator CountRange(long long min, long long max, const std::string& why) 
         return text + " is outside " + range + (why.empty() ? "" : " (" + why + ")");
       },
       "INT in " + range);
+}
+
+namespace {
+
+bool AllDigits(const std::string& text, size_t begin) {
+  return begin < text.size() &&
+         std::all_of(text.begin() + begin, text.end(), [](unsigned char c) { return std::isdigit(c) != 0; });
+}
+
+// What is wrong with `text` as a whole number of type INT or UINT, or "".
+std::string WholeNumberProblem(const std::string& text, bool is_unsigned) {
+  const size_t digits = !text.empty() && (text[0] == '-' || text[0] == '+') ? 1 : 0;
+  if (!AllDigits(text, digits)) return Excerpt(text) + " is not a whole number in decimal digits";
+  if (text.size() > digits + 1 && text[digits] == '0')
+    return Excerpt(text) + ": a leading 0 (read as octal elsewhere); write the number without it";
+  if (is_unsigned && text[0] == '-') return text + " is negative";
+  const char* first = text.data() + (text[0] == '+' ? 1 : 0);
+  const char* last = text.data() + text.size();
+  std::errc error{};
+  if (is_unsigned) {
+    uint64_t value = 0;
+    error = std::from_chars(first, last, value).ec;
+  } else {
+    int64_t value = 0;
+    error = std::from_chars(first, last, value).ec;
+  }
+  if (error == std::errc()) return "";
+  return text + " is outside [" +
+         (is_unsigned ? "0, 18446744073709551615" : "-9223372036854775808, 9223372036854775807") + "]";
+}
+
+}  // namespace
+
+CLI::Validator DecimalNumber(const std::string& type) {
+  return CLI::Validator(
+      [type](std::string& text) -> std::string {
+        if (type != "FLOAT") return WholeNumberProblem(text, type == "UINT");
+        // ParseNumber (from_chars) reads decimal only: "0x10" stops at the x.
+        return ParseNumber(text).ok() ? "" : Excerpt(text) + " is not a finite decimal number";
+      },
+      "");
 }
 
 StatusOr<std::vector<double>> ParseNumberList(const std::string& text, int count, const std::string& what) {

@@ -30,6 +30,12 @@ int ExitCodeFor(const Status& status);
 // Prints "hexcal <command>: <message>" on err and returns ExitCodeFor(status).
 int ReportError(std::ostream& err, const std::string& command, const Status& status);
 
+// The text of every --json object: indented, one line feed after it. Invalid
+// UTF-8 (a Latin-1 file name, a controller's greeting) becomes U+FFFD, as in
+// the session's manifest, instead of nlohmann's type_error.316 and an abort
+// after the work was done (issue 36); control characters come out as \uXXXX.
+std::string JsonText(const nlohmann::json& json);
+
 using workflow::IndicesJson;
 using workflow::PoseJson;
 using workflow::RobotJson;
@@ -41,6 +47,13 @@ constexpr int kMaxThreads = 256;  // --threads of every command; 0 = every core
 // A CLI11 check for an integer option in [min, max]; `why` says what the bound
 // protects, e.g. "each pose is a rendered image".
 CLI::Validator CountRange(long long min, long long max, const std::string& why = "");
+
+// CLI11 reads integers with strtoll in base 0 ("0x10" is 16, "010" is 8, "-1"
+// a huge unsigned, overflow saturates) and floats with strtold (hex floats,
+// "nan", 1e400 as inf). This check takes plain decimal text only, for an
+// option of CLI11 type `type` ("INT", "UINT" or "FLOAT"), and says what is
+// wrong with anything else; AddAllCommands puts it on every numeric option.
+CLI::Validator DecimalNumber(const std::string& type);
 
 // "1.5,2,3,..." -> exactly `count` finite numbers.
 StatusOr<std::vector<double>> ParseNumberList(const std::string& text, int count, const std::string& what);

@@ -18,7 +18,7 @@ int RunDemoCommand(const workflow::DemoRequest& request, bool json, std::ostream
   StatusOr<workflow::DemoResult> result = workflow::RunDemo(request, job.hooks());
   if (!result.ok()) return ReportError(err, "demo", result.status());
   if (json) {
-    out << workflow::ToJson(*result).dump(2) << "\n";
+    out << JsonText(workflow::ToJson(*result));
   } else {
     out << workflow::FormatDemoSummary(*result);
   }

@@ -96,7 +96,7 @@ int RunDetect(const DetectCliOptions& cli, std::ostream& out, std::ostream& err)
     progress.Update(static_cast<int>(i + 1), static_cast<int>(files->size()));
   }
   if (cli.json) {
-    out << nlohmann::json{{"images", images}}.dump(2) << "\n";
+    out << JsonText(nlohmann::json{{"images", images}});
   } else {
     out << files->size() << " images, " << total_tags << " tags";
     if (unreadable) out << ", " << unreadable << " unreadable";

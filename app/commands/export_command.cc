@@ -1,5 +1,5 @@
 // hexcal export --robot R --format linuxcnc-hal|robot --out FILE [--machine-unit mm|inch] [--force]
-//               [--push --running-robot FILE --ini FILE --controller URL [--yes] [--halcmd PATH]]
+//               [--json | --push --running-robot FILE --ini FILE --controller URL [--yes] [--halcmd PATH]]
 //
 // Writes a robot's geometry for a controller: `linuxcnc-hal` is the
 // `setp genhexkins.base.N.*` / `platform.N.*` lines of LinuxCNC's hexapod
@@ -27,7 +27,7 @@ namespace {
 
 struct ExportOptions {
   std::string robot, format = "linuxcnc-hal", out, machine_unit = "mm";
-  bool force = false;
+  bool force = false, json = false;
   bool push = false, yes = false;  // --push: into the running machine, after a confirmation (or --yes)
   std::string halcmd = "halcmd", running_robot, ini, controller;
 };
@@ -88,6 +88,24 @@ int PushToMachine(const workflow::PushRequest& request, const workflow::PushPlan
   return kExitOk;
 }
 
+void PrintWritten(const ExportOptions& options, const Robot& robot, workflow::MachineUnit unit, std::ostream& out) {
+  const bool hal = options.format == "linuxcnc-hal";
+  const std::string name = workflow::CommentText(robot.name);
+  if (options.json) {
+    nlohmann::json json{{"out", options.out},
+                        {"format", options.format},
+                        {"robot", robot.name},
+                        {"length_unit", LengthUnitName(robot.length_unit)}};
+    if (hal) json["machine_unit"] = workflow::MachineUnitName(unit);
+    out << JsonText(json);
+  } else if (hal) {
+    out << "wrote " << options.out << ": genhexkins geometry of robot '" << name << "' in "
+        << workflow::MachineUnitName(unit) << " (robot file in " << LengthUnitName(robot.length_unit) << ")\n";
+  } else {
+    out << "wrote " << options.out << ": robot '" << name << "' (" << LengthUnitName(robot.length_unit) << ")\n";
+  }
+}
+
 // --format linuxcnc-hal: the pins file, then --push. A push is planned and
 // confirmed before --out is written: a refused push writes nothing.
 int ExportLinuxCncHal(const ExportOptions& options, const Robot& robot, workflow::MachineUnit unit, std::ostream& out,
@@ -105,9 +123,7 @@ int ExportLinuxCncHal(const ExportOptions& options, const Robot& robot, workflow
   }
   if (Status s = WriteFileAtomically(options.out, workflow::GenhexkinsHal(robot, unit)); !s.ok())
     return ReportError(err, "export", s);
-  out << "wrote " << options.out << ": genhexkins geometry of robot '" << workflow::CommentText(robot.name)
-      << "' in " << workflow::MachineUnitName(unit) << " (robot file in " << LengthUnitName(robot.length_unit)
-      << ")\n";
+  PrintWritten(options, robot, unit, out);
   return options.push ? PushToMachine(request, *plan, out, err) : kExitOk;
 }
 
@@ -122,6 +138,8 @@ int RunExport(const ExportOptions& options, std::ostream& out, std::ostream& err
                                      "' is not a LinuxCNC linear unit; accepted: mm, inch"));
   if (options.push && options.format != "linuxcnc-hal")
     return ReportError(err, "export", Status::Error("--push needs --format linuxcnc-hal"));
+  // --push asks on the terminal and prints halcmd's answers: not one JSON object.
+  if (options.push && options.json) return ReportError(err, "export", Status::Error("--json cannot go with --push"));
   if (Status s = CheckOutputFree(options.out, options.force); !s.ok()) return ReportError(err, "export", s);
   StatusOr<Robot> robot = LoadRobot(options.robot);
   if (!robot.ok()) return ReportError(err, "export", robot.status());
@@ -131,8 +149,7 @@ int RunExport(const ExportOptions& options, std::ostream& out, std::ostream& err
   }
   // A preset as a file, e.g. the robot a machine runs with.
   if (Status s = WriteFileAtomically(options.out, RobotToYaml(*robot)); !s.ok()) return ReportError(err, "export", s);
-  out << "wrote " << options.out << ": robot '" << workflow::CommentText(robot->name) << "' ("
-      << LengthUnitName(robot->length_unit) << ")\n";
+  PrintWritten(options, *robot, *unit, out);
   return kExitOk;
 }
 
@@ -149,6 +166,7 @@ void AddExportCommand(CLI::App& app, int* exit_code) {
                   "the machine's [TRAJ] LINEAR_UNITS: mm or inch (lengths are converted from the robot's unit)")
       ->capture_default_str();
   sub->add_flag("--force", options->force, "overwrite an existing --out file");
+  sub->add_flag("--json", options->json, "print one JSON object on stdout (not with --push)");
   sub->add_flag("--push", options->push,
                 "also load the robot into the running LinuxCNC (pins, INI joint homes, homing again), after a "
                 "confirmation");

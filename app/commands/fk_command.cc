@@ -84,7 +84,7 @@ int RunFk(const FkOptions& options, std::ostream& out, std::ostream& err) {
     nlohmann::json solutions = nlohmann::json::array();
     for (size_t k = 0; k < poses.size(); ++k) solutions.push_back(SolutionJson(*robot, poses[k], singular[k]));
     summary["solutions"] = solutions;
-    out << summary.dump(2) << "\n";
+    out << JsonText(summary);
   } else {
     if (summary["method"] == "homotopy") {
       out << summary["real_modes"] << " real assembly modes (" << summary["complex_solutions"] << " complex solutions, "

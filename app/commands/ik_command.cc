@@ -49,12 +49,8 @@ int RunIk(const IkOptions& options, std::ostream& out, std::ostream& err) {
     if (Status s = WriteCsv(options.out, header, rows); !s.ok()) return ReportError(err, "ik", s.AsFailure());
   }
   if (options.json) {
-    out << nlohmann::json{{"count", poses->size()},
-                          {"feasible", feasible_count},
-                          {"out", options.out},
-                          {"poses", json_rows}}
-               .dump(2)
-        << "\n";
+    out << JsonText(nlohmann::json{
+        {"count", poses->size()}, {"feasible", feasible_count}, {"out", options.out}, {"poses", json_rows}});
   } else {
     out << poses->size() << " poses, " << feasible_count << " feasible";
     if (!options.out.empty()) out << "; leg readings written to " << options.out;

@@ -34,7 +34,7 @@ int RunIndices(const IndicesOptions& options, std::ostream& out, std::ostream& e
     j["length_unit"] = LengthUnitName(robot->length_unit);
     const SingularValues sigma = SingularValuesOf(ComputeInformation(*robot, poses));
     j["singular_values"] = std::vector<double>(sigma.data(), sigma.data() + kNumParams);
-    out << j.dump(2) << "\n";
+    out << JsonText(j);
     return kExitOk;
   }
   out << "observability of " << poses.size() << " poses (robot " << robot->name << ", lengths in "

@@ -24,7 +24,7 @@ int RunIntrinsics(IntrinsicsCliOptions cli, std::ostream& out, std::ostream& err
   TerminalJob job("intrinsics");
   StatusOr<workflow::IntrinsicsOutcome> outcome = workflow::CalibrateCameraFromFolder(cli.request, job.hooks());
   if (!outcome.ok()) return ReportError(err, "intrinsics", outcome.status());
-  out << (cli.json ? workflow::ToJson(*outcome).dump(2) + "\n" : workflow::FormatIntrinsicsSummary(*outcome));
+  out << (cli.json ? JsonText(workflow::ToJson(*outcome)) : workflow::FormatIntrinsicsSummary(*outcome));
   return kExitOk;
 }
 

@@ -18,7 +18,7 @@ int RunMeasure(const MeasureCliOptions& cli, std::ostream& out, std::ostream& er
   TerminalJob job("measure");
   StatusOr<workflow::MeasureResult> result = workflow::MeasureFolder(cli.request, job.hooks());
   if (!result.ok()) return ReportError(err, "measure", result.status());
-  out << (cli.json ? workflow::ToJson(*result).dump(2) + "\n" : workflow::FormatMeasureSummary(*result));
+  out << (cli.json ? JsonText(workflow::ToJson(*result)) : workflow::FormatMeasureSummary(*result));
   const std::string diagnosis = workflow::DiagnoseMeasurements(*result);
   if (result->ok() == 0) {
     return ReportError(err, "measure", Status::Failed("no image gave a pose" + (diagnosis.empty() ? "" : ": " + diagnosis)));

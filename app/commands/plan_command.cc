@@ -33,7 +33,7 @@ int RunPlanCommand(PlanCliOptions cli, std::ostream& out, std::ostream& err) {
   StatusOr<workflow::PlanOutcome> outcome = workflow::PlanFromRequest(cli.request, job.hooks());
   if (!outcome.ok()) return ReportError(err, "plan", outcome.status());
   if (cli.json) {
-    out << workflow::ToJson(*outcome).dump(2) << "\n";
+    out << JsonText(workflow::ToJson(*outcome));
   } else {
     out << workflow::FormatPlanSummary(*outcome);
   }

@@ -49,11 +49,8 @@ int RunRender(const RenderCliOptions& cli, std::ostream& out, std::ostream& err)
   namespace fs = std::filesystem;
   const fs::path folder(cli.out);
   const std::string truth_path = (folder / "ground_truth.csv").string();
-  std::error_code fs_error;
   if (Status s = CheckOutputFree(truth_path, cli.force); !s.ok()) return ReportError(err, "render", s);
-  fs::create_directories(folder, fs_error);
-  if (fs_error)
-    return ReportError(err, "render", Status::Error(cli.out + ": cannot create the folder: " + fs_error.message()));
+  if (Status s = CreateFolders(cli.out); !s.ok()) return ReportError(err, "render", s);
 
   const Renderer renderer(*camera, *target, cli.render);
   std::vector<RenderedView> views(vectors->size());
@@ -97,13 +94,11 @@ int RunRender(const RenderCliOptions& cli, std::ostream& out, std::ostream& err)
     return ReportError(err, "render", s.AsFailure());
   }
   if (cli.json) {
-    out << nlohmann::json{{"images", views.size()},
-                          {"out", cli.out},
-                          {"seed", cli.render.seed},
-                          {"visible_corners", visible},
-                          {"ground_truth", truth_path}}
-               .dump(2)
-        << "\n";
+    out << JsonText(nlohmann::json{{"images", views.size()},
+                                   {"out", cli.out},
+                                   {"seed", cli.render.seed},
+                                   {"visible_corners", visible},
+                                   {"ground_truth", truth_path}});
   } else {
     out << views.size() << " images written to " << cli.out << " (" << camera->width << " x " << camera->height
         << ", seed " << cli.render.seed << "); ground truth in " << truth_path << " and corners.csv\n";

@@ -1,4 +1,4 @@
-// hexcal report --session DIR --out report.html [--force]
+// hexcal report --session DIR --out report.html [--force] [--json]
 //
 // One self-contained HTML page from a calibrated session (workflow/session_report.h).
 #include <iostream>
@@ -12,9 +12,13 @@
 namespace hexcal::cli {
 namespace {
 
-int RunReport(const workflow::ReportRequest& request, std::ostream& out, std::ostream& err) {
+int RunReport(const workflow::ReportRequest& request, bool json, std::ostream& out, std::ostream& err) {
   StatusOr<std::string> written = workflow::WriteSessionReport(request);
   if (!written.ok()) return ReportError(err, "report", written.status());
+  if (json) {
+    out << JsonText({{"session", request.session}, {"out", *written}});
+    return kExitOk;
+  }
   out << "report of " << request.session << " written to " << *written << "\n";
   // The page was made from this report: it loads.
   StatusOr<workflow::CalibrationReport> report =
@@ -30,8 +34,10 @@ void AddReportCommand(CLI::App& app, int* exit_code) {
   CLI::App* sub = app.add_subcommand("report", "one self-contained HTML page of a calibrated session");
   sub->add_option("--session", request->session, "session folder (after calibrate --session)")->required();
   sub->add_option("--out", request->out, "HTML file to write")->required();
+  auto json = std::make_shared<bool>(false);
   sub->add_flag("--force", request->force, "overwrite --out if it exists");
-  sub->callback([=] { *exit_code = RunReport(*request, std::cout, std::cerr); });
+  sub->add_flag("--json", *json, "print one JSON object on stdout");
+  sub->callback([=] { *exit_code = RunReport(*request, *json, std::cout, std::cerr); });
 }
 
 }  // namespace hexcal::cli

@@ -53,14 +53,14 @@ int RunRobot(const std::string& action, const RobotOptions& options, std::ostrea
   StatusOr<Robot> robot = LoadRobot(options.robot);
   if (!robot.ok()) {
     if (options.json && action == "check") {
-      out << nlohmann::json{{"ok", false}, {"error", robot.status().message()}}.dump(2) << "\n";
+      out << JsonText(nlohmann::json{{"ok", false}, {"error", robot.status().message()}});
     }
     return ReportError(err, "robot " + action, robot.status());
   }
   if (options.json) {
     nlohmann::json j = RobotJson(*robot);
     if (action == "check") j = {{"ok", true}, {"name", robot->name}, {"robot", j}};
-    out << j.dump(2) << "\n";
+    out << JsonText(j);
     return kExitOk;
   }
   if (action == "check") {

@@ -1,7 +1,7 @@
 // hexcal session init --robot R --camera C --target T DIR [--noise-position p]
 //   [--noise-angle a] [--noise-leg l] [--json]
 // hexcal session status DIR [--json]
-// hexcal session record DIR --image NAME --legs L1,...,L6 [--from FILE] [--holdout] [--replace] [--wait]
+// hexcal session record DIR --image NAME --legs L1,...,L6 [--from FILE] [--holdout] [--replace] [--wait] [--json]
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -28,6 +28,19 @@ struct SessionInitOptions {
   std::shared_ptr<OptionEntries> noise = std::make_shared<OptionEntries>();  // --noise-*
 };
 
+// A file the user named from here, as session.yaml keeps it: relative to the
+// session folder, so the session works from any directory (issue 36: it kept
+// the path as typed, and calibrate --session from elsewhere said "no such
+// file"). A preset name, or a name no file has, stays as it is.
+std::string AsSessionPath(const std::string& dir, const std::string& name) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (!fs::exists(fs::symlink_status(name, error))) return name;
+  const fs::path file = fs::absolute(name, error).lexically_normal();
+  const fs::path relative = file.lexically_relative(fs::absolute(dir, error).lexically_normal());
+  return error || relative.empty() ? file.string() : relative.string();
+}
+
 int RunSessionInit(SessionInitOptions cli, std::ostream& out, std::ostream& err) {
   if (Status s = ApplyOptionEntries(NoiseModelOptions(), *cli.noise, &cli.config.noise, "noise"); !s.ok())
     return ReportError(err, "session init", s);
@@ -38,10 +51,12 @@ int RunSessionInit(SessionInitOptions cli, std::ostream& out, std::ostream& err)
     return ReportError(err, "session init", camera.status());
   if (StatusOr<Target> target = LoadTarget(cli.config.target); !target.ok())
     return ReportError(err, "session init", target.status());
+  for (std::string* name : {&cli.config.robot, &cli.config.camera, &cli.config.target})
+    *name = AsSessionPath(cli.dir, *name);
   if (Status s = InitSession(cli.dir, cli.config); !s.ok()) return ReportError(err, "session init", s);
   const SessionPaths paths(cli.dir);
   if (cli.json) {
-    out << nlohmann::json{{"session", cli.dir}, {"config", paths.config}, {"images", paths.images}}.dump(2) << "\n";
+    out << JsonText({{"session", cli.dir}, {"config", paths.config}, {"images", paths.images}});
   } else {
     out << "session " << cli.dir << ": wrote " << paths.config << "; put the images in " << paths.images
         << " and their readings in " << paths.legs << " (image,L1..L6,holdout)\n";
@@ -50,22 +65,31 @@ int RunSessionInit(SessionInitOptions cli, std::ostream& out, std::ostream& err)
 }
 
 struct SessionRecordOptions {
-  std::string dir, image, from;
-  std::vector<double> legs;
-  bool holdout = false, replace = false, wait = false;
+  std::string dir, image, from, legs;  // legs: "L1,...,L6", read by ParseNumberList (decimal only)
+  bool holdout = false, replace = false, wait = false, json = false;
 };
+
+// The image the row is for, when it is already in images/: a FIFO or a
+// dangling link there gets its own message (core/atomic_file.h).
+Status CheckImageInSession(const SessionPaths& paths, const std::string& image) {
+  const std::filesystem::path path = std::filesystem::path(paths.images) / image;
+  std::error_code error;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(path, error)))
+    return Status::Error(paths.images + "/" + Excerpt(image) + ": no such image; put it there first, or give --from");
+  return CheckFileForReading(path.string(), kMaxImageBytes);
+}
 
 // One row of legs.csv, written under the session lock into legs.csv as it is
 // on disk (workflow/session_edits.h): rows others wrote are kept.
 int RunSessionRecord(const SessionRecordOptions& cli, std::ostream& out, std::ostream& err) {
   const SessionPaths paths(cli.dir);
-  std::error_code error;
-  if (cli.from.empty() && !std::filesystem::is_regular_file(std::filesystem::path(paths.images) / cli.image, error))
-    return ReportError(err, "session record", Status::Error(paths.images + "/" + Excerpt(cli.image) +
-                                                            ": no such image; put it there first, or give --from"));
+  StatusOr<std::vector<double>> legs = ParseNumberList(cli.legs, kNumLegs, "--legs");
+  if (!legs.ok()) return ReportError(err, "session record", legs.status());
+  if (cli.from.empty())
+    if (Status s = CheckImageInSession(paths, cli.image); !s.ok()) return ReportError(err, "session record", s);
   LegsRow row;
   row.image = cli.image;
-  for (int i = 0; i < kNumLegs; ++i) row.legs[i] = cli.legs[static_cast<size_t>(i)];
+  for (int i = 0; i < kNumLegs; ++i) row.legs[i] = (*legs)[static_cast<size_t>(i)];
   row.holdout = cli.holdout;
   const workflow::EditOptions options{cli.replace, cli.wait ? LockWait::kForever : LockWait::kNo};
   const workflow::EditOutcome done = cli.from.empty()
@@ -74,7 +98,10 @@ int RunSessionRecord(const SessionRecordOptions& cli, std::ostream& out, std::os
   if (!done.status.ok()) return ReportError(err, "session record", done.status);
   if (done.conflict)
     return ReportError(err, "session record", Status::Error(done.conflict_text + "; use --replace to replace it"));
-  out << "session " << cli.dir << ": " << cli.image << " recorded in " << paths.legs << "\n";
+  if (cli.json)
+    out << JsonText({{"session", cli.dir}, {"image", cli.image}, {"legs", paths.legs}, {"holdout", cli.holdout}});
+  else
+    out << "session " << cli.dir << ": " << cli.image << " recorded in " << paths.legs << "\n";
   return kExitOk;
 }
 
@@ -83,15 +110,13 @@ void AddSessionRecord(CLI::App* session, int* exit_code) {
   CLI::App* record = session->add_subcommand("record", "write the leg readings of one image into DIR/legs.csv");
   record->add_option("dir", options->dir, "session folder")->required()->check(CLI::ExistingDirectory);
   record->add_option("--image", options->image, "image file name in DIR/images/")->required();
-  record->add_option("--legs", options->legs, "the six readings L1,...,L6, robot unit")
-      ->required()
-      ->delimiter(',')
-      ->expected(kNumLegs);
+  record->add_option("--legs", options->legs, "the six readings L1,...,L6, robot unit")->required();
   record->add_option("--from", options->from,
                      "copy this image file into DIR/images/ as --image, with its row, in one locked step");
   record->add_flag("--holdout", options->holdout, "keep the image out of the calibration, to validate it");
   record->add_flag("--replace", options->replace, "replace the image's readings if legs.csv has them already");
   record->add_flag("--wait", options->wait, "when another program writes the session, wait for it (else exit 3)");
+  record->add_flag("--json", options->json, "print one JSON object on stdout");
   record->callback([=] { *exit_code = RunSessionRecord(*options, std::cout, std::cerr); });
 }
 
@@ -107,8 +132,7 @@ void AddSessionStatus(CLI::App* session, int* exit_code) {
       *exit_code = ReportError(std::cerr, "session status", read.status());
       return;
     }
-    std::cout << (*json ? workflow::ToJson(*read).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n"
-                        : workflow::FormatSessionStatus(*read));
+    std::cout << (*json ? JsonText(workflow::ToJson(*read)) : workflow::FormatSessionStatus(*read));
     *exit_code = kExitOk;
   });
 }

@@ -25,7 +25,7 @@ int RunSimulate(const SimulateCliOptions& cli, std::ostream& out, std::ostream& 
   TerminalJob job;
   StatusOr<workflow::SimulateOutcome> outcome = workflow::RunSimulationStudy(request, job.hooks());
   if (!outcome.ok()) return ReportError(err, "simulate", outcome.status());
-  out << (cli.json ? workflow::ToJson(*outcome).dump(2) + "\n" : workflow::FormatSimulateSummary(*outcome));
+  out << (cli.json ? JsonText(workflow::ToJson(*outcome)) : workflow::FormatSimulateSummary(*outcome));
   return kExitOk;
 }
 

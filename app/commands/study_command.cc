@@ -31,7 +31,7 @@ int RunStudy(const StudyCliOptions& cli, std::ostream& out, std::ostream& err) {
   TerminalJob job;
   StatusOr<workflow::StudyOutcome> outcome = workflow::RunStudy(request, job.hooks());
   if (!outcome.ok()) return ReportError(err, "study", outcome.status());
-  out << (cli.json ? workflow::ToJson(*outcome).dump(2) + "\n" : workflow::FormatStudySummary(*outcome));
+  out << (cli.json ? JsonText(workflow::ToJson(*outcome)) : workflow::FormatStudySummary(*outcome));
   return kExitOk;
 }
 

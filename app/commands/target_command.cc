@@ -66,7 +66,7 @@ int RunTargetCheck(const TargetOptions& options, std::ostream& out, std::ostream
   StatusOr<Target> target = LoadTarget(options.target);
   if (!target.ok()) return ReportError(err, "target check", target.status());
   if (options.json) {
-    out << nlohmann::json{{"ok", true}, {"target", TargetJson(*target)}}.dump(2) << "\n";
+    out << JsonText(nlohmann::json{{"ok", true}, {"target", TargetJson(*target)}});
   } else {
     out << "ok: " << DescribeTarget(*target) << "\n";
   }
@@ -82,7 +82,7 @@ int RunTargetPrint(const TargetOptions& options, std::ostream& out, std::ostream
   }
   const std::vector<std::string> caption = TargetPrintCaption(*target);
   if (options.json) {
-    out << nlohmann::json{{"out", options.out}, {"dpi", options.dpi}, {"target", TargetJson(*target)}}.dump(2) << "\n";
+    out << JsonText(nlohmann::json{{"out", options.out}, {"dpi", options.dpi}, {"target", TargetJson(*target)}});
   } else {
     out << "target written to " << options.out << ": " << DescribeTarget(*target) << "\n" << caption[1] << "\n";
   }
@@ -108,7 +108,7 @@ void AddTargetCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   print_sub->add_option("--out", print->out, "output file, .pdf or .png")->required();
   print_sub->add_option("--dpi", print->dpi, "PNG resolution, dots per inch")
-      ->check(CLI::Range(30.0, 2400.0))
+      ->check(CLI::Range(kMinPrintDpi, kMaxPrintDpi))
       ->capture_default_str();
   print_sub->add_flag("--force", print->force, "overwrite --out if it exists");
   print_sub->add_flag("--json", print->json, "print one JSON object on stdout");

@@ -18,7 +18,7 @@ int RunValidate(workflow::ValidateRequest request, const OptionEntries& noise, b
     return ReportError(err, "validate", s);
   StatusOr<workflow::ValidateResult> result = workflow::ValidateMeasurements(request);
   if (!result.ok()) return ReportError(err, "validate", result.status());
-  out << (json ? workflow::ToJson(*result).dump(2) + "\n" : workflow::FormatValidateSummary(*result));
+  out << (json ? JsonText(workflow::ToJson(*result)) : workflow::FormatValidateSummary(*result));
   return kExitOk;
 }
 

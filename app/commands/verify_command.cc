@@ -40,7 +40,7 @@ int RunVerifyCommand(const VerifyCliOptions& cli, std::ostream& out, std::ostrea
   std::signal(SIGINT, SIG_DFL);
   if (!result.ok()) return ReportError(err, "verify", result.status());
   if (cli.json) {
-    out << workflow::ToJson(*result).dump(2) << "\n";
+    out << JsonText(workflow::ToJson(*result));
   } else {
     out << workflow::FormatVerifySummary(*result);
   }

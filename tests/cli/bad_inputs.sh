@@ -52,6 +52,9 @@ settings_nan.yaml | 2 | noise.position: expected a finite number | plan ROBOT --
 settings_negative_noise.yaml | 2 | noise.position: must be at least 0 | plan ROBOT --settings @IN@ --out @OUT@
 settings_list_key.yaml | 2 | top level: a key that is not a name | plan ROBOT --settings @IN@ --out @OUT@
 settings_noise_list.yaml | 2 | noise: expected a mapping \{position, angle_deg, leg\} | plan ROBOT --settings @IN@ --out @OUT@
+settings_duplicate_key.yaml | 2 | noise.position: duplicate key \(lines 2 and 4\) | plan ROBOT --settings @IN@ --out @OUT@
+settings_seed_rounded.yaml | 2 | planner.seed: must be at most 9007199254740992, got 9007199254740993 | plan ROBOT --settings @IN@ --out @OUT@
+settings_integer_exponent.yaml | 2 | planner.tabu: expected a whole number in decimal digits, got '1e1' | plan ROBOT --settings @IN@ --out @OUT@
 settings_camera_short_vector.yaml | 2 | measurement constraints need all three | plan ROBOT --settings @IN@ --out @OUT@
 target_empty.yaml | 2 | top level: expected a mapping | target print --target @IN@ --out @OUT@.pdf
 target_syntax_error.yaml | 2 | YAML syntax error at line 3 | target print --target @IN@ --out @OUT@.pdf
@@ -60,6 +63,9 @@ target_nan_size.yaml | 2 | tag_size: '.nan' is not a finite number | target prin
 target_huge_grid.yaml | 2 | exceed the 587 tags of tag36h11 | target print --target @IN@ --out @OUT@.pdf
 target_unknown_family.yaml | 2 | family: 'tag99h99' is not supported | target print --target @IN@ --out @OUT@.pdf
 target_wrong_unit.yaml | 2 | length_unit: expected mm, cm or m | target print --target @IN@ --out @OUT@.pdf
+target_tag_size_huge.yaml | 2 | tag_size: 1e\+300 mm is outside \[0.1, 10000\] mm | target print --target @IN@ --out @OUT@.pdf
+target_tag_size_tiny.yaml | 2 | tag_size: 1e-300 mm is outside \[0.1, 10000\] mm | target print --target @IN@ --out @OUT@.pdf
+target_duplicate_key.yaml | 2 | tag_size: duplicate key \(lines 5 and 7\) | target print --target @IN@ --out @OUT@.pdf
 target_nan_size.yaml | 2 | tag_size: '.nan' is not a finite number | measure --camera sim-4.2mm-1024x768 --target @IN@ --images IMAGE --out @OUT@
 camera_empty.yaml | 2 | empty file | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_garbage.yaml | 2 | expected a camera mapping | measure --camera @IN@ --images IMAGE --out @OUT@
@@ -70,6 +76,12 @@ camera_ros_missing_k.yaml | 2 | camera_matrix.data: expected a list of numbers |
 camera_huge_matrix.yaml | 2 | camera_matrix: 2147483647 x 8 is not a camera matrix | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_opencv_loop.yaml | 2 | image_width: missing | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_parser_exception.yaml | 2 | YAML syntax error at line 9 | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_duplicate_key.yaml | 2 | camera_matrix.rows: duplicate key \(lines 6 and 8\) | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_huge_resolution.yaml | 2 | image size 1000000 x 1000000: over the 150-megapixel limit | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_camchain_cam1_only.yaml | 2 | cam1: a Kalibr camchain without cam0; hexcal reads cam0 | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_focal_huge.yaml | 2 | fx = 1e\+300 px is outside \[0.01, 10000000\] px | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_principal_point_far.yaml | 2 | cx = -5000 px is outside \[-1024, 2048\] px | measure --camera @IN@ --images IMAGE --out @OUT@
+camera_k1_huge.yaml | 2 | distortion coefficient 1 = 1e\+300 is outside \[-1000000, 1000000\] | measure --camera @IN@ --images IMAGE --out @OUT@
 camera_zero_size.yaml | 2 | image size 0 x 768: must be positive | render --camera @IN@ --poses POSES --out @OUT@
 image_empty.png | 1 | empty file | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
 image_header_only.png | 1 | truncated PNG \(no IEND chunk\) | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable

@@ -95,6 +95,8 @@ count_bounds)
   expect 2 "--threads: 9999 is outside" measure --camera c.yaml --images . --out m.csv --threads 9999
   expect 2 "--min-views: 0 is outside" intrinsics --images . --out cam.yaml --min-views 0
   expect 2 "--dpi: Value 1e6 not in range" target print --out t.png --dpi 1e6
+  expect 0 "--dpi FLOAT:FLOAT in \[50 - 1200\]" target print --help  # the range it enforces (issue 36)
+  expect 2 "--dpi: Value 40 not in range" target print --out t.png --dpi 40
   mkdir in
   awk 'BEGIN { print "x,y,z,q1,q2,q3"; for (i = 0; i < 5001; ++i) print "0,0,50,0,0,0" }' >in/many_poses.csv
   expect 2 "many_poses.csv: 5001 poses, more than the 5000 images render writes at once" render \
@@ -118,6 +120,18 @@ no_content_leak)
     fi
   done
   expect 2 "found 'root:x:0:0:root:/root:/b\.\.\.'" robot check ./passwd
+  # A shadow file parses as a mapping whose one key is its first line: that
+  # key was echoed whole as the "unknown key" (issue 36).
+  printf 'root:$6$SECRETsalt$SECREThash:19000:0:99999:7:::\n' >shadow
+  expect 2 "robot file './shadow': the key on line 1: unknown key" robot show ./shadow
+  expect 2 "the key on line 1: unknown key" target check --target shadow
+  expect 2 "plan settings 'shadow': the key on line 1: unknown key" plan $R --settings shadow --out p.csv
+  for args in "robot show ./shadow" "target check --target shadow" "plan $R --settings shadow --out p.csv"; do
+    # shellcheck disable=SC2086
+    if timeout 20 "$hexcal" $args 2>&1 | grep -q SECRET; then
+      echo "FAIL: the error quotes the file: hexcal $args"; failures=$((failures + 1))
+    fi
+  done
   ;;
 exit_codes)
   # The same fault gives the same code in every command: bad input 2, a failed
@@ -139,6 +153,172 @@ exit_codes)
   expect 2 "--count: 0 is outside" candidates $R --count 0 --out c.csv
   expect 2 "at least 7 poses" plan $R --poses 6 --out p.csv
   expect 2 "--poses must be at least 7" simulate $R --poses 5
+  # A folder that cannot be made is bad input everywhere (issue 36: verify
+  # gave 1, session init and render 2); a full or read-only disk would be 1.
+  : >afile
+  expect 2 "afile/s: cannot create the folder: Not a directory" session init afile/s $R \
+    --camera sim-4.2mm-1024x768 --target aprilgrid-6x6
+  expect 2 "afile/r: cannot create the folder: Not a directory" render --poses "$data/poses/vision_views.csv" \
+    --out afile/r
+  "$hexcal" demo --poses 8 --holdout 0 --out demo >/dev/null 2>&1 || { echo "FAIL: demo"; failures=$((failures + 1)); }
+  expect 2 "afile/x: cannot create the folder: Not a directory" verify --session demo --controller sim --camera sim \
+    --poses "$POSES" --keep-images afile/x
+  ;;
+special_files_everywhere)
+  # Issue 36: a FIFO, a device, a folder and a dangling link at every place a
+  # file is read. Each gets its own message (core/atomic_file.h
+  # OpenFileForReading), exit 2, never a hang. One line a place:
+  #   FILE (made, @F@ in ARGS) | kinds it does not apply to | ARGS
+  places=$(cat <<'EOF'
+r.yaml | | robot check ./@F@
+t.yaml | | target check --target @F@
+c.yaml | | measure --camera @F@ --images IMAGE --out m.csv
+p.yaml | | plan ROBOT --settings @F@ --out p.csv
+poses.csv | | ik ROBOT --poses @F@
+m.csv | | calibrate ROBOT --measurements @F@ --out cal.yaml
+s1/session.yaml | | session status s1
+s2/plan.csv | | acquire --session s2 --controller sim --camera sim
+s3/legs.csv | | calibrate --session s3
+img.png | folder | detect --images @F@
+img.png | folder | measure --camera sim-4.2mm-1024x768 --images @F@ --out m.csv
+from.png | | session record s4 --image a.png LEGS --from @F@
+s5/images/a.png | | session record s5 --image a.png LEGS
+v.png | | acquire --session s6 --controller sim --camera file:@F@
+EOF
+)
+  for kind in fifo device folder dangling; do
+    case $kind in
+      fifo) message="not a regular file \(a FIFO\)" ;;
+      device) message="not a regular file \(a character device\)" ;;
+      folder) message="is a directory, not a file" ;;
+      dangling) message="a symbolic link to a missing file" ;;
+    esac
+    while IFS='|' read -r name skip args; do
+      name=$(echo $name)
+      case " $skip " in *" $kind "*) continue ;; esac
+      mkdir "$kind" && cd "$kind" || exit 1
+      for s in s1 s2 s3 s4 s5 s6; do
+        case "$args" in *" $s"*) ;; *) continue ;; esac
+        "$hexcal" session init $s $R --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 >/dev/null || exit 1
+      done
+      [ -d s6 ] && cp "$POSES" s6/plan.csv
+      rm -f "$name"
+      mkdir -p "$(dirname "$name")"
+      case $kind in
+        fifo) mkfifo "$name" ;;
+        device) ln -s /dev/zero "$name" ;;
+        folder) mkdir "$name" ;;
+        dangling) ln -s "$work/gone" "$name" ;;
+      esac
+      args=${args//@F@/$name} args=${args//ROBOT/$R} args=${args//LEGS/--legs 1,1,1,1,1,1}
+      # shellcheck disable=SC2086
+      expect 2 "$(basename "$name").*$message" ${args//IMAGE/$data/bad_inputs/image_garbage.png}
+      cd "$work" && rm -rf "$kind"
+    done <<<"$places"
+  done
+  ;;
+exit_table)
+  # Issue 36: one table of exit codes for every command (docs/cli.md), each
+  # error after "hexcal COMMAND: ", CLI11's own refusals too; every command
+  # takes --json but sim-camera (a server until Ctrl-C; README.md says so).
+  # One line a command: COMMAND | a command line with a bad input (exit 2).
+  "$hexcal" session init s $R --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 >/dev/null || exit 1
+  commands=$(cat <<'EOF'
+robot check | robot check ./missing.yaml
+robot show | robot show ./missing.yaml
+ik | ik --robot missing.yaml --poses POSES
+fk | fk ROBOT --legs 1,2
+candidates | candidates ROBOT --count 0 --out c.csv
+indices | indices ROBOT --poses missing.csv
+demo | demo --poses 5 --out d
+plan | plan ROBOT --poses 6 --out p.csv
+calibrate | calibrate ROBOT --measurements missing.csv --out cal.yaml
+validate | validate ROBOT --measurements missing.csv
+simulate | simulate ROBOT --runs 0
+study | study --session missing
+target check | target check --target missing.yaml
+target print | target print --target missing.yaml --out t.pdf
+detect | detect --images missing
+render | render --camera missing.yaml --poses POSES --out r
+intrinsics | intrinsics --images missing --out cam.yaml
+measure | measure --camera missing.yaml --images missing --out m.csv
+session init | session init s2 --robot missing.yaml --camera sim-4.2mm-1024x768 --target aprilgrid-6x6
+session status | session status missing
+session record | session record s --image a.png --legs 0x10,1,1,1,1,1
+report | report --session missing --out r.html
+acquire | acquire --session missing --controller sim --camera sim
+verify | verify --session missing --controller sim --camera sim --poses POSES
+sim-camera | sim-camera --session missing --machine-robot missing.yaml
+export | export --robot missing.yaml --out x.hal
+camera show | camera show missing.yaml
+camera convert | camera convert missing.yaml --to ros --out x.yaml
+EOF
+)
+  while IFS='|' read -r command args; do
+    command=$(echo $command) args=${args//ROBOT/$R}
+    # shellcheck disable=SC2086
+    expect 2 "^hexcal $command: " ${args//POSES/$POSES}
+    # shellcheck disable=SC2086
+    expect 2 "^hexcal $command: " $command --no-such-option
+    # shellcheck disable=SC2086
+    if [ "$command" != sim-camera ] && ! "$hexcal" $command --help | grep -q -- "--json"; then
+      echo "FAIL: hexcal $command takes no --json"; failures=$((failures + 1))
+    fi
+  done <<<"$commands"
+  leftovers=$(ls -A | grep -v "^s$")
+  [ -n "$leftovers" ] && { echo "FAIL: files left behind: $leftovers"; failures=$((failures + 1)); }
+  ;;
+text_and_numbers)
+  # Issue 36: JSON output never throws on invalid UTF-8 (it is replaced by
+  # U+FFFD, as in the session's manifest); a control character in an image
+  # name is refused, legs.csv cannot hold it; numbers are decimal and exact.
+  latin1=$(printf 't\351.png')
+  output=$(timeout 20 "$hexcal" target print --out "$latin1" --json 2>&1)
+  rc=$?
+  if [ "$rc" -ne 0 ] || ! python3 -c 'import json,sys; o=json.loads(sys.stdin.read()); assert o["out"] == "t\ufffd.png", o["out"]' <<<"$output"; then
+    echo "FAIL: exit $rc, not one JSON object with out t\ufffd.png: $output"; failures=$((failures + 1))
+  else
+    echo "ok: hexcal target print --out t\\351.png --json"
+  fi
+  # An escape sequence in a robot's name is shown escaped, never sent raw.
+  "$hexcal" export $R --format robot --out red.yaml >/dev/null || exit 1
+  sed -i 's/^name: .*/name: "bad\\e[31mred"/' red.yaml
+  expect 0 "ok: robot 'bad\\\\x1b\[31mred' is valid" robot check ./red.yaml
+  if timeout 20 "$hexcal" robot show ./red.yaml 2>&1 | grep -q "$(printf '\033')"; then
+    echo "FAIL: robot show sends the escape sequence raw"; failures=$((failures + 1))
+  fi
+  "$hexcal" session init s $R --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 >/dev/null || exit 1
+  IMG=$data/bad_inputs/image_no_target.png
+  expect 2 "a control character in an image name; legs.csv cannot hold it" session record s --image "$(printf 'a\nb.png')" \
+    --legs 1,1,1,1,1,1 --from "$IMG"
+  expect 2 "'a\\\\x1b\[2Jb.png': a control character" session record s --image "$(printf 'a\033[2Jb.png')" \
+    --legs 1,1,1,1,1,1 --from "$IMG"
+  [ -e s/legs.csv ] && { echo "FAIL: legs.csv written"; failures=$((failures + 1)); }
+  [ -n "$(ls -A s/images)" ] && { echo "FAIL: an image was copied: $(ls -A s/images)"; failures=$((failures + 1)); }
+  # session.yaml with a key twice: the first was read, the second ignored.
+  cp -r s dup && cp "$data/../../fuzz/seeds/session_duplicate_key.yaml" dup/session.yaml
+  expect 2 "dup/session.yaml: frames.base_from_camera: duplicate key \(lines 6 and 7\)" session status dup
+  expect 2 "--legs: '0x10' is not a finite number" session record s --image a.png --legs 0x10,1,1,1,1,1 --from "$IMG"
+  expect 2 "--seed: must be at most 9007199254740992, got 9007199254740993" study --session s --seed 9007199254740993
+  expect 2 "--seed: '0x10' is not a whole number in decimal digits" candidates $R --count 5 --seed 0x10 --out c.csv
+  expect 2 "--seed: '010': a leading 0" candidates $R --count 5 --seed 010 --out c.csv
+  expect 2 "--seed: -1 is negative" acquire --session s --controller sim --camera sim --seed -1
+  expect 2 "--seed: 18446744073709551616 is outside \[0, 18446744073709551615\]" acquire --session s \
+    --controller sim --camera sim --seed 18446744073709551616
+  expect 2 "--settle: '0x1p3' is not a finite decimal number" acquire --session s --controller sim --camera sim \
+    --settle 0x1p3
+  [ -e s/legs.csv ] && { echo "FAIL: legs.csv written"; failures=$((failures + 1)); }
+  [ -e c.csv ] && { echo "FAIL: c.csv written"; failures=$((failures + 1)); }
+  ;;
+session_paths)
+  # Issue 36: session init keeps a file's path relative to the session folder,
+  # so the session works from any directory (it kept the path as typed).
+  mkdir -p here/runs && "$hexcal" export $R --format robot --out here/robot.yaml >/dev/null || exit 1
+  (cd here && "$hexcal" session init runs/s --robot robot.yaml --camera sim-4.2mm-1024x768 \
+    --target aprilgrid-6x6 >/dev/null) || { echo "FAIL: session init"; failures=$((failures + 1)); }
+  grep -qx "robot: ../../robot.yaml" here/runs/s/session.yaml || {
+    echo "FAIL: session.yaml: $(grep robot: here/runs/s/session.yaml)"; failures=$((failures + 1)); }
+  expect 0 "robot +done" session status here/runs/s
   ;;
 *)
   echo "unknown case $case"; exit 2
