@@ -1,6 +1,7 @@
 #include "app/commands/command_table.h"
 
 #include "app/commands/cli_common.h"
+#include "app/commands/help_examples.h"
 
 namespace hexcal::cli {
 
@@ -30,6 +31,7 @@ constexpr CommandEntry kCommands[] = {
 
 void AddAllCommands(CLI::App& app, int* exit_code) {
   for (const CommandEntry& entry : kCommands) entry.add(app, exit_code);
+  AddHelpExamples(app);
   app.require_subcommand(1);
 }
 
