@@ -82,6 +82,45 @@ TEST(IntrinsicsTest, CompareHalvesSeesADifferentCamera) {
   EXPECT_NEAR(apart.max_z, 3 / std::hypot(0.4, 0.4), 1e-9);
 }
 
+// The judgement against its stated thresholds: good within 0.5 px RMS and 3 σ;
+// poor beyond either, with what to do; without σ (fisheye) on pixels alone.
+TEST(IntrinsicsTest, CrossValidationIsJudgedAgainstItsThresholds) {
+  const Camera truth = SimulatedCamera();
+  Camera shifted = truth;
+  const std::vector<double> sigma = {0.5, 0.5, 0.4, 0.4};
+  shifted.cx += 0.4;  // 0.4 px everywhere, 0.71 σ
+  CrossValidation near = CompareHalves(truth, truth, sigma, shifted, sigma);
+  near.views_a = near.views_b = 8;
+  EXPECT_TRUE(CrossValidationGood(near));
+  EXPECT_THAT(DescribeCrossValidation(near), ::testing::EndsWith(": good (within 0.5 px RMS and 3 sigma)"));
+  shifted.cx = truth.cx + 1;  // 1 px everywhere, 1.8 σ
+  const CrossValidation far = CompareHalves(truth, truth, sigma, shifted, sigma);
+  EXPECT_FALSE(CrossValidationGood(far));
+  EXPECT_THAT(DescribeCrossValidation(far), ::testing::HasSubstr(": poor (good is within 0.5 px RMS and 3 sigma); "
+                                                                 "the views do not determine the camera"));
+  const std::vector<double> tight = {0.05, 0.05, 0.04, 0.04};
+  shifted.cx = truth.cx + 0.4;  // 0.4 px, but 7 σ of these σ
+  const CrossValidation overconfident = CompareHalves(truth, truth, tight, shifted, tight);
+  EXPECT_FALSE(CrossValidationGood(overconfident));
+  EXPECT_THAT(DescribeCrossValidation(overconfident), ::testing::HasSubstr("the sigma are too small for the data"));
+  const CrossValidation fisheye = CompareHalves(truth, truth, {}, shifted, {});
+  EXPECT_TRUE(CrossValidationGood(fisheye));
+  EXPECT_THAT(DescribeCrossValidation(fisheye), ::testing::EndsWith(": good (within 0.5 px RMS)"));
+  EXPECT_FALSE(CrossValidationGood(CrossValidation{}));  // not done: no judgement of good
+}
+
+// A used view far worse than the median is named; none when the views agree.
+TEST(IntrinsicsTest, AViewFarWorseThanTheMedianIsNamed) {
+  IntrinsicsResult result;
+  for (int i = 0; i < 8; ++i) result.views.push_back({"view_" + std::to_string(i) + ".png", 36, true, "", 0.05});
+  EXPECT_EQ(DescribeWorstView(result, 3), "");
+  result.views[5].rms_px = 0.7;
+  EXPECT_THAT(DescribeWorstView(result, 3),
+              ::testing::StartsWith("view_5.png fits 14x worse than the median view (RMS 0.7 px, median 0.05 px)"));
+  result.views[5].used = false;  // left out already: not named again
+  EXPECT_EQ(DescribeWorstView(result, 3), "");
+}
+
 // A 1024 x 768 fisheye (70° off axis in the image corners), calibrated with
 // cv::fisheye from rendered views (docs/vision.md#camera-models).
 TEST(IntrinsicsTest, FisheyeFromRenderedViewsRecoversTheFocalLengthsAndCentre) {
