@@ -4,6 +4,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <opencv2/imgproc.hpp>
+
 #include "tests/test_support.h"
 #include "vision/renderer.h"
 
@@ -107,6 +109,36 @@ TEST(IntrinsicsTest, CrossValidationIsJudgedAgainstItsThresholds) {
   EXPECT_TRUE(CrossValidationGood(fisheye));
   EXPECT_THAT(DescribeCrossValidation(fisheye), ::testing::EndsWith(": good (within 0.5 px RMS)"));
   EXPECT_FALSE(CrossValidationGood(CrossValidation{}));  // not done: no judgement of good
+}
+
+// A view far noisier than the rest (a dim, high-gain frame: its corners
+// scatter ten times more, without bias) is under the 0.5 px floor of an
+// outlier: left out as over ten times the median, kept with keep_outliers and
+// then named.
+TEST(IntrinsicsTest, AViewTenTimesWorseThanTheMedianIsLeftOutUnlessKept) {
+  const Camera truth = SimulatedCamera();
+  const Target target = DefaultTarget();
+  std::vector<cv::Mat> images = RenderViews(truth, target, 12, 8);
+  cv::Mat noise(images[3].size(), CV_16S);
+  cv::randn(noise, 0, 40);
+  cv::Mat noisy;
+  images[3].convertTo(noisy, CV_16S);
+  noisy += noise;
+  noisy.convertTo(images[3], CV_8U);
+  IntrinsicsOptions options;
+  StatusOr<IntrinsicsResult> result = CalibrateIntrinsicsFromImages(images, Names(images.size()), target, options);
+  ASSERT_TRUE(result.ok()) << result.status().message();
+  EXPECT_FALSE(result->views[3].used);
+  EXPECT_THAT(result->views[3].reason, ::testing::StartsWith("outlier: RMS "));
+  EXPECT_EQ(result->used_views, 11);
+  options.keep_outliers = true;
+  StatusOr<IntrinsicsResult> kept = CalibrateIntrinsicsFromImages(images, Names(images.size()), target, options);
+  ASSERT_TRUE(kept.ok()) << kept.status().message();
+  EXPECT_EQ(kept->used_views, 12);
+  const double rms = kept->views[3].rms_px;
+  std::cout << DescribeWorstView(*kept, options.outlier_factor) << "\n";
+  EXPECT_LT(rms, options.outlier_min_rms_px);  // the floor alone would have kept it
+  EXPECT_THAT(DescribeWorstView(*kept, options.outlier_factor), ::testing::StartsWith("view3 fits "));
 }
 
 // A used view far worse than the median is named; none when the views agree.
