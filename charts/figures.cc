@@ -105,7 +105,7 @@ std::vector<double> IndexValues(const ObservabilityIndices& indices) {
 ChartSpec MeasurementRmsChart(const std::vector<double>& rms_px) {
   ChartSpec spec;
   spec.title = "Measurement quality";
-  spec.x = LinearAxis("image (measurements.csv order)");
+  spec.x = LinearAxis("image (camera_poses.csv order)");
   spec.y = LinearAxis("reprojection RMS (px)");
   std::vector<ChartPoint> points;
   for (size_t r = 0; r < rms_px.size(); ++r) points.push_back({static_cast<double>(r + 1), rms_px[r]});

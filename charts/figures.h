@@ -62,7 +62,7 @@ std::vector<double> IndexValues(const ObservabilityIndices& indices);
 
 // --- Measurement, calibration, validation ---
 
-// The reprojection RMS (px) of each image in measurements.csv order.
+// The reprojection RMS (px) of each image in camera_poses.csv order.
 ChartSpec MeasurementRmsChart(const std::vector<double>& rms_px);
 // The implicit residual IK(pose) - reading (paper eq. 4, as a length) of
 // every leg at every calibration pose, with the nominal and the calibrated

@@ -3,6 +3,7 @@
 #include <array>
 
 #include "core/csv.h"
+#include "core/table_kind.h"
 
 namespace hexcal {
 namespace {
@@ -14,7 +15,9 @@ StatusOr<std::vector<Measurement>> FromTable(const CsvTable& table) {
   std::array<int, kNumColumns> columns;
   for (int k = 0; k < kNumColumns; ++k) {
     StatusOr<int> column = ColumnIndex(table, names[k]);
-    if (!column.ok()) return column.status();
+    if (!column.ok()) {
+      return Status::Error(column.status().message() + TableKindHint(table.header, TableKind::kRobotMeasurements));
+    }
     columns[k] = *column;
   }
   if (table.rows.empty()) {

@@ -45,4 +45,24 @@ ObservabilityIndices ComputeIndices(const Robot& robot, const std::vector<Pose>&
   return ComputeIndices(ComputeInformation(robot, poses));
 }
 
+std::string IndexMeaning(int k) {
+  switch (k) {
+    case 1:
+      return "(sigma_1 ... sigma_42)^(1/42) / sqrt(poses): the volume of the parameters' uncertainty (D-optimality)";
+    case 2:
+      return "sigma_min / sigma_max: the conditioning of the identification Jacobian";
+    case 3:
+      return "sigma_min: the worst-identified direction of the parameters";
+    case 4:
+      return "sigma_min^2 / sigma_max: how much the noise is amplified";
+  }
+  return "";
+}
+
+std::string IndexUnit(int k, const std::string& length_unit) {
+  // J_P's rows are [-2v, 2R^T v, -2(L + l)] (eq. 5): lengths, so its singular
+  // values are lengths; O2 is their ratio.
+  return k == 2 ? "" : length_unit;
+}
+
 }  // namespace hexcal

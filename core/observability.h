@@ -8,6 +8,8 @@
 // the six 7x7 blocks' singular values, σ = √eig(M_i). Lengths in the robot unit.
 #pragma once
 
+#include <string>
+
 #include "core/identification.h"
 
 namespace hexcal {
@@ -24,5 +26,12 @@ struct ObservabilityIndices {
 SingularValues SingularValuesOf(const InformationBlocks& info);
 ObservabilityIndices ComputeIndices(const InformationBlocks& info);
 ObservabilityIndices ComputeIndices(const Robot& robot, const std::vector<Pose>& poses);
+
+// For printed output: what O<k> (k = 1..4) is and its unit. Each is larger
+// for a better pose set.
+//   IndexMeaning(3) = "sigma_min: the worst-identified direction of the parameters"
+//   IndexUnit(3, "cm") = "cm"; IndexUnit(2, "cm") = "" (a ratio)
+std::string IndexMeaning(int k);
+std::string IndexUnit(int k, const std::string& length_unit);
 
 }  // namespace hexcal

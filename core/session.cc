@@ -38,7 +38,7 @@ SessionPaths::SessionPaths(std::string folder)
       plan((fs::path(dir) / "plan.csv").string()),
       images((fs::path(dir) / "images").string()),
       legs((fs::path(dir) / "legs.csv").string()),
-      measurements((fs::path(dir) / "measurements.csv").string()),
+      camera_poses((fs::path(dir) / "camera_poses.csv").string()),
       results((fs::path(dir) / "results").string()) {}
 
 namespace {

@@ -5,7 +5,7 @@
 //   DIR/images/            the images, as recorded (never written by hexcal)
 //   DIR/legs.csv           image,L1..L6[,holdout]: the readings at each image
 //                          (recorded; never written by hexcal)
-//   DIR/measurements.csv   camera_from_target per image (hexcal measure columns)
+//   DIR/camera_poses.csv   camera_from_target per image (hexcal measure columns)
 //   DIR/results/           calibrated robot, report
 //
 // Every write is atomic (core/atomic_file.h). A step replaces only its own
@@ -44,7 +44,7 @@ struct SessionConfig {
 
 struct SessionPaths {
   explicit SessionPaths(std::string dir);
-  std::string dir, config, plan, images, legs, measurements, results;
+  std::string dir, config, plan, images, legs, camera_poses, results;
 };
 
 // Creates DIR (may exist, but must not hold a session.yaml), images/, results/

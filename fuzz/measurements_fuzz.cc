@@ -1,5 +1,5 @@
 // libFuzzer target: measurement CSV. ParseMeasurements (core/measurements.h,
-// `hexcal calibrate --measurements`), and a session's measurements.csv of
+// `hexcal calibrate --measurements`), and a session's camera_poses.csv of
 // camera_from_target rows with their covariance, by ParseImageMeasurementsCsv
 // (vision/measure.h), the parser `hexcal calibrate --session` uses.
 // docs/hardening.md says how to run it.
@@ -20,7 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
   }
   const hexcal::StatusOr<std::vector<hexcal::ImageMeasurementRecord>> records =
-      hexcal::ParseImageMeasurementsCsv(text, "measurements.csv");
+      hexcal::ParseImageMeasurementsCsv(text, "camera_poses.csv");
   if (!records.ok()) return 0;
   for (const hexcal::ImageMeasurementRecord& record : *records) {
     if (!record.ok) continue;

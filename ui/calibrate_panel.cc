@@ -149,7 +149,7 @@ void CalibratePanel::Run() {
   cancel_->setEnabled(true);
   SetOutcome("calibrating…");
   job_->Start("calibrating", [=](const JobContext& context) -> GuiContinuation {
-    // The session calibration measures the images not yet in measurements.csv
+    // The session calibration measures the images not yet in camera_poses.csv
     // (keeping the rows already there), as `hexcal calibrate --session` does.
     context.progress(0, 0);  // a busy bar until the first report
     StatusOr<workflow::CalibrationReport> report =

@@ -32,10 +32,10 @@ namespace {
 
 QString Message(const Status& status) { return QString::fromStdString(status.message()); }
 
-// measurements.csv by file name: "ok 0.21 px" or the status.
+// camera_poses.csv by file name: "ok 0.21 px" or the status.
 std::map<QString, QString> MeasuredStatus(const SessionPaths& paths) {
   std::map<QString, QString> status;
-  StatusOr<CsvTable> table = ReadCsv(paths.measurements);
+  StatusOr<CsvTable> table = ReadCsv(paths.camera_poses);
   if (!table.ok()) return status;
   for (const auto& row : table->rows)
     if (row.size() >= 16)
@@ -88,7 +88,7 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
              [this] { LoadImageFolder(); });
   add_button("Import leg readings…", "Use a CSV image,L1..L6[,holdout] as the session's legs.csv",
              [this] { ImportLegs(); });
-  add_button("Measure all images", "Detect the target in every image and write measurements.csv",
+  add_button("Measure all images", "Detect the target in every image and write camera_poses.csv",
              [this] { MeasureAll(); });
   add_button("Intrinsics from folder…", "Calibrate the camera from target images; the session then uses camera.yaml",
              [this] { IntrinsicsFromFolder(); });
@@ -119,7 +119,7 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
 void MeasurePanel::ArrangeWidgets(QLayout* buttons) {
   auto* left = new QWidget;
   auto* left_layout = new QVBoxLayout(left);
-  left_layout->addWidget(new QLabel("Images (status from measurements.csv)"));
+  left_layout->addWidget(new QLabel("Images (status from camera_poses.csv)"));
   left_layout->addWidget(images_, 1);
   left_layout->addLayout(buttons);
   left_layout->addWidget(progress_);
@@ -250,7 +250,7 @@ void MeasurePanel::MeasureAll() {
       for (const auto& [image, pose] : measured->poses) usable += pose.ok;
     return [this, written, usable, total = files.size()] {
       if (written.cancelled()) {
-        status_->setText("measuring cancelled: measurements.csv is unchanged.");
+        status_->setText("measuring cancelled: camera_poses.csv is unchanged.");
       } else if (!written.ok()) {
         status_->setText("measuring failed.");
         ShowError(this, "Measure", Message(written));

@@ -1,7 +1,7 @@
 // Measure step: the session's images (load a folder; the Acquire step
 // captures them pose by pose), the leg readings (enter in the table or
 // import a CSV), each image with its detected tags and reprojected board, its
-// status and RMS; the batch measurement into measurements.csv; camera
+// status and RMS; the batch measurement into camera_poses.csv; camera
 // intrinsics from a folder of target images, with their report.
 #pragma once
 

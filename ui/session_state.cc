@@ -55,7 +55,7 @@ void SessionState::Watch() {
   for (const std::string& path : {paths.dir, paths.images, paths.results})
     if (QFileInfo(QString::fromStdString(path)).isDir()) watcher_.addPath(QString::fromStdString(path));
   // Files written in place (`>>`, an editor) change no folder entry.
-  for (const std::string& path : {paths.legs, paths.plan, paths.config, paths.measurements})
+  for (const std::string& path : {paths.legs, paths.plan, paths.config, paths.camera_poses})
     if (QFileInfo(QString::fromStdString(path)).isFile()) watcher_.addPath(QString::fromStdString(path));
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <ctime>
 #include <functional>
+#include <limits>
 #include <locale>
 #include <memory>
 #include <opencv2/calib3d.hpp>
@@ -195,7 +196,13 @@ StatusOr<Calibration> CalibrateWithOutliers(std::vector<CalibrationView>& views,
     std::vector<double> sorted = calibration->view_rms;
     std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
     const double median = sorted[sorted.size() / 2];
-    const double limit = std::max(options.outlier_factor * median, options.outlier_min_rms_px);
+    // The floor spares sharp views a few hundredths of a pixel over a tiny
+    // median; a view ten times worse than most is bad whatever its RMS.
+    const double limit =
+        options.keep_outliers
+            ? std::numeric_limits<double>::infinity()
+            : std::min(std::max(options.outlier_factor * median, options.outlier_min_rms_px),
+                       options.far_outlier_factor * median);
     const auto worst = std::max_element(calibration->view_rms.begin(), calibration->view_rms.end());
     for (size_t u = 0; u < index.size(); ++u) views[index[u]].rms_px = calibration->view_rms[u];
     if (*worst <= limit || static_cast<int>(used.size()) <= options.min_views) return calibration;
@@ -315,6 +322,7 @@ bool IntrinsicsOptions::IsValid(std::string* error) const {
   if (min_views < 3) return fail("min_views: must be at least 3");
   if (!(outlier_factor > 1)) return fail("outlier_factor: must be greater than 1");
   if (!(outlier_min_rms_px >= 0)) return fail("outlier_min_rms_px: must be >= 0");
+  if (!(far_outlier_factor >= outlier_factor)) return fail("far_outlier_factor: must be at least outlier_factor");
   if (refinement_passes < 0 || refinement_passes > 5) return fail("refinement_passes: must be in 0..5");
   if (!(max_rms_px > 0)) return fail("max_rms_px: must be > 0");
   return true;

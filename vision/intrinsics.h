@@ -40,7 +40,9 @@ struct IntrinsicsOptions {
   int min_tags_per_view = 4;                 // fewer: the view is not used
   int min_views = 8;                         // fewer usable views: error
   double outlier_factor = 3.0;               // a view's RMS over this × the median RMS ...
-  double outlier_min_rms_px = 0.5;           // ... and over this is an outlier
+  double outlier_min_rms_px = 0.5;           // ... and over this is an outlier,
+  double far_outlier_factor = 10.0;          // ... as is one over this × the median, whatever its RMS
+  bool keep_outliers = false;                // leave no view out as an outlier (they are still named)
   int refinement_passes = 1;                 // re-detections with the estimated distortion
   CameraModel model = CameraModel::kRadTan;  // distortion model to estimate (camera.h)
   double max_rms_px = 1.0;                   // a larger final RMS is an error (vision/intrinsics_diagnosis.h)

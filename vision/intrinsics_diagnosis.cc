@@ -77,13 +77,48 @@ CrossValidation CompareHalves(const Camera& full, const Camera& a, const std::ve
   return cross;
 }
 
+bool CrossValidationGood(const CrossValidation& cross) {
+  return cross.done && cross.rms_px <= kCrossHalvesGoodPx && cross.max_z <= kCrossSigmaGood;
+}
+
 std::string DescribeCrossValidation(const CrossValidation& cross) {
   if (!cross.done) return "cross-validation: too few views to split";
   std::string text = "cross-validation (" + std::to_string(cross.views_a) + " + " + std::to_string(cross.views_b) +
                      " views): the halves differ by " + Px(cross.rms_px) + " RMS (" + Px(cross.max_px) +
                      " max) over the image";
   if (!cross.z.empty()) text += ", fx fy cx cy at most " + FormatSignificant(cross.max_z) + " sigma apart";
+  const std::string threshold = "within " + Px(kCrossHalvesGoodPx) + " RMS" +
+                                (cross.z.empty() ? "" : " and " + FormatSignificant(kCrossSigmaGood) + " sigma");
+  if (CrossValidationGood(cross)) return text + ": good (" + threshold + ")";
+  text += ": poor (good is " + threshold + ")";
+  if (cross.rms_px > kCrossHalvesGoodPx) {
+    text +=
+        "; the views do not determine the camera: add views that fill the image's corners and edges, at "
+        "several distances and tilts";
+  }
+  if (cross.max_z > kCrossSigmaGood) {
+    text +=
+        "; the sigma are too small for the data: look for motion blur, a bent board, or a lens the model "
+        "does not fit (--model)";
+  }
   return text;
+}
+
+std::string DescribeWorstView(const IntrinsicsResult& result, double factor) {
+  std::vector<double> view_rms;
+  const CalibrationView* worst = nullptr;
+  for (const CalibrationView& view : result.views) {
+    if (!view.used) continue;
+    view_rms.push_back(view.rms_px);
+    if (worst == nullptr || view.rms_px > worst->rms_px) worst = &view;
+  }
+  if (view_rms.size() < 3) return "";
+  std::nth_element(view_rms.begin(), view_rms.begin() + view_rms.size() / 2, view_rms.end());
+  const double median = view_rms[view_rms.size() / 2];
+  if (!(worst->rms_px > factor * median)) return "";
+  return worst->file + " fits " + FormatSignificant(worst->rms_px / median) + "x worse than the median view (RMS " +
+         Px(worst->rms_px) + ", median " + Px(median) +
+         "): check it (motion blur, a bent board, another board in view) and leave it out if it is bad";
 }
 
 }  // namespace hexcal

@@ -32,7 +32,28 @@ Status CheckIntrinsicsFit(const IntrinsicsResult& result, const Target& target, 
 CrossValidation CompareHalves(const Camera& full, const Camera& a, const std::vector<double>& sigma_a,
                               const Camera& b, const std::vector<double>& sigma_b);
 
-// "halves differ by 0.012 px RMS (0.03 px max) over the image, 0.8 sigma at most"
+// The cross-validation's judgement (docs/vision.md, "Cross-validation"):
+// good when the halves' projections of the image's rays differ by at most
+// kCrossHalvesGoodPx RMS and, where the model gives σ, fx fy cx cy by at most
+// kCrossSigmaGood of their combined σ; poor otherwise.
+// 0.5 px: ten times the corner scatter of a sharp view (0.02–0.05 px), and
+// half the --max-rms a whole fit may reach; a camera that moves a projection
+// by more with the choice of views is not determined by them.
+// 3 σ: four independent |N(0, 1)| reach it together about 1 % of the time;
+// beyond it the σ are too small for the data.
+constexpr double kCrossHalvesGoodPx = 0.5;
+constexpr double kCrossSigmaGood = 3;
+bool CrossValidationGood(const CrossValidation& cross);
+
+// "cross-validation (16 + 16 views): the halves differ by 0.012 px RMS (0.03
+// px max) over the image, fx fy cx cy at most 0.8 sigma apart: good (within
+// 0.5 px RMS and 3 sigma)", or ": poor (good is within ...); " and what to do.
 std::string DescribeCrossValidation(const CrossValidation& cross);
+
+// A used view whose RMS is over `factor` times the median view's, which the
+// outlier rule kept (it also asks for IntrinsicsOptions::outlier_min_rms_px):
+// "view_0012.png fits 14x worse than the median view (RMS 0.67 px, median
+// 0.048 px): check it (motion blur, a bent board)"; empty when none is.
+std::string DescribeWorstView(const IntrinsicsResult& result, double factor);
 
 }  // namespace hexcal

@@ -4,6 +4,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <opencv2/imgproc.hpp>
+
 #include "tests/test_support.h"
 #include "vision/renderer.h"
 
@@ -80,6 +82,75 @@ TEST(IntrinsicsTest, CompareHalvesSeesADifferentCamera) {
   const CrossValidation apart = CompareHalves(truth, truth, sigma, shifted, sigma);
   EXPECT_NEAR(apart.rms_px, 3, 1e-9);
   EXPECT_NEAR(apart.max_z, 3 / std::hypot(0.4, 0.4), 1e-9);
+}
+
+// The judgement against its stated thresholds: good within 0.5 px RMS and 3 σ;
+// poor beyond either, with what to do; without σ (fisheye) on pixels alone.
+TEST(IntrinsicsTest, CrossValidationIsJudgedAgainstItsThresholds) {
+  const Camera truth = SimulatedCamera();
+  Camera shifted = truth;
+  const std::vector<double> sigma = {0.5, 0.5, 0.4, 0.4};
+  shifted.cx += 0.4;  // 0.4 px everywhere, 0.71 σ
+  CrossValidation near = CompareHalves(truth, truth, sigma, shifted, sigma);
+  near.views_a = near.views_b = 8;
+  EXPECT_TRUE(CrossValidationGood(near));
+  EXPECT_THAT(DescribeCrossValidation(near), ::testing::EndsWith(": good (within 0.5 px RMS and 3 sigma)"));
+  shifted.cx = truth.cx + 1;  // 1 px everywhere, 1.8 σ
+  const CrossValidation far = CompareHalves(truth, truth, sigma, shifted, sigma);
+  EXPECT_FALSE(CrossValidationGood(far));
+  EXPECT_THAT(DescribeCrossValidation(far), ::testing::HasSubstr(": poor (good is within 0.5 px RMS and 3 sigma); "
+                                                                 "the views do not determine the camera"));
+  const std::vector<double> tight = {0.05, 0.05, 0.04, 0.04};
+  shifted.cx = truth.cx + 0.4;  // 0.4 px, but 7 σ of these σ
+  const CrossValidation overconfident = CompareHalves(truth, truth, tight, shifted, tight);
+  EXPECT_FALSE(CrossValidationGood(overconfident));
+  EXPECT_THAT(DescribeCrossValidation(overconfident), ::testing::HasSubstr("the sigma are too small for the data"));
+  const CrossValidation fisheye = CompareHalves(truth, truth, {}, shifted, {});
+  EXPECT_TRUE(CrossValidationGood(fisheye));
+  EXPECT_THAT(DescribeCrossValidation(fisheye), ::testing::EndsWith(": good (within 0.5 px RMS)"));
+  EXPECT_FALSE(CrossValidationGood(CrossValidation{}));  // not done: no judgement of good
+}
+
+// A view far noisier than the rest (a dim, high-gain frame: its corners
+// scatter ten times more, without bias) is under the 0.5 px floor of an
+// outlier: left out as over ten times the median, kept with keep_outliers and
+// then named.
+TEST(IntrinsicsTest, AViewTenTimesWorseThanTheMedianIsLeftOutUnlessKept) {
+  const Camera truth = SimulatedCamera();
+  const Target target = DefaultTarget();
+  std::vector<cv::Mat> images = RenderViews(truth, target, 12, 8);
+  cv::Mat noise(images[3].size(), CV_16S);
+  cv::randn(noise, 0, 40);
+  cv::Mat noisy;
+  images[3].convertTo(noisy, CV_16S);
+  noisy += noise;
+  noisy.convertTo(images[3], CV_8U);
+  IntrinsicsOptions options;
+  StatusOr<IntrinsicsResult> result = CalibrateIntrinsicsFromImages(images, Names(images.size()), target, options);
+  ASSERT_TRUE(result.ok()) << result.status().message();
+  EXPECT_FALSE(result->views[3].used);
+  EXPECT_THAT(result->views[3].reason, ::testing::StartsWith("outlier: RMS "));
+  EXPECT_EQ(result->used_views, 11);
+  options.keep_outliers = true;
+  StatusOr<IntrinsicsResult> kept = CalibrateIntrinsicsFromImages(images, Names(images.size()), target, options);
+  ASSERT_TRUE(kept.ok()) << kept.status().message();
+  EXPECT_EQ(kept->used_views, 12);
+  const double rms = kept->views[3].rms_px;
+  std::cout << DescribeWorstView(*kept, options.outlier_factor) << "\n";
+  EXPECT_LT(rms, options.outlier_min_rms_px);  // the floor alone would have kept it
+  EXPECT_THAT(DescribeWorstView(*kept, options.outlier_factor), ::testing::StartsWith("view3 fits "));
+}
+
+// A used view far worse than the median is named; none when the views agree.
+TEST(IntrinsicsTest, AViewFarWorseThanTheMedianIsNamed) {
+  IntrinsicsResult result;
+  for (int i = 0; i < 8; ++i) result.views.push_back({"view_" + std::to_string(i) + ".png", 36, true, "", 0.05});
+  EXPECT_EQ(DescribeWorstView(result, 3), "");
+  result.views[5].rms_px = 0.7;
+  EXPECT_THAT(DescribeWorstView(result, 3),
+              ::testing::StartsWith("view_5.png fits 14x worse than the median view (RMS 0.7 px, median 0.05 px)"));
+  result.views[5].used = false;  // left out already: not named again
+  EXPECT_EQ(DescribeWorstView(result, 3), "");
 }
 
 // A 1024 x 768 fisheye (70° off axis in the image corners), calibrated with

@@ -8,7 +8,7 @@
 //
 //   StatusOr<std::vector<std::string>> files = ListImages("shots/");
 //   StatusOr<std::vector<ImageMeasurement>> rows = MeasureImages(*files, camera, target, MeasureOptions{});
-//   Status written = WriteImageMeasurementsCsv("measurements.csv", *rows);
+//   Status written = WriteImageMeasurementsCsv("camera_poses.csv", *rows);
 #pragma once
 
 #include <array>
@@ -58,7 +58,7 @@ StatusOr<std::vector<ImageMeasurement>> MeasureImages(const std::vector<std::str
                                                       const Target& target, const MeasureOptions& options,
                                                       const JobHooks& hooks = {});
 
-// The columns of measurements.csv (docs/conventions.md): the pose, its σ,
+// The columns of camera_poses.csv (docs/conventions.md): the pose, its σ,
 // rms_px, tags, status, message, then the 15 correlations corr_A_B of the
 // pose vector (A before B in x, y, z, q1, q2, q3), empty without a pose.
 std::vector<std::string> ImageMeasurementColumns();
@@ -67,7 +67,7 @@ std::vector<std::string> ImageMeasurementColumns();
 std::optional<Matrix6d> CovarianceFromSigmasAndCorrelations(const std::array<double, 6>& sigma,
                                                             const std::array<double, 15>& correlation);
 std::vector<std::string> ImageMeasurementRow(const ImageMeasurement& measurement);
-// One row of a measurements.csv read back: the pose and its covariance when
+// One row of a camera_poses.csv read back: the pose and its covariance when
 // the status is ok, and the cells as written (to write the table again).
 struct ImageMeasurementRecord {
   std::string file;

@@ -55,7 +55,7 @@ TEST(MeasureTest, EveryFileGetsAStatusAndTheBatchCarriesOn) {
   EXPECT_LT(((*rows)[0].pose.camera_from_target.position - poses[0].position).norm(), 0.1);
   EXPECT_LT(((*rows)[1].pose.camera_from_target.position - poses[1].position).norm(), 0.2);
 
-  const std::string out = dir.File("measurements.csv");
+  const std::string out = dir.File("camera_poses.csv");
   ASSERT_TRUE(WriteImageMeasurementsCsv(out, *rows).ok());
   StatusOr<CsvTable> table = ReadCsv(out);
   ASSERT_TRUE(table.ok()) << table.status().message();

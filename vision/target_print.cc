@@ -268,26 +268,30 @@ std::vector<std::string> TargetPrintCaption(const Target& target) {
           "Target frame: " + OriginCaption(target) + ", x to the right, y up, z out of the page."};
 }
 
-std::string TargetPdf(const Target& target) {
+PrintSheet TargetPdfSheet(const Target& target) {
   const auto [content_w, content_h] = ContentSize(target);
-  // The smallest ISO A size holding the content and the printer margin.
+  const double need_w = content_w + 2 * kPageMarginMm, need_h = content_h + 2 * kPageMarginMm;
   constexpr std::array<std::array<double, 2>, 5> kSizes = {
       {{210, 297}, {297, 420}, {420, 594}, {594, 841}, {841, 1189}}};
-  double page_w = content_w + 2 * kPageMarginMm, page_h = content_h + 2 * kPageMarginMm;  // larger than A0
-  for (const auto& [short_side, long_side] : kSizes) {
-    const double need_w = content_w + 2 * kPageMarginMm, need_h = content_h + 2 * kPageMarginMm;
-    if (need_w <= short_side && need_h <= long_side) {
-      page_w = short_side, page_h = long_side;
-      break;
-    }
-    if (need_w <= long_side && need_h <= short_side) {
-      page_w = long_side, page_h = short_side;
-      break;
-    }
+  for (size_t a = 0; a < kSizes.size(); ++a) {
+    const auto [short_side, long_side] = kSizes[a];
+    const std::string name = "A" + std::to_string(4 - static_cast<int>(a));
+    if (need_w <= short_side && need_h <= long_side) return {short_side, long_side, name + " portrait"};
+    if (need_w <= long_side && need_h <= short_side) return {long_side, short_side, name + " landscape"};
   }
+  return {need_w, need_h, "custom"};
+}
+
+std::string DescribeSheet(const PrintSheet& sheet) {
+  return sheet.name + " (" + Fixed(sheet.width_mm, 0) + " x " + Fixed(sheet.height_mm, 0) + " mm)";
+}
+
+std::string TargetPdf(const Target& target) {
+  const auto [content_w, content_h] = ContentSize(target);
+  const PrintSheet sheet = TargetPdfSheet(target);
   PdfCanvas canvas;
-  DrawTarget(target, (page_w - content_w) / 2, (page_h - content_h) / 2, canvas);
-  return AssemblePdf(page_w, page_h, canvas.content());
+  DrawTarget(target, (sheet.width_mm - content_w) / 2, (sheet.height_mm - content_h) / 2, canvas);
+  return AssemblePdf(sheet.width_mm, sheet.height_mm, canvas.content());
 }
 
 StatusOr<std::string> TargetPng(const Target& target, double dpi) {

@@ -18,7 +18,17 @@
 
 namespace hexcal {
 
-// PDF file bytes.
+// The PDF's sheet: the smallest ISO A size holding the target and the
+// printer margin, turned to fit; wider than A0, the content's own size.
+struct PrintSheet {
+  double width_mm = 0, height_mm = 0;
+  std::string name;  // "A3 portrait", or "custom" beyond A0
+};
+PrintSheet TargetPdfSheet(const Target& target);
+// "A3 portrait (297 x 420 mm)": what to load into the printer.
+std::string DescribeSheet(const PrintSheet& sheet);
+
+// PDF file bytes, on TargetPdfSheet(target).
 std::string TargetPdf(const Target& target);
 // PNG file bytes; error if dpi is outside [50, 1200] or the image would
 // exceed 30000 px on a side.

@@ -21,6 +21,7 @@ TEST(TargetPrintTest, PdfIsWellFormedAndOnA3) {
   const std::string pdf = TargetPdf(DefaultTarget());
   ASSERT_EQ(pdf.rfind("%PDF-1.6\n", 0), 0u);
   EXPECT_THAT(pdf, HasSubstr("/MediaBox [0 0 841.890 1190.551]"));  // A3 portrait, 297 x 420 mm
+  EXPECT_EQ(DescribeSheet(TargetPdfSheet(DefaultTarget())), "A3 portrait (297 x 420 mm)");  // what `print` says
   EXPECT_THAT(pdf, HasSubstr("/PrintScaling /None"));
   EXPECT_THAT(pdf, HasSubstr("(hexcal target: 6 x 6 tag36h11, tag 30 mm"));
   // Every xref offset points at its object, and startxref at the table.

@@ -250,7 +250,10 @@ StatusOr<DemoResult> RunDemo(const DemoRequest& request, const JobHooks& hooks) 
   result.plan_indices = plan->final;
   result.plan_iterations = plan->iterations;
 
-  steps.Step("record the session in " + request.out + ": hidden true robot (every parameter ±0.5 mm), " +
+  // One length unit per line: the robot's, as the readings' noise beside it.
+  const double perturb = scene_options.perturb_m / MetresPerUnit(nominal->length_unit);
+  steps.Step("record the session in " + request.out + ": hidden true robot (every parameter ±" +
+             FormatSignificant(perturb) + " " + result.length_unit + "), " +
              std::to_string(request.poses + request.holdout) + " rendered images (" + std::to_string(request.holdout) +
              " held out), leg readings ±" + FormatNumber(scene.noise.leg) + " " + result.length_unit);
   if (Status s = RecordDemo(request, scene, model, *plan, robot_name, hooks); !s.ok()) return s;

@@ -34,7 +34,7 @@ StatusOr<IntrinsicsOutcome> CalibrateCameraFromFiles(const std::vector<std::stri
     if (!png.ok()) return png.status().AsFailure();
     if (Status s = WriteFileAtomically(coverage, *png); !s.ok()) return s.AsFailure();
   }
-  return IntrinsicsOutcome{std::move(*result), out, coverage, static_cast<int>(files.size())};
+  return IntrinsicsOutcome{std::move(*result), out, coverage, static_cast<int>(files.size()), options.outlier_factor};
 }
 
 StatusOr<IntrinsicsOutcome> CalibrateCameraFromFolder(const IntrinsicsRequest& request, const JobHooks& hooks) {
@@ -72,7 +72,10 @@ nlohmann::json ToJson(const IntrinsicsOutcome& outcome) {
     cross_json = {{"views", {cross.views_a, cross.views_b}},
                   {"rms_px", cross.rms_px},
                   {"max_px", cross.max_px},
-                  {"max_sigma", cross.z.empty() ? nlohmann::json() : nlohmann::json(cross.max_z)}};
+                  {"max_sigma", cross.z.empty() ? nlohmann::json() : nlohmann::json(cross.max_z)},
+                  {"verdict", CrossValidationGood(cross) ? "good" : "poor"},
+                  {"good_max_rms_px", kCrossHalvesGoodPx},
+                  {"good_max_sigma", kCrossSigmaGood}};
   }
   return {{"out", outcome.out},           {"model", CameraModelName(c.model)},
           {"coverage", outcome.coverage}, {"coverage_fraction", CoverageFraction(result)},
@@ -104,6 +107,9 @@ std::string FormatIntrinsicsSummary(const IntrinsicsOutcome& outcome) {
   if (result.std_dev.empty()) out << "  (no standard deviations: cv::fisheye::calibrate does not estimate them)\n";
   for (const CalibrationView& view : result.views) {
     if (!view.used) out << "  not used: " << view.file << ": " << view.reason << "\n";
+  }
+  if (const std::string worst = DescribeWorstView(result, outcome.outlier_factor); !worst.empty()) {
+    out << "  " << worst << "\n";
   }
   out << "  " << DescribeCrossValidation(result.cross_validation) << "\n";
   out << "written to " << outcome.out;

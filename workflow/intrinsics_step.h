@@ -28,6 +28,7 @@ struct IntrinsicsOutcome {
   IntrinsicsResult result;
   std::string out, coverage;  // files written (coverage empty when not written)
   int images = 0;             // images given
+  double outlier_factor = 3;  // the options' outlier_factor: a used view this many times the median is named
 };
 
 StatusOr<IntrinsicsOutcome> CalibrateCameraFromFolder(const IntrinsicsRequest& request, const JobHooks& hooks = {});

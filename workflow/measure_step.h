@@ -2,7 +2,7 @@
 // every image, with its σ and status, written to a measurements CSV
 // (vision/measure.h has the per-image work; docs/vision.md).
 //
-//   MeasureRequest request{"camera.yaml", "aprilgrid-6x6", "images/", "measurements.csv"};
+//   MeasureRequest request{"camera.yaml", "aprilgrid-6x6", "images/", "camera_poses.csv"};
 //   StatusOr<MeasureResult> result = MeasureFolder(request, hooks);
 #pragma once
 

@@ -125,7 +125,7 @@ void AddSources(OptionTable<PlanSetup>* t) {
                       "random seed of the candidates, the initial set and the randomisation",
                       [](PlanSetup& s) -> uint64_t& { return s.planner.seed; }));
   t->push_back(Number("threads", "Scoring threads", OptionType::kInteger, "threads", 0, 1024,
-                      "threads that score candidates; 0: every core",
+                      "threads that score candidates; 0 = every core",
                       [](PlanSetup& s) -> int& { return s.planner.threads; }));
   t->push_back(Number("certificate", "Optimality certificates", OptionType::kFlag, "", 0, 1,
                       "compute the D- and S-optimal design bounds on the candidates and the plan's efficiencies",

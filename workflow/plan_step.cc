@@ -138,7 +138,12 @@ std::string FormatPrediction(const PlanOutcome& outcome) {
   if (outcome.finite_primary) {
     out << "  " << (outcome.setup.planner.continuous ? "continuous search" : "continuous polish")
         << " from the finite plan: " << CriterionName(outcome.setup.planner.criterion) << " " << *outcome.finite_primary
-        << " -> " << outcome.plan.final_primary << "\n";
+        << " -> " << outcome.plan.final_primary;
+    // S = 42 / Σσ: the reciprocal of the mean predicted parameter σ (core/sigma_criterion.h).
+    if (outcome.setup.planner.criterion == Criterion::kS) {
+      out << " (S = 1 / the mean predicted parameter sigma, in 1/" << outcome.length_unit << ")";
+    }
+    out << "\n";
   }
   if (!p.valid) return out.str() + "  predicted error: none (a leg's parameters are not identified)\n";
   out << "  predicted with noise ±" << outcome.noise.position << unit << ", ±" << outcome.noise.angle_deg << " deg, ±"
@@ -221,6 +226,9 @@ std::string FormatPlanSummary(const PlanOutcome& outcome) {
   out << (s["continuous"].get<bool>() ? " (continuous)" : "") << "\n";
   line("initial", s["initial"]);
   line("final", s["final"]);
+  const std::string unit = s["length_unit"].get<std::string>();
+  out << "  (O1..O4: paper section 2, larger is better; O1, O3, O4 in " << unit
+      << ", O2 a ratio; hexcal indices says what each measures)\n";
   out.unsetf(std::ios::floatfield);
   out << "  " << s["iterations"] << " iterations (best at " << s["best_iteration"] << ")"
       << (s["converged"].get<bool>() ? ", converged" : "") << ", " << std::setprecision(3) << s["seconds"].get<double>()

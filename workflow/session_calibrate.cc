@@ -76,7 +76,7 @@ StatusOr<SessionInputs> LoadSessionInputs(const std::string& dir) {
 }
 
 // The camera pose of every image with readings, measured where
-// measurements.csv has no valid row (session_measure.h).
+// camera_poses.csv has no valid row (session_measure.h).
 StatusOr<CameraPoses> MeasureSession(const std::string& dir, const SessionInputs& in, const ContentHashes& inputs,
                                      const JobHooks& hooks, std::map<std::string, BoardObservation>* observations) {
   std::vector<std::string> images;
@@ -425,7 +425,7 @@ StatusOr<OpenSession> OpenAndMeasure(const std::string& dir, LockWait wait, cons
                                      bool keep_observations = false) {
   // "DIR/session.yaml: no such file" says more than the lock could.
   if (StatusOr<SessionConfig> config = LoadSessionConfig(dir); !config.ok()) return config.status();
-  StatusOr<SessionLock> lock = SessionLock::Acquire(dir, wait);  // measuring writes measurements.csv
+  StatusOr<SessionLock> lock = SessionLock::Acquire(dir, wait);  // measuring writes camera_poses.csv
   if (!lock.ok()) return lock.status();
   StatusOr<ContentHashes> hashes = HashSessionInputs(dir);
   if (!hashes.ok()) return hashes.status();

@@ -1,6 +1,6 @@
 // The session steps behind `hexcal calibrate --session DIR` and the GUI's
 // Calibrate step (docs/session.md): measure the images not yet in
-// measurements.csv, register the camera and target frames with the nominal
+// camera_poses.csv, register the camera and target frames with the nominal
 // robot, calibrate on the rows not held out, validate on the held-out rows,
 // publish results/ whole (calibrated.yaml, calibration_measurements.csv,
 // report.json, manifest.json: session_results.h) and copy the registered
@@ -70,7 +70,7 @@ CalibrationOptions SessionCalibrationOptions(const NoiseModel& noise, const Outl
 // does); the frames are registered with the nominal robot on all of them
 // (CalibrateFromCameraPoses, the gauge of docs/session.md); each board pose
 // is mapped to base_from_platform = X·B·Y⁻¹ with its covariance. Writes
-// nothing but measurements.csv and its record.
+// nothing but camera_poses.csv and its record.
 struct MeasuredSession {
   Robot nominal;
   NoiseModel noise;                       // session.yaml's

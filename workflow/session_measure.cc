@@ -18,7 +18,7 @@
 namespace hexcal::workflow {
 namespace {
 
-// The status column of a row of measurements.csv as written.
+// The status column of a row of camera_poses.csv as written.
 std::string StatusCell(const ImageMeasurementRecord& row) {
   static const std::vector<std::string> columns = ImageMeasurementColumns();
   static const size_t column =
@@ -28,15 +28,15 @@ std::string StatusCell(const ImageMeasurementRecord& row) {
 
 namespace fs = std::filesystem;
 
-// What measurements.csv was measured with: SHA-256 of the camera file, the
-// target file and each image (measurements.json), and of the table itself as
+// What camera_poses.csv was measured with: SHA-256 of the camera file, the
+// target file and each image (camera_poses.json), and of the table itself as
 // hexcal wrote it, so that a table edited by hand is measured again.
 struct MeasuredWith {
   std::string camera, target, table;
   std::map<std::string, std::string> images;
 };
 
-std::string RecordPath(const std::string& dir) { return (fs::path(dir) / "measurements.json").string(); }
+std::string RecordPath(const std::string& dir) { return (fs::path(dir) / "camera_poses.json").string(); }
 
 // The record on disk; an empty one when it is missing or does not read (then
 // every row is measured again, which is always safe).
@@ -107,10 +107,10 @@ MeasureState PlanMeasuring(const MeasuredWith& record, const MeasuredWith& now, 
     state.reason = "measuring every image again, as asked";
   } else if (!rows.empty() && (record.camera.empty() || record.target.empty() || record.table.empty())) {
     state.to_measure = images;
-    state.reason = "measurements.csv has no record of the camera and target it was measured with (measurements.json)";
+    state.reason = "camera_poses.csv has no record of the camera and target it was measured with (camera_poses.json)";
   } else if (!rows.empty() && record.table != now.table) {
     state.to_measure = images;
-    state.reason = "measurements.csv was changed by another program since hexcal wrote it";
+    state.reason = "camera_poses.csv was changed by another program since hexcal wrote it";
   } else if (!rows.empty() && (record.camera != now.camera || record.target != now.target)) {
     state.to_measure = images;
     state.reason = std::string("the ") + (record.camera != now.camera ? "camera" : "target") +
@@ -132,7 +132,7 @@ MeasureState PlanMeasuring(const MeasuredWith& record, const MeasuredWith& now, 
 
 namespace {
 
-// measurements.csv as it is: the poses by image and every row's cells, and
+// camera_poses.csv as it is: the poses by image and every row's cells, and
 // the SHA-256 of its bytes in `hash` ("" when there is no table).
 StatusOr<std::vector<ImageMeasurementRecord>> ReadMeasurementRows(const std::string& path, std::string* hash) {
   hash->clear();
@@ -155,7 +155,7 @@ std::set<std::string> RowImages(const std::vector<ImageMeasurementRecord>& rows)
 StatusOr<MeasureState> SessionMeasureState(const std::string& dir, const std::vector<std::string>& images,
                                            const ContentHashes* known_hashes) {
   std::string table;
-  StatusOr<std::vector<ImageMeasurementRecord>> rows = ReadMeasurementRows(SessionPaths(dir).measurements, &table);
+  StatusOr<std::vector<ImageMeasurementRecord>> rows = ReadMeasurementRows(SessionPaths(dir).camera_poses, &table);
   if (!rows.ok()) return rows.status();
   StatusOr<MeasuredWith> now = CurrentInputs(dir, images, known_hashes);
   if (!now.ok()) return now.status();
@@ -168,7 +168,7 @@ StatusOr<SessionMeasurements> MeasureSessionImages(const std::string& dir, const
                                                    const MeasureSessionOptions& options, const JobHooks& hooks) {
   const SessionPaths paths(dir);
   std::string table;
-  StatusOr<std::vector<ImageMeasurementRecord>> rows = ReadMeasurementRows(paths.measurements, &table);
+  StatusOr<std::vector<ImageMeasurementRecord>> rows = ReadMeasurementRows(paths.camera_poses, &table);
   if (!rows.ok()) return rows.status();
   StatusOr<MeasuredWith> now = CurrentInputs(dir, images, options.known_hashes);
   if (!now.ok()) return now.status();
@@ -205,7 +205,7 @@ StatusOr<SessionMeasurements> MeasureSessionImages(const std::string& dir, const
   // The table first, then its record: a kill between them leaves an old
   // record, which only makes the next run measure again.
   const std::string written = FormatCsv(ImageMeasurementColumns(), cells);
-  if (Status s = WriteFileAtomically(paths.measurements, written); !s.ok()) return s;
+  if (Status s = WriteFileAtomically(paths.camera_poses, written); !s.ok()) return s;
   if (record.camera != now->camera || record.target != now->target || record.table != now->table)
     record.images.clear();
   record.camera = now->camera;

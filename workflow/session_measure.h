@@ -1,6 +1,6 @@
 // The Measure step of a session folder (docs/session.md, "Measurements and
 // what they were measured with"): camera_from_target of each image, kept in
-// measurements.csv, with measurements.json recording the SHA-256 of the
+// camera_poses.csv, with camera_poses.json recording the SHA-256 of the
 // camera file, the target file and each image a row was measured from. New
 // intrinsics or a new target re-measure every row; a replaced image, its own
 // row; the rest is reused. `calibrate --session` and the GUI's Measure step
@@ -34,7 +34,7 @@ struct SessionImagePose {
 struct SessionMeasurements {
   std::map<std::string, SessionImagePose> poses;  // by image file name
   int measured = 0;  // images measured by this call
-  int reused = 0;    // rows of measurements.csv still valid
+  int reused = 0;    // rows of camera_poses.csv still valid
   // Why rows were measured again, e.g. "the camera changed since measuring";
   // empty when only new images were measured.
   std::string remeasure_reason;
@@ -53,7 +53,7 @@ struct MeasureSessionOptions {
 };
 
 // Measures the images (file names in DIR/images/) that have no valid row and
-// rewrites measurements.csv and measurements.json. The caller holds the
+// rewrites camera_poses.csv and camera_poses.json. The caller holds the
 // session lock (core/session_lock.h).
 StatusOr<SessionMeasurements> MeasureSessionImages(const std::string& session_dir,
                                                    const std::vector<std::string>& images, const Camera& camera,

@@ -4,7 +4,7 @@
 // values and the screened-out readings (docs/calibration.md, "Calibration
 // from pixels").
 //
-// The images' corners are detected again (measurements.csv keeps poses, not
+// The images' corners are detected again (camera_poses.csv keeps poses, not
 // corners); with estimated intrinsics or target scale, the held-out images'
 // board poses are estimated again with them, so that the validation uses the
 // camera the calibration found.

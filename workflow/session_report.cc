@@ -57,7 +57,7 @@ std::string ChartHtml(const charts::ChartSpec& spec) {
   return svg.ok() ? *svg + "\n" : "<p>Chart not drawn: " + Escape(svg.status().message()) + "</p>\n";
 }
 
-// Per-image reprojection RMS (px) of measurements.csv, in file order.
+// Per-image reprojection RMS (px) of camera_poses.csv, in file order.
 std::vector<double> MeasurementRms(const std::string& path) {
   std::vector<double> rms_px;
   StatusOr<CsvTable> table = ReadCsv(path);
@@ -237,7 +237,7 @@ StatusOr<std::string> SessionReportHtml(const std::string& dir) {
           Figure(report.closure_angle_rms_deg) + "&deg;.</p>\n";
   html += CalibrationMethodSection(report);
 
-  const std::vector<double> rms = MeasurementRms(paths.measurements);
+  const std::vector<double> rms = MeasurementRms(paths.camera_poses);
   if (!rms.empty()) html += "<h2>Measurements</h2>\n" + ChartHtml(charts::MeasurementRmsChart(rms));
 
   if (report.validation) {

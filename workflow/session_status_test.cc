@@ -136,9 +136,9 @@ TEST_F(StatusAfterChange, NewIntrinsicsMeasureEveryImageAgainAndAReplacedImageIt
   EXPECT_EQ(Steps(s)["measure"], StepStatus::kStale);
   EXPECT_EQ(Steps(s)["calibrate"], StepStatus::kStale);
 
-  const std::string before = ReadTextFile(s + "/measurements.csv");
+  const std::string before = ReadTextFile(s + "/camera_poses.csv");
   ASSERT_TRUE(CalibrateSession({s}).ok());
-  EXPECT_NE(ReadTextFile(s + "/measurements.csv"), before);  // measured with the new camera, not reused
+  EXPECT_NE(ReadTextFile(s + "/camera_poses.csv"), before);  // measured with the new camera, not reused
   for (const auto& [step, status] : Steps(s)) EXPECT_EQ(status, StepStatus::kDone) << step;
 
   // One image replaced under its name: that image only.
@@ -244,15 +244,15 @@ TEST_F(StatusAfterChange, AReplacedImageIsMeasuredAgainAlone) {
 }
 
 TEST_F(StatusAfterChange, AMeasurementsTableEditedByHandIsMeasuredAgain) {
-  std::string table = ReadTextFile(s_ + "/measurements.csv");
+  std::string table = ReadTextFile(s_ + "/camera_poses.csv");
   const size_t last_digit = table.find_last_of("0123456789");
   ASSERT_NE(last_digit, std::string::npos);
   table[last_digit] = table[last_digit] == '7' ? '8' : '7';
-  WriteTextFile(s_ + "/measurements.csv", table);
+  WriteTextFile(s_ + "/camera_poses.csv", table);
   ExpectOnly({{"measure", StepStatus::kStale}});
   EXPECT_NE(Why("measure").find("changed by another program"), std::string::npos) << Why("measure");
   ASSERT_TRUE(CalibrateSession({s_}).ok());
-  EXPECT_NE(ReadTextFile(s_ + "/measurements.csv"), table);
+  EXPECT_NE(ReadTextFile(s_ + "/camera_poses.csv"), table);
   ExpectOnly({});
 }
 

@@ -98,7 +98,7 @@ const OptionTable<StudyRequest>& StudyOptions() {
                        "seed of the IOOPS starts and the random subsets; the numbers do not depend on the threads",
                        [](StudyRequest& r) -> uint64_t& { return r.study.seed; }));
     t.push_back(Number("threads", "Threads", OptionType::kInteger, "threads", 0, 256,
-                       "subsets calibrated at once; 0: every core",
+                       "subsets calibrated at once; 0 = every core",
                        [](StudyRequest& r) -> int& { return r.study.num_threads; }));
     return t;
   }();

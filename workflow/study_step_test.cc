@@ -60,7 +60,7 @@ TempDir* StudySession::dir_ = nullptr;
 // With nothing held out, calibrate --session --two-stage registered and
 // mapped every image as the study does: results/calibration_measurements.csv
 // holds the same rows (calibrate measured the images in memory, the study
-// reads measurements.csv). The study calibrates its subsets two-stage.
+// reads camera_poses.csv). The study calibrates its subsets two-stage.
 TEST_F(StudySession, MeasuredPosesAreThoseCalibrateIdentifiedFrom) {
   CalibrateSessionRequest two_stage{Session()};
   two_stage.from_pixels.enabled = false;
@@ -72,7 +72,7 @@ TEST_F(StudySession, MeasuredPosesAreThoseCalibrateIdentifiedFrom) {
   ASSERT_EQ(session->measurements.size(), used->size());
   ASSERT_EQ(session->images.size(), static_cast<size_t>(kPoses));
   for (size_t j = 0; j < used->size(); ++j) {
-    // Equal up to the text round trip of the board poses through measurements.csv.
+    // Equal up to the text round trip of the board poses through camera_poses.csv.
     EXPECT_LT((session->measurements[j].pose - (*used)[j].pose).cwiseAbs().maxCoeff(), 1e-7) << j;
     EXPECT_EQ(session->measurements[j].legs, (*used)[j].legs) << j;
     EXPECT_TRUE(session->measurements[j].pose_covariance.has_value());

@@ -5,6 +5,7 @@
 
 #include "app/commands/cli_common.h"
 #include "app/commands/terminal_text.h"
+#include "app/commands/help_examples.h"
 
 namespace hexcal::cli {
 
@@ -57,6 +58,7 @@ std::string ParsedCommand(const CLI::App& app) {
 
 void AddAllCommands(CLI::App& app, int* exit_code) {
   for (const CommandEntry& entry : kCommands) entry.add(app, exit_code);
+  AddHelpExamples(app);
   app.require_subcommand(1);
   RequireDecimalNumbers(app);
 }

@@ -1,9 +1,12 @@
-// hexcal detect --images DIR|FILE [--target T | --family tag36h11 --border-bits 1] [--camera C] [--no-refine] [--json]
+// hexcal detect --images DIR|FILE [--target T | --family tag36h11 --border-bits 1] [--camera C]
+//               [--threads 2] [--no-refine] [--json]
 #include <iostream>
 #include <memory>
+#include <sstream>
 
 #include "app/commands/cli_common.h"
 #include "app/commands/command_table.h"
+#include "core/parallel.h"
 #include "vision/detection.h"
 #include "vision/layout_hint.h"
 #include "vision/measure.h"
@@ -14,6 +17,7 @@ namespace {
 struct DetectCliOptions {
   std::string images, camera, target;
   DetectorOptions detector;
+  int threads = 2;  // images detected at once; 0 = every core
   bool no_refine = false;
   bool json = false;
 };
@@ -41,59 +45,103 @@ void PrintImageLine(const std::string& file, const Detections& found, const Imag
   if (const std::string note = DescribeImageNotes(notes); !note.empty()) out << "  " << note << "\n";
 }
 
-int RunDetect(const DetectCliOptions& cli, std::ostream& out, std::ostream& err) {
-  DetectorOptions options = cli.detector;
-  options.refine_edges = !cli.no_refine;
+// What one image gave: its JSON entry, its lines of the text form, its
+// warnings for stderr. Images are detected in parallel and printed in order.
+struct ImageOutcome {
+  nlohmann::json json;
+  std::string text, warnings;
+  int tags = 0;
+  bool unreadable = false;
+};
+
+ImageOutcome DetectImage(const std::string& file, TagDetector& detector, const DetectorOptions& options,
+                         const IdealPixelMap* ideal) {
+  ImageOutcome outcome;
+  outcome.json = {{"file", file}, {"detections", nlohmann::json::array()}};
+  ImageNotes notes;
+  StatusOr<cv::Mat> gray = LoadGrayImage(file, &notes);
+  if (!gray.ok()) {
+    outcome.unreadable = true;
+    outcome.json["error"] = gray.status().message();
+    outcome.text = gray.status().message() + "\n";  // the message names the file
+    return outcome;
+  }
+  if (ideal && (gray->cols != ideal->width() || gray->rows != ideal->height())) {
+    outcome.warnings +=
+        "hexcal detect: warning: " + file + " is not the camera's size; edges fitted without distortion\n";
+  }
+  const Detections found = detector.Detect(*gray);
+  for (const TagDetection& tag : found.tags) outcome.json["detections"].push_back(DetectionJson(options.family, tag));
+  nlohmann::json rejected = nlohmann::json::array();
+  for (const RejectedTag& tag : found.rejected) {
+    rejected.push_back({{"id", tag.id}, {"decision_margin", tag.decision_margin}, {"reason", tag.reason}});
+  }
+  outcome.json["rejected"] = rejected;
+  if (const std::string note = DescribeImageNotes(notes); !note.empty()) outcome.json["note"] = note;
+  outcome.tags = static_cast<int>(found.tags.size());
+  std::ostringstream text;
+  PrintImageLine(file, found, notes, text);
+  outcome.text = text.str();
+  if (std::optional<LayoutHint> other = BetterLayout(*gray, options, found.tags.size())) {
+    const std::string hint = DescribeLayoutHint(*other, options);
+    outcome.json["hint"] = hint;
+    outcome.warnings += "hexcal detect: " + file + ": " + hint + "\n";
+  }
+  return outcome;
+}
+
+// The options with the target's family and border, and the camera's ideal-pixel map, if given.
+Status PrepareDetection(const DetectCliOptions& cli, DetectorOptions* options,
+                        std::shared_ptr<const IdealPixelMap>* ideal) {
+  *options = cli.detector;
+  options->refine_edges = !cli.no_refine;
   if (!cli.target.empty()) {
     StatusOr<Target> target = LoadTarget(cli.target);
-    if (!target.ok()) return ReportError(err, "detect", target.status());
-    options = ForTarget(options, *target);
+    if (!target.ok()) return target.status();
+    *options = ForTarget(*options, *target);
   }
-  std::shared_ptr<const IdealPixelMap> ideal;
   if (!cli.camera.empty()) {
     StatusOr<Camera> camera = LoadCamera(cli.camera);
-    if (!camera.ok()) return ReportError(err, "detect", camera.status());
-    ideal = std::make_shared<const IdealPixelMap>(*camera);
+    if (!camera.ok()) return camera.status();
+    *ideal = std::make_shared<const IdealPixelMap>(*camera);
   }
-  StatusOr<std::unique_ptr<TagDetector>> detector = TagDetector::Create(options, ideal);
-  if (!detector.ok()) return ReportError(err, "detect", detector.status());
+  return Status::Ok();
+}
+
+int RunDetect(const DetectCliOptions& cli, std::ostream& out, std::ostream& err) {
+  DetectorOptions options;
+  std::shared_ptr<const IdealPixelMap> ideal;
+  if (Status prepared = PrepareDetection(cli, &options, &ideal); !prepared.ok()) {
+    return ReportError(err, "detect", prepared);
+  }
   StatusOr<std::vector<std::string>> files = ListImages(cli.images);
   if (!files.ok()) return ReportError(err, "detect", files.status());
-
+  const int count = static_cast<int>(files->size());
+  // One single-threaded detector per worker: the library's own pool is not
+  // safe with more than one thread in libapriltag 3.3 (docs/vision.md).
+  StatusOr<std::vector<std::unique_ptr<TagDetector>>> detectors =
+      CreateWorkerDetectors(options, ideal, ParallelWorkers(count, cli.threads));
+  if (!detectors.ok()) return ReportError(err, "detect", detectors.status());
+  std::vector<ImageOutcome> outcomes(files->size());
   ProgressBar progress("detect");
+  JobHooks hooks;
+  hooks.progress = [&progress](int done, int total) { progress.Update(done, total); };
+  ParallelFor(
+      count, cli.threads,
+      [&](int k, int worker) {
+        const size_t index = static_cast<size_t>(k);
+        outcomes[index] =
+            DetectImage((*files)[index], *(*detectors)[static_cast<size_t>(worker)], options, ideal.get());
+      },
+      hooks);
   nlohmann::json images = nlohmann::json::array();
   int total_tags = 0, unreadable = 0;
-  for (size_t i = 0; i < files->size(); ++i) {
-    const std::string& file = (*files)[i];
-    nlohmann::json image = {{"file", file}, {"detections", nlohmann::json::array()}};
-    ImageNotes notes;
-    StatusOr<cv::Mat> gray = LoadGrayImage(file, &notes);
-    if (!gray.ok()) {
-      ++unreadable;
-      image["error"] = gray.status().message();
-      if (!cli.json) out << gray.status().message() << "\n";  // the message names the file
-    } else {
-      if (ideal && (gray->cols != ideal->width() || gray->rows != ideal->height())) {
-        err << "hexcal detect: warning: " << file << " is not the camera's size; edges fitted without distortion\n";
-      }
-      const Detections found = (*detector)->Detect(*gray);
-      for (const TagDetection& tag : found.tags) image["detections"].push_back(DetectionJson(options.family, tag));
-      nlohmann::json rejected = nlohmann::json::array();
-      for (const RejectedTag& tag : found.rejected) {
-        rejected.push_back({{"id", tag.id}, {"decision_margin", tag.decision_margin}, {"reason", tag.reason}});
-      }
-      image["rejected"] = rejected;
-      if (const std::string note = DescribeImageNotes(notes); !note.empty()) image["note"] = note;
-      total_tags += static_cast<int>(found.tags.size());
-      if (!cli.json) PrintImageLine(file, found, notes, out);
-      if (std::optional<LayoutHint> other = BetterLayout(*gray, options, found.tags.size())) {
-        const std::string hint = DescribeLayoutHint(*other, options);
-        image["hint"] = hint;
-        err << "hexcal detect: " << file << ": " << hint << "\n";
-      }
-    }
-    images.push_back(image);
-    progress.Update(static_cast<int>(i + 1), static_cast<int>(files->size()));
+  for (const ImageOutcome& outcome : outcomes) {
+    err << outcome.warnings;
+    if (!cli.json) out << outcome.text;
+    images.push_back(outcome.json);
+    total_tags += outcome.tags;
+    unreadable += outcome.unreadable ? 1 : 0;
   }
   if (cli.json) {
     out << JsonText(nlohmann::json{{"images", images}});
@@ -126,9 +174,8 @@ void AddDetectCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   sub->add_option("--max-hamming", options->detector.max_hamming, "accept at most this many corrected bits (0-2)")
       ->capture_default_str();
-  sub->add_option("--threads", options->detector.threads, "AprilTag library worker threads for the quad stage "
-                  "(more than 1 can crash with libapriltag 3.3: docs/vision.md)")
-      ->check(CountRange(1, 64))
+  sub->add_option("--threads", options->threads, "images detected in parallel (0 = every core)")
+      ->check(CountRange(0, kMaxThreads))
       ->capture_default_str();
   sub->add_flag("--no-refine", options->no_refine, "report AprilTag's own corners (shifted by -0.5 px)");
   sub->add_flag("--json", options->json, "print one JSON object on stdout");

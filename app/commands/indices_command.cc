@@ -37,10 +37,16 @@ int RunIndices(const IndicesOptions& options, std::ostream& out, std::ostream& e
     out << JsonText(j);
     return kExitOk;
   }
-  out << "observability of " << poses.size() << " poses (robot " << robot->name << ", lengths in "
-      << LengthUnitName(robot->length_unit) << ")\n"
-      << "  O1 = " << indices.o1 << "\n  O2 = " << indices.o2 << "\n  O3 = " << indices.o3 << "\n  O4 = " << indices.o4
-      << "\n  sigma_max = " << indices.sigma_max << ", sigma_min = " << indices.sigma_min << "\n";
+  const std::string unit = LengthUnitName(robot->length_unit);
+  out << "observability of " << poses.size() << " poses (robot " << robot->name << ", lengths in " << unit
+      << "; paper section 2, each larger for a better pose set)\n";
+  const double values[4] = {indices.o1, indices.o2, indices.o3, indices.o4};
+  for (int k = 1; k <= 4; ++k) {
+    const std::string with_unit = IndexUnit(k, unit).empty() ? "" : " " + IndexUnit(k, unit);
+    out << "  O" << k << " = " << values[k - 1] << with_unit << ": " << IndexMeaning(k) << "\n";
+  }
+  out << "  sigma_max = " << indices.sigma_max << " " << unit << ", sigma_min = " << indices.sigma_min << " " << unit
+      << " (singular values of the identification Jacobian J_P)\n";
   if (infeasible > 0) out << "warning: " << infeasible << " poses violate the robot's constraints\n";
   if (poses.size() < static_cast<size_t>(kParamsPerLeg)) {
     out << "warning: fewer than 7 poses cannot identify the 7 parameters of a leg (O3 = 0)\n";

@@ -54,6 +54,8 @@ void AddIntrinsicsCommand(CLI::App& app, int* exit_code) {
                   "a larger reprojection RMS (px) is an error: the target or the model is wrong")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  sub->add_flag("--keep-outliers", options->request.options.keep_outliers,
+                "keep views that fit far worse than the median view (they are still named)");
   sub->add_flag("--force", options->request.force, "overwrite an existing camera file");
   sub->add_flag("--json", options->json, "print one JSON object on stdout");
   sub->callback([=] { *exit_code = RunIntrinsics(*options, std::cout, std::cerr); });

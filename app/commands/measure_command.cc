@@ -1,4 +1,4 @@
-// hexcal measure --camera C --target T --images DIR --out measurements.csv [--force] [--json]
+// hexcal measure --camera C --target T --images DIR --out camera_poses.csv [--force] [--json]
 #include <iostream>
 #include <memory>
 
@@ -36,7 +36,7 @@ void AddMeasureCommand(CLI::App& app, int* exit_code) {
   sub->add_option("--target", options->request.target, "target YAML file or the built-in name aprilgrid-6x6")
       ->capture_default_str();
   sub->add_option("--images", options->request.images, "an image, or a folder of PNG/JPEG/TIFF images")->required();
-  sub->add_option("--out", options->request.out, "measurements CSV to write")->required();
+  sub->add_option("--out", options->request.out, "camera poses CSV to write (camera_from_target per image, not robot measurements)")->required();
   sub->add_option("--threads", options->request.options.threads, "images measured in parallel (0 = every core)")
       ->check(CountRange(0, kMaxThreads))
       ->capture_default_str();

@@ -1,5 +1,7 @@
 // hexcal target print --target T --out target.pdf|target.png [--dpi D] [--force] [--json]
 // hexcal target check --target T [--json]
+#include <cctype>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -73,6 +75,13 @@ int RunTargetCheck(const TargetOptions& options, std::ostream& out, std::ostream
   return kExitOk;
 }
 
+// As WriteTargetPrint decides it: by the extension, in any case.
+bool IsPdfPath(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".pdf";
+}
+
 int RunTargetPrint(const TargetOptions& options, std::ostream& out, std::ostream& err) {
   if (Status s = CheckOutputFree(options.out, options.force); !s.ok()) return ReportError(err, "target print", s);
   StatusOr<Target> target = LoadTarget(options.target);
@@ -82,9 +91,13 @@ int RunTargetPrint(const TargetOptions& options, std::ostream& out, std::ostream
   }
   const std::vector<std::string> caption = TargetPrintCaption(*target);
   if (options.json) {
-    out << JsonText(nlohmann::json{{"out", options.out}, {"dpi", options.dpi}, {"target", TargetJson(*target)}});
+    nlohmann::json json = {{"out", options.out}, {"dpi", options.dpi}, {"target", TargetJson(*target)}};
+    if (IsPdfPath(options.out)) json["sheet"] = DescribeSheet(TargetPdfSheet(*target));
+    out << JsonText(json);
   } else {
-    out << "target written to " << options.out << ": " << DescribeTarget(*target) << "\n" << caption[1] << "\n";
+    out << "target written to " << options.out << ": " << DescribeTarget(*target) << "\n";
+    if (IsPdfPath(options.out)) out << "sheet: " << DescribeSheet(TargetPdfSheet(*target)) << "\n";
+    out << caption[1] << "\n";
   }
   return kExitOk;
 }

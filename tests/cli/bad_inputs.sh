@@ -43,6 +43,8 @@ measurements_huge.csv | 2 | :2: column 'L5': '1e999' is not a finite number | ca
 measurements_missing_header.csv | 2 | :1: no header: column 1 is the number | calibrate ROBOT --measurements @IN@ --out @OUT@
 measurements_fewer_than_parameters.csv | 2 | at least 7 measurements \(7 parameters per leg\), got 6 | calibrate ROBOT --measurements @IN@ --out @OUT@
 measurements_singular_poses.csv | 1 | degenerate pose set: leg 1's identification Jacobian has rank 1 of 7 | calibrate ROBOT --measurements @IN@ --out @OUT@
+measurements_camera_poses.csv | 2 | missing column 'L1'.*; this is a table of camera poses .*use `hexcal calibrate --session DIR` | calibrate ROBOT --measurements @IN@ --out @OUT@
+measurements_leg_readings.csv | 2 | missing column 'x'.*; this is a session's leg readings .*`hexcal calibrate --session DIR` | validate ROBOT --measurements @IN@
 measurements_wrong_unit.csv | 2 | readings look like mm, the robot .inria-left-hand. is in cm: measurement 1: L1 = 22.58914313 is far outside the stroke \[0, 3.5\] cm | calibrate ROBOT --measurements @IN@ --out @OUT@
 poses_unreachable.csv | 2 | none of its 4 poses satisfies the robot and measurement constraints | plan ROBOT --poses 7 --candidates @IN@ --out @OUT@
 settings_empty.yaml | 2 | expected a mapping at the top level | plan ROBOT --settings @IN@ --out @OUT@

@@ -90,7 +90,7 @@ count_bounds)
   expect 2 "--sweep: '8:1e300' is not MIN:MAX" simulate $R --sweep 8:1e300
   expect 2 "--threads: 100000 is outside \[0, 256\]" simulate $R --threads 100000
   expect 2 "--threads: -1 is outside \[0, 256\]" render --poses "$POSES" --out r --threads -1
-  expect 2 "--threads: 0 is outside \[1, 64\]" detect --images . --threads 0
+  expect 2 "--threads: 9999 is outside \[0, 256\]" detect --images . --threads 9999
   expect 2 "--threads: 9999 is outside" intrinsics --images . --out cam.yaml --threads 9999
   expect 2 "--threads: 9999 is outside" measure --camera c.yaml --images . --out m.csv --threads 9999
   expect 2 "--min-views: 0 is outside" intrinsics --images . --out cam.yaml --min-views 0

@@ -24,17 +24,10 @@ if (exec 3<>/dev/tcp/127.0.0.1/5007) 2>/dev/null; then
   echo "port 5007 (the README's linuxcncrsh port) is taken: skipped"; exit 77
 fi
 
-python3 - "$root/README.md" "$dir/machine" >"$dir/block.sh" <<'PY'
-import re, sys
-text = open(sys.argv[1]).read()
-section = text.split("## A robot and a camera in the loop", 1)[1]
-block = re.search(r"```sh\n(.*?)```", section, re.S).group(1)
-assert "/tmp/machine" in block and "hexcal acquire" in block, block
-print(block.replace("/tmp/machine", sys.argv[2]), end="")
-PY
-mkdir -p "$dir/work/build/app"
-ln -s "$hexcal" "$dir/work/build/app/hexcal"
-ln -s "$root/scripts" "$dir/work/scripts"
+. "$here/readme_block.sh"
+readme_block "## A robot and a camera in the loop" /tmp/machine "$dir/machine" >"$dir/block.sh"
+grep -q "hexcal acquire" "$dir/block.sh"
+readme_workdir "$dir/work" "$hexcal"
 cd "$dir/work"
 start=$(date +%s.%N)
 code=0

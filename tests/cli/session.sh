@@ -4,7 +4,7 @@
 # a camera 50 cm above the platform, images rendered at 16 poses, readings from
 # the true robot's IK; `calibrate --session` must cut the held-out pose error at
 # least 3 times, leave images/ and legs.csv untouched and reuse
-# measurements.csv; `report` writes one HTML page with its charts. Bad folders get errors naming the file and line.
+# camera_poses.csv; `report` writes one HTML page with its charts. Bad folders get errors naming the file and line.
 set -eu
 hexcal=$1 data=$2
 dir=$(mktemp -d)
@@ -63,9 +63,9 @@ PY
 if "$hexcal" report --session "$s" --out "$dir/report.html" 2>"$dir/err"; then exit 1; fi
 grep -q "report.html: exists; use --force" "$dir/err"
 # Measured images are not measured again.
-cp "$s/measurements.csv" "$dir/m1.csv"
+cp "$s/camera_poses.csv" "$dir/m1.csv"
 "$hexcal" calibrate --session "$s" --json >"$dir/report2.json"
-cmp "$s/measurements.csv" "$dir/m1.csv"
+cmp "$s/camera_poses.csv" "$dir/m1.csv"
 # ... and give the same calibration: the pose covariance read back whole.
 python3 - "$dir/report.json" "$dir/report2.json" <<'PY'
 import json, sys

@@ -20,7 +20,7 @@ wait_for_lock() {  # the lock file names a holder
 }
 
 # 1. Re-measuring every image keeps the first run busy for a few seconds.
-rm -f "$s/measurements.csv"
+rm -f "$s/camera_poses.csv"
 "$hexcal" calibrate --session "$s" >"$work/first.log" 2>&1 &
 first=$!
 wait_for_lock
@@ -36,7 +36,7 @@ wait $first || fail "the first calibrate failed: $(cat "$work/first.log")"
 echo "second writer: exit 3 naming PID $first; --wait waited and succeeded"
 
 # 2. kill -9 in the middle of a run.
-rm -f "$s/measurements.csv"
+rm -f "$s/camera_poses.csv"
 "$hexcal" calibrate --session "$s" >/dev/null 2>&1 &
 victim=$!
 wait_for_lock

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # vision_pipeline.sh HEXCAL DATA: render -> detect -> measure with the simulated
-# camera; the same seed gives the same images; measured poses match the ground
+# camera; the same seed gives the same images; detect's output does not depend
+# on --threads; measured poses match the ground
 # truth; an existing output is kept without --force; a folder of corrupt, empty,
 # target-less and wrong-size images gets a status per file and no crash.
 set -eu
@@ -20,6 +21,12 @@ grep -q "ground_truth.csv: exists; use --force" "$dir/err"
 "$hexcal" detect --images "$dir/a/view_0000.png" --json >"$dir/detect.json"
 grep -q '"decision_margin"' "$dir/detect.json"
 grep -q '"family": "tag36h11"' "$dir/detect.json"
+# --threads is images at once (0 = every core): the folder's output, in file
+# order, whatever the count.
+"$hexcal" detect --images "$dir/a" --threads 1 >"$dir/detect1.txt"
+"$hexcal" detect --images "$dir/a" --threads 0 >"$dir/detect0.txt"
+grep -Eq "^2 images, [1-9][0-9]* tags" "$dir/detect1.txt"
+cmp "$dir/detect1.txt" "$dir/detect0.txt"
 
 "$hexcal" measure --camera $cam --images "$dir/a" --out "$dir/m.csv" | grep -q "2 images: 2 ok"
 # z within 0.05 mm of the truth (column 4 of the 32 of measurements, 4 of ground truth).

@@ -146,7 +146,7 @@ TEST(UiFlow, PlanMeasureCalibrateValidate) {
   EXPECT_EQ(measure->LegsTable()->rowCount(), 16);
   measure->MeasureAll();
   ASSERT_TRUE(WaitFor([&] { return !measure->Job()->Running(); }));
-  EXPECT_EQ(CsvRows(dir + "/measurements.csv"), 16);
+  EXPECT_EQ(CsvRows(dir + "/camera_poses.csv"), 16);
   EXPECT_EQ(session.State(Step::kMeasure), StepState::kDone);
   EXPECT_TRUE(measure->ImageList()->item(0)->text().contains("ok"))
       << measure->ImageList()->item(0)->text().toStdString();
@@ -381,11 +381,11 @@ TEST(UiFlow, NewIntrinsicsAreStaleAndTheCalibrationMeasuresAgain) {
   EXPECT_TRUE(measure_row->text().startsWith("⟳"));
   EXPECT_TRUE(measure_row->toolTip().contains("the camera changed")) << measure_row->toolTip().toStdString();
 
-  const std::string before = ReadTextFile((dir + "/measurements.csv").toStdString());
+  const std::string before = ReadTextFile((dir + "/camera_poses.csv").toStdString());
   window.Calibrate()->Run();
   ASSERT_TRUE(WaitFor([&] { return !window.Calibrate()->Job()->Running(); }));
   EXPECT_TRUE(window.Calibrate()->LastOutcome().startsWith("done")) << window.Calibrate()->LastOutcome().toStdString();
-  EXPECT_NE(ReadTextFile((dir + "/measurements.csv").toStdString()), before);
+  EXPECT_NE(ReadTextFile((dir + "/camera_poses.csv").toStdString()), before);
   for (int k = 0; k < kNumSteps; ++k)
     EXPECT_EQ(session.State(static_cast<Step>(k)), StepState::kDone) << StepName(static_cast<Step>(k));
 }
