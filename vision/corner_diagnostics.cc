@@ -40,7 +40,7 @@ ResidualHistogram HistogramOfResiduals(const std::vector<CornerResidual>& corner
   assert(sigma > 0 && bins > 0);
   ResidualHistogram h;
   h.sigma = sigma;
-  h.bin_width = sigma / 4;
+  h.bin_width = 6 * sigma / bins;
   h.counts.assign(static_cast<size_t>(bins), 0);
   for (const CornerResidual& c : corners) {
     const double bin = std::floor(c.residual.norm() / h.bin_width);

@@ -48,7 +48,7 @@ struct ResidualHistogram {
   double expected_beyond = 0;    // ... and how many noise of σ puts there
 };
 
-// `bins` bins of σ/4 each (0 to bins σ/4); sigma must be > 0, bins > 0.
+// `bins` equal bins from 0 to 6σ (σ/4 wide for the default 24); sigma > 0, bins > 0.
 ResidualHistogram HistogramOfResiduals(const std::vector<CornerResidual>& corners, double sigma, int bins = 24);
 
 // Corners counted in a cols × rows grid over a width × height image; a
