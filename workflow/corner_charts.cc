@@ -78,11 +78,15 @@ charts::ChartSpec ResidualFieldChart(const std::vector<CornerResidual>& corners,
 charts::ChartSpec ResidualHistogramChart(const ResidualHistogram& h) {
   charts::ChartSpec spec;
   spec.title = "|residual| against noise of σ = " + G3(h.sigma) + " px per axis (Rayleigh)";
-  // Bins labelled in σ: short enough for a dozen labels under the bars.
+  // Bins labelled by their start in σ, halves as "½": Qt elides longer labels under a dozen bars.
   std::vector<std::string> bins;
-  for (size_t b = 0; b < h.counts.size(); ++b) bins.push_back(G3(static_cast<double>(b) * h.bin_width / h.sigma) + "σ");
-  bins.push_back("≥" + G3(static_cast<double>(h.counts.size()) * h.bin_width / h.sigma) + "σ");
-  spec.x = charts::CategoryAxis("|residual| from (σ = " + G3(h.sigma) + " px)", bins);
+  for (size_t b = 0; b <= h.counts.size(); ++b) {
+    const double start = std::round(1e6 * static_cast<double>(b) * h.bin_width / h.sigma) / 1e6;
+    const double whole = std::floor(start), rest = start - whole;
+    std::string label = rest == 0 ? G3(whole) : rest == 0.5 ? (whole > 0 ? G3(whole) : "") + "½" : G3(start);
+    bins.push_back(b == h.counts.size() ? "≥" + label : label);
+  }
+  spec.x = charts::CategoryAxis("|residual| from, in σ = " + G3(h.sigma) + " px", bins);
   spec.y = charts::LinearAxis("corners");
   std::vector<double> observed(h.counts.begin(), h.counts.end()), expected = h.expected;
   observed.push_back(h.beyond);

@@ -64,6 +64,26 @@ std::string CoverageTable(const CoverageGrid& grid) {
   return html + "</table>\n";
 }
 
+// The tail the linear histogram hides: corners at 3σ and more, and how many
+// noise of σ alone puts there.
+struct Tail {
+  int observed = 0;
+  double expected = 0;
+};
+
+Tail TailOf(const std::vector<CornerResidual>& corners, double sigma) {
+  Tail tail;
+  for (const CornerResidual& c : corners) tail.observed += c.residual.norm() >= 3 * sigma;
+  tail.expected = static_cast<double>(corners.size()) * RayleighFraction(3 * sigma, INFINITY, sigma);
+  return tail;
+}
+
+std::string TailText(const std::vector<CornerResidual>& corners, double sigma) {
+  const Tail tail = TailOf(corners, sigma);
+  return "Corners at 3&sigma; or more: " + std::to_string(tail.observed) + " (noise of &sigma; alone: " +
+         G3(tail.expected) + ").";
+}
+
 }  // namespace
 
 std::string CornerDiagnosticsSection(const CornerResidualTable& table, double width, double height) {
@@ -78,7 +98,10 @@ std::string CornerDiagnosticsSection(const CornerResidualTable& table, double wi
       " px per axis. A pattern in the field (arrows that turn with the radius, or all one way) is a camera-model "
       "error, not noise; long single arrows are bad detections, named below.</p>\n";
   html += Svg(ResidualFieldChart(table.corners, width, height));
-  if (sigma > 0) html += Svg(ResidualHistogramChart(HistogramOfResiduals(table.corners, sigma, kHistogramBins)));
+  if (sigma > 0) {
+    html += Svg(ResidualHistogramChart(HistogramOfResiduals(table.corners, sigma, kHistogramBins)));
+    html += "<p>" + TailText(table.corners, sigma) + "</p>\n";
+  }
   html += "<h3>Worst corners</h3>\n" + WorstTable(table, sigma);
   html += "<h3>Coverage</h3><p>Corners per cell of an " + std::to_string(grid.cols) + " &times; " +
           std::to_string(grid.rows) + " grid over the image; the distortion is only measured where corners were "
@@ -107,6 +130,16 @@ nlohmann::json CornerDiagnosticsJson(const CornerResidualTable& table, double wi
           {"worst", worst},
           {"histogram", histogram},
           {"coverage", {{"cols", grid.cols}, {"rows", grid.rows}, {"counts", grid.counts}, {"empty_cells", grid.EmptyCells()}}}};
+}
+
+std::string FormatCornerFigures(const CornerResidualTable& table, double width, double height) {
+  const double sigma = RobustAxisSigma(table.corners);
+  const Tail tail = TailOf(table.corners, sigma);
+  const CoverageGrid grid = CountCorners(table.corners, width, height);
+  return std::to_string(table.corners.size()) + " corners, RMS " + G3(Rms(table.corners)) + " px, sigma " +
+         G3(sigma) + " px (from the median); " + std::to_string(tail.observed) + " at 3 sigma or more (noise alone: " +
+         G3(tail.expected) + "); " + std::to_string(grid.EmptyCells()) + " of " + std::to_string(grid.cols * grid.rows) +
+         " image cells without a corner";
 }
 
 std::string FormatWorstCorners(const CornerResidualTable& table, int k) {

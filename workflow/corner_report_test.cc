@@ -124,6 +124,20 @@ TEST(CornerReportTest, JsonNamesTheWorstCornersAndCountsBinsAndCells) {
   EXPECT_EQ(json["coverage"]["counts"][47], 2);  // bottom right
   EXPECT_EQ(json["coverage"]["empty_cells"], 46);
   EXPECT_THAT(FormatWorstCorners(SmallTable(), 1), HasSubstr("b,1.png tag 7 corner 2 at (630.0, 470.0): 2.5 px"));
+  EXPECT_EQ(FormatCornerFigures(SmallTable(), 640, 480),
+            "4 corners, RMS 1.28 px, sigma 0.255 px (from the median); 1 at 3 sigma or more (noise alone: 0.0444); "
+            "46 of 48 image cells without a corner");
+}
+
+TEST(CornerReportTest, HistogramChartHasABarPairPerBinAndOneBeyond) {
+  const ResidualHistogram h = HistogramOfResiduals(SmallTable().corners, 0.2, 12);
+  const charts::ChartSpec spec = ResidualHistogramChart(h);
+  ASSERT_TRUE(spec.IsValid(nullptr));
+  const std::vector<std::string> expected = {"0", "½", "1", "1½", "2", "2½", "3", "3½", "4", "4½", "5", "5½", "≥6"};
+  EXPECT_EQ(spec.x.categories, expected);
+  ASSERT_EQ(spec.series.size(), 2u);
+  EXPECT_EQ(spec.series[0].values.back(), h.beyond);
+  EXPECT_EQ(spec.series[1].values.front(), h.expected.front());
 }
 
 TEST(CornerReportTest, SectionHoldsTheChartsTheWorstTableAndTheEmptyCells) {
@@ -134,6 +148,8 @@ TEST(CornerReportTest, SectionHoldsTheChartsTheWorstTableAndTheEmptyCells) {
   EXPECT_NE(html.find("<h2>Per-corner diagnostics</h2>"), std::string::npos);
   EXPECT_NE(html.find("<tr><td>b,1.png</td><td>7</td><td>2</td>"), std::string::npos);
   EXPECT_NE(html.find("46 empty cells"), std::string::npos);
+  // |r| ≥ 3σ = 0.764 px: the 2.5 px corner only; noise alone 4 exp(−4.5) = 0.0444.
+  EXPECT_NE(html.find("Corners at 3&sigma; or more: 1 (noise of &sigma; alone: 0.0444)"), std::string::npos);
   EXPECT_EQ(CornerDiagnosticsSection({}, 640, 480), "");
 }
 

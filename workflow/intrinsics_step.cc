@@ -130,7 +130,9 @@ std::string FormatIntrinsicsSummary(const IntrinsicsOutcome& outcome) {
     if (!view.used) out << "  not used: " << view.file << ": " << view.reason << "\n";
   }
   out << "  " << DescribeCrossValidation(result.cross_validation) << "\n";
-  out << "  worst corners (residual = projected - detected):\n" << FormatWorstCorners(CornerTableOf(result));
+  const CornerResidualTable corners = CornerTableOf(result);
+  out << "  per corner: " << FormatCornerFigures(corners, c.width, c.height) << "\n";
+  out << "  worst corners (residual = projected - detected):\n" << FormatWorstCorners(corners);
   out << "written to " << outcome.out;
   if (!outcome.coverage.empty())
     out << "; corner coverage " << 100 * CoverageFraction(result) << " % in " << outcome.coverage;
