@@ -14,10 +14,10 @@
 #include <QChart>
 #include <QGraphicsPathItem>
 #include <QGraphicsScene>
-#include <QPainterPath>
 #include <QLegendMarker>
 #include <QLineSeries>
 #include <QLogValueAxis>
+#include <QPainterPath>
 #include <QScatterSeries>
 #include <cmath>
 #include <memory>

@@ -51,15 +51,15 @@ ResidualHistogram HistogramOfResiduals(const std::vector<CornerResidual>& corner
     }
   }
   const double n = static_cast<double>(corners.size());
-  for (int b = 0; b < bins; ++b) h.expected.push_back(n * RayleighFraction(b * h.bin_width, (b + 1) * h.bin_width, sigma));
+  for (int b = 0; b < bins; ++b)
+    h.expected.push_back(n * RayleighFraction(b * h.bin_width, (b + 1) * h.bin_width, sigma));
   h.expected_beyond = n * RayleighFraction(bins * h.bin_width, INFINITY, sigma);
   return h;
 }
 
 int CoverageGrid::EmptyCells() const { return static_cast<int>(std::count(counts.begin(), counts.end(), 0)); }
 
-CoverageGrid CountCorners(const std::vector<CornerResidual>& corners, double width, double height, int cols,
-                          int rows) {
+CoverageGrid CountCorners(const std::vector<CornerResidual>& corners, double width, double height, int cols, int rows) {
   assert(width > 0 && height > 0 && cols > 0 && rows > 0);
   CoverageGrid grid{cols, rows, width, height, std::vector<int>(static_cast<size_t>(cols * rows), 0)};
   for (const CornerResidual& c : corners) {

@@ -22,9 +22,9 @@
 namespace hexcal {
 
 struct CornerResidual {
-  int image = 0;   // index into the fit's list of images
-  int tag_id = 0;  // the target's tag id
-  int corner = 0;  // 0..3, AprilTag order (docs/conventions.md)
+  int image = 0;                                       // index into the fit's list of images
+  int tag_id = 0;                                      // the target's tag id
+  int corner = 0;                                      // 0..3, AprilTag order (docs/conventions.md)
   Eigen::Vector2d observed = Eigen::Vector2d::Zero();  // the detected corner, pixels
   Eigen::Vector2d residual = Eigen::Vector2d::Zero();  // projected − observed, pixels
 };

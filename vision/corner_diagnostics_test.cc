@@ -91,8 +91,8 @@ TEST(CornerDiagnosticsTest, GaussianResidualsFillTheHistogramAsRayleighExpects) 
 
 TEST(CornerDiagnosticsTest, CoverageCountsCornersPerCellAndClampsOutsiders) {
   // 640 × 480 in 8 × 6 cells of 80 × 80 pixels.
-  const std::vector<CornerResidual> corners = {At(0, 0, 0, 0),          At(79.9, 0, 0, 0),  At(80, 0, 0, 0),
-                                               At(639.9, 479.9, 0, 0),  At(700, -5, 0, 0),  At(320, 240, 0, 0),
+  const std::vector<CornerResidual> corners = {At(0, 0, 0, 0),         At(79.9, 0, 0, 0), At(80, 0, 0, 0),
+                                               At(639.9, 479.9, 0, 0), At(700, -5, 0, 0), At(320, 240, 0, 0),
                                                At(319.9, 239.9, 0, 0)};
   const CoverageGrid grid = CountCorners(corners, 640, 480);
   ASSERT_EQ(grid.counts.size(), 48u);

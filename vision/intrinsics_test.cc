@@ -1,12 +1,13 @@
 #include "vision/intrinsics.h"
-#include "vision/intrinsics_diagnosis.h"
 
-#include <algorithm>
-#include <cmath>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "tests/test_support.h"
+#include "vision/intrinsics_diagnosis.h"
 #include "vision/renderer.h"
 
 namespace hexcal {

@@ -67,8 +67,8 @@ double ResidualArrowScale(const std::vector<CornerResidual>& corners, double wid
 
 charts::ChartSpec ResidualFieldChart(const std::vector<CornerResidual>& corners, double width, double height) {
   const double scale = ResidualArrowScale(corners, width);
-  charts::ChartSpec spec = ImageFrameChart(
-      "Reprojection residuals (projected − detected), arrows × " + ScaleText(scale), width, height);
+  charts::ChartSpec spec =
+      ImageFrameChart("Reprojection residuals (projected − detected), arrows × " + ScaleText(scale), width, height);
   std::vector<std::vector<ChartPoint>> arrows;
   for (const CornerResidual& c : corners) arrows.push_back(Arrow(c.observed, scale * c.residual));
   spec.series.push_back(charts::PolylineSeries(std::to_string(corners.size()) + " corners", arrows));
@@ -100,8 +100,10 @@ charts::ChartSpec CoverageChart(const std::vector<CornerResidual>& corners, cons
                                                " of " + std::to_string(grid.cols * grid.rows) + " cells empty",
                                            grid.width, grid.height);
   std::vector<std::vector<ChartPoint>> lines;
-  for (int c = 1; c < grid.cols; ++c) lines.push_back({{c * grid.width / grid.cols, 0}, {c * grid.width / grid.cols, grid.height}});
-  for (int r = 1; r < grid.rows; ++r) lines.push_back({{0, r * grid.height / grid.rows}, {grid.width, r * grid.height / grid.rows}});
+  for (int c = 1; c < grid.cols; ++c)
+    lines.push_back({{c * grid.width / grid.cols, 0}, {c * grid.width / grid.cols, grid.height}});
+  for (int r = 1; r < grid.rows; ++r)
+    lines.push_back({{0, r * grid.height / grid.rows}, {grid.width, r * grid.height / grid.rows}});
   spec.series.push_back(charts::PolylineSeries("cells", lines, true));
   // A small + per corner: one path, where thousands of scatter markers would be megabytes of SVG.
   const double arm = 0.004 * grid.width;

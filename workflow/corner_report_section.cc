@@ -80,8 +80,8 @@ Tail TailOf(const std::vector<CornerResidual>& corners, double sigma) {
 
 std::string TailText(const std::vector<CornerResidual>& corners, double sigma) {
   const Tail tail = TailOf(corners, sigma);
-  return "Corners at 3&sigma; or more: " + std::to_string(tail.observed) + " (noise of &sigma; alone: " +
-         G3(tail.expected) + ").";
+  return "Corners at 3&sigma; or more: " + std::to_string(tail.observed) +
+         " (noise of &sigma; alone: " + G3(tail.expected) + ").";
 }
 
 }  // namespace
@@ -104,8 +104,10 @@ std::string CornerDiagnosticsSection(const CornerResidualTable& table, double wi
   }
   html += "<h3>Worst corners</h3>\n" + WorstTable(table, sigma);
   html += "<h3>Coverage</h3><p>Corners per cell of an " + std::to_string(grid.cols) + " &times; " +
-          std::to_string(grid.rows) + " grid over the image; the distortion is only measured where corners were "
-          "seen (" + std::to_string(grid.EmptyCells()) + " empty cells, red).</p>\n";
+          std::to_string(grid.rows) +
+          " grid over the image; the distortion is only measured where corners were "
+          "seen (" +
+          std::to_string(grid.EmptyCells()) + " empty cells, red).</p>\n";
   return html + Svg(CoverageChart(table.corners, grid)) + CoverageTable(grid);
 }
 
@@ -113,15 +115,23 @@ nlohmann::json CornerDiagnosticsJson(const CornerResidualTable& table, double wi
   const double sigma = RobustAxisSigma(table.corners);
   nlohmann::json worst = nlohmann::json::array();
   for (const CornerResidual& c : WorstCorners(table.corners, kWorstCornersShown)) {
-    worst.push_back({{"image", table.images[static_cast<size_t>(c.image)]}, {"tag_id", c.tag_id},
-                     {"corner", c.corner}, {"x_px", c.observed.x()}, {"y_px", c.observed.y()},
-                     {"dx_px", c.residual.x()}, {"dy_px", c.residual.y()}, {"residual_px", c.residual.norm()}});
+    worst.push_back({{"image", table.images[static_cast<size_t>(c.image)]},
+                     {"tag_id", c.tag_id},
+                     {"corner", c.corner},
+                     {"x_px", c.observed.x()},
+                     {"y_px", c.observed.y()},
+                     {"dx_px", c.residual.x()},
+                     {"dy_px", c.residual.y()},
+                     {"residual_px", c.residual.norm()}});
   }
   nlohmann::json histogram;  // null when every residual is 0
   if (sigma > 0) {
     const ResidualHistogram h = HistogramOfResiduals(table.corners, sigma, kHistogramBins);
-    histogram = {{"bin_width_px", h.bin_width}, {"counts", h.counts},   {"expected", h.expected},
-                 {"beyond", h.beyond},          {"expected_beyond", h.expected_beyond}};
+    histogram = {{"bin_width_px", h.bin_width},
+                 {"counts", h.counts},
+                 {"expected", h.expected},
+                 {"beyond", h.beyond},
+                 {"expected_beyond", h.expected_beyond}};
   }
   const CoverageGrid grid = CountCorners(table.corners, width, height);
   return {{"corners", table.corners.size()},
@@ -129,17 +139,18 @@ nlohmann::json CornerDiagnosticsJson(const CornerResidualTable& table, double wi
           {"rms_px", Rms(table.corners)},
           {"worst", worst},
           {"histogram", histogram},
-          {"coverage", {{"cols", grid.cols}, {"rows", grid.rows}, {"counts", grid.counts}, {"empty_cells", grid.EmptyCells()}}}};
+          {"coverage",
+           {{"cols", grid.cols}, {"rows", grid.rows}, {"counts", grid.counts}, {"empty_cells", grid.EmptyCells()}}}};
 }
 
 std::string FormatCornerFigures(const CornerResidualTable& table, double width, double height) {
   const double sigma = RobustAxisSigma(table.corners);
   const Tail tail = TailOf(table.corners, sigma);
   const CoverageGrid grid = CountCorners(table.corners, width, height);
-  return std::to_string(table.corners.size()) + " corners, RMS " + G3(Rms(table.corners)) + " px, sigma " +
-         G3(sigma) + " px (from the median); " + std::to_string(tail.observed) + " at 3 sigma or more (noise alone: " +
-         G3(tail.expected) + "); " + std::to_string(grid.EmptyCells()) + " of " + std::to_string(grid.cols * grid.rows) +
-         " image cells without a corner";
+  return std::to_string(table.corners.size()) + " corners, RMS " + G3(Rms(table.corners)) + " px, sigma " + G3(sigma) +
+         " px (from the median); " + std::to_string(tail.observed) +
+         " at 3 sigma or more (noise alone: " + G3(tail.expected) + "); " + std::to_string(grid.EmptyCells()) + " of " +
+         std::to_string(grid.cols * grid.rows) + " image cells without a corner";
 }
 
 std::string FormatWorstCorners(const CornerResidualTable& table, int k) {
@@ -147,8 +158,8 @@ std::string FormatWorstCorners(const CornerResidualTable& table, int k) {
   std::string text;
   for (const CornerResidual& c : WorstCorners(table.corners, k)) {
     char line[160];
-    std::snprintf(line, sizeof line, " tag %d corner %d at (%.1f, %.1f): %.3g px", c.tag_id, c.corner,
-                  c.observed.x(), c.observed.y(), c.residual.norm());
+    std::snprintf(line, sizeof line, " tag %d corner %d at (%.1f, %.1f): %.3g px", c.tag_id, c.corner, c.observed.x(),
+                  c.observed.y(), c.residual.norm());
     text += "  " + table.images[static_cast<size_t>(c.image)] + line;
     if (sigma > 0) text += " (" + G3(c.residual.norm() / sigma) + " sigma)";
     text += "\n";

@@ -1,7 +1,5 @@
 // The per-corner diagnostics as the report draws and names them: the residual
 // field of a known distortion error, the CSV round trip, the JSON figures.
-#include "workflow/corner_report_section.h"
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -12,13 +10,14 @@
 #include "tests/test_support.h"
 #include "vision/camera.h"
 #include "workflow/corner_charts.h"
+#include "workflow/corner_report_section.h"
 
 namespace hexcal::workflow {
 namespace {
 
-using ::testing::HasSubstr;
 using hexcal::testing::TempDir;
 using hexcal::testing::WriteTextFile;
+using ::testing::HasSubstr;
 
 Camera Pinhole(double k1) {
   Camera camera;

@@ -21,7 +21,7 @@
 namespace hexcal::workflow {
 
 struct CornerResidualTable {
-  std::vector<std::string> images;     // names, indexed by CornerResidual::image
+  std::vector<std::string> images;  // names, indexed by CornerResidual::image
   std::vector<CornerResidual> corners;
 };
 

@@ -97,12 +97,18 @@ nlohmann::json ToJson(const IntrinsicsOutcome& outcome) {
                   {"max_px", cross.max_px},
                   {"max_sigma", cross.z.empty() ? nlohmann::json() : nlohmann::json(cross.max_z)}};
   }
-  return {{"out", outcome.out},           {"model", CameraModelName(c.model)},
-          {"coverage", outcome.coverage}, {"coverage_fraction", CoverageFraction(result)},
-          {"image_width", c.width},       {"image_height", c.height},
-          {"rms_px", result.rms_px},      {"used_views", result.used_views},
-          {"parameters", parameters},     {"views", views},
-          {"cross_validation", cross_json}, {"residuals", outcome.residuals},
+  return {{"out", outcome.out},
+          {"model", CameraModelName(c.model)},
+          {"coverage", outcome.coverage},
+          {"coverage_fraction", CoverageFraction(result)},
+          {"image_width", c.width},
+          {"image_height", c.height},
+          {"rms_px", result.rms_px},
+          {"used_views", result.used_views},
+          {"parameters", parameters},
+          {"views", views},
+          {"cross_validation", cross_json},
+          {"residuals", outcome.residuals},
           {"corners", CornerDiagnosticsJson(CornerTableOf(result), c.width, c.height)}};
 }
 

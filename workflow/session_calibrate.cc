@@ -396,8 +396,11 @@ StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const OpenSession
   CornerResidualTable corners{{}, std::move(fit->fit.corner_residuals)};
   for (const LegsRow* row : split.calibration_rows) corners.images.push_back(row->image);  // the fit's image order
   return PixelOutcome{SummarizeSessionPixelFit(*fit, two_stage),
-                      intrinsics ? std::optional<Camera>(fit->fit.camera) : std::nullopt, fit->fit.camera,
-                      fit->fit.target_scale, fit->calibration_poses, std::move(corners)};
+                      intrinsics ? std::optional<Camera>(fit->fit.camera) : std::nullopt,
+                      fit->fit.camera,
+                      fit->fit.target_scale,
+                      fit->calibration_poses,
+                      std::move(corners)};
 }
 
 }  // namespace
