@@ -141,6 +141,16 @@ SeriesSpec ScatterSeries(std::string name, std::vector<ChartPoint> points) {
   return series;
 }
 
+SeriesSpec PolylineSeries(std::string name, const std::vector<std::vector<ChartPoint>>& pieces, bool dashed) {
+  SeriesSpec series = LineSeries(std::move(name), {}, dashed);
+  series.kind = SeriesKind::kPolylines;
+  for (const std::vector<ChartPoint>& piece : pieces) {
+    series.points.insert(series.points.end(), piece.begin(), piece.end());
+    series.points.push_back({std::nan(""), std::nan("")});
+  }
+  return series;
+}
+
 SeriesSpec BarSeries(std::string name, std::vector<double> values, std::vector<double> errors) {
   SeriesSpec series;
   series.name = std::move(name);

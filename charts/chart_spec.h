@@ -3,7 +3,7 @@
 // `hexcal simulate --plots` (chart_render.h) are all drawn from. No Qt here, so
 // the figure definitions (figures.h) and their tests are plain C++.
 //
-// A chart is either an x-y chart (line and scatter series over numeric axes) or
+// A chart is either an x-y chart (line, polyline and scatter series over numeric axes) or
 // a bar chart (bar series, one value per category of the x axis, optionally
 // with a symmetric error bar each). ComputeRanges() gives the axes: every data
 // point lies inside them, negative values and error bars included.
@@ -21,7 +21,9 @@
 
 namespace hexcal::charts {
 
-enum class SeriesKind { kLine, kScatter, kBar };
+// kPolylines: separate pieces (arrows, grid lines), each ended by a point
+// with a NaN coordinate; one legend entry for them all.
+enum class SeriesKind { kLine, kScatter, kBar, kPolylines };
 
 struct ChartPoint {
   double x = 0;
@@ -31,6 +33,7 @@ struct ChartPoint {
 struct AxisSpec {
   std::string label;  // with the unit: "residual (mm)"
   bool log = false;   // base 10; only positive values are drawn (see ComputeRanges)
+  bool reversed = false;  // values grow downwards (or leftwards): image rows
   // The x axis of a bar chart: one label per bar (or group of bars), in order.
   std::vector<std::string> categories;
 };
@@ -38,7 +41,7 @@ struct AxisSpec {
 struct SeriesSpec {
   std::string name;  // legend entry
   SeriesKind kind = SeriesKind::kLine;
-  std::vector<ChartPoint> points;  // line and scatter
+  std::vector<ChartPoint> points;  // line, scatter and polylines
   std::vector<double> values;      // bar: one per category
   std::vector<double> errors;      // bar: empty, or one symmetric error per value (0 or NaN: none)
   bool dashed = false;             // a limit or reference line, drawn grey and dashed
@@ -65,6 +68,8 @@ AxisSpec LogAxis(std::string label);
 AxisSpec CategoryAxis(std::string label, std::vector<std::string> categories);
 SeriesSpec LineSeries(std::string name, std::vector<ChartPoint> points, bool dashed = false);
 SeriesSpec ScatterSeries(std::string name, std::vector<ChartPoint> points);
+// `pieces` drawn apart, one legend entry; `dashed` as for a line.
+SeriesSpec PolylineSeries(std::string name, const std::vector<std::vector<ChartPoint>>& pieces, bool dashed = false);
 SeriesSpec BarSeries(std::string name, std::vector<double> values, std::vector<double> errors = {});
 
 // One axis as drawn: [min, max] and its labelled ticks.

@@ -178,6 +178,20 @@ TEST(RangesContainData, CatchesDataOutsideTheAxes) {
   EXPECT_FALSE(RangesContainData(spec, cut));
 }
 
+TEST(ComputeRanges, PolylinesHoldEveryPieceAndTheirBreaksAreNotData) {
+  ChartSpec spec;
+  spec.series = {PolylineSeries("grid", {{{0, 0}, {640, 0}}, {{0, 480}, {640, 480}}})};
+  ASSERT_EQ(spec.series[0].points.size(), 6u);  // two pieces, each ended by a NaN break
+  EXPECT_TRUE(std::isnan(spec.series[0].points[2].x));
+  EXPECT_TRUE(spec.IsValid(nullptr));
+  const ChartRanges ranges = ComputeRanges(spec);
+  EXPECT_LE(ranges.x.min, 0);
+  EXPECT_GE(ranges.x.max, 640);
+  EXPECT_LE(ranges.y.min, 0);
+  EXPECT_GE(ranges.y.max, 480);
+  EXPECT_LT(ranges.y.max, 600);
+}
+
 TEST(TickLabel, PrintsExactMultiples) {
   EXPECT_EQ(TickLabel(0.6000000000000001, 0.2), "0.6");
   EXPECT_EQ(TickLabel(-2.7755575615628914e-17, 0.2), "0");

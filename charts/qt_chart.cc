@@ -5,10 +5,13 @@
 #include <QBarSet>
 #include <QCategoryAxis>
 #include <QChart>
+#include <QGraphicsPathItem>
 #include <QLegendMarker>
 #include <QLineSeries>
 #include <QLogValueAxis>
+#include <QPainterPath>
 #include <QScatterSeries>
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 
@@ -26,6 +29,7 @@ const char* const kErrorColour = "#222222";
 const char* const kMinorGridColour = "#f0f0f0";
 constexpr int kMaxBarLabels = 12;     // more bars and their value labels overlap
 constexpr int kMaxMarkedPoints = 60;  // more points on a line and markers hide it
+constexpr int kPolylineItemKey = 0x68657863;  // QGraphicsItem::data key of the polyline paths ("hexc")
 
 QColor SeriesColour(int k) { return QColor(kPalette[k % kPaletteSize]); }
 
@@ -67,6 +71,7 @@ QAbstractAxis* NewValueAxis(const AxisSpec& spec, const AxisRange& range) {
     axis = new QCategoryAxis;
   }
   axis->setTitleText(Q(spec.label));
+  axis->setReverse(spec.reversed);
   ApplyRange(axis, range);
   return axis;
 }
@@ -85,6 +90,47 @@ void Style(QXYSeries* series, const SeriesSpec& spec, const QColor& colour) {
   series->setPointsVisible(!spec.dashed && spec.points.size() <= kMaxMarkedPoints);
 }
 
+// Qt Charts joins every point of a line series, and thousands of series (one
+// per arrow) take seconds and megabytes of SVG: the pieces are one path item
+// on the chart instead, placed through the axes whenever the plot area moves,
+// and an empty line series with the same pen gives the legend entry.
+void AddPolylines(QChart* chart, const ChartSpec& spec, const SeriesSpec& s, const QColor& colour,
+                  QAbstractAxis* x_axis, QAbstractAxis* y_axis) {
+  auto* legend = new QLineSeries;
+  legend->setName(Q(s.name));
+  chart->addSeries(legend);
+  QPen pen(colour);
+  pen.setWidthF(s.dashed ? 1 : 1.2);
+  if (s.dashed) pen.setStyle(Qt::DashLine);
+  legend->setPen(pen);
+  legend->attachAxis(x_axis);
+  legend->attachAxis(y_axis);
+  auto* item = new QGraphicsPathItem(chart);
+  item->setPen(pen);
+  item->setData(kPolylineItemKey, true);
+  const bool log_x = spec.x.log, log_y = spec.y.log;
+  auto place = [chart, legend, item, points = s.points, log_x, log_y]() {
+    QPainterPath path;
+    bool start = true;
+    for (const ChartPoint& p : points) {
+      if (!Drawable(p.x, log_x) || !Drawable(p.y, log_y)) {
+        start = true;
+        continue;
+      }
+      const QPointF at = chart->mapToPosition(QPointF(p.x, p.y), legend);
+      if (start) {
+        path.moveTo(at);
+      } else {
+        path.lineTo(at);
+      }
+      start = false;
+    }
+    item->setPath(path);
+  };
+  QObject::connect(chart, &QChart::plotAreaChanged, legend, place);  // gone with the series
+  place();
+}
+
 void AddXySeries(QChart* chart, const ChartSpec& spec, const ChartRanges& ranges) {
   QAbstractAxis* x_axis = NewValueAxis(spec.x, ranges.x);
   QAbstractAxis* y_axis = NewValueAxis(spec.y, ranges.y);
@@ -92,6 +138,10 @@ void AddXySeries(QChart* chart, const ChartSpec& spec, const ChartRanges& ranges
   chart->addAxis(y_axis, Qt::AlignLeft);
   int colour = 0;
   for (const SeriesSpec& s : spec.series) {
+    if (s.kind == SeriesKind::kPolylines) {
+      AddPolylines(chart, spec, s, s.dashed ? QColor(kLimitColour) : SeriesColour(colour++), x_axis, y_axis);
+      continue;
+    }
     QXYSeries* series = s.kind == SeriesKind::kScatter ? static_cast<QXYSeries*>(new QScatterSeries) : new QLineSeries;
     series->setName(Q(s.name));
     for (const ChartPoint& p : s.points) {
@@ -199,6 +249,9 @@ QChart* NewQtChart(const ChartSpec& spec) {
 void FillQtChart(QChart* chart, const ChartSpec& spec) {
   assert(spec.IsValid(nullptr));
   chart->removeAllSeries();
+  for (QGraphicsItem* child : chart->childItems()) {
+    if (child->data(kPolylineItemKey).toBool()) delete child;
+  }
   for (QAbstractAxis* axis : chart->axes()) {
     chart->removeAxis(axis);
     delete axis;
@@ -217,7 +270,11 @@ void AppendPoint(QChart* chart, ChartSpec* spec, int index, ChartPoint point) {
   spec->series[index].points.push_back(point);
   auto* series = qobject_cast<QXYSeries*>(chart->series().value(index));
   const QList<QAbstractAxis*> x_axes = chart->axes(Qt::Horizontal), y_axes = chart->axes(Qt::Vertical);
-  if (series == nullptr || x_axes.isEmpty() || y_axes.isEmpty()) return FillQtChart(chart, *spec);  // not spec's
+  // Polylines are path items beside their series: redrawn whole.
+  const bool polylines = std::any_of(spec->series.begin(), spec->series.end(),
+                                     [](const SeriesSpec& s) { return s.kind == SeriesKind::kPolylines; });
+  if (series == nullptr || polylines || x_axes.isEmpty() || y_axes.isEmpty())
+    return FillQtChart(chart, *spec);  // not spec's
   if (Drawable(point.x, spec->x.log) && Drawable(point.y, spec->y.log)) series->append(point.x, point.y);
   if (auto* line = qobject_cast<QLineSeries*>(series))
     Style(line, spec->series[index], line->color());  // markers off past kMaxMarkedPoints

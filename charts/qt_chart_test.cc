@@ -12,10 +12,12 @@
 #include <QBarSet>
 #include <QCategoryAxis>
 #include <QChart>
+#include <QGraphicsPathItem>
 #include <QGraphicsScene>
 #include <QLegendMarker>
 #include <QLineSeries>
 #include <QLogValueAxis>
+#include <QPainterPath>
 #include <QScatterSeries>
 #include <cmath>
 #include <memory>
@@ -115,6 +117,47 @@ TEST_F(QtChartTest, LineChartDrawsThePointsTheLogAxisCanHold) {
   ASSERT_NE(x_axis, nullptr);
   EXPECT_EQ(x_axis->count(), static_cast<int>(ranges.x.ticks.size()));
   EXPECT_TRUE(x_axis->categoriesLabels().contains("0"));
+}
+
+// Arrows and grid lines: one path of separate pieces (a Qt line series would
+// join them), placed through the axes, with one legend entry; image rows grow
+// downwards on a reversed axis.
+TEST_F(QtChartTest, PolylinesAreOnePathOfPiecesWithOneLegendEntry) {
+  ChartSpec spec;
+  spec.y.reversed = true;
+  spec.series = {PolylineSeries("arrows", {{{0, 0}, {1, 1}}, {{5, 5}, {6, 5}, {6, 6}}, {{9, 0}, {9, 1}}}),
+                 LineSeries("line", {{0, 2}, {9, 2}})};
+  std::unique_ptr<QChart> chart(NewQtChart(spec));
+  ASSERT_EQ(chart->series().size(), 2);
+  EXPECT_EQ(qobject_cast<QLineSeries*>(chart->series()[0])->count(), 0);  // the legend entry only
+  QGraphicsScene scene;
+  scene.addItem(chart.get());
+  chart->setGeometry(0, 0, 600, 400);
+  QCoreApplication::sendPostedEvents(nullptr, QEvent::LayoutRequest);
+  std::vector<QGraphicsPathItem*> paths;
+  for (QGraphicsItem* child : chart->childItems())
+    if (auto* path = dynamic_cast<QGraphicsPathItem*>(child)) paths.push_back(path);
+  ASSERT_EQ(paths.size(), 1u);
+  const QPainterPath& path = paths[0]->path();
+  ASSERT_EQ(path.elementCount(), 7);  // 3 pieces: 3 moves, 4 lines
+  int moves = 0;
+  for (int k = 0; k < path.elementCount(); ++k) moves += path.elementAt(k).isMoveTo();
+  EXPECT_EQ(moves, 3);
+  // Placed where the axes put the data: (5, 5) is where the line series would draw it.
+  const QPointF expected = chart->mapToPosition({5, 5}, chart->series()[1]);
+  EXPECT_NEAR(path.elementAt(2).x, expected.x(), 1e-9);
+  EXPECT_NEAR(path.elementAt(2).y, expected.y(), 1e-9);
+  // Reversed: y = 0 is at the top of the plot, y = 6 lower down.
+  EXPECT_LT(chart->mapToPosition({0, 0}, chart->series()[1]).y(), chart->mapToPosition({0, 6}, chart->series()[1]).y());
+  EXPECT_TRUE(Axis(chart.get(), Qt::Vertical)->isReverse());
+  EXPECT_FALSE(Axis(chart.get(), Qt::Horizontal)->isReverse());
+  // A live append on such a chart redraws it whole, and the old path goes.
+  AppendPoint(chart.get(), &spec, 1, {10, 2});
+  int items = 0;
+  for (QGraphicsItem* child : chart->childItems()) items += dynamic_cast<QGraphicsPathItem*>(child) != nullptr;
+  EXPECT_EQ(items, 1);
+  EXPECT_EQ(qobject_cast<QLineSeries*>(chart->series()[1])->count(), 3);
+  scene.removeItem(chart.get());
 }
 
 TEST_F(QtChartTest, AppendPointWidensTheAxesAsThePlannerRuns) {

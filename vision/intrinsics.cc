@@ -71,10 +71,11 @@ struct Calibration {
   std::vector<double> std_dev;  // empty: not estimated
   double rms = 0;
   std::vector<double> view_rms;  // per used view, in order
+  std::vector<CornerResidual> corners;  // `image`: the index of the view in the list calibrated
 };
 
-// The fit's RMS figures from the camera and the views' poses (Camera::Project),
-// so that every model's figures mean the same.
+// The fit's RMS figures and every corner's residual from the camera and the
+// views' poses (Camera::Project), so that every model's figures mean the same.
 void ReprojectionRms(const std::vector<const BoardObservation*>& views, const std::vector<cv::Mat>& rvecs,
                      const std::vector<cv::Mat>& tvecs, Calibration& result) {
   double total = 0;
@@ -92,7 +93,10 @@ void ReprojectionRms(const std::vector<const BoardObservation*>& views, const st
     double sum = 0;
     for (size_t i = 0; i < views[v]->image_points.size(); ++i) {
       const Eigen::Vector3d p_in_camera = camera_from_target * views[v]->target_points[i];
-      sum += (result.camera.Project(p_in_camera) - views[v]->image_points[i]).squaredNorm();
+      const Eigen::Vector2d residual = result.camera.Project(p_in_camera) - views[v]->image_points[i];
+      sum += residual.squaredNorm();
+      result.corners.push_back({static_cast<int>(v), views[v]->tag_ids[i / 4], static_cast<int>(i % 4),
+                                views[v]->image_points[i], residual});
     }
     const size_t n = views[v]->image_points.size();
     result.view_rms.push_back(std::sqrt(sum / static_cast<double>(std::max<size_t>(1, n))));
@@ -205,7 +209,10 @@ StatusOr<Calibration> CalibrateWithOutliers(std::vector<CalibrationView>& views,
                        options.far_outlier_factor * median);
     const auto worst = std::max_element(calibration->view_rms.begin(), calibration->view_rms.end());
     for (size_t u = 0; u < index.size(); ++u) views[index[u]].rms_px = calibration->view_rms[u];
-    if (*worst <= limit || static_cast<int>(used.size()) <= options.min_views) return calibration;
+    if (*worst <= limit || static_cast<int>(used.size()) <= options.min_views) {
+      for (CornerResidual& corner : calibration->corners) corner.image = static_cast<int>(index[corner.image]);
+      return calibration;
+    }
     CalibrationView& outlier = views[index[static_cast<size_t>(worst - calibration->view_rms.begin())]];
     outlier.used = false;
     outlier.reason = "outlier: RMS " + Format(*worst) + " px > " + Format(limit) + " px";
@@ -299,6 +306,7 @@ StatusOr<IntrinsicsResult> Run(int count, const std::vector<std::string>& names,
   result.camera = calibration->camera;
   result.std_dev = calibration->std_dev;
   result.rms_px = calibration->rms;
+  result.corner_residuals = std::move(calibration->corners);
   result.cross_validation = CrossValidate(result.views, *detected, size, result.camera, options.model);
   for (size_t i = 0; i < result.views.size(); ++i) {
     CalibrationView& view = result.views[i];
@@ -361,54 +369,6 @@ CameraFileExtras ExtrasOf(const IntrinsicsResult& result) {
   if (result.std_dev.empty())
     extras.comment += "\nno standard deviations: the fisheye calibration does not estimate them";
   return extras;
-}
-
-double CoverageFraction(const IntrinsicsResult& result) {
-  constexpr int kCols = 8, kRows = 6;
-  bool seen[kRows][kCols] = {};
-  for (const CalibrationView& view : result.views) {
-    if (!view.used) continue;
-    for (const Eigen::Vector2d& p : view.corners) {
-      const int c = std::clamp(static_cast<int>(p.x() * kCols / result.camera.width), 0, kCols - 1);
-      const int r = std::clamp(static_cast<int>(p.y() * kRows / result.camera.height), 0, kRows - 1);
-      seen[r][c] = true;
-    }
-  }
-  int count = 0;
-  for (const auto& row : seen) count += static_cast<int>(std::count(std::begin(row), std::end(row), true));
-  return static_cast<double>(count) / (kCols * kRows);
-}
-
-cv::Mat CoverageImage(const IntrinsicsResult& result) {
-  const int width = result.camera.width, height = result.camera.height;
-  cv::Mat image(height, width, CV_8UC3, cv::Scalar(32, 32, 32));
-  for (int c = 1; c < 8; ++c) {
-    cv::line(image, {c * width / 8, 0}, {c * width / 8, height - 1}, cv::Scalar(70, 70, 70), 1);
-  }
-  for (int r = 1; r < 6; ++r) {
-    cv::line(image, {0, r * height / 6}, {width - 1, r * height / 6}, cv::Scalar(70, 70, 70), 1);
-  }
-  const int radius = std::max(2, width / 400);
-  int used_index = 0;
-  for (const CalibrationView& view : result.views) {
-    cv::Scalar colour(110, 110, 110);
-    if (view.used) {
-      cv::Mat hsv(1, 1, CV_8UC3, cv::Scalar((used_index++ * 37) % 180, 220, 255)), bgr;
-      cv::cvtColor(hsv, bgr, cv::COLOR_HSV2BGR);
-      const cv::Vec3b c = bgr.at<cv::Vec3b>(0, 0);
-      colour = cv::Scalar(c[0], c[1], c[2]);
-    }
-    for (const Eigen::Vector2d& p : view.corners) {
-      cv::circle(image, cv::Point(cvRound(p.x() * 16), cvRound(p.y() * 16)), radius * 16, colour, cv::FILLED,
-                 cv::LINE_AA, 4);
-    }
-  }
-  const std::string text = "corner coverage " + Format(100 * CoverageFraction(result), 3) + " % of 8 x 6 cells, " +
-                           std::to_string(result.used_views) + " views, RMS " + Format(result.rms_px) + " px";
-  const double scale = std::max(0.4, width / 1600.0);
-  cv::putText(image, text, {10, height - 12}, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(255, 255, 255), 1,
-              cv::LINE_AA);
-  return image;
 }
 
 }  // namespace hexcal

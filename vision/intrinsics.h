@@ -29,6 +29,7 @@
 #include "core/job_hooks.h"
 #include "core/status.h"
 #include "vision/camera.h"
+#include "vision/corner_diagnostics.h"
 #include "vision/detection.h"
 #include "vision/target.h"
 
@@ -81,6 +82,9 @@ struct IntrinsicsResult {
   double rms_px = 0;  // over every corner of the used views
   int used_views = 0;
   std::vector<CalibrationView> views;  // in the order of the files
+  // Every corner of the used views at the final calibration; `image`
+  // indexes `views` (corner_diagnostics.h).
+  std::vector<CornerResidual> corner_residuals;
   CrossValidation cross_validation;
 };
 

@@ -1,12 +1,15 @@
 #include "vision/intrinsics.h"
-#include "vision/intrinsics_diagnosis.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include <opencv2/imgproc.hpp>
 
 #include "tests/test_support.h"
+#include "vision/intrinsics_diagnosis.h"
 #include "vision/renderer.h"
 
 namespace hexcal {
@@ -52,6 +55,18 @@ TEST(IntrinsicsTest, TwentyRenderedViewsLandWithinThreeSigmaOfTheTruth) {
   const cv::Mat coverage = CoverageImage(*result);
   EXPECT_EQ(coverage.size(), cv::Size(1024, 768));
   EXPECT_GT(CoverageFraction(*result), 0.5);
+  // Every corner of every used view has its residual, and they make up the RMS.
+  size_t corners = 0;
+  double sum = 0;
+  for (const CalibrationView& view : result->views) corners += view.used ? view.corners.size() : 0;
+  ASSERT_EQ(result->corner_residuals.size(), corners);
+  for (const CornerResidual& corner : result->corner_residuals) {
+    const CalibrationView& view = result->views[corner.image];
+    ASSERT_TRUE(view.used);
+    EXPECT_NE(std::find(view.corners.begin(), view.corners.end(), corner.observed), view.corners.end());
+    sum += corner.residual.squaredNorm();
+  }
+  EXPECT_NEAR(std::sqrt(sum / corners), result->rms_px, 1e-9);
   const CameraFileExtras extras = ExtrasOf(*result);
   EXPECT_EQ(extras.std_dev.size(), 9u);
   EXPECT_EQ(extras.per_view_rms_px.size(), 20u);

@@ -104,6 +104,7 @@ void AddTagResiduals(const PixelCalibrationInput& input, const PixelCalibrationO
   for (size_t t = 0; t < seen.tag_ids.size(); ++t) {
     auto* cost = new TagCornersResidual;
     cost->image = j;
+    cost->tag_id = seen.tag_ids[t];
     cost->camera = &input.camera;
     for (int c = 0; c < 4; ++c) {
       cost->corners[c] = seen.target_points[4 * t + c] * input.target_to_robot;

@@ -40,6 +40,7 @@
 #include "core/robot.h"
 #include "core/status.h"
 #include "vision/camera.h"
+#include "vision/corner_diagnostics.h"
 #include "vision/detection.h"
 
 namespace hexcal {
@@ -107,6 +108,8 @@ struct PixelCalibrationResult {
   std::vector<LegReadings> leg_z;
   int corners = 0, leg_rows = 0;
   double reprojection_rms_px = 0;  // unwhitened, over every corner
+  // Every corner's unwhitened residual at the fit; `image` indexes input.images.
+  std::vector<CornerResidual> corner_residuals;
   double leg_residual_rms = 0;     // robot unit, over every leg reading used
   double variance_factor = 0;      // s² = Σ r² / (m − n)
   int iterations = 0;

@@ -39,6 +39,7 @@ struct LegReadingResidual {
 // focal scale φ (1), principal point (2), target scale s (1).
 struct TagCornersResidual {
   int image = 0;                             // the image's index (bookkeeping)
+  int tag_id = 0;                            // the target's id of the tag (bookkeeping)
   const Camera* camera = nullptr;            // distortion and the file's fx, fy
   std::array<Eigen::Vector3d, 4> corners;    // target frame, robot unit
   Eigen::Matrix<double, 8, 1> observed;      // u0, v0, ..., u3, v3

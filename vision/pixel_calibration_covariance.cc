@@ -61,20 +61,26 @@ MatrixXd ReducedInformation(const SparseRows& jacobian, const ColumnLayout& layo
   return reduced;
 }
 
-double ReprojectionRms(const PixelFit& fit, int* corners) {
+// The unwhitened reprojection error of every corner (corner_diagnostics.h).
+std::vector<CornerResidual> CornerResiduals(const PixelFit& fit) {
   const double focal = *fit.estimated[0].data, scale = *fit.estimated[2].data;
   const double* principal = fit.estimated[1].data;
-  double sum = 0;
-  *corners = 0;
+  std::vector<CornerResidual> corners;
   for (const TagCornersResidual& tag : fit.tags) {
     TagCornersResidual plain = tag;
     plain.whitening.setIdentity();
     Eigen::Matrix<double, 8, 1> r = Eigen::Matrix<double, 8, 1>::Zero();
     plain((*fit.poses)[tag.image].data(), &focal, principal, &scale, r.data());
-    sum += r.squaredNorm();
-    *corners += 4;
+    for (int c = 0; c < 4; ++c)
+      corners.push_back({tag.image, tag.tag_id, c, tag.observed.segment<2>(2 * c), r.segment<2>(2 * c)});
   }
-  return *corners > 0 ? std::sqrt(sum / *corners) : 0;
+  return corners;
+}
+
+double ReprojectionRms(const std::vector<CornerResidual>& corners) {
+  double sum = 0;
+  for (const CornerResidual& c : corners) sum += c.residual.squaredNorm();
+  return corners.empty() ? 0 : std::sqrt(sum / static_cast<double>(corners.size()));
 }
 
 // One leg's reading residuals r (in σ_L), in the order of fit.leg_rows[leg].
@@ -220,7 +226,9 @@ StatusOr<PixelCalibrationResult> SummarizePixelFit(const PixelCalibrationInput& 
   FillLegs(input, fit, covariance, options, result.variance_factor, &result.calibration);
   FillExtras(input, fit, covariance, &result);
   result.strong_correlations = StrongCorrelations(fit, covariance);
-  result.reprojection_rms_px = ReprojectionRms(fit, &result.corners);
+  result.corner_residuals = CornerResiduals(fit);
+  result.corners = static_cast<int>(result.corner_residuals.size());
+  result.reprojection_rms_px = ReprojectionRms(result.corner_residuals);
   double leg_sum = 0;
   int leg_count = 0;
   for (int i = 0; i < kNumLegs; ++i) {

@@ -9,6 +9,7 @@
 
 #include "core/atomic_file.h"
 #include "tests/test_support.h"
+#include "workflow/corner_residuals_file.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_report.h"
 
@@ -95,6 +96,13 @@ TEST_F(DemoSession, CalibratesFromPixelsByDefaultAndTwoStageOnRequest) {
   EXPECT_NEAR(pixels.estimated[0].estimate, pixels.estimated[0].file_value, 5 * pixels.estimated[0].sigma);
   EXPECT_LT(pixels.reprojection_rms_px, 0.2);
   EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(Session()) / "results" / "camera.yaml"));
+  // Every corner of the fit, named by its legs.csv image (docs/calibration.md, "Per-corner diagnostics").
+  const std::string corners_file = (std::filesystem::path(Session()) / "results" / "corner_residuals.csv").string();
+  StatusOr<CornerResidualTable> corners = LoadCornerResiduals(corners_file);
+  ASSERT_TRUE(corners.ok()) << corners.status().message();
+  EXPECT_EQ(static_cast<int>(corners->corners.size()), pixels.corners);
+  EXPECT_EQ(static_cast<int>(corners->images.size()), pixels.images);
+  EXPECT_EQ(corners->images.front().rfind("view_", 0), 0u) << corners->images.front();
   CalibrateSessionRequest two_stage{Session()};
   two_stage.from_pixels.enabled = false;
   StatusOr<CalibrationReport> poses_only = CalibrateSession(two_stage);
@@ -102,6 +110,7 @@ TEST_F(DemoSession, CalibratesFromPixelsByDefaultAndTwoStageOnRequest) {
   EXPECT_FALSE(poses_only->from_pixels.has_value());
   EXPECT_EQ(ToJson(*poses_only)["method"], "two-stage");
   EXPECT_FALSE(std::filesystem::exists(std::filesystem::path(Session()) / "results" / "camera.yaml"));
+  EXPECT_FALSE(std::filesystem::exists(corners_file));  // no fit to the corners, no residuals
   EXPECT_NEAR(poses_only->closure_position_rms, result_->calibration.closure_position_rms,
               result_->calibration.closure_position_rms);
   ASSERT_TRUE(CalibrateSession({Session()}).ok());  // back to the default for the other tests

@@ -4,10 +4,13 @@
 #include <filesystem>
 #include <sstream>
 
+#include "charts/chart_render.h"
 #include "core/atomic_file.h"
 #include "vision/image_codecs.h"
 #include "vision/intrinsics_diagnosis.h"
 #include "vision/measure.h"
+#include "workflow/corner_charts.h"
+#include "workflow/corner_report_section.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -19,7 +22,26 @@ std::string DefaultCoveragePath(const std::string& out) {
   return path.string();
 }
 
+// "camera.yaml" -> "camera.residuals.png", written when charts can be drawn here.
+std::string WriteResidualField(const IntrinsicsResult& result, const std::string& coverage) {
+  std::filesystem::path path(coverage);
+  path.replace_extension();  // "camera.coverage"
+  path.replace_extension(".residuals.png");
+  const CornerResidualTable table = CornerTableOf(result);
+  StatusOr<std::string> png =
+      charts::ChartPng(ResidualFieldChart(table.corners, result.camera.width, result.camera.height));
+  if (!png.ok() || !WriteFileAtomically(path.string(), *png).ok()) return "";
+  return path.string();
+}
+
 }  // namespace
+
+CornerResidualTable CornerTableOf(const IntrinsicsResult& result) {
+  CornerResidualTable table;
+  for (const CalibrationView& view : result.views) table.images.push_back(view.file);
+  table.corners = result.corner_residuals;
+  return table;
+}
 
 StatusOr<IntrinsicsOutcome> CalibrateCameraFromFiles(const std::vector<std::string>& files, const Target& target,
                                                      const IntrinsicsOptions& options, const std::string& out,
@@ -34,7 +56,9 @@ StatusOr<IntrinsicsOutcome> CalibrateCameraFromFiles(const std::vector<std::stri
     if (!png.ok()) return png.status().AsFailure();
     if (Status s = WriteFileAtomically(coverage, *png); !s.ok()) return s.AsFailure();
   }
-  return IntrinsicsOutcome{std::move(*result), out, coverage, static_cast<int>(files.size()), options.outlier_factor};
+  const std::string residuals = coverage.empty() ? "" : WriteResidualField(*result, coverage);
+  return IntrinsicsOutcome{std::move(*result), out,      coverage, static_cast<int>(files.size()),
+                           options.outlier_factor, residuals};
 }
 
 StatusOr<IntrinsicsOutcome> CalibrateCameraFromFolder(const IntrinsicsRequest& request, const JobHooks& hooks) {
@@ -77,12 +101,19 @@ nlohmann::json ToJson(const IntrinsicsOutcome& outcome) {
                   {"good_max_rms_px", kCrossHalvesGoodPx},
                   {"good_max_sigma", kCrossSigmaGood}};
   }
-  return {{"out", outcome.out},           {"model", CameraModelName(c.model)},
-          {"coverage", outcome.coverage}, {"coverage_fraction", CoverageFraction(result)},
-          {"image_width", c.width},       {"image_height", c.height},
-          {"rms_px", result.rms_px},      {"used_views", result.used_views},
-          {"parameters", parameters},     {"views", views},
-          {"cross_validation", cross_json}};
+  return {{"out", outcome.out},
+          {"model", CameraModelName(c.model)},
+          {"coverage", outcome.coverage},
+          {"coverage_fraction", CoverageFraction(result)},
+          {"image_width", c.width},
+          {"image_height", c.height},
+          {"rms_px", result.rms_px},
+          {"used_views", result.used_views},
+          {"parameters", parameters},
+          {"views", views},
+          {"cross_validation", cross_json},
+          {"residuals", outcome.residuals},
+          {"corners", CornerDiagnosticsJson(CornerTableOf(result), c.width, c.height)}};
 }
 
 std::string FormatIntrinsicsSummary(const IntrinsicsOutcome& outcome) {
@@ -112,9 +143,13 @@ std::string FormatIntrinsicsSummary(const IntrinsicsOutcome& outcome) {
     out << "  " << worst << "\n";
   }
   out << "  " << DescribeCrossValidation(result.cross_validation) << "\n";
+  const CornerResidualTable corners = CornerTableOf(result);
+  out << "  per corner: " << FormatCornerFigures(corners, c.width, c.height) << "\n";
+  out << "  worst corners (residual = projected - detected):\n" << FormatWorstCorners(corners);
   out << "written to " << outcome.out;
   if (!outcome.coverage.empty())
     out << "; corner coverage " << 100 * CoverageFraction(result) << " % in " << outcome.coverage;
+  if (!outcome.residuals.empty()) out << "; residual field in " << outcome.residuals;
   return out.str() + "\n";
 }
 

@@ -1,6 +1,8 @@
 // Camera intrinsics from a folder of target images (`hexcal intrinsics`, the
 // GUI's "Intrinsics from folder…"): calibrate (vision/intrinsics.h), write the
-// camera file with its fit figures and, optionally, the corner coverage picture.
+// camera file with its fit figures and, optionally, the corner coverage picture
+// and the residual field (OUT with .residuals.png); the per-corner diagnostics
+// (corner_report_section.h) go into the summary and the JSON.
 //
 //   StatusOr<IntrinsicsOutcome> camera = CalibrateCameraFromFolder({"aprilgrid-6x6", "calib/", "camera.yaml"});
 #pragma once
@@ -12,6 +14,7 @@
 #include "core/job_hooks.h"
 #include "core/status.h"
 #include "vision/intrinsics.h"
+#include "workflow/corner_residuals_file.h"
 
 namespace hexcal::workflow {
 
@@ -29,7 +32,14 @@ struct IntrinsicsOutcome {
   std::string out, coverage;  // files written (coverage empty when not written)
   int images = 0;             // images given
   double outlier_factor = 3;  // the options' outlier_factor: a used view this many times the median is named
+  // The residual field chart written beside the coverage picture; empty when
+  // not written (no coverage picture, or charts cannot be drawn on this
+  // thread: chart_render.h).
+  std::string residuals;
 };
+
+// The used views' corners and their residuals, images named by their files.
+CornerResidualTable CornerTableOf(const IntrinsicsResult& result);
 
 StatusOr<IntrinsicsOutcome> CalibrateCameraFromFolder(const IntrinsicsRequest& request, const JobHooks& hooks = {});
 

@@ -20,6 +20,7 @@
 #include "vision/measure.h"
 #include "workflow/board_pose_shortfall.h"
 #include "workflow/camera_frame_diagnosis.h"
+#include "workflow/corner_residuals_file.h"
 #include "workflow/expected_error.h"
 #include "workflow/measure_step.h"
 #include "workflow/session_measure.h"
@@ -35,6 +36,7 @@ constexpr const char* kUsedMeasurements = "calibration_measurements.csv";
 constexpr const char* kCalibratedRobot = "calibrated.yaml";
 constexpr const char* kReportJson = "report.json";
 constexpr const char* kFittedCamera = "camera.yaml";
+constexpr const char* kCornerResiduals = "corner_residuals.csv";
 
 using CameraPose = SessionImagePose;
 using CameraPoses = std::map<std::string, SessionImagePose>;
@@ -261,7 +263,8 @@ CalibrationReport MakeReport(const std::string& dir, const SessionInputs& in, co
 // swapped in whole; then the registered frames into session.yaml.
 Status WriteCalibrationResults(const std::string& dir, SessionInputs* in, const CameraCalibrationResult& result,
                                const CalibrationOptions& calibration, const CalibrationReport& report,
-                               const std::optional<Camera>& fitted_camera, const ContentHashes& inputs) {
+                               const std::optional<Camera>& fitted_camera, const CornerResidualTable* corners,
+                               const ContentHashes& inputs) {
   const SessionPaths paths(dir);
   StatusOr<StagedFolder> staged = StagedFolder::Begin(paths.results);
   if (!staged.ok()) return staged.status();
@@ -277,6 +280,10 @@ Status WriteCalibrationResults(const std::string& dir, SessionInputs* in, const 
     extras.comment = "The intrinsics hexcal calibrate --session --from-pixels estimated (docs/calibration.md)";
     if (Status s = SaveCamera(*fitted_camera, staged->File(kFittedCamera), extras); !s.ok()) return s;
     outputs.push_back(kFittedCamera);
+  }
+  if (corners != nullptr) {
+    if (Status s = SaveCornerResiduals(staged->File(kCornerResiduals), *corners); !s.ok()) return s;
+    outputs.push_back(kCornerResiduals);
   }
   ResultsManifest manifest{calibration_inputs.date, "calibrate --session", inputs, {}};
   for (const char* name : outputs) {
@@ -360,6 +367,7 @@ struct PixelOutcome {
   double target_scale = 1;       // the target's fitted scale
   // camera_from_target of each calibration image (robot unit) with them.
   std::vector<std::optional<Pose>> camera_poses;
+  CornerResidualTable corners;  // results/corner_residuals.csv
 };
 
 // The two-stage result replaced by the calibration from pixels: its
@@ -385,9 +393,14 @@ StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const OpenSession
   if (!again.ok()) return again.status();
   *validation = *again;
   const bool intrinsics = request.from_pixels.focal || request.from_pixels.principal_point;
+  CornerResidualTable corners{{}, std::move(fit->fit.corner_residuals)};
+  for (const LegsRow* row : split.calibration_rows) corners.images.push_back(row->image);  // the fit's image order
   return PixelOutcome{SummarizeSessionPixelFit(*fit, two_stage),
-                      intrinsics ? std::optional<Camera>(fit->fit.camera) : std::nullopt, fit->fit.camera,
-                      fit->fit.target_scale, fit->calibration_poses};
+                      intrinsics ? std::optional<Camera>(fit->fit.camera) : std::nullopt,
+                      fit->fit.camera,
+                      fit->fit.target_scale,
+                      fit->calibration_poses,
+                      std::move(corners)};
 }
 
 }  // namespace
@@ -514,7 +527,9 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   }
   if (Status s = CheckInputsUnchanged(dir, *inputs); !s.ok()) return s;
   const std::optional<Camera> fitted_camera = from_pixels ? from_pixels->camera : std::nullopt;
-  if (Status s = WriteCalibrationResults(dir, &*in, *result, calibration, report, fitted_camera, *inputs); !s.ok())
+  const CornerResidualTable* corners = from_pixels ? &from_pixels->corners : nullptr;
+  if (Status s = WriteCalibrationResults(dir, &*in, *result, calibration, report, fitted_camera, corners, *inputs);
+      !s.ok())
     return s.AsFailure();
   return report;
 }

@@ -16,9 +16,11 @@
 #include "core/robot_io.h"
 #include "core/session.h"
 #include "core/session_lock.h"
+#include "vision/camera.h"
 #include "workflow/calibration_report.h"
 #include "workflow/calibration_verdict.h"
 #include "workflow/camera_frame_diagnosis.h"
+#include "workflow/corner_report_section.h"
 #include "workflow/html_text.h"
 #include "workflow/pixel_report_section.h"
 #include "workflow/session_calibrate.h"
@@ -150,6 +152,21 @@ std::string ResidualSection(const SessionPaths& paths, const Robot& nominal) {
          ChartHtml(charts::CalibrationResidualsChart(nominal, *calibrated, *rows));
 }
 
+// The per-corner diagnostics of the calibration from pixels, when it wrote
+// results/corner_residuals.csv (corner_report_section.h); the image frame is
+// the session camera's.
+std::string CornerSection(const std::string& dir, const SessionPaths& paths, const SessionConfig& config) {
+  const std::string path = (fs::path(paths.results) / "corner_residuals.csv").string();
+  std::error_code error;
+  if (!fs::exists(path, error)) return "";
+  StatusOr<CornerResidualTable> table = LoadCornerResiduals(path);
+  StatusOr<Camera> camera = LoadCamera(ResolveSessionFile(dir, config.camera));
+  if (!table.ok() || !camera.ok())
+    return "<h2>Per-corner diagnostics</h2><p>" +
+           Escape(!table.ok() ? table.status().message() : camera.status().message()) + "</p>\n";
+  return CornerDiagnosticsSection(*table, camera->width, camera->height);
+}
+
 // Results computed from inputs that have changed since: say so at the top.
 std::string StaleWarning(const SessionResults& results) {
   if (results.changed_inputs.empty()) return "";
@@ -236,6 +253,7 @@ StatusOr<std::string> SessionReportHtml(const std::string& dir) {
           "&deg;; with the calibrated robot: " + Figure(report.closure_position_rms) + " " + Escape(unit) + ", " +
           Figure(report.closure_angle_rms_deg) + "&deg;.</p>\n";
   html += CalibrationMethodSection(report);
+  html += CornerSection(dir, paths, *config);
 
   const std::vector<double> rms = MeasurementRms(paths.camera_poses);
   if (!rms.empty()) html += "<h2>Measurements</h2>\n" + ChartHtml(charts::MeasurementRmsChart(rms));

@@ -36,8 +36,10 @@ Status CheckOutputs(const std::string& dir, const ResultsManifest& manifest) {
   const std::string results = SessionPaths(dir).results;
   for (const char* name : {"report.json", "calibrated.yaml", "calibration_measurements.csv"})
     if (manifest.outputs.count(name) == 0) return Status::Error(ResultsManifestPath(dir) + ": lists no " + name);
-  // camera.yaml: the intrinsics a calibration from pixels estimated (docs/session.md).
-  if (manifest.outputs.size() != 3 + manifest.outputs.count("camera.yaml"))
+  // camera.yaml and corner_residuals.csv: the intrinsics a calibration from
+  // pixels estimated and its corners' residuals (docs/session.md).
+  if (manifest.outputs.size() !=
+      3 + manifest.outputs.count("camera.yaml") + manifest.outputs.count("corner_residuals.csv"))
     return Status::Error(ResultsManifestPath(dir) + ": lists other outputs");
   for (const auto& [name, expected] : manifest.outputs) {
     const std::string path = (fs::path(results) / name).string();

@@ -29,10 +29,22 @@ assert v["after"]["orientation_rms"] * 3 < v["before"]["orientation_rms"], v
 assert s["usable_images"] == 18, s["usable_images"]
 PY
   report=$out/results/report.html
-  [ "$(grep -c '<svg' "$report")" -eq 5 ]
-  for section in Plan Registration Measurements Validation "Camera-frame residuals" Residuals "Calibrated parameters"; do
+  [ "$(grep -c '<svg' "$report")" -eq 8 ]
+  for section in Plan Registration "Per-corner diagnostics" Measurements Validation "Camera-frame residuals" Residuals \
+      "Calibrated parameters"; do
     grep -q "<h2>$section" "$report"
   done
+  # The per-corner diagnostics (docs/calibration.md): the field, the histogram,
+  # the worst corners named from results/corner_residuals.csv, the coverage.
+  grep -q "Reprojection residuals (projected − detected), arrows" "$report"
+  grep -q "|residual| against noise of σ" "$report"
+  grep -q "<h3>Worst corners</h3>" "$report" && grep -q "<h3>Coverage</h3>" "$report"
+  worst=$(python3 -c '
+import csv, math, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert len(rows) > 1000, len(rows)
+print(max(rows, key=lambda r: math.hypot(float(r["dx_px"]), float(r["dy_px"])))["image"])' "$out/results/corner_residuals.csv")
+  grep -q "<tr><td>$worst</td>" "$report"
   [ -s "$out/truth/robot.yaml" ] && [ -s "$out/plan.csv" ] && [ "$(ls "$out/images" | wc -l)" -eq 18 ]
   # Every step done, by content; a replaced image makes measure, calibrate and validate stale.
   "$hexcal" session status "$out" --json | python3 -c '

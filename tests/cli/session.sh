@@ -59,7 +59,9 @@ PY
 [ -s "$s/results/calibrated.yaml" ] && [ -s "$s/results/report.json" ] && grep -q "base_from_camera:" "$s/session.yaml"
 "$hexcal" robot check "$s/results/calibrated.yaml" >/dev/null
 "$hexcal" report --session "$s" --out "$dir/report.html" | grep -q "written to"
-[ "$(grep -c '<svg' "$dir/report.html")" -eq 3 ] && grep -q "Held-out validation" "$dir/report.html"
+# 3 charts, and the 3 of the per-corner diagnostics (results/corner_residuals.csv).
+[ "$(grep -c '<svg' "$dir/report.html")" -eq 6 ] && grep -q "Held-out validation" "$dir/report.html"
+grep -q "<h2>Per-corner diagnostics" "$dir/report.html"
 if "$hexcal" report --session "$s" --out "$dir/report.html" 2>"$dir/err"; then exit 1; fi
 grep -q "report.html: exists; use --force" "$dir/err"
 # Measured images are not measured again.

@@ -10,7 +10,21 @@ trap 'rm -rf "$dir"' EXIT
 "$hexcal" render --camera sim-4.2mm-1024x768 --poses "$data/poses/vision_views.csv" --out "$dir/views" >/dev/null
 "$hexcal" intrinsics --images "$dir/views" --out "$dir/camera.yaml" --json >"$dir/out.json"
 grep -q '"used_views": 10' "$dir/out.json"
-[ -s "$dir/camera.coverage.png" ]
+[ -s "$dir/camera.coverage.png" ] && [ -s "$dir/camera.residuals.png" ]
+# The per-corner diagnostics (docs/calibration.md): the 10 worst corners named,
+# the largest first, the histogram's counts and the coverage grid's hold every corner.
+python3 - "$dir/out.json" <<'PY'
+import json, sys
+c = json.load(open(sys.argv[1]))["corners"]
+worst = [w["residual_px"] for w in c["worst"]]
+assert len(worst) == 10 and worst == sorted(worst, reverse=True), worst
+assert all(w["image"].endswith(".png") and 0 <= w["corner"] <= 3 for w in c["worst"]), c["worst"]
+h = c["histogram"]
+assert sum(h["counts"]) + h["beyond"] == c["corners"] == sum(c["coverage"]["counts"]), c
+assert c["sigma_px"] > 0 and c["rms_px"] < 0.2, c
+PY
+"$hexcal" intrinsics --images "$dir/views" --out "$dir/again.yaml" | grep -A1 "worst corners (residual = projected - detected):" |
+  grep -q "  .*views/.*\.png tag [0-9]* corner [0-3] at (.*): .* px (.* sigma)"
 head -1 "$dir/camera.yaml" | grep -q '%YAML:1.0'
 # fx within 2 px of 903.2
 fx=$(grep -A4 '^camera_matrix' "$dir/camera.yaml" | sed -n 's/.*data: \[ \([0-9.]*\),.*/\1/p')
