@@ -1,5 +1,7 @@
 #include "ui/tests/gui_test_support.h"
 
+#include "ui/error_dialog.h"
+
 #include <QAbstractButton>
 #include <QAbstractItemView>
 #include <QAbstractSlider>
@@ -19,8 +21,25 @@
 #include <QTabBar>
 #include <QTableView>
 #include <QThread>
+#include <QSurfaceFormat>
+#include <QVTKOpenGLNativeWidget.h>
+#include <gtest/gtest.h>
+#include <cstdio>
 
 namespace hexcal::ui {
+
+int RunGuiTests(int argc, char** argv, const char* name, QString* sessions_dir) {
+  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  QApplication app(argc, argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s SESSIONS (made by ui/tests/make_session)\n", name);
+    return 2;
+  }
+  *sessions_dir = argv[1];
+  SetInteractive(false);
+  return RUN_ALL_TESTS();
+}
 namespace {
 
 std::string Describe(const QWidget* widget) {

@@ -15,6 +15,12 @@ class QWidget;
 
 namespace hexcal::ui {
 
+// A GUI test binary's main: the VTK surface format, the QApplication,
+// GoogleTest, argv[1] (the sessions ui/tests/make_session wrote) into
+// `sessions_dir`, dialogs not interactive; then every test. `name` is in the
+// usage message.
+int RunGuiTests(int argc, char** argv, const char* name, QString* sessions_dir);
+
 // Runs the event loop until `done` or the timeout; the workers deliver their
 // results through it.
 bool WaitFor(const std::function<bool()>& done, int timeout_ms = 60000);

@@ -106,14 +106,5 @@ TEST(UiStudy, RunKeepCancelStaleAndSwitch) {
 }  // namespace hexcal::ui
 
 int main(int argc, char** argv) {
-  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
-  QApplication app(argc, argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: ui_study_test SESSIONS (made by ui/tests/make_session)\n");
-    return 2;
-  }
-  hexcal::ui::sessions_dir = argv[1];
-  hexcal::ui::SetInteractive(false);
-  return RUN_ALL_TESTS();
+  return hexcal::ui::RunGuiTests(argc, argv, "ui_study_test", &hexcal::ui::sessions_dir);
 }
