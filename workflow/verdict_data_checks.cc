@@ -104,10 +104,14 @@ Finding CheckOutliers(const CalibrationReport& report) {
   const VerdictLevel level = fraction <= kLeftOutImageFractionGood         ? VerdictLevel::kGood
                              : fraction <= kLeftOutImageFractionAcceptable ? VerdictLevel::kAcceptable
                                                                            : VerdictLevel::kPoor;
+  const std::string figure =
+      report.outliers.empty()
+          ? "no reading flagged (" + Plural(images, "calibration image") + ")"
+          : Plural(static_cast<int>(left_out.size()), "calibration image") + " of " + std::to_string(images) +
+                " left out for " + Plural(static_cast<int>(report.outliers.size()), "flagged reading");
   Finding finding{"outliers",
                   level,
-                  Plural(static_cast<int>(left_out.size()), "calibration image") + " of " + std::to_string(images) +
-                      " left out for " + Plural(static_cast<int>(report.outliers.size()), "flagged reading"),
+                  figure,
                   "good ≤ " + Figure(100 * kLeftOutImageFractionGood) + " %, acceptable ≤ " +
                       Figure(100 * kLeftOutImageFractionAcceptable) + " % of the calibration images",
                   "every leg reading agrees with its image's camera pose within the noise.",
