@@ -192,8 +192,10 @@ StatusOr<double> HomeAgain(Controller& machine, const Robot& running, const Mach
 StatusOr<double> ApplyPush(const PushRequest& request, const PushPlan& plan, Controller& machine,
                            std::ostream& progress) {
   if (StatusOr<std::string> set = RunHalText(request.halcmd, SetpText(plan.new_pins)); !set.ok()) {
-    (void)RunHalText(request.halcmd, SetpText(plan.old_pins));
-    return set.status();
+    const bool back = RunHalText(request.halcmd, SetpText(plan.old_pins)).ok();
+    return Status::Failed(set.status().message() + (back ? "; the old pins were set again, no file was changed"
+                                                         : "; setting the old pins again failed too: check the "
+                                                           "machine before moving it"));
   }
   Status written = WriteFiles(plan.files, /*new_text=*/true);
   StatusOr<double> homed = written.ok() ? HomeAgain(machine, request.running, plan.ini, plan.shifts)
