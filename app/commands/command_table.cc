@@ -3,6 +3,8 @@
 #include <iostream>
 #include <string>
 
+#include <opencv2/core/utils/logger.hpp>
+
 #include "app/commands/cli_common.h"
 #include "app/commands/terminal_text.h"
 #include "app/commands/help_examples.h"
@@ -54,6 +56,13 @@ std::string ParsedCommand(const CLI::App& app) {
   return path;
 }
 
+// `hexcal --verbose COMMAND ...`: the flag comes before the command.
+bool VerboseAsked(int argc, const char* const* argv) {
+  for (int k = 1; k < argc && argv[k][0] == '-'; ++k)
+    if (std::string(argv[k]) == "--verbose") return true;
+  return false;
+}
+
 }  // namespace
 
 void AddAllCommands(CLI::App& app, int* exit_code) {
@@ -66,6 +75,12 @@ void AddAllCommands(CLI::App& app, int* exit_code) {
 int RunHexcal(int argc, const char* const* argv) {
   CLI::App app{"hexcal: pose planning and calibration for Gough-Stewart platforms"};
   app.set_version_flag("--version", "hexcal 0.1.0");
+  app.add_flag("--verbose", "before the command: let the libraries' own messages (OpenCV's) through to stderr");
+  // hexcal says what failed in its own words; OpenCV's log lines ("[ WARN:0]
+  // ... can't open camera by index") only repeat it, or are noise.
+  const bool verbose = VerboseAsked(argc, argv);
+  cv::utils::logging::setLogLevel(verbose ? cv::utils::logging::LOG_LEVEL_INFO
+                                          : cv::utils::logging::LOG_LEVEL_SILENT);
   int exit_code = kExitOk;
   AddAllCommands(app, &exit_code);
   const TerminalEscaping escaping;  // names from files never reach the terminal raw

@@ -114,4 +114,10 @@ assert 0.02 < v["position_rms"] < 0.3, v["position_rms"]
 assert all(len(p["seen"]) == 6 and p["reprojection_rms_px"] < 0.5 for p in v["poses"]), v["poses"]
 print("verify on the sim: position RMS %.4f cm, orientation RMS %.4f deg" % (v["position_rms"], v["orientation_rms"]))
 PY
+# A camera that is not there: hexcal's message, not OpenCV's log lines
+# (they come through with `hexcal --verbose`).
+"$hexcal" acquire --session "$s" --controller sim --camera v4l2:97 >/dev/null 2>"$dir/quiet" || true
+grep -q "v4l2:97: cannot open /dev/video97" "$dir/quiet" && ! grep -q "WARN" "$dir/quiet" || { cat "$dir/quiet"; exit 1; }
+"$hexcal" --verbose acquire --session "$s" --controller sim --camera v4l2:97 >/dev/null 2>"$dir/loud" || true
+grep -q "WARN.*cap_v4l" "$dir/loud" || { cat "$dir/loud"; exit 1; }
 echo "acquire: ok"
