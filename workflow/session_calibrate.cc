@@ -26,6 +26,7 @@
 #include "workflow/session_measure.h"
 #include "workflow/session_pixels.h"
 #include "workflow/session_results.h"
+#include "workflow/session_rows.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -33,24 +34,9 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kUsedMeasurements = "calibration_measurements.csv";
-constexpr const char* kCalibratedRobot = "calibrated.yaml";
 constexpr const char* kReportJson = "report.json";
 constexpr const char* kFittedCamera = "camera.yaml";
 constexpr const char* kCornerResiduals = "corner_residuals.csv";
-
-using CameraPose = SessionImagePose;
-using CameraPoses = std::map<std::string, SessionImagePose>;
-
-// What session.yaml names, loaded.
-struct SessionInputs {
-  SessionConfig config;
-  std::vector<LegsRow> legs;
-  std::string robot_name;
-  Robot nominal;
-  Camera camera;
-  Target target;
-  Pose fk_start;  // the centre of the robot's pose box
-};
 
 StatusOr<SessionInputs> LoadSessionInputs(const std::string& dir) {
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
@@ -104,14 +90,6 @@ StatusOr<CameraPoses> MeasureSession(const std::string& dir, const SessionInputs
   return measured->poses;
 }
 
-// The calibration rows (usable, not held out) and the held-out rows.
-struct SplitRows {
-  CameraCalibrationInput input;
-  std::vector<const LegsRow*> calibration_rows;  // the row of each input pose
-  std::vector<const LegsRow*> held_out;
-  int unusable = 0;
-};
-
 // One image's board pose and covariance, scaled to the robot unit, with its readings.
 void AppendCameraRow(const SessionInputs& in, const LegsRow& row, const CameraPose& pose, double scale,
                      CameraCalibrationInput* input) {
@@ -142,120 +120,6 @@ SplitRows SplitSessionRows(const SessionInputs& in, const CameraPoses& poses, do
     split.calibration_rows.push_back(&row);
   }
   return split;
-}
-
-PoseErrorStats StatsOf(const ValidationReport& report) {
-  return {report.position.rms, report.position.max, report.orientation_deg.rms, report.orientation_deg.max,
-          report.failed};
-}
-
-std::optional<double> IfOk(bool ok, double value) { return ok ? std::optional<double>(value) : std::nullopt; }
-
-// Held-out rows: the camera pose mapped into the registered base frame.
-std::vector<Measurement> HeldOutMeasurements(const SessionInputs& in, const CameraPoses& poses,
-                                             const std::vector<const LegsRow*>& held_out,
-                                             const CameraCalibrationResult& result, double scale) {
-  std::vector<Measurement> rows;
-  for (const LegsRow* row : held_out) {
-    Pose camera_from_target = poses.at(row->image).camera_from_target;
-    camera_from_target.position *= scale;
-    Measurement m;
-    m.pose = in.nominal.VectorFromPose(BaseFromPlatform(result.registration, camera_from_target));
-    m.legs = row->legs;
-    rows.push_back(m);
-  }
-  return rows;
-}
-
-// The FK error the noise model predicts at the held-out poses, or at the
-// centre of the pose box without any (expected_error.h).
-NoiseExpectation ExpectedNoise(const SessionInputs& in, const std::vector<Measurement>& held_out,
-                               const Robot& calibrated) {
-  std::vector<Pose> where;
-  for (const Measurement& m : held_out) where.push_back(calibrated.PoseFromVector(m.pose));
-  if (where.empty()) where.push_back(in.fk_start);
-  const ExpectedPoseError expected = ExpectedFkError(calibrated, where, in.config.noise);
-  return {in.config.noise, expected.position_rms, expected.orientation_rms_deg};
-}
-
-// FK with the nominal and the calibrated robot on the held-out rows.
-StatusOr<std::optional<ValidationSummary>> ValidateHeldOut(const SessionInputs& in,
-                                                           const std::vector<const LegsRow*>& held_out,
-                                                           const std::vector<Measurement>& rows,
-                                                           const CameraCalibrationResult& result) {
-  if (held_out.empty()) return std::optional<ValidationSummary>();
-  StatusOr<ValidationReport> before = Validate(in.nominal, rows);
-  if (!before.ok()) return before.status().AsFailure();
-  StatusOr<ValidationReport> after = Validate(result.calibration.robot, rows);
-  if (!after.ok()) return after.status().AsFailure();
-  ValidationSummary summary{static_cast<int>(rows.size()), StatsOf(*before), StatsOf(*after), {}};
-  for (size_t j = 0; j < held_out.size(); ++j) {
-    const ValidationRow &b = before->rows[j], &a = after->rows[j];
-    summary.per_image.push_back({held_out[j]->image, IfOk(b.ok, b.position_error), IfOk(a.ok, a.position_error),
-                                 IfOk(b.ok, b.orientation_error_deg), IfOk(a.ok, a.orientation_error_deg)});
-  }
-  return std::optional<ValidationSummary>(summary);
-}
-
-void FillParameters(const CalibrationResult& calibration, CalibrationReport* report) {
-  for (int i = 0; i < kNumLegs; ++i) {
-    const LegCalibration& leg = calibration.legs[i];
-    for (int k = 0; k < kParamsPerLeg; ++k) {
-      report->parameters.push_back({i + 1, ParameterName(k), leg.initial[k], leg.estimate[k],
-                                    leg.has_uncertainty ? std::optional<double>(leg.std_dev[k]) : std::nullopt});
-    }
-    const LegParameters& singular = leg.singular_values;  // descending
-    const std::optional<double> condition = leg.has_uncertainty && singular[kParamsPerLeg - 1] > 0
-                                                ? std::optional<double>(singular[0] / singular[kParamsPerLeg - 1])
-                                                : std::nullopt;
-    report->legs.push_back(
-        {i + 1, leg.variance_factor, leg.residual_rms, leg.iterations, leg.termination, condition});
-  }
-}
-
-// The screened-out readings by image (legs.csv order), then leg.
-std::vector<OutlierReading> OutlierReadings(const CalibrationResult& calibration, const SplitRows& split) {
-  std::vector<OutlierReading> outliers;
-  for (int i = 0; i < kNumLegs; ++i) {
-    for (const RowOutlier& o : calibration.legs[i].outliers) {
-      const LegsRow& row = *split.calibration_rows[o.measurement];
-      const std::optional<int> line = row.line > 0 ? std::optional<int>(row.line) : std::nullopt;
-      outliers.push_back({row.image, line, i + 1, o.residual, o.z, o.excluded});
-    }
-  }
-  std::stable_sort(outliers.begin(), outliers.end(), [](const OutlierReading& a, const OutlierReading& b) {
-    return a.legs_line.value_or(0) < b.legs_line.value_or(0);
-  });
-  return outliers;
-}
-
-CalibrationReport MakeReport(const std::string& dir, const SessionInputs& in, const SplitRows& split,
-                             const CameraCalibrationResult& result) {
-  CalibrationReport report;
-  report.session = dir;
-  report.images = static_cast<int>(in.legs.size());
-  report.unusable_images = split.unusable;
-  report.calibration_images = static_cast<int>(split.input.legs.size());
-  report.held_out_images = static_cast<int>(split.held_out.size());
-  report.length_unit = LengthUnitName(in.nominal.length_unit);
-  const Registration& reg = result.registration;
-  report.registration = {reg.position_rms,
-                         reg.angle_rms_deg,
-                         reg.position_max,
-                         reg.angle_max_deg,
-                         VectorFromPose(reg.base_from_camera, EulerConvention::kXYZ),
-                         VectorFromPose(reg.platform_from_target, EulerConvention::kXYZ)};
-  report.closure_position_rms = result.calibrated_position_rms;
-  report.closure_angle_rms_deg = result.calibrated_angle_rms_deg;
-  std::vector<ImageName> names;
-  for (const LegsRow* row : split.calibration_rows)
-    names.push_back({row->image, row->line > 0 ? std::optional<int>(row->line) : std::nullopt});
-  report.closure_by_image = ClosureByImage(result, names);
-  report.calibrated_robot = (fs::path(SessionPaths(dir).results) / kCalibratedRobot).string();
-  report.robot = result.calibration.robot;
-  FillParameters(result.calibration, &report);
-  report.outliers = OutlierReadings(result.calibration, split);
-  return report;
 }
 
 // results/ as one unit (session_results.h): the calibrated robot, the rows it
@@ -558,69 +422,6 @@ StatusOr<MeasuredSession> LoadMeasuredSession(const std::string& dir, LockWait w
   session.registration = registered->registration;
   session.measurements = std::move(registered->measurements);
   return session;
-}
-
-namespace {
-
-// One warning per screened-out reading (docs/session.md, "Outliers").
-std::string OutlierLines(const CalibrationReport& report) {
-  std::ostringstream out;
-  out.precision(4);
-  if (report.screening && !report.screening->screened) {
-    out << "note: " << report.calibration_images << " calibration images are too few to screen the readings for "
-        << "outliers (" << kMinRowsToScreen << " needed)\n";
-  }
-  for (const OutlierReading& o : report.outliers) {
-    const std::string leg = "leg " + std::to_string(o.leg);
-    out << "outlier: " << o.image;
-    if (o.legs_line) out << " (legs.csv line " << *o.legs_line << ")";
-    out << " " << leg << ": residual " << o.residual << " " << report.length_unit << " = " << o.z << " sigma; ";
-    if (o.excluded) {
-      out << "excluded from " << leg << "'s fit (--keep-outliers keeps it)\n";
-    } else {
-      out << "kept in " << leg << "'s fit (--keep-outliers)\n";
-    }
-  }
-  return out.str();
-}
-
-// The images holding an excluded outlier were left out of the registration
-// (core/registration.h, CalibrateFromCameraPoses).
-std::string RegistrationNote(const CalibrationReport& report) {
-  std::set<std::string> images;
-  for (const OutlierReading& o : report.outliers)
-    if (o.excluded) images.insert(o.image);
-  if (images.empty()) return "";
-  return ", without the " + std::to_string(images.size()) + (images.size() == 1 ? " image" : " images") +
-         " holding an outlier";
-}
-
-}  // namespace
-
-std::string FormatCalibrationSummary(const CalibrationReport& report) {
-  const std::string& unit = report.length_unit;
-  const RegistrationSummary& reg = report.registration;
-  std::ostringstream out;
-  out << "session " << report.session << ": " << report.images << " images, " << report.calibration_images
-      << " for calibration, " << report.held_out_images << " held out, " << report.unusable_images
-      << " without a usable target pose\n"
-      << "registration (nominal robot" << RegistrationNote(report) << "): closure RMS " << reg.position_rms << " "
-      << unit << ", " << reg.angle_rms_deg << " deg\n"
-      << "after calibration: closure RMS " << report.closure_position_rms << " " << unit << ", "
-      << report.closure_angle_rms_deg << " deg\n";
-  if (report.validation) {
-    const ValidationSummary& v = *report.validation;
-    out << "held-out validation (position RMS " << unit << ", orientation RMS deg): before " << v.before.position_rms
-        << ", " << v.before.orientation_rms << "; after " << v.after.position_rms << ", " << v.after.orientation_rms
-        << "\n";
-  }
-  if (report.from_pixels) out << FormatPixelFitSummary(*report.from_pixels, unit);
-  if (report.camera_frame_residuals) out << FormatCameraFrameLine(*report.camera_frame_residuals, unit) << "\n";
-  out << OutlierLines(report);
-  out << ImageClosureLines(report.closure_by_image, report.closure_position_rms, unit);
-  out << "wrote " << report.calibrated_robot << ", " << CalibrationReportPath(report.session) << ", frames in "
-      << SessionPaths(report.session).config << "\n";
-  return out.str();
 }
 
 }  // namespace hexcal::workflow

@@ -22,6 +22,7 @@
 #include "vision/camera.h"
 #include "vision/target.h"
 #include "workflow/calibration_report.h"
+#include "workflow/calibration_summary.h"
 #include "workflow/session_pixels.h"
 #include "workflow/session_results.h"
 
@@ -82,9 +83,5 @@ struct MeasuredSession {
 };
 StatusOr<MeasuredSession> LoadMeasuredSession(const std::string& dir, LockWait wait = LockWait::kNo,
                                               const JobHooks& hooks = {});
-
-// The lines `hexcal calibrate --session` prints: counts, closure before and
-// after, held-out validation, one warning per outlier reading, files written.
-std::string FormatCalibrationSummary(const CalibrationReport& report);
 
 }  // namespace hexcal::workflow

@@ -1,0 +1,68 @@
+// What calibrating a session works on, shared by workflow/session_calibrate.cc
+// and workflow/session_rows.cc (internal to workflow/): the inputs
+// session.yaml names, each image's board pose, the rows split into
+// calibration and held-out, and the report made from a calibration.
+//
+//   SplitRows split = SplitSessionRows(in, poses, scale);  // session_calibrate.cc
+//   CalibrationReport report = MakeReport(dir, in, split, result);
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/measurements.h"
+#include "core/registration.h"
+#include "core/session.h"
+#include "core/validation.h"
+#include "vision/camera.h"
+#include "vision/target.h"
+#include "workflow/calibration_report.h"
+#include "workflow/session_measure.h"
+
+namespace hexcal::workflow {
+
+constexpr const char* kCalibratedRobot = "calibrated.yaml";  // in results/
+
+using CameraPose = SessionImagePose;
+using CameraPoses = std::map<std::string, SessionImagePose>;
+
+// What session.yaml names, loaded.
+struct SessionInputs {
+  SessionConfig config;
+  std::vector<LegsRow> legs;
+  std::string robot_name;
+  Robot nominal;
+  Camera camera;
+  Target target;
+  Pose fk_start;  // the centre of the robot's pose box
+};
+
+// The calibration rows (usable, not held out) and the held-out rows.
+struct SplitRows {
+  CameraCalibrationInput input;
+  std::vector<const LegsRow*> calibration_rows;  // the row of each input pose
+  std::vector<const LegsRow*> held_out;
+  int unusable = 0;
+};
+
+// Held-out rows: the camera pose mapped into the registered base frame.
+std::vector<Measurement> HeldOutMeasurements(const SessionInputs& in, const CameraPoses& poses,
+                                             const std::vector<const LegsRow*>& held_out,
+                                             const CameraCalibrationResult& result, double scale);
+// The FK error the noise model predicts at the held-out poses, or at the
+// centre of the pose box without any (expected_error.h).
+NoiseExpectation ExpectedNoise(const SessionInputs& in, const std::vector<Measurement>& held_out,
+                               const Robot& calibrated);
+// FK with the nominal and the calibrated robot on the held-out rows; none without any.
+StatusOr<std::optional<ValidationSummary>> ValidateHeldOut(const SessionInputs& in,
+                                                           const std::vector<const LegsRow*>& held_out,
+                                                           const std::vector<Measurement>& rows,
+                                                           const CameraCalibrationResult& result);
+// The report of a calibration (results/report.json) without its validation,
+// noise and from-pixels parts, which the caller adds.
+CalibrationReport MakeReport(const std::string& dir, const SessionInputs& in, const SplitRows& split,
+                             const CameraCalibrationResult& result);
+
+}  // namespace hexcal::workflow
