@@ -6,12 +6,11 @@
 #include <ctime>
 #include <functional>
 #include <limits>
-#include <locale>
 #include <memory>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
-#include <sstream>
 
+#include "core/csv.h"
 #include "core/parallel.h"
 #include "core/pose.h"
 #include "vision/fisheye_init.h"
@@ -21,14 +20,6 @@ namespace hexcal {
 namespace {
 
 using ImageLoader = std::function<StatusOr<cv::Mat>(int index)>;
-
-std::string Format(double value, int precision = 3) {
-  std::ostringstream out;
-  out.imbue(std::locale::classic());
-  out.precision(precision);
-  out << value;
-  return out.str();
-}
 
 struct Detected {
   bool loaded = false;
@@ -215,7 +206,7 @@ StatusOr<Calibration> CalibrateWithOutliers(std::vector<CalibrationView>& views,
     }
     CalibrationView& outlier = views[index[static_cast<size_t>(worst - calibration->view_rms.begin())]];
     outlier.used = false;
-    outlier.reason = "outlier: RMS " + Format(*worst) + " px > " + Format(limit) + " px";
+    outlier.reason = "outlier: RMS " + FormatSignificant(*worst) + " px > " + FormatSignificant(limit) + " px";
   }
 }
 
@@ -365,7 +356,7 @@ CameraFileExtras ExtrasOf(const IntrinsicsResult& result) {
   }
   extras.comment = "hexcal intrinsics (" + std::string(CameraModelName(result.camera.model)) +
                    "): " + std::to_string(result.used_views) + " of " + std::to_string(result.views.size()) +
-                   " images used, RMS " + Format(result.rms_px) + " px";
+                   " images used, RMS " + FormatSignificant(result.rms_px) + " px";
   if (result.std_dev.empty())
     extras.comment += "\nno standard deviations: the fisheye calibration does not estimate them";
   return extras;

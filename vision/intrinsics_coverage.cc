@@ -2,24 +2,12 @@
 // figure and its picture.
 #include <algorithm>
 #include <iterator>
-#include <locale>
 #include <opencv2/imgproc.hpp>
-#include <sstream>
 
+#include "core/csv.h"
 #include "vision/intrinsics.h"
 
 namespace hexcal {
-namespace {
-
-std::string Format(double value, int precision = 3) {
-  std::ostringstream out;
-  out.imbue(std::locale::classic());
-  out.precision(precision);
-  out << value;
-  return out.str();
-}
-
-}  // namespace
 
 double CoverageFraction(const IntrinsicsResult& result) {
   constexpr int kCols = 8, kRows = 6;
@@ -61,8 +49,8 @@ cv::Mat CoverageImage(const IntrinsicsResult& result) {
                  cv::LINE_AA, 4);
     }
   }
-  const std::string text = "corner coverage " + Format(100 * CoverageFraction(result), 3) + " % of 8 x 6 cells, " +
-                           std::to_string(result.used_views) + " views, RMS " + Format(result.rms_px) + " px";
+  const std::string text = "corner coverage " + FormatSignificant(100 * CoverageFraction(result)) + " % of 8 x 6 cells, " +
+                           std::to_string(result.used_views) + " views, RMS " + FormatSignificant(result.rms_px) + " px";
   const double scale = std::max(0.4, width / 1600.0);
   cv::putText(image, text, {10, height - 12}, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(255, 255, 255), 1,
               cv::LINE_AA);

@@ -33,23 +33,6 @@ Status RunCapturing(const std::vector<std::string>& argv, int* exit_status, std:
 
 }  // namespace
 
-int CountHalPins(const std::string& hal_text) {
-  std::istringstream lines(hal_text);
-  int count = 0;
-  for (std::string line; std::getline(lines, line);) count += line.rfind("setp ", 0) == 0 ? 1 : 0;
-  return count;
-}
-
-StatusOr<int> PushHalFile(const std::string& halcmd, const std::string& hal_file) {
-  StatusOr<std::string> text = ReadFileToString(hal_file);
-  if (!text.ok()) return text.status();
-  const int pins = CountHalPins(*text);
-  if (pins == 0) return Status::Error(hal_file + ": no setp lines: not a file of hexcal export --format linuxcnc-hal");
-  StatusOr<std::string> ran = RunHalText(halcmd, *text);
-  if (!ran.ok()) return ran.status();
-  return pins;
-}
-
 StatusOr<std::string> RunHalText(const std::string& halcmd, const std::string& hal_text) {
   char path[] = "/tmp/hexcal-hal.XXXXXX";
   const int fd = mkstemp(path);

@@ -1,6 +1,6 @@
-// Loading a robot's geometry into a running LinuxCNC (`hexcal export
-// --format linuxcnc-hal --push`, docs/acquisition.md): the `setp` lines of
-// GenhexkinsHal run through `halcmd -f FILE`. genhexkins reads its pins every
+// halcmd for loading a robot's geometry into a running LinuxCNC (`hexcal
+// export --format linuxcnc-hal --push`, docs/acquisition.md): `setp` and
+// `getp` lines run through `halcmd -f FILE`. genhexkins reads its pins every
 // servo cycle, so the change acts at once: the world pose is held and the
 // joints step (../shared/devices.md). The offsets l are not pins: they are the
 // joints' home positions in the machine's INI, so they change only with the
@@ -10,7 +10,7 @@
 // halcmd must reach the running machine's HAL: as root, with the same
 // RTAPI_UID and RTAPI_FIFO_PATH as the machine (scripts/linuxcnc-sim.sh env).
 //
-//   StatusOr<int> pins = PushHalFile("halcmd", "calibrated.hal");  // 37 pins set
+//   StatusOr<std::string> ran = RunHalText("halcmd", GenhexkinsHal(robot, MachineUnit::kMillimetre));
 #pragma once
 
 #include <array>
@@ -23,15 +23,9 @@
 
 namespace hexcal::workflow {
 
-// The `setp` lines of a HAL text: the pins it sets.
-int CountHalPins(const std::string& hal_text);
-
-// Runs `halcmd -f hal_file`; returns how many setp lines it holds. Errors
-// name halcmd and quote at most the last 300 characters of its output.
-StatusOr<int> PushHalFile(const std::string& halcmd, const std::string& hal_file);
-
 // Runs `halcmd -f` on `hal_text` (from a private temporary file): its
-// output, or the error of PushHalFile.
+// output. Errors name halcmd and quote at most the last 300 characters of
+// its output.
 StatusOr<std::string> RunHalText(const std::string& halcmd, const std::string& hal_text);
 
 // The values of HAL pins now (`getp` through one halcmd run), in order.

@@ -70,8 +70,8 @@ class LinuxCncController final : public Controller {
   Status CheckUnits();
   Status HomeIfNeeded();
   StatusOr<bool> AllHomed();
-  // Polls AllHomed until it is `homed`, within `seconds`.
-  Status WaitHomed(bool homed, double seconds);
+  // Polls AllHomed until every joint is homed, within `seconds`.
+  Status WaitHomed(double seconds);
   // The oldest error message the machine has not reported yet; empty if none.
   StatusOr<std::string> NextMachineError();
   Status DiscardOldErrors();
@@ -186,16 +186,15 @@ StatusOr<bool> LinuxCncController::AllHomed() {
   return std::all_of(homed->begin(), homed->end(), [](const std::string& word) { return UpperCase(word) == "YES"; });
 }
 
-Status LinuxCncController::WaitHomed(bool homed, double seconds) {
+Status LinuxCncController::WaitHomed(double seconds) {
   const Clock::time_point start = Clock::now();
   for (;;) {
     StatusOr<bool> all = AllHomed();
-    if (!all.ok() || *all == homed) return all.status();
+    if (!all.ok() || *all) return all.status();
     if (SecondsSince(start) >= seconds) break;
     std::this_thread::sleep_for(options_.poll_interval);
   }
-  return Error(std::string(homed ? "the joints were not homed" : "homing did not start") + " within " +
-               FixedNumber(seconds, 3) + " s");
+  return Error("the joints were not homed within " + FixedNumber(seconds, 3) + " s");
 }
 
 Status LinuxCncController::HomeIfNeeded() {
@@ -203,7 +202,7 @@ Status LinuxCncController::HomeIfNeeded() {
   if (!homed.ok() || *homed) return homed.status();
   if (Status s = Expect("set mode manual", "SET MODE ACK"); !s.ok()) return s;
   if (Status s = Expect("set home -1", "SET HOME ACK"); !s.ok()) return s;
-  return WaitHomed(true, options_.motion_timeout_seconds);
+  return WaitHomed(options_.motion_timeout_seconds);
 }
 
 Status LinuxCncController::Rehome(const Vector6d& joints, double tolerance) {
