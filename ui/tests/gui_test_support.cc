@@ -147,6 +147,11 @@ bool WaitFor(const std::function<bool()>& done, int timeout_ms) {
   return true;
 }
 
+QByteArray ReadBytes(const QString& path) {
+  QFile file(path);
+  return file.open(QIODevice::ReadOnly) ? file.readAll() : QByteArray();
+}
+
 bool CopyFolder(const QString& from, const QString& to) {
   QDir().mkpath(to);
   for (const QFileInfo& entry : QDir(from).entryInfoList(QDir::Files | QDir::Dirs | QDir::NoDotAndDotDot)) {

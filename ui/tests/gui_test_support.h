@@ -6,6 +6,7 @@
 //   EXPECT_EQ(FitProblems(&window), std::vector<std::string>{}) << "after calibrating";
 #pragma once
 
+#include <QByteArray>
 #include <QString>
 #include <functional>
 #include <string>
@@ -25,6 +26,8 @@ int RunGuiTests(int argc, char** argv, const char* name, QString* sessions_dir);
 // results through it.
 bool WaitFor(const std::function<bool()>& done, int timeout_ms = 60000);
 bool CopyFolder(const QString& from, const QString& to);
+// A file's bytes; empty when it cannot be read.
+QByteArray ReadBytes(const QString& path);
 // Lets the layouts settle (a few rounds of events), then returns.
 void Settle(int ms = 150);
 

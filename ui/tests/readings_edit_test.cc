@@ -31,11 +31,6 @@ namespace {
 
 QString sessions_dir;  // argv[1]: what make_session wrote
 
-QByteArray ReadBytes(const QString& path) {
-  QFile file(path);
-  return file.open(QIODevice::ReadOnly) ? file.readAll() : QByteArray();
-}
-
 // L`leg` of `row` in legs.csv as it is on disk.
 double OnDisk(const QString& dir, int row, int leg) {
   StatusOr<CsvTable> table = ReadCsv((dir + "/legs.csv").toStdString());

@@ -32,11 +32,6 @@ namespace {
 
 QString sessions_dir;  // argv[1]: what make_session wrote
 
-QByteArray ReadBytes(const QString& path) {
-  QFile file(path);
-  return file.open(QIODevice::ReadOnly) ? file.readAll() : QByteArray();
-}
-
 TEST(UiStudy, RunKeepCancelStaleAndSwitch) {
   QTemporaryDir temp;
   const QString dir = temp.filePath("session");
