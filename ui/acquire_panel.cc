@@ -31,6 +31,8 @@ namespace hexcal::ui {
 namespace {
 
 constexpr int kLiveIntervalMs = 600;
+const QString kPlanBroken = "The plan does not load: ";
+const QString kPlanAgain = " Fix plan.csv, or plan again (Plan step).";
 
 QTableWidgetItem* Cell(const QString& text) {
   auto* item = new QTableWidgetItem(text);
@@ -218,9 +220,13 @@ void AcquirePanel::Refresh() {
   } else {
     SelectPose(current_);
   }
+  // The plan line from the status (issue 40): no plan, or one that does not
+  // load; gone as soon as a plan is listed.
   if (poses == 0) {
-    SetOutcome(kNoPlan);
-  } else if (outcome_ == kNoPlan) {
+    SetOutcome(session_->State(Step::kPlan) == StepState::kBroken
+                   ? kPlanBroken + session_->InSession(session_->Why(Step::kPlan)) + kPlanAgain
+                   : QString(kNoPlan));
+  } else if (outcome_ == kNoPlan || outcome_.startsWith(kPlanBroken)) {
     SetOutcome({});  // a plan came: the line would send the operator back for nothing
   }
 }

@@ -7,7 +7,8 @@
 namespace hexcal::ui {
 namespace {
 bool interactive = true;
-ConflictAnswerer answerer;  // empty: ask in a message box
+ConflictAnswerer answerer;        // empty: ask in a message box
+ConflictAnswerer stale_answerer;  // the same for ConfirmStale
 
 void Show(QWidget* parent, QMessageBox::Icon icon, const QString& what, const QString& message) {
   QMessageBox box(icon, "hexcal — " + what, message, QMessageBox::Ok, parent);
@@ -32,6 +33,21 @@ bool AskUseMine(QWidget* parent, const QString& what, const QString& text) {
 
 void SetInteractive(bool value) { interactive = value; }
 void SetConflictAnswerer(ConflictAnswerer value) { answerer = std::move(value); }
+void SetStaleAnswerer(ConflictAnswerer value) { stale_answerer = std::move(value); }
+
+bool ConfirmStale(QWidget* parent, const QString& what, const QString& reason) {
+  std::cerr << "hexcal-gui: " << what.toStdString() << ": " << reason.toStdString() << "\n";
+  if (stale_answerer) return stale_answerer(what, reason);
+  if (!interactive) return false;  // never act on stale results unasked
+  QMessageBox box(QMessageBox::Warning, "hexcal — " + what, reason, QMessageBox::NoButton, parent);
+  box.setTextFormat(Qt::PlainText);
+  box.setInformativeText("Calibrate again first (Calibrate step), or go on with these results?");
+  QPushButton* cancel = box.addButton(QMessageBox::Cancel);
+  QPushButton* anyway = box.addButton("Use the stale results", QMessageBox::AcceptRole);
+  box.setDefaultButton(cancel);
+  box.exec();
+  return box.clickedButton() == anyway;
+}
 bool Interactive() { return interactive; }
 
 void ShowError(QWidget* parent, const QString& what, const QString& message) {

@@ -31,4 +31,11 @@ using ConflictAnswerer = std::function<bool(const QString& what, const QString& 
 // An empty function restores the message box (keep theirs when not interactive).
 void SetConflictAnswerer(ConflictAnswerer answerer);
 
+// Before exporting or reporting stale results: `reason` says what changed
+// since they were computed. True when the operator goes on anyway ("Use the
+// stale results"); false on Cancel, and when not interactive, unless tests
+// set an answer (SetStaleAnswerer; an empty function restores the box).
+bool ConfirmStale(QWidget* parent, const QString& what, const QString& reason);
+void SetStaleAnswerer(ConflictAnswerer answerer);
+
 }  // namespace hexcal::ui
