@@ -6,6 +6,7 @@
 #include <map>
 
 #include "core/atomic_file.h"
+#include "core/csv.h"
 #include "core/point_fit.h"
 #include "core/reflector_estimate.h"
 #include "workflow/json_fields.h"
@@ -103,6 +104,48 @@ StatusOr<PointPoses> MeasurePointPoses(const PointFiles& files, const std::vecto
   }
   measured.noise = NoiseFromFits(measured.poses, noise);
   return measured;
+}
+
+namespace {
+
+std::vector<std::string> PointPoseRow(const std::string& pose, const StatusOr<PointFit>& fit, size_t points) {
+  std::vector<std::string> row = {pose};
+  if (!fit.ok()) {  // the pose, 13 empty cells (pose, σ, rms), its point count and why
+    row.resize(14);
+    row.insert(row.end(), {std::to_string(points), "bad_points", fit.status().message()});
+    return row;
+  }
+  const Vector6d v = VectorFromPose(fit->pose, EulerConvention::kXYZ);
+  for (int k = 0; k < 6; ++k) row.push_back(FormatNumber(v[k]));
+  for (int k = 0; k < 6; ++k) row.push_back(FormatNumber(std::sqrt(fit->covariance(k, k))));
+  row.push_back(FormatNumber(fit->rms));
+  row.push_back(std::to_string(points));
+  row.push_back("ok");
+  row.push_back("");
+  return row;
+}
+
+}  // namespace
+
+StatusOr<PointMeasureResult> MeasurePointFile(const PointFiles& files, const std::string& out, bool force) {
+  std::error_code error;
+  if (!force && fs::exists(fs::symlink_status(out, error)))
+    return Status::Error(out + ": exists; use --force to replace it");
+  StatusOr<LoadedPoints> loaded = LoadPoints(files);
+  if (!loaded.ok()) return loaded.status();
+  PointMeasureResult result;
+  result.reflectors_estimated = loaded->estimated;
+  std::vector<std::vector<std::string>> rows;
+  for (const PointSet& set : loaded->sets) {
+    const StatusOr<PointFit> fit = FitPointPose(loaded->reflectors, set.points);
+    rows.push_back(PointPoseRow(set.pose, fit, set.points.size()));
+    ++result.poses;
+    result.fitted += fit.ok() ? 1 : 0;
+  }
+  const std::vector<std::string> header = {"pose", "x", "y", "z", "q1", "q2", "q3", "sigma_x", "sigma_y", "sigma_z",
+                                           "sigma_q1", "sigma_q2", "sigma_q3", "rms", "points", "status", "message"};
+  if (Status s = WriteCsv(out, header, rows); !s.ok()) return s;
+  return result;
 }
 
 StatusOr<std::string> DescribePointPoses(const PointFiles& files, const std::vector<LegsRow>& rows) {

@@ -50,6 +50,17 @@ struct PointPoses {
 StatusOr<PointPoses> MeasurePointPoses(const PointFiles& files, const std::vector<LegsRow>& rows,
                                        const NoiseModel& noise, const JobHooks& hooks = {});
 
+// `hexcal measure --points`: every pose of a points file fitted to the
+// reflectors, written as tracker_poses.csv (docs/cli.md): pose, x, y, z, q1,
+// q2, q3 (the points' unit, degrees, Euler xyz), the six σ, rms (of the point
+// residuals), points, status (ok or bad_points) and message. Refuses an
+// existing `out` unless `force`.
+struct PointMeasureResult {
+  int poses = 0, fitted = 0;
+  bool reflectors_estimated = false;
+};
+StatusOr<PointMeasureResult> MeasurePointFile(const PointFiles& files, const std::string& out, bool force);
+
 // `hexcal session check-noise` keeps its result here, in the session folder (noise_check.h).
 constexpr const char* kNoiseCheckFile = "noise_check.json";
 

@@ -8,6 +8,7 @@
 #   reflector file (the reflectors estimated from the poses) → calibrated;
 # - `session check-noise` on 30 simulated repeats reports the simulated σ
 #   within 20 %, and a declared σ half the truth as optimistic;
+# - the camera's: 12 renders of one pose against the board poses' covariance;
 # - bad files: a point 1 m off, a pose with 2 points, a point twice, NaN, a
 #   pose legs.csv names that the points file lacks, points in mm for a cm robot.
 set -eu
@@ -47,6 +48,17 @@ grep -q "^Verdict: \(good\|acceptable\)$" "$dir/hand.txt" || fail "by hand: verd
 "$hexcal" session status "$dir/hand" | grep -q "4 reflectors (estimated from the poses)"
 "$hexcal" report --session "$dir/hand" --out "$dir/hand.html" >/dev/null
 
+# measure --points: every pose fitted, outside a session.
+"$hexcal" measure --points "$demo/points.txt" --reflectors "$demo/reflectors.csv" --point-sigma 0.002 \
+  --out "$dir/tracker_poses.csv" >"$dir/measure.txt"
+grep -q "^measured 32 of 32 poses from their points; wrote" "$dir/measure.txt" || fail "measure --points" "$dir/measure.txt"
+python3 - "$dir/tracker_poses.csv" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert len(rows) == 32 and all(r["status"] == "ok" and r["points"] == "4" for r in rows), rows[0]
+assert max(float(r["rms"]) for r in rows) < 0.006, max(float(r["rms"]) for r in rows)  # 4 points, sigma 0.002 cm
+PY
+
 # Repeatability: 30 sets of one pose, σ 0.002 cm; declared as the session's σ, then as half of it.
 python3 - "$demo/reflectors.csv" "$dir/repeats.txt" 0.002 <<'PY'
 import csv, math, random, sys
@@ -67,6 +79,21 @@ grep -q '"noise_check.json"' "$dir/hand/results/manifest.json" && { echo "no che
 sed -i 's/^point_sigma: .*/point_sigma: 0.001/' "$dir/hand/session.yaml"
 "$hexcal" session check-noise "$dir/hand" --points "$dir/repeats.txt" >"$dir/check.txt"
 grep -q "ratio measured/declared 2.*: optimistic" "$dir/check.txt" || fail "half the sigma declared" "$dir/check.txt"
+
+# The camera's repeatability: 12 renders of one board pose (the renderer's
+# noise differs per image) against the board poses' own covariances.
+"$hexcal" demo --two-stage --poses 8 --holdout 0 --random-poses --out "$dir/cam" >/dev/null 2>&1
+python3 - "$dir/cam/camera_poses.csv" "$dir/still.csv" <<'PY'
+import csv, sys
+r = next(csv.DictReader(open(sys.argv[1])))
+row = ",".join(r[k] for k in ["x", "y", "z", "q1", "q2", "q3"])
+open(sys.argv[2], "w").write("x,y,z,q1,q2,q3\n" + (row + "\n") * 12)
+PY
+"$hexcal" render --poses "$dir/still.csv" --out "$dir/still" >/dev/null
+"$hexcal" session check-noise "$dir/cam" --images "$dir/still" --json >"$dir/cam_check.json"
+python3 -c 'import json, sys; c = json.load(open(sys.argv[1])); assert c["repeats"] == 12 and 0.5 < c["ratio"] < 1.5, c' "$dir/cam_check.json"
+code=0; "$hexcal" session check-noise "$dir/cam" --points "$dir/repeats.txt" 2>"$dir/wrong.txt" || code=$?
+[ "$code" = 2 ] && grep -q "takes --images FOLDER" "$dir/wrong.txt" || fail "points for a camera session (exit $code)" "$dir/wrong.txt"
 
 # Bad files: each a clear error (exit 2) or a named pose left out.
 bad() {  # NAME, a sed script on points.txt; the expected message
