@@ -160,6 +160,9 @@ StatusOr<PointFit> FitPointPose(const std::vector<NamedPoint>& reflectors, const
   if (Status s = CheckOutlier(*pairs); !s.ok()) return s;
   PointFit fit;
   fit.pose = WeightedKabsch(*pairs);
+  // Coordinates near the double range (1e300) overflow the cross-covariance.
+  if (!fit.pose.position.allFinite() || !fit.pose.rotation.allFinite())
+    return Status::Error("the points' coordinates are too large to fit");
   fit.covariance = PoseCovariance(fit.pose, *pairs);
   double sum = 0;
   for (const PointPair& p : *pairs) {

@@ -90,6 +90,21 @@ TEST(PointFit, BadPointsAreNamed) {
   EXPECT_THAT(ErrorOf(off), HasSubstr("point 'R3' lies 1e+03 ("));
 }
 
+TEST(PointFit, HugeCoordinatesAreAnErrorNotNaN) {
+  std::vector<NamedPoint> reflectors = Reflectors(), seen = Reflectors();
+  for (NamedPoint& p : reflectors) p.position *= 1e305;
+  for (NamedPoint& p : seen) {
+    p.position *= 1e305;
+    p.sigma = 1e300;
+  }
+  StatusOr<PointFit> fit = FitPointPose(reflectors, seen);
+  if (fit.ok()) {
+    EXPECT_TRUE(fit->pose.position.allFinite() && fit->pose.rotation.allFinite());
+  } else {
+    EXPECT_THAT(fit.status().message(), HasSubstr("too large"));
+  }
+}
+
 TEST(PointFit, CollinearReflectorsAreRefused) {
   const std::vector<NamedPoint> line = {{"A", {0, 0, 0}}, {"B", {100, 0, 0}}, {"C", {250, 0, 0}}};
   std::vector<NamedPoint> seen = line;
