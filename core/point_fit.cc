@@ -173,4 +173,13 @@ StatusOr<PointFit> FitPointPose(const std::vector<NamedPoint>& reflectors, const
   return fit;
 }
 
+StatusOr<std::pair<double, double>> PoseSigmaOfReflectors(const std::vector<NamedPoint>& reflectors, double sigma) {
+  std::vector<NamedPoint> seen = reflectors;
+  for (NamedPoint& point : seen) point.sigma = sigma;
+  StatusOr<PointFit> fit = FitPointPose(reflectors, seen);
+  if (!fit.ok()) return fit.status();
+  return std::pair<double, double>(std::sqrt(fit->covariance.topLeftCorner<3, 3>().trace() / 3),
+                                   std::sqrt(fit->covariance.bottomRightCorner<3, 3>().trace() / 3));
+}
+
 }  // namespace hexcal
