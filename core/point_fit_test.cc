@@ -90,6 +90,35 @@ TEST(PointFit, BadPointsAreNamed) {
   EXPECT_THAT(ErrorOf(off), HasSubstr("point 'R3' lies 1e+03 ("));
 }
 
+// The noise a tracker implies for the pose, before measuring: the σ the Monte
+// Carlo test above checks, at the reflectors' frame.
+TEST(PointFit, PoseSigmaOfReflectorsMatchesTheFitsCovariance) {
+  std::mt19937 random(2);
+  std::vector<NamedPoint> seen = Seen(Pose{}, 0, random);
+  for (NamedPoint& p : seen) p.sigma = 0.02;
+  StatusOr<PointFit> fit = FitPointPose(Reflectors(), seen);
+  StatusOr<std::pair<double, double>> sigma = PoseSigmaOfReflectors(Reflectors(), 0.02);
+  ASSERT_TRUE(fit.ok() && sigma.ok());
+  EXPECT_NEAR(sigma->first, std::sqrt(fit->covariance.topLeftCorner<3, 3>().trace() / 3), 1e-12);
+  EXPECT_NEAR(sigma->second, std::sqrt(fit->covariance.bottomRightCorner<3, 3>().trace() / 3), 1e-12);
+  EXPECT_LT(sigma->first, 0.02);  // 4 points average their noise
+}
+
+TEST(PointFit, HugeCoordinatesAreAnErrorNotNaN) {
+  std::vector<NamedPoint> reflectors = Reflectors(), seen = Reflectors();
+  for (NamedPoint& p : reflectors) p.position *= 1e305;
+  for (NamedPoint& p : seen) {
+    p.position *= 1e305;
+    p.sigma = 1e300;
+  }
+  StatusOr<PointFit> fit = FitPointPose(reflectors, seen);
+  if (fit.ok()) {
+    EXPECT_TRUE(fit->pose.position.allFinite() && fit->pose.rotation.allFinite());
+  } else {
+    EXPECT_THAT(fit.status().message(), HasSubstr("too large"));
+  }
+}
+
 TEST(PointFit, CollinearReflectorsAreRefused) {
   const std::vector<NamedPoint> line = {{"A", {0, 0, 0}}, {"B", {100, 0, 0}}, {"C", {250, 0, 0}}};
   std::vector<NamedPoint> seen = line;

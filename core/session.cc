@@ -221,9 +221,10 @@ StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir) {
     return Status::Error(paths.legs + ": no readings yet: " + kEnterReadings);
   StatusOr<CsvTable> table = ReadCsv(paths.legs);
   if (!table.ok()) return table.status();
-  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
-  if (!config.ok()) return config.status();
-  const bool points = config->instrument == Instrument::kPoints;
+  // A session.yaml that does not load is reported by whoever loads it; the
+  // rows are then read as a camera session's.
+  const StatusOr<SessionConfig> config = LoadSessionConfig(dir);
+  const bool points = config.ok() && config->instrument == Instrument::kPoints;
   const char* key = points ? "pose" : "image";
   StatusOr<int> image_column = ColumnIndex(*table, key);
   if (!image_column.ok()) return image_column.status();

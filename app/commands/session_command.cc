@@ -4,6 +4,7 @@
 // hexcal session status DIR [--json]
 // hexcal session check-noise DIR (--points FILE | --images FOLDER) [--wait] [--json]
 // hexcal session record DIR --image NAME --legs L1,...,L6 [--from FILE] [--holdout] [--replace] [--wait] [--json]
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -49,6 +50,26 @@ std::string AsSessionPath(const std::string& dir, const std::string& name) {
   return error || relative.empty() ? file.string() : relative.string();
 }
 
+// With a reflector file and no --noise-position or --noise-angle: the pose
+// noise the tracker's σ implies for these reflectors (√3 σ as the uniform
+// half-width, core/noise_model.h), which `hexcal plan` and the GUI's plan
+// weigh by; the calibration replaces it by the measured fits' own.
+Status PoseNoiseFromReflectors(SessionInitOptions* cli) {
+  SessionConfig& config = cli->config;
+  if (config.reflectors.empty()) return Status::Ok();
+  for (const auto& [key, value] : *cli->noise)
+    if (key == "position" || key == "angle_deg" || key == "angle") return Status::Ok();
+  StatusOr<std::string> text = ReadFileToString(config.reflectors, kMaxTableBytes);
+  if (!text.ok()) return text.status();
+  StatusOr<std::vector<NamedPoint>> reflectors = ParseReflectorFile(*text, config.reflectors);
+  if (!reflectors.ok()) return reflectors.status();
+  StatusOr<std::pair<double, double>> sigma = PoseSigmaOfReflectors(*reflectors, config.point_sigma);
+  if (!sigma.ok()) return Status::Error(config.reflectors + ": " + sigma.status().message());
+  config.noise.position = std::sqrt(3.0) * sigma->first;
+  config.noise.angle_deg = std::sqrt(3.0) * sigma->second;
+  return Status::Ok();
+}
+
 // --instrument points: the points file (which the tracker may write later),
 // the reflector file (checked now when given) and the σ, robot unit.
 Status PreparePointSession(const Robot& robot, SessionInitOptions* cli) {
@@ -64,6 +85,7 @@ Status PreparePointSession(const Robot& robot, SessionInitOptions* cli) {
   }
   config.instrument = Instrument::kPoints;
   if (!cli->point_sigma_given) config.point_sigma = cli->point_sigma_mm * 0.001 / MetresPerUnit(robot.length_unit);
+  if (Status s = PoseNoiseFromReflectors(*cli); !s.ok()) return s;
   for (std::string* name : {&config.robot, &config.points, &config.reflectors})
     if (!name->empty()) *name = AsSessionPath(cli->dir, *name);
   return Status::Ok();
@@ -101,7 +123,11 @@ int RunSessionInit(SessionInitOptions cli, std::ostream& out, std::ostream& err)
   } else if (cli.config.instrument == Instrument::kPoints) {
     out << "session " << cli.dir << ": wrote " << paths.config << "; put the measured points in "
         << ResolvedInSession(cli.dir, cli.config.points) << " and their readings in " << paths.legs
-        << " (pose,L1..L6,holdout; pose as the points file names it)\n";
+        << " (pose,L1..L6,holdout; pose as the points file names it)\n"
+        << "noise: " << NoiseModelText(cli.config.noise)
+        << (cli.config.reflectors.empty() ? "" : " (position and angle_deg from the reflectors and --point-sigma)")
+        << "; plan with hexcal plan --noise-position " << FormatSignificant(cli.config.noise.position)
+        << " --noise-angle " << FormatSignificant(cli.config.noise.angle_deg) << "\n";
   } else {
     out << "session " << cli.dir << ": wrote " << paths.config << "; put the images in " << paths.images
         << " and their readings in " << paths.legs << " (image,L1..L6,holdout)\n";

@@ -48,6 +48,12 @@ grep -q "^Verdict: \(good\|acceptable\)$" "$dir/hand.txt" || fail "by hand: verd
 "$hexcal" session status "$dir/hand" | grep -q "4 reflectors (estimated from the poses)"
 "$hexcal" report --session "$dir/hand" --out "$dir/hand.html" >/dev/null
 
+# With a reflector file, init derives the pose noise the planner weighs by.
+"$hexcal" session init --robot inria-left-hand --instrument points --points points.txt \
+  --reflectors "$demo/reflectors.csv" "$dir/refl" >"$dir/init2.txt"
+grep -q "^noise: position: 0.00[0-9]*, angle_deg: 0.0[0-9]*, leg: 0.001 (position and angle_deg from the reflectors and --point-sigma); plan with hexcal plan --noise-position" "$dir/init2.txt" ||
+  fail "init with reflectors" "$dir/init2.txt"
+
 # measure --points: every pose fitted, outside a session.
 "$hexcal" measure --points "$demo/points.txt" --reflectors "$demo/reflectors.csv" --point-sigma 0.002 \
   --out "$dir/tracker_poses.csv" >"$dir/measure.txt"
