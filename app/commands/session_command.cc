@@ -85,7 +85,7 @@ Status PreparePointSession(const Robot& robot, SessionInitOptions* cli) {
   }
   config.instrument = Instrument::kPoints;
   if (!cli->point_sigma_given) config.point_sigma = cli->point_sigma_mm * 0.001 / MetresPerUnit(robot.length_unit);
-  if (Status s = PoseNoiseFromReflectors(*cli); !s.ok()) return s;
+  if (Status s = PoseNoiseFromReflectors(cli); !s.ok()) return s;
   for (std::string* name : {&config.robot, &config.points, &config.reflectors})
     if (!name->empty()) *name = AsSessionPath(cli->dir, *name);
   return Status::Ok();
