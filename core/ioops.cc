@@ -297,13 +297,24 @@ void SetFinal(const PlanningModel& model, const PlannerOptions& options, const s
 
 }  // namespace
 
+const OptionTable<PlannerOptions>& PlannerOptionSpecs() {
+  static const OptionTable<PlannerOptions> table = [] {
+    // Each leg's 7 parameters need 7 poses.
+    return OptionTable<PlannerOptions>{
+        NumberOption<PlannerOptions>("poses", "Poses N", OptionType::kInteger, "poses", kParamsPerLeg, 100000,
+                                     "N, the poses in the plan",
+                                     [](PlannerOptions& o) -> int& { return o.num_poses; }),
+        NumberOption<PlannerOptions>(
+            "keep", "Keep on primary", OptionType::kNumber, "fraction", 0.01, 1,
+            "section 6.2: fraction of AddFind's results kept on the primary before the secondary picks",
+            [](PlannerOptions& o) -> double& { return o.keep; })};
+  }();
+  return table;
+}
+
 bool PlannerOptions::IsValid(std::string* error) const {
-  if (num_poses < kParamsPerLeg) {
-    *error = "the plan needs at least 7 poses to identify a leg's 7 parameters, got " + std::to_string(num_poses);
-    return false;
-  }
-  if (!(keep > 0 && keep <= 1)) {
-    *error = "keep must be in (0, 1]";
+  if (Status s = CheckOptionRanges(PlannerOptionSpecs(), *this); !s.ok()) {
+    *error = s.message();
     return false;
   }
   if (tabu < 0 || iterations < 0 || addfind_starts < 0 || removal_choices < 1 || threads < 0) {
