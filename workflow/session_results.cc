@@ -8,7 +8,7 @@
 #include "core/session.h"
 #include "core/sha256.h"
 #include "workflow/json_fields.h"
-#include "workflow/session_calibrate.h"
+#include "workflow/session_models.h"
 
 namespace hexcal::workflow {
 namespace {
