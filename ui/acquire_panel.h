@@ -11,6 +11,10 @@
 // a dialog prefilled with the commanded lengths — then moves on to the next
 // pose; Skip, Redo and (with a controller) Move and Run the rest. The session
 // is written after every pose (workflow::RecordCaptureBytes under the lock).
+//
+//   auto* acquire = new AcquirePanel(session);
+//   acquire->Connect("sim", "sim");  // or linuxcnc://HOST:PORT and aravis:NAME
+//   acquire->CapturePose();          // records pose CurrentPose(), then moves on
 #pragma once
 
 #include <QWidget>

@@ -2,6 +2,10 @@
 // shown in the application as rendered Markdown, with the links between the
 // pages followed in place. The folder is HEXCAL_DOCS_DIR if set, else the one
 // the build was made from, else the installed one (/usr/share/doc/hexcal).
+//
+//   AddHelpMenu(menuBar(), this);  // Help > each page of docs/
+//   HelpBrowser help(this);
+//   help.ShowPage("gui.md");
 #pragma once
 
 #include <QDialog>

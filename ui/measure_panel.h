@@ -3,6 +3,10 @@
 // import a CSV), each image with its detected tags and reprojected board, its
 // status and RMS; the batch measurement into camera_poses.csv; camera
 // intrinsics from a folder of target images, with their report.
+//
+//   auto* measure = new MeasurePanel(session);
+//   measure->LoadImageFolder("/data/run1/images");
+//   measure->MeasureAll();  // a worker: camera_poses.csv
 #pragma once
 
 #include <QWidget>

@@ -1,5 +1,8 @@
 // File > New session: the folder, and the robot, camera and target it names
 // (presets or files), and the noise model, as `hexcal session init` takes them.
+//
+//   NewSessionDialog dialog(this);
+//   if (dialog.exec() == QDialog::Accepted) session->Create(dialog.Folder(), dialog.Config());
 #pragma once
 
 #include <QDialog>

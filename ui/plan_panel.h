@@ -4,6 +4,10 @@
 // add poses); the leg lengths per pose against the strokes (fig. 8); export.
 // The plan is the session's plan.csv, written on every change; the indices
 // per iteration go to plan_history.csv (the columns of `hexcal plan --history`).
+//
+//   auto* plan = new PlanPanel(session);
+//   plan->Options()->SetValue("poses", 16);
+//   plan->Run();  // a worker; the session's plan.csv when it finishes
 #pragma once
 
 #include <QWidget>

@@ -3,6 +3,9 @@
 // "0.214 px"); a pose coordinate or a reading has the robot unit's
 // micrometre-level resolution ("52.249612 cm" would be six decimals: four are
 // kept, as the planner's plan.csv); a ratio is "2.3×".
+//
+//   FormatLength(0.0041321, "cm");  // "0.00413 cm"
+//   FormatRatio(2.31);              // "2.3×"
 #pragma once
 
 #include <QString>

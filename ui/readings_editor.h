@@ -10,6 +10,9 @@
 // the table is refilled when the editor closes, and the typed value is
 // applied against the value shown when typing began, so a change of the same
 // cell on disk meanwhile asks Use mine / Keep theirs (issue 35).
+//
+//   auto* legs = new ReadingsEditor(session);
+//   legs->PasteReadings("3.1 3.2 3.3 3.4 3.5 3.6\n", 0);  // row 0 into legs.csv
 #pragma once
 
 #include <QTableWidget>

@@ -10,6 +10,10 @@
 // the window notices changes"): what other programs write is reloaded and
 // shown. Panels change the session only through this class, which then emits
 // Changed() so that every panel and the step list refresh.
+//
+//   SessionState session;
+//   if (Status s = session.Open("build/demo"); !s.ok()) ShowError(window, "Open", ...);
+//   connect(&session, &SessionState::Changed, panel, &RobotPanel::Refresh);
 #pragma once
 
 #include <QFileSystemWatcher>

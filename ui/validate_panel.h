@@ -4,6 +4,9 @@
 // readings against the camera pose, from results/report.json); and the
 // section 8 study of the session's poses (ui/study_view.h). Below both,
 // export of the calibrated robot file and of the HTML report (`hexcal report`).
+//
+//   auto* validate = new ValidatePanel(session);
+//   validate->ExportHtmlReport("report.html");  // as hexcal report
 #pragma once
 
 #include <QWidget>

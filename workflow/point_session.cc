@@ -158,7 +158,7 @@ StatusOr<std::string> DescribePointPoses(const PointFiles& files, const std::vec
 }
 
 StatusOr<double> SessionNoiseFactor(const std::string& session_dir) {
-  const std::string record = (fs::path(session_dir) / kNoiseCheckFile).string();
+  const std::string record = SessionPaths(session_dir).noise_check;
   std::error_code error;
   if (!fs::exists(fs::symlink_status(record, error))) return 1.0;
   StatusOr<std::string> text = ReadFileToString(record, kMaxYamlBytes);

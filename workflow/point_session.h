@@ -61,9 +61,6 @@ struct PointMeasureResult {
 };
 StatusOr<PointMeasureResult> MeasurePointFile(const PointFiles& files, const std::string& out, bool force);
 
-// `hexcal session check-noise` keeps its result here, in the session folder (noise_check.h).
-constexpr const char* kNoiseCheckFile = "noise_check.json";
-
 // The factor a points session's fits' σ are scaled by: the measured/declared
 // ratio of DIR/noise_check.json when above 1 (the declared noise was
 // optimistic), else 1, and 1 without a check.
