@@ -13,6 +13,7 @@
 #include "core/csv.h"
 #include "core/robot_io.h"
 #include "core/session.h"
+#include "workflow/reading_check.h"
 #include "workflow/session_edits.h"
 #include "workflow/session_status.h"
 #include "vision/camera.h"
@@ -79,12 +80,24 @@ Status CheckImageInSession(const SessionPaths& paths, const std::string& image) 
   return CheckFileForReading(path.string(), kMaxImageBytes);
 }
 
+// Readings as typed on the command line, checked against the session robot's
+// strokes as the GUI's readings table checks them (issue 36: 1e300 and -1000
+// were recorded "done"): bad input naming the reading, its value and the stroke.
+Status CheckTypedLegs(const std::string& dir, const std::vector<double>& legs) {
+  StatusOr<workflow::ReadingCheck> check = workflow::SessionReadingCheck(dir);
+  if (!check.ok()) return check.status();
+  LegReadings readings;
+  for (int i = 0; i < kNumLegs; ++i) readings[i] = legs[static_cast<size_t>(i)];
+  return workflow::CheckTypedReadings(*check, "--legs", readings);
+}
+
 // One row of legs.csv, written under the session lock into legs.csv as it is
 // on disk (workflow/session_edits.h): rows others wrote are kept.
 int RunSessionRecord(const SessionRecordOptions& cli, std::ostream& out, std::ostream& err) {
   const SessionPaths paths(cli.dir);
   StatusOr<std::vector<double>> legs = ParseNumberList(cli.legs, kNumLegs, "--legs");
   if (!legs.ok()) return ReportError(err, "session record", legs.status());
+  if (Status s = CheckTypedLegs(cli.dir, *legs); !s.ok()) return ReportError(err, "session record", s);
   if (cli.from.empty())
     if (Status s = CheckImageInSession(paths, cli.image); !s.ok()) return ReportError(err, "session record", s);
   LegsRow row;
