@@ -150,7 +150,8 @@ std::string FormatStudySummary(const StudyOutcome& outcome) {
                 "p5", "median", "mean", "std", "p95", "max", "beats");
   out << header;
   for (const StudyMetric& m : outcome.metrics) PrintMetricRow(m, outcome.length_unit, out);
-  out << "\n";
+  out << "(O1..O4: the subset's observability indices, larger is better: O1 the volume of the parameters' "
+         "uncertainty, O2 sigma_min / sigma_max, O3 sigma_min, O4 sigma_min^2 / sigma_max; hexcal indices)\n\n";
   out << StudyRankSentence(MakeStudyRecord(outcome)) << "\n";
   if (result.failed > 0) {
     out << "warning: " << result.failed << " of " << result.random.size()
