@@ -51,6 +51,7 @@ LoadedPlugin LoadPlugin() {
     const OpenCvIoPlugin* plugin = entry();
     if (plugin->version != kOpenCvIoPluginVersion) return {nullptr, path + ": from another hexcal build"};
     plugin->show_library_logs(LibraryLogsShown());
+    SetLibraryLogsListener(&ApplyLibraryLogsToCodecs);  // later changes reach it too
     return {plugin, ""};
   }
   return {nullptr, "image and video support (" + std::string(kPluginFile) + ") cannot be loaded: " + tried +

@@ -13,4 +13,9 @@ namespace hexcal {
 void ShowLibraryLogs(bool shown);
 bool LibraryLogsShown();
 
+// Called by ShowLibraryLogs after each change: the image and video module
+// (image_codecs.cc) registers here to pass the setting to the libraries it
+// has loaded (FFmpeg's, GLib's), so that this file needs none of them.
+void SetLibraryLogsListener(void (*listener)());
+
 }  // namespace hexcal
