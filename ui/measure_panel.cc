@@ -143,7 +143,7 @@ void MeasurePanel::ArrangeWidgets(QLayout* buttons) {
   centre_layout->addWidget(picture_info_);
   centre_layout->addWidget(report_);
   centre_layout->addStretch();  // the labels at the top when there is no image (a points session)
-  auto* top = new QSplitter;
+  auto* top = top_ = new QSplitter;
   top->addWidget(left);
   top->addWidget(centre);
   top->setStretchFactor(1, 3);

@@ -26,6 +26,7 @@ class QProgressBar;
 class QGridLayout;
 class QPushButton;
 class QSpinBox;
+class QSplitter;
 class QTableWidget;
 
 namespace hexcal::ui {
@@ -74,6 +75,7 @@ class MeasurePanel : public QWidget {
   QListWidget* images_;  // the images, or a points session's poses
   QLabel* list_title_;
   QLabel* points_summary_;  // a points session's files and reflectors
+  QSplitter* top_;          // the list | the image (a points session: the summary)
   QGridLayout* buttons_;
   std::vector<QPushButton*> all_buttons_;     // in their order
   std::vector<QPushButton*> camera_buttons_;  // hidden in a points session

@@ -8,6 +8,7 @@
 #include <QListWidget>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QSplitter>
 #include <algorithm>
 
 #include "ui/image_view.h"
@@ -39,6 +40,8 @@ void MeasurePanel::ShowInstrument() {
   picture_->setVisible(!points);
   progress_->setVisible(!points);
   for (QPushButton* button : camera_buttons_) button->setVisible(!points);
+  // Without an image, the list's lines (a bad pose's reason) get the room.
+  top_->setSizes(points ? QList<int>{620, 400} : QList<int>{320, 700});
   import_legs_->setToolTip(QString("Use a CSV %1,L1..L6[,holdout] as the session's legs.csv")
                                .arg(points ? "pose" : "image"));
   LayOutButtons();
@@ -61,6 +64,7 @@ QString MeasurePanel::PointsSummary() const { return points_summary_->text().rem
 
 void MeasurePanel::FillPoseList() {
   fits_.clear();
+  images_->clear();  // row k is fits_[k] (an image put in images/ anyway is not listed)
   const SessionConfig& config = session_->Config();
   const QString unit = LengthUnitName(session_->NominalRobot().length_unit);
   std::vector<std::string> poses;
