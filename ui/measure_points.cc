@@ -6,7 +6,6 @@
 #include <QGridLayout>
 #include <QLabel>
 #include <QListWidget>
-#include <QProgressBar>
 #include <QPushButton>
 #include <QSplitter>
 #include <algorithm>
@@ -37,8 +36,7 @@ void MeasurePanel::ShowInstrument() {
   list_title_->setText(points ? "Poses of legs.csv (each fitted to the reflectors)"
                               : "Images (status from camera_poses.csv)");
   points_summary_->setVisible(points);
-  picture_->setVisible(!points);
-  progress_->setVisible(!points);
+  picture_->setVisible(!points);  // the progress bar shows only while a job runs (ShowProgressOn)
   for (QPushButton* button : camera_buttons_) button->setVisible(!points);
   // Without an image, the list's lines (a bad pose's reason) get the room.
   top_->setSizes(points ? QList<int>{620, 400} : QList<int>{320, 700});
