@@ -36,10 +36,14 @@ void MeasurePanel::ShowInstrument() {
   list_title_->setText(points ? "Poses of legs.csv (each fitted to the reflectors)"
                               : "Images (status from camera_poses.csv)");
   points_summary_->setVisible(points);
+  picture_info_->setToolTip(QString());
   picture_->setVisible(!points);  // the progress bar shows only while a job runs (ShowProgressOn)
   for (QPushButton* button : camera_buttons_) button->setVisible(!points);
   // Without an image, the list's lines (a bad pose's reason) get the room.
-  top_->setSizes(points ? QList<int>{620, 400} : QList<int>{320, 700});
+  top_->setSizes(points ? QList<int>{500, 500} : QList<int>{320, 700});
+  points_summary_->setToolTip(points ? "A points session has no images or camera: each pose comes from its points "
+                                       "(fitted to the reflectors), and the Calibrate step fits them again."
+                                     : QString());
   import_legs_->setToolTip(QString("Use a CSV %1,L1..L6[,holdout] as the session's legs.csv")
                                .arg(points ? "pose" : "image"));
   LayOutButtons();
@@ -87,8 +91,7 @@ void MeasurePanel::FillPoseList() {
       summary += QString(" The fits' σ are scaled by %1 (noise_check.json).").arg(FormatRatio(files->noise_factor));
     fits_ = review->poses;
   }
-  points_summary_->setText(Breakable(summary + "\nA points session has no images or camera: each pose comes from "
-                                               "its points, and the Calibrate step fits them again."));
+  points_summary_->setText(Breakable(summary));
   for (const workflow::PointPoseFit& fit : fits_) {
     // Short enough for the list's width; the line beside it has the rest.
     auto* item = new QListWidgetItem(Text(fit.pose) + "  —  " + FitLine(fit, unit, false));
@@ -108,9 +111,10 @@ void MeasurePanel::ShowPose(int row) {
   shown_status_ = Text(fit.status);
   const QString unit = LengthUnitName(session_->NominalRobot().length_unit);
   picture_info_->setText(Breakable(Text(fit.pose) + ": " + FitLine(fit, unit, true) +
-                                   (fit.status == "ok" ? " (the residual distances of its points to the reflectors "
-                                                         "moved by the fitted pose)"
-                                                       : " — left out of the calibration")));
+                                   (fit.status == "ok" ? QString() : " — left out of the calibration")));
+  picture_info_->setToolTip(fit.status == "ok" ? "RMS: of the distances of its points to the reflectors moved "
+                                                 "by the fitted pose"
+                                               : QString());
 }
 
 }  // namespace hexcal::ui
