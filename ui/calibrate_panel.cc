@@ -143,7 +143,8 @@ void CalibratePanel::Run() {
   session_->Reload();  // the checks below on the files as they are now, whatever a watcher missed
   if (!session_->LegsError().isEmpty())
     return ShowError(this, "Calibrate", "legs.csv: " + session_->LegsError() + "\nFix it in the Measure step.");
-  if (!session_->SessionCamera() || !session_->SessionTarget())
+  // A points session has neither: its poses come from the points file.
+  if (!session_->IsPointsSession() && (!session_->SessionCamera() || !session_->SessionTarget()))
     return ShowError(this, "Calibrate", "The session's camera or target does not load: fix session.yaml.");
   const std::string dir = session_->Dir().toStdString();
   run_->setEnabled(false);
@@ -168,7 +169,9 @@ void CalibratePanel::Finish(const Status& status) {
     SetOutcome("failed: " + QString::fromStdString(status.message()).trimmed() + " results/ is unchanged.");
     ShowError(this, "Calibrate",
               QString::fromStdString(status.message()).trimmed() +
-                  "\nCheck the Measure step: enough images with an ok target pose and their readings.");
+                  (session_->IsPointsSession()
+                       ? "\nCheck the Measure step: enough poses whose points fit, and their readings."
+                       : "\nCheck the Measure step: enough images with an ok target pose and their readings."));
   } else {
     SetOutcome("done: results/ written; the lines `hexcal calibrate --session` prints are in the run log.");
   }
@@ -176,12 +179,20 @@ void CalibratePanel::Finish(const Status& status) {
 }
 
 void CalibratePanel::Refresh() {
+  const bool points = session_->IsPointsSession();
+  run_->setToolTip(points ? "Fit each pose's points to the reflectors, register the tracker and the reflectors with "
+                            "the nominal robot, calibrate on the poses not held out, validate on the held-out ones; "
+                            "writes results/."
+                          : "Measure the images not yet measured, register camera and target with the nominal robot, "
+                            "calibrate on the images not held out, validate on the held-out ones; writes results/.");
   // Between runs the line under the buttons says what the results are.
   if (!job_->Running() && (outcome_.isEmpty() || outcome_ == idle_)) {
     const StepState state = session_->State(Step::kCalibrate);
     idle_ = state == StepState::kDone     ? "Results up to date with the session's files."
             : state == StepState::kStale  ? "Results stale: " + session_->ResultsNote()
             : state == StepState::kBroken ? "Results do not load: " + session_->InSession(session_->ResultsNote())
+            : points                      ? "Record the points file and the readings of its poses (Measure), then "
+                                            "calibrate."
                                           : "Record images and readings (Acquire, Measure), then calibrate.";
     SetOutcome(idle_);
   }
@@ -201,12 +212,16 @@ void CalibratePanel::Refresh() {
   const QString unit = QString::fromStdString(report.length_unit);
   // The counts and the closure once; the rest of what the CLI prints (the
   // fit from pixels, the camera-frame residuals, outliers) in the run log.
-  summary_->setText(QString("%1 images: %2 for calibration, %3 held out, %4 without a usable target pose. "
-                            "Closure (camera vs robot) RMS: nominal robot %5, %6; calibrated %7, %8.")
+  // A points session's report counts poses measured by the tracker.
+  const bool tracker = report.instrument == "points";
+  summary_->setText(QString("%1 %2: %3 for calibration, %4 held out, %5 without a usable %6. "
+                            "Closure (%7 vs robot) RMS: nominal robot %8, %9; calibrated %10, %11.")
                         .arg(report.images)
+                        .arg(tracker ? "poses" : "images")
                         .arg(report.calibration_images)
                         .arg(report.held_out_images)
                         .arg(report.unusable_images)
+                        .arg(tracker ? "fit of their points" : "target pose", tracker ? "tracker" : "camera")
                         .arg(FormatLength(reg.position_rms, unit).toHtmlEscaped(), FormatAngle(reg.angle_rms_deg),
                              FormatLength(report.closure_position_rms, unit).toHtmlEscaped(),
                              FormatAngle(report.closure_angle_rms_deg)) +

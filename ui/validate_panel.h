@@ -45,7 +45,8 @@ class ValidatePanel : public QWidget {
 
  private:
   bool ResultsUsable(const QString& what);
-  void ShowValidation(const workflow::ValidationSummary& validation, const QString& unit);
+  // `noun`: "image", or "pose" in a points session (measured by the tracker).
+  void ShowValidation(const workflow::ValidationSummary& validation, const QString& unit, const QString& noun);
 
   SessionState* session_;
   VerdictView* verdict_;  // the verdict on results/report.json (ui/verdict_view.h)

@@ -70,12 +70,10 @@ StatusOr<SessionInputs> LoadSessionInputs(const std::string& dir) {
 // to its points; the session's pose noise then comes from the fits.
 StatusOr<CameraPoses> MeasurePointSession(const std::string& dir, SessionInputs* in, const JobHooks& hooks) {
   const SessionConfig& config = in->config;
-  StatusOr<double> factor = SessionNoiseFactor(dir);  // hexcal session check-noise's, 1 without
-  if (!factor.ok()) return factor.status();
-  const PointFiles files{ResolveSessionFile(dir, config.points),
-                         config.reflectors.empty() ? "" : ResolveSessionFile(dir, config.reflectors),
-                         config.point_sigma, *factor};
-  StatusOr<PointPoses> measured = MeasurePointPoses(files, in->legs, config.noise, hooks);
+  // Scaled by hexcal session check-noise's ratio, 1 without.
+  StatusOr<PointFiles> files = SessionPointFiles(dir, config);
+  if (!files.ok()) return files.status();
+  StatusOr<PointPoses> measured = MeasurePointPoses(*files, in->legs, config.noise, hooks);
   if (!measured.ok()) return measured.status();
   const int ok = static_cast<int>(in->legs.size()) - measured->left_out;
   if (ok < kMinBoardPoses)

@@ -186,6 +186,15 @@ int RunSessionRecord(const SessionRecordOptions& cli, std::ostream& out, std::os
   const SessionPaths paths(cli.dir);
   StatusOr<std::vector<double>> legs = ParseNumberList(cli.legs, kNumLegs, "--legs");
   if (!legs.ok()) return ReportError(err, "session record", legs.status());
+  // Images only: a points session's legs.csv is keyed by pose, and an image
+  // row written into it would break it.
+  StatusOr<SessionConfig> config = LoadSessionConfig(cli.dir);
+  if (!config.ok()) return ReportError(err, "session record", config.status());
+  if (config->instrument == Instrument::kPoints)
+    return ReportError(err, "session record",
+                       Status::Error(cli.dir + " is a points session: its legs.csv rows are poses " +
+                                     "(pose,L1..L6,holdout), not images; write them there or in the GUI's readings "
+                                     "table (Measure step)"));
   if (Status s = CheckTypedLegs(cli.dir, *legs); !s.ok()) return ReportError(err, "session record", s);
   if (cli.from.empty())
     if (Status s = CheckImageInSession(paths, cli.image); !s.ok()) return ReportError(err, "session record", s);
