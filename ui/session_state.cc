@@ -96,7 +96,7 @@ SessionState::DiskPaths SessionState::Dependencies(const SessionConfig* config) 
   add(&paths.folders, dir);
   for (const std::string& name : {session.config, session.plan, session.legs, session.camera_poses})
     add(&paths.files, QString::fromStdString(name));
-  for (const char* name : {"camera_poses.json", "plan_history.csv", workflow::kNoiseCheckFile})
+  for (const char* name : {"camera_poses.json", "plan_history.csv", kNoiseCheckFile})
     add(&paths.files, QDir(dir).filePath(name));
   for (const std::string& folder : {session.images, session.results, workflow::StudyFolderPath(session.dir)}) {
     const QDir listed(QString::fromStdString(folder));
