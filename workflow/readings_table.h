@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/pose.h"
 #include "core/robot.h"
 #include "core/status.h"
 
@@ -24,6 +25,9 @@ struct ReadingsRow {
   bool holdout = false;
   bool recorded = false;       // legs.csv has a row for the image
   bool image_present = false;  // the image is in images/
+  // The pose the capture was commanded to (legs.csv's commanded_x..q3,
+  // core/session.h); none for an image loaded or typed, or cells that do not read.
+  std::optional<Vector6d> commanded{};
 };
 
 // Rows of legs.csv in file order, then the images without one, by name. A

@@ -51,6 +51,7 @@ StatusOr<SessionInputs> LoadSessionInputs(const std::string& dir) {
   if (Status s = CheckReadingsUnit(*nominal, readings, "row"); !s.ok()) {
     return Status::Error(SessionPaths(dir).legs + ": " + s.message());
   }
+  if (Status s = CheckRowsNearStroke(*nominal, *legs); !s.ok()) return s.Prefixed(dir + ": ");
   StatusOr<Camera> camera = LoadCamera(ResolveSessionFile(dir, config->camera));
   if (!camera.ok()) return camera.status();
   StatusOr<Target> target = LoadTarget(ResolveSessionFile(dir, config->target));
@@ -349,6 +350,7 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   const CameraPoses* poses = &open->poses;
   const double scale = open->scale;
   const SplitRows split = SplitSessionRows(*in, *poses, scale);
+  if (Status s = CheckNominalFk(in->nominal, in->fk_start, split.calibration_rows); !s.ok()) return s;
 
   const RegistrationOptions registration = SessionRegistrationOptions(in->config.noise);
   const CalibrationOptions calibration = SessionCalibrationOptions(in->config.noise, request.outliers);
@@ -406,6 +408,7 @@ StatusOr<MeasuredSession> LoadMeasuredSession(const std::string& dir, LockWait w
   const double scale = open->scale;
   MeasuredSession session{in->nominal, in->config.noise, {}, {}, {}, 0, open->hashes};
   CameraCalibrationInput input;
+  std::vector<const LegsRow*> used;
   for (const LegsRow& row : in->legs) {
     const CameraPose& pose = poses->at(row.image);
     if (!pose.ok) {
@@ -414,7 +417,9 @@ StatusOr<MeasuredSession> LoadMeasuredSession(const std::string& dir, LockWait w
     }
     AppendCameraRow(*in, row, pose, scale, &input);
     session.images.push_back(row.image);
+    used.push_back(&row);
   }
+  if (Status s = CheckNominalFk(in->nominal, in->fk_start, used); !s.ok()) return s;
   const CalibrationOptions calibration = SessionCalibrationOptions(in->config.noise, OutlierScreening{true});
   StatusOr<CameraCalibrationResult> registered = CalibrateFromCameraPoses(
       in->nominal, input, SessionRegistrationOptions(in->config.noise), calibration, {nullptr, hooks.cancel});

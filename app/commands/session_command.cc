@@ -13,10 +13,11 @@
 #include "core/csv.h"
 #include "core/robot_io.h"
 #include "core/session.h"
-#include "workflow/session_edits.h"
-#include "workflow/session_status.h"
 #include "vision/camera.h"
 #include "vision/target.h"
+#include "workflow/session_edits.h"
+#include "workflow/session_init.h"
+#include "workflow/session_status.h"
 
 namespace hexcal::cli {
 namespace {
@@ -28,32 +29,12 @@ struct SessionInitOptions {
   std::shared_ptr<OptionEntries> noise = std::make_shared<OptionEntries>();  // --noise-*
 };
 
-// A file the user named from here, as session.yaml keeps it: relative to the
-// session folder, so the session works from any directory (issue 36: it kept
-// the path as typed, and calibrate --session from elsewhere said "no such
-// file"). A preset name, or a name no file has, stays as it is.
-std::string AsSessionPath(const std::string& dir, const std::string& name) {
-  namespace fs = std::filesystem;
-  std::error_code error;
-  if (!fs::exists(fs::symlink_status(name, error))) return name;
-  const fs::path file = fs::absolute(name, error).lexically_normal();
-  const fs::path relative = file.lexically_relative(fs::absolute(dir, error).lexically_normal());
-  return error || relative.empty() ? file.string() : relative.string();
-}
-
 int RunSessionInit(SessionInitOptions cli, std::ostream& out, std::ostream& err) {
   if (Status s = ApplyOptionEntries(NoiseModelOptions(), *cli.noise, &cli.config.noise, "noise"); !s.ok())
     return ReportError(err, "session init", s);
-  // Check that the names load now rather than at the first calibration.
-  if (StatusOr<Robot> robot = LoadRobot(cli.config.robot); !robot.ok())
-    return ReportError(err, "session init", robot.status());
-  if (StatusOr<Camera> camera = LoadCamera(cli.config.camera); !camera.ok())
-    return ReportError(err, "session init", camera.status());
-  if (StatusOr<Target> target = LoadTarget(cli.config.target); !target.ok())
-    return ReportError(err, "session init", target.status());
-  for (std::string* name : {&cli.config.robot, &cli.config.camera, &cli.config.target})
-    *name = AsSessionPath(cli.dir, *name);
-  if (Status s = InitSession(cli.dir, cli.config); !s.ok()) return ReportError(err, "session init", s);
+  // The names load now rather than at the first calibration; nothing is
+  // created when one does not (workflow/session_init.h).
+  if (Status s = workflow::CreateSession(cli.dir, cli.config); !s.ok()) return ReportError(err, "session init", s);
   const SessionPaths paths(cli.dir);
   if (cli.json) {
     out << JsonText({{"session", cli.dir}, {"config", paths.config}, {"images", paths.images}});
