@@ -6,6 +6,7 @@
 #pragma once
 
 #include <QWidget>
+#include <map>
 
 #include "ui/background_job.h"
 #include "ui/readings_editor.h"
@@ -50,6 +51,7 @@ class MeasurePanel : public QWidget {
   void ArrangeWidgets(QLayout* buttons);
   bool CameraAndTargetReady(const QString& step);
   void ShowReadingsHint();  // how many images lack readings, after every refill
+  std::map<QString, QString> ToMeasureAgain() const;  // image name: why its measurement is stale
   void StartJob(const QString& what, JobWork work);
 
   SessionState* session_;
