@@ -160,6 +160,9 @@ StatusOr<PointFit> FitPointPose(const std::vector<NamedPoint>& reflectors, const
   if (Status s = CheckOutlier(*pairs); !s.ok()) return s;
   PointFit fit;
   fit.pose = WeightedKabsch(*pairs);
+  // Coordinates near the double range (1e300) overflow the cross-covariance.
+  if (!fit.pose.position.allFinite() || !fit.pose.rotation.allFinite())
+    return Status::Error("the points' coordinates are too large to fit");
   fit.covariance = PoseCovariance(fit.pose, *pairs);
   double sum = 0;
   for (const PointPair& p : *pairs) {
@@ -168,6 +171,15 @@ StatusOr<PointFit> FitPointPose(const std::vector<NamedPoint>& reflectors, const
   }
   fit.rms = std::sqrt(sum / static_cast<double>(pairs->size()));
   return fit;
+}
+
+StatusOr<std::pair<double, double>> PoseSigmaOfReflectors(const std::vector<NamedPoint>& reflectors, double sigma) {
+  std::vector<NamedPoint> seen = reflectors;
+  for (NamedPoint& point : seen) point.sigma = sigma;
+  StatusOr<PointFit> fit = FitPointPose(reflectors, seen);
+  if (!fit.ok()) return fit.status();
+  return std::pair<double, double>(std::sqrt(fit->covariance.topLeftCorner<3, 3>().trace() / 3),
+                                   std::sqrt(fit->covariance.bottomRightCorner<3, 3>().trace() / 3));
 }
 
 }  // namespace hexcal

@@ -56,4 +56,11 @@ constexpr double kPointOutlierSigmas = 10;
 // far from 1 (another length unit).
 StatusOr<PointFit> FitPointPose(const std::vector<NamedPoint>& reflectors, const std::vector<NamedPoint>& measured);
 
+// The σ of a pose fitted to these reflectors when each coordinate of each is
+// measured with σ `sigma` (the covariance FitPointPose states for noiseless
+// points at the reflectors' own frame): what a tracker's noise means for the
+// pose, before any pose is measured — the session's noise model for planning.
+// {position σ (mean over x, y, z; unit), angle σ (mean over q1..q3; degrees)}.
+StatusOr<std::pair<double, double>> PoseSigmaOfReflectors(const std::vector<NamedPoint>& reflectors, double sigma);
+
 }  // namespace hexcal

@@ -1,4 +1,6 @@
 #include "core/point_fit.h"
+#include "core/point_repeatability.h"
+#include "core/reflector_estimate.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -88,6 +90,35 @@ TEST(PointFit, BadPointsAreNamed) {
   EXPECT_THAT(ErrorOf(off), HasSubstr("point 'R3' lies 1e+03 ("));
 }
 
+// The noise a tracker implies for the pose, before measuring: the σ the Monte
+// Carlo test above checks, at the reflectors' frame.
+TEST(PointFit, PoseSigmaOfReflectorsMatchesTheFitsCovariance) {
+  std::mt19937 random(2);
+  std::vector<NamedPoint> seen = Seen(Pose{}, 0, random);
+  for (NamedPoint& p : seen) p.sigma = 0.02;
+  StatusOr<PointFit> fit = FitPointPose(Reflectors(), seen);
+  StatusOr<std::pair<double, double>> sigma = PoseSigmaOfReflectors(Reflectors(), 0.02);
+  ASSERT_TRUE(fit.ok() && sigma.ok());
+  EXPECT_NEAR(sigma->first, std::sqrt(fit->covariance.topLeftCorner<3, 3>().trace() / 3), 1e-12);
+  EXPECT_NEAR(sigma->second, std::sqrt(fit->covariance.bottomRightCorner<3, 3>().trace() / 3), 1e-12);
+  EXPECT_LT(sigma->first, 0.02);  // 4 points average their noise
+}
+
+TEST(PointFit, HugeCoordinatesAreAnErrorNotNaN) {
+  std::vector<NamedPoint> reflectors = Reflectors(), seen = Reflectors();
+  for (NamedPoint& p : reflectors) p.position *= 1e305;
+  for (NamedPoint& p : seen) {
+    p.position *= 1e305;
+    p.sigma = 1e300;
+  }
+  StatusOr<PointFit> fit = FitPointPose(reflectors, seen);
+  if (fit.ok()) {
+    EXPECT_TRUE(fit->pose.position.allFinite() && fit->pose.rotation.allFinite());
+  } else {
+    EXPECT_THAT(fit.status().message(), HasSubstr("too large"));
+  }
+}
+
 TEST(PointFit, CollinearReflectorsAreRefused) {
   const std::vector<NamedPoint> line = {{"A", {0, 0, 0}}, {"B", {100, 0, 0}}, {"C", {250, 0, 0}}};
   std::vector<NamedPoint> seen = line;
@@ -95,6 +126,74 @@ TEST(PointFit, CollinearReflectorsAreRefused) {
   StatusOr<PointFit> fit = FitPointPose(line, seen);
   ASSERT_FALSE(fit.ok());
   EXPECT_THAT(fit.status().message(), HasSubstr("lie on one line"));
+}
+
+// Without a reflector file, the shape is recovered from the poses: every
+// pairwise distance within a few σ/√poses, a reflector one set lacks included.
+TEST(ReflectorEstimate, RecoversTheShapeFromNoisyPoses) {
+  std::mt19937 random(3);
+  const double sigma = 0.02;
+  PointSets sets;
+  for (int k = 0; k < 20; ++k) {
+    const Pose pose = PoseFromVector((Vector6d() << 10 * k, -5 * k, 2000, 2 * k, -k, 3 * k).finished(),
+                                     EulerConvention::kXYZ);
+    sets.push_back({"pose" + std::to_string(k), Seen(pose, sigma, random)});
+  }
+  sets[0].points.pop_back();  // R4 not seen at the first pose
+  StatusOr<std::vector<NamedPoint>> estimate = EstimateReflectors(sets);
+  ASSERT_TRUE(estimate.ok()) << estimate.status().message();
+  ASSERT_EQ(estimate->size(), 4u);
+  const std::vector<NamedPoint> truth = Reflectors();
+  const auto find = [&](const std::string& name) {
+    for (const NamedPoint& p : *estimate)
+      if (p.name == name) return p.position;
+    ADD_FAILURE() << name << " not estimated";
+    return Eigen::Vector3d(Eigen::Vector3d::Zero());
+  };
+  for (size_t a = 0; a < truth.size(); ++a)
+    for (size_t b = a + 1; b < truth.size(); ++b)
+      EXPECT_NEAR((find(truth[a].name) - find(truth[b].name)).norm(), (truth[a].position - truth[b].position).norm(),
+                  4 * sigma * std::sqrt(2.0 / 19))
+          << truth[a].name << "-" << truth[b].name;
+}
+
+TEST(ReflectorEstimate, NeedsAPoseWithThreePoints) {
+  PointSets sets = {{"p1", {{"R1", {0, 0, 0}, 0.01}, {"R2", {1, 0, 0}, 0.01}}}};
+  StatusOr<std::vector<NamedPoint>> estimate = EstimateReflectors(sets);
+  ASSERT_FALSE(estimate.ok());
+  EXPECT_THAT(estimate.status().message(), HasSubstr("3 or more points"));
+}
+
+// 50 repeats of one pose (the tracker bumped a little between sets): the
+// measured σ is the simulated one within 15 % (its standard error is 4 %), and
+// with the declared σ half the truth the ratio says 2.
+TEST(PointRepeatability, MeasuresTheSimulatedNoise) {
+  std::mt19937 random(11);
+  const double sigma = 0.03;
+  PointSets sets;
+  for (int k = 0; k < 50; ++k) {
+    const Pose pose = PoseFromVector((Vector6d() << 120 + 0.01 * k, -340, 2150, 12, -7, 33).finished(),
+                                     EulerConvention::kXYZ);
+    sets.push_back({"rep" + std::to_string(k), Seen(pose, sigma, random)});
+  }
+  StatusOr<Repeatability> r = MeasurePointRepeatability(sets);
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  EXPECT_EQ(r->degrees_of_freedom, 3 * 200 - 300 - 12 + 6);
+  EXPECT_NEAR(r->measured_sigma, sigma, 0.15 * sigma);
+  EXPECT_NEAR(r->ratio, 1, 0.15);
+  for (PointSet& set : sets)
+    for (NamedPoint& point : set.points) point.sigma = sigma / 2;
+  StatusOr<Repeatability> understated = MeasurePointRepeatability(sets);
+  ASSERT_TRUE(understated.ok());
+  EXPECT_NEAR(understated->ratio, 2, 0.3);
+}
+
+TEST(PointRepeatability, NeedsThreeSets) {
+  std::mt19937 random(1);
+  PointSets sets = {{"a", Seen(TruePose(), 0.02, random)}, {"b", Seen(TruePose(), 0.02, random)}};
+  StatusOr<Repeatability> r = MeasurePointRepeatability(sets);
+  ASSERT_FALSE(r.ok());
+  EXPECT_THAT(r.status().message(), HasSubstr("3 or more"));
 }
 
 }  // namespace

@@ -17,10 +17,25 @@ namespace hexcal {
 
 namespace fs = std::filesystem;
 
+const char* InstrumentName(Instrument instrument) {
+  return instrument == Instrument::kPoints ? "points" : "camera";
+}
+
 bool SessionConfig::IsValid(std::string* error) const {
   if (robot.empty()) {
     *error = "session: no robot";
     return false;
+  }
+  if (instrument == Instrument::kPoints) {
+    if (points.empty()) {
+      *error = "session: a points session needs its points file (points:)";
+      return false;
+    }
+    if (!(point_sigma > 0 && point_sigma < 1e6)) {
+      *error = "session: point_sigma must be a positive length in the robot's unit";
+      return false;
+    }
+    return noise.IsValid(error);
   }
   if (camera.empty()) {
     *error = "session: no camera";
@@ -77,8 +92,15 @@ std::string ConfigText(const SessionConfig& config) {
   out << YAML::Comment("hexcal session (docs/session.md)");
   YAML::Node root;
   root["robot"] = config.robot;
-  root["camera"] = config.camera;
-  root["target"] = config.target;
+  if (config.instrument == Instrument::kPoints) {
+    root["instrument"] = InstrumentName(config.instrument);
+    root["points"] = config.points;
+    if (!config.reflectors.empty()) root["reflectors"] = config.reflectors;
+    root["point_sigma"] = FormatNumber(config.point_sigma);
+  } else {  // the camera session's file as it always was
+    root["camera"] = config.camera;
+    root["target"] = config.target;
+  }
   YAML::Node noise;  // each key of NoiseModelOptions(), shortest exact form, unquoted
   for (const OptionSpec<NoiseModel>& spec : NoiseModelOptions()) noise[spec.key] = OptionText(spec, config.noise);
   root["noise"] = noise;
@@ -103,6 +125,36 @@ std::set<std::string> ImageFiles(const std::string& folder) {
       names.insert(entry.path().filename().string());
   }
   return names;
+}
+
+// The keys naming the robot and the instrument's files: robot, camera and
+// target, or for a points session instrument, points, reflectors, point_sigma.
+Status ReadInstrument(const YAML::Node& root, const std::string& source, SessionConfig* config) {
+  const auto text = [&](const char* key, std::string* value) {
+    if (!root[key] || !root[key].IsScalar()) return Status::Error(source + ": missing '" + key + "'");
+    *value = root[key].as<std::string>();
+    return Status::Ok();
+  };
+  if (Status s = text("robot", &config->robot); !s.ok()) return s;
+  std::string instrument = "camera";
+  if (root["instrument"] && !text("instrument", &instrument).ok())
+    return Status::Error(source + ": instrument: expected camera or points");
+  if (instrument == "camera") {
+    if (Status s = text("camera", &config->camera); !s.ok()) return s;
+    return text("target", &config->target);
+  }
+  if (instrument != "points") return Status::Error(source + ": instrument: '" + instrument + "' is not camera or points");
+  config->instrument = Instrument::kPoints;
+  if (Status s = text("points", &config->points); !s.ok()) return s;
+  if (root["reflectors"] && !text("reflectors", &config->reflectors).ok())
+    return Status::Error(source + ": reflectors: expected a file name");
+  std::string sigma;
+  if (Status s = text("point_sigma", &sigma); !s.ok()) return s;
+  StatusOr<double> value = ParseNumber(sigma);
+  if (!value.ok() || !(*value > 0 && *value < 1e6))
+    return Status::Error(source + ": point_sigma: expected a positive length in the robot's unit");
+  config->point_sigma = *value;
+  return Status::Ok();
 }
 
 }  // namespace
@@ -152,12 +204,7 @@ StatusOr<SessionConfig> LoadSessionConfig(const std::string& dir) {
   if (!root.IsMap()) return Status::Error(paths.config + ": not a YAML mapping");
   SessionConfig config;
   try {
-    for (const char* key : {"robot", "camera", "target"}) {
-      if (!root[key] || !root[key].IsScalar()) return Status::Error(paths.config + ": missing '" + key + "'");
-    }
-    config.robot = root["robot"].as<std::string>();
-    config.camera = root["camera"].as<std::string>();
-    config.target = root["target"].as<std::string>();
+    if (Status s = ReadInstrument(root, paths.config, &config); !s.ok()) return s;
     if (const YAML::Node noise = root["noise"]) {
       StatusOr<NoiseModel> read = ReadNoiseSection(noise, paths.config + ": noise");
       if (!read.ok()) return read.status();
@@ -192,7 +239,12 @@ StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir) {
     return Status::Error(paths.legs + ": no readings yet: " + kEnterReadings);
   StatusOr<CsvTable> table = ReadCsv(paths.legs);
   if (!table.ok()) return table.status();
-  StatusOr<int> image_column = ColumnIndex(*table, "image");
+  // A session.yaml that does not load is reported by whoever loads it; the
+  // rows are then read as a camera session's.
+  const StatusOr<SessionConfig> config = LoadSessionConfig(dir);
+  const bool points = config.ok() && config->instrument == Instrument::kPoints;
+  const char* key = points ? "pose" : "image";
+  StatusOr<int> image_column = ColumnIndex(*table, key);
   if (!image_column.ok()) return image_column.status();
   int leg_columns[kNumLegs];
   for (int i = 0; i < kNumLegs; ++i) {
@@ -221,8 +273,11 @@ StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir) {
     row.line = table->line_numbers[r];
     const std::string where = paths.legs + ":" + std::to_string(row.line) + ": ";
     row.image = table->rows[r][*image_column];
-    if (images.count(row.image) == 0) return Status::Error(where + "image '" + row.image + "' is not in images/");
-    if (!seen.insert(row.image).second) return Status::Error(where + "image '" + row.image + "' has a second row");
+    if (!points && images.count(row.image) == 0)
+      return Status::Error(where + "image '" + row.image + "' is not in images/");
+    if (row.image.empty()) return Status::Error(where + "column '" + key + "' is empty");
+    if (!seen.insert(row.image).second)
+      return Status::Error(where + key + " '" + row.image + "' has a second row");
     for (int i = 0; i < kNumLegs; ++i) {
       StatusOr<double> value = NumberAt(*table, r, leg_columns[i]);
       if (!value.ok()) return value.status();
@@ -241,7 +296,7 @@ StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir) {
     rows.push_back(row);
   }
   for (const std::string& image : images) {
-    if (seen.count(image) == 0)
+    if (!points && seen.count(image) == 0)
       return Status::Error((fs::path(paths.images) / image).string() + ": no row in " + paths.legs + ": " +
                            kEnterReadings);
   }

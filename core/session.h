@@ -32,10 +32,24 @@
 
 namespace hexcal {
 
+// What measures the platform's pose (docs/session.md, "Point measurements"):
+// the camera and its AprilTag board, or an instrument that measures named 3D
+// points on the platform (a laser tracker's reflectors, a CMM's probe points).
+enum class Instrument { kCamera, kPoints };
+const char* InstrumentName(Instrument instrument);  // "camera", "points"
+
 struct SessionConfig {
   std::string robot;   // robot file (relative to the session folder) or preset name
-  std::string camera;  // camera file or name, as LoadCamera takes it
-  std::string target;  // target file or name, as LoadTarget takes it
+  std::string camera;  // camera file or name, as LoadCamera takes it (camera sessions)
+  std::string target;  // target file or name, as LoadTarget takes it (camera sessions)
+  Instrument instrument = Instrument::kCamera;
+  // Points sessions: the measured points (core/point_file.h, either layout),
+  // the reflectors' positions in a frame fixed to the platform (CSV
+  // point,x,y,z; empty: estimated from the measured poses), and the σ of each
+  // coordinate where the points file gives none (robot unit).
+  std::string points;
+  std::string reflectors;
+  double point_sigma = 0;
   // Set by the registration step (core/registration.h), robot unit; the robot's
   // Euler convention in the file.
   std::optional<Pose> base_from_camera{};
@@ -66,7 +80,7 @@ inline constexpr const char* kCommandedColumns[6] = {"commanded_x",  "commanded_
                                                      "commanded_q1", "commanded_q2", "commanded_q3"};
 
 struct LegsRow {
-  std::string image;  // file name inside images/
+  std::string image;  // file name inside images/; in a points session, the pose's name in the points file
   LegReadings legs = LegReadings::Zero();
   bool holdout = false;  // kept out of the calibration, used to validate it
   int line = 0;          // line of legs.csv
@@ -76,7 +90,8 @@ struct LegsRow {
 // Reads legs.csv: columns image, L1..L6 and optionally holdout (0 or 1) and
 // the six commanded columns (all six numbers, or all six empty), in any
 // order. Every row's image must be in images/, no image twice, and every image
-// in images/ must have a row.
+// in images/ must have a row. A points session's legs.csv names its poses in a
+// column `pose` instead (the group of the points file), with no images.
 StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir);
 
 // The commanded pose of legs.csv's row `row` from its six `columns`: none when

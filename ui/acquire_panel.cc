@@ -38,6 +38,8 @@ constexpr int kLiveIntervalMs = 600;
 // pair that connects (the sim camera renders the sim controller's platform).
 constexpr int kDefaultController = 1;  // "sim"
 constexpr int kDefaultCamera = 0;      // "sim"
+const QString kPlanBroken = "The plan does not load: ";
+const QString kPlanAgain = " Fix plan.csv, or plan again (Plan step).";
 
 QTableWidgetItem* Cell(const QString& text) {
   auto* item = new QTableWidgetItem(text);
@@ -256,12 +258,16 @@ void AcquirePanel::Refresh() {
   } else {
     SelectPose(current_);
   }
+  // The plan line from the status (issue 40): no plan, or one that does not
+  // load; gone as soon as a plan is listed.
   if (poses == 0) {
     current_ = -1;
     pose_label_->setText("no pose");
-    SetOutcome(kNoPlan);
+    SetOutcome(session_->State(Step::kPlan) == StepState::kBroken
+                   ? kPlanBroken + session_->InSession(session_->Why(Step::kPlan)) + kPlanAgain
+                   : QString(kNoPlan));
     UpdateButtons();
-  } else if (outcome_ == kNoPlan) {
+  } else if (outcome_ == kNoPlan || outcome_.startsWith(kPlanBroken)) {
     SetOutcome({});  // a plan came: the line would send the operator back for nothing
   }
 }

@@ -142,6 +142,7 @@ void CalibratePanel::SetOutcome(const QString& text) {
 
 void CalibratePanel::Run() {
   if (!session_->IsOpen()) return ShowError(this, "Calibrate", "Open or create a session first (File menu).");
+  session_->Reload();  // the checks below on the files as they are now, whatever a watcher missed
   if (!session_->LegsError().isEmpty())
     return ShowError(this, "Calibrate", "legs.csv: " + session_->LegsError() + "\nFix it in the Measure step.");
   if (!session_->SessionCamera() || !session_->SessionTarget())
@@ -195,9 +196,10 @@ void CalibratePanel::Refresh() {
   // Between runs the line under the buttons says what the results are.
   if (!job_->Running() && (outcome_.isEmpty() || outcome_ == idle_)) {
     const StepState state = session_->State(Step::kCalibrate);
-    idle_ = state == StepState::kDone    ? "Results up to date with the session's files."
-            : state == StepState::kStale ? "Results stale: " + session_->ResultsNote()
-                                         : "Record images and readings (Acquire, Measure), then calibrate.";
+    idle_ = state == StepState::kDone     ? "Results up to date with the session's files."
+            : state == StepState::kStale  ? "Results stale: " + session_->ResultsNote()
+            : state == StepState::kBroken ? "Results do not load: " + session_->InSession(session_->ResultsNote())
+                                          : "Record images and readings (Acquire, Measure), then calibrate.";
     idle_ = InGuiTerms(idle_);  // as SetOutcome shows it, to compare with
     SetOutcome(idle_);
   }
@@ -233,7 +235,8 @@ void CalibratePanel::Refresh() {
                          ? QString()
                          : "<br><b>Stale:</b> " + Breakable(InGuiTerms(session_->ResultsNote())).toHtmlEscaped()));
   run_log_->SetText(QString::fromStdString(workflow::FormatCalibrationSummary(report)).trimmed());
-  verdict_->Show(workflow::MakeVerdict(report));
+  verdict_->Show(workflow::MakeVerdict(report),
+                 session_->State(Step::kCalibrate) == StepState::kStale ? session_->ResultsNote() : QString());
   FillParameterTable(report.parameters, QString::fromStdString(report.length_unit));
   PlotResiduals();
 }

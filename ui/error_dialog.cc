@@ -10,7 +10,8 @@
 namespace hexcal::ui {
 namespace {
 bool interactive = true;
-ConflictAnswerer answerer;  // empty: ask in a message box
+ConflictAnswerer answerer;        // empty: ask in a message box
+ConflictAnswerer stale_answerer;  // the same for ConfirmStale
 ChoiceAnswerer choice_answerer;
 QString last_error;
 
@@ -57,6 +58,21 @@ int AskChoice(QWidget* parent, const QString& what, const QString& text, const Q
   return static_cast<int>(buttons.size()) - 1;
 }
 void SetConflictAnswerer(ConflictAnswerer value) { answerer = std::move(value); }
+void SetStaleAnswerer(ConflictAnswerer value) { stale_answerer = std::move(value); }
+
+bool ConfirmStale(QWidget* parent, const QString& what, const QString& reason) {
+  std::cerr << "hexcal-gui: " << what.toStdString() << ": " << reason.toStdString() << "\n";
+  if (stale_answerer) return stale_answerer(what, reason);
+  if (!interactive) return false;  // never act on stale results unasked
+  QMessageBox box(QMessageBox::Warning, "hexcal — " + what, reason, QMessageBox::NoButton, parent);
+  box.setTextFormat(Qt::PlainText);
+  box.setInformativeText("Calibrate again first (Calibrate step), or go on with these results?");
+  QPushButton* cancel = box.addButton(QMessageBox::Cancel);
+  QPushButton* anyway = box.addButton("Use the stale results", QMessageBox::AcceptRole);
+  box.setDefaultButton(cancel);
+  box.exec();
+  return box.clickedButton() == anyway;
+}
 bool Interactive() { return interactive; }
 
 void ShowError(QWidget* parent, const QString& what, const QString& text) {

@@ -44,4 +44,11 @@ using ChoiceAnswerer = std::function<int(const QString& what, const QString& tex
 // An empty function restores the message box.
 void SetChoiceAnswerer(ChoiceAnswerer answerer);
 
+// Before exporting or reporting stale results: `reason` says what changed
+// since they were computed. True when the operator goes on anyway ("Use the
+// stale results"); false on Cancel, and when not interactive, unless tests
+// set an answer (SetStaleAnswerer; an empty function restores the box).
+bool ConfirmStale(QWidget* parent, const QString& what, const QString& reason);
+void SetStaleAnswerer(ConflictAnswerer answerer);
+
 }  // namespace hexcal::ui

@@ -184,6 +184,13 @@ void MainWindow::FillRecentMenu() {
   recent_menu_->setEnabled(!recent.isEmpty());
 }
 
+// Back from a terminal or an editor: what the watcher may have missed (a
+// network file system) is read now, if any file's stamp changed.
+void MainWindow::changeEvent(QEvent* event) {
+  QMainWindow::changeEvent(event);
+  if (event->type() == QEvent::ActivationChange && isActiveWindow()) session_->ReloadIfChanged();
+}
+
 void MainWindow::closeEvent(QCloseEvent* event) {
   // Nothing to write: every change went to the folder when it was made, and
   // writing copies back now would undo what other programs wrote meanwhile.

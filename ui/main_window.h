@@ -52,6 +52,7 @@ class MainWindow : public QMainWindow {
   void RememberRecent(const QString& dir);
   void FillRecentMenu();
   void closeEvent(QCloseEvent* event) override;
+  void changeEvent(QEvent* event) override;  // focus in: SessionState::ReloadIfChanged
 
   SessionState* session_;
   StepList* steps_;

@@ -154,6 +154,7 @@ void MeasurePanel::ResetForSession() {
   preview_->Abandon();
   pending_row_ = -1;
   shown_status_.clear();
+  shown_legs_error_.clear();
   picture_->SetMessage("Select an image to see its detection.");
   picture_info_->clear();
   status_->clear();
@@ -189,8 +190,16 @@ void MeasurePanel::Refresh() {
   images_->blockSignals(false);
   // Keep the selection; show the first image when there was none.
   if (images_->count() > 0) images_->setCurrentRow(current >= 0 && current < images_->count() ? current : 0);
-  if (!session_->LegsError().isEmpty())
-    status_->setText(Breakable("legs.csv: " + session_->InSession(session_->LegsError())));
+  // legs.csv's error while, and only while, it holds (issue 40): fixed on
+  // disk, its line goes; the line of a job or an edit since is left alone.
+  QString legs_error = session_->InSession(session_->LegsError());
+  if (!legs_error.isEmpty() && !legs_error.startsWith("legs.csv")) legs_error = "legs.csv: " + legs_error;
+  if (!legs_error.isEmpty()) {
+    status_->setText(Breakable(legs_error));
+  } else if (!shown_legs_error_.isEmpty() && status_->text() == Breakable(shown_legs_error_)) {
+    status_->clear();
+  }
+  shown_legs_error_ = legs_error;
   legs_->Refill();
 }
 

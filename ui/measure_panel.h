@@ -67,7 +67,8 @@ class MeasurePanel : public QWidget {
   QPushButton* cancel_;
   QPlainTextEdit* report_;
   QString shown_status_;
-  int pending_row_ = -1;  // picked while a detection ran
+  QString shown_legs_error_;  // legs.csv's error as the status line shows it, until it is fixed
+  int pending_row_ = -1;      // picked while a detection ran
 };
 
 }  // namespace hexcal::ui

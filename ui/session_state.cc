@@ -1,13 +1,18 @@
 #include "ui/session_state.h"
 
+#include <sys/stat.h>
+
 #include <QDir>
+#include <QFile>
 #include <QFileInfo>
+#include <QSet>
 #include <QStringList>
 
 #include "workflow/plan_step.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_init.h"
 #include "workflow/session_results.h"
+#include "workflow/session_study.h"
 #include "core/csv.h"
 #include "core/robot_io.h"
 #include "vision/measure.h"
@@ -16,6 +21,24 @@ namespace hexcal::ui {
 namespace {
 
 bool Exists(const std::string& path) { return QFileInfo::exists(QString::fromStdString(path)); }
+
+// A file's identity: the watch of a path follows the inode it was added on.
+std::string Inode(const QString& path) {
+  struct stat info {};
+  if (::stat(QFile::encodeName(path).constData(), &info) != 0) return "-";
+  return std::to_string(info.st_dev) + ":" + std::to_string(info.st_ino);
+}
+
+// What changes with any write, rename, deletion or new entry, without
+// reading the content: inode, size, modification and change times (ns).
+std::string Stamp(const QString& path) {
+  struct stat info {};
+  if (::stat(QFile::encodeName(path).constData(), &info) != 0) return path.toStdString() + " -\n";
+  return path.toStdString() + " " + std::to_string(info.st_dev) + ":" + std::to_string(info.st_ino) + " " +
+         std::to_string(info.st_size) + " " + std::to_string(info.st_mtim.tv_sec) + "." +
+         std::to_string(info.st_mtim.tv_nsec) + " " + std::to_string(info.st_ctim.tv_sec) + "." +
+         std::to_string(info.st_ctim.tv_nsec) + "\n";
+}
 
 }  // namespace
 
@@ -38,26 +61,124 @@ const char* StepName(Step step) {
 }
 
 SessionState::SessionState(QObject* parent) : QObject(parent) {
-  constexpr int kSettleMs = 300;
+  constexpr int kSettleMs = 150;
+  constexpr int kPollMs = 2000;
   reload_timer_.setSingleShot(true);
   reload_timer_.setInterval(kSettleMs);
   connect(&watcher_, &QFileSystemWatcher::directoryChanged, this, [this] { reload_timer_.start(); });
   connect(&watcher_, &QFileSystemWatcher::fileChanged, this, [this] { reload_timer_.start(); });
   connect(&reload_timer_, &QTimer::timeout, this, &SessionState::Reload);
+  poll_timer_.setInterval(kPollMs);
+  connect(&poll_timer_, &QTimer::timeout, this, &SessionState::ReloadIfChanged);
 }
 
-// The folder itself (atomic writes and the swap of results/ are renames in
-// it), images/ and results/; re-armed after each load, since a swapped
-// results/ is a new folder.
-void SessionState::Watch() {
+// Folders: the session's (atomic writes and the swap of results/ are renames
+// in it), images/, results/, study/, and the folder of each robot, camera and
+// target file wherever it is (a file replaced or made again there is a new
+// entry). Files, for what is written in place (cp over it, `>>`, an editor
+// that keeps the inode): session.yaml, plan.csv, legs.csv, the measurements,
+// the robot, camera and target files, and every file of images/, results/
+// and study/. A name that is a preset has no file; a file named in
+// session.yaml that is missing is watched for through its folder.
+SessionState::DiskPaths SessionState::Dependencies(const SessionConfig* config) const {
+  DiskPaths paths;
+  QSet<QString> seen;
+  const auto add = [&](QStringList* list, const QString& path) {
+    const QString clean = QDir::cleanPath(path);
+    if (!seen.contains(clean)) {
+      seen.insert(clean);
+      list->append(clean);
+    }
+  };
+  const SessionPaths session = Paths();
+  const QString dir = QString::fromStdString(session.dir);
+  add(&paths.folders, dir);
+  for (const std::string& name : {session.config, session.plan, session.legs, session.camera_poses})
+    add(&paths.files, QString::fromStdString(name));
+  for (const char* name : {"camera_poses.json", "plan_history.csv"}) add(&paths.files, QDir(dir).filePath(name));
+  for (const std::string& folder : {session.images, session.results, workflow::StudyFolderPath(session.dir)}) {
+    const QDir listed(QString::fromStdString(folder));
+    if (!listed.exists()) continue;
+    add(&paths.folders, listed.path());
+    for (const QString& file : listed.entryList(QDir::Files | QDir::Hidden | QDir::NoDotAndDotDot, QDir::Name))
+      add(&paths.files, listed.filePath(file));
+  }
+  if (config == nullptr) return paths;
+  for (const std::string* name : {&config->robot, &config->camera, &config->target}) {
+    const QString in_session = QDir(dir).filePath(QString::fromStdString(*name));
+    const QFileInfo resolved(QString::fromStdString(Resolve(*name)));
+    // The file (a symbolic link is watched through to its target), its folder and its target's folder.
+    for (const QFileInfo& file : {resolved, QFileInfo(resolved.canonicalFilePath())}) {
+      if (!file.isFile()) continue;
+      add(&paths.files, file.absoluteFilePath());
+      add(&paths.folders, file.absolutePath());
+    }
+    // Missing: where it would come back (in the session, or at its absolute path).
+    const QFileInfo wanted(QFileInfo(QString::fromStdString(*name)).isAbsolute() ? QString::fromStdString(*name)
+                                                                                 : in_session);
+    if (!resolved.isFile() && QFileInfo(wanted.absolutePath()).isDir()) add(&paths.folders, wanted.absolutePath());
+  }
+  return paths;
+}
+
+void SessionState::Watch(const DiskPaths& paths) {
+  stamps_.clear();
+  for (const QStringList* list : {&paths.folders, &paths.files})
+    for (const QString& path : *list) stamps_ += Stamp(path);
+  if (!watcher_enabled_) return;
+  QSet<QString> wanted;
+  for (const QString& path : paths.folders)
+    if (QFileInfo(path).isDir()) wanted.insert(path);
+  for (const QString& path : paths.files)
+    if (QFileInfo(path).isFile()) wanted.insert(path);
+  QStringList drop;
+  for (const QString& path : watcher_.directories())
+    if (!wanted.contains(path)) drop << path;
+  // A file replaced by a rename over it whose old inode lives on (a hard link
+  // elsewhere) keeps its watch on the old inode: renewed here.
+  for (const QString& path : watcher_.files())
+    if (!wanted.contains(path) || watched_inode_[path] != Inode(path)) drop << path;
+  if (!drop.isEmpty()) watcher_.removePaths(drop);
+  for (const QString& path : drop) watched_inode_.erase(path);
+  QSet<QString> watched;
+  for (const QStringList& list : {watcher_.directories(), watcher_.files()})
+    for (const QString& path : list) watched.insert(path);
+  QStringList add;
+  for (const QString& path : wanted)
+    if (!watched.contains(path)) add << path;
+  const QStringList failed = add.isEmpty() ? QStringList() : watcher_.addPaths(add);
+  for (const QString& path : add)
+    if (!failed.contains(path) && QFileInfo(path).isFile()) watched_inode_[path] = Inode(path);
+  // Beyond the system's watch limit: the stamps are compared every few seconds instead.
+  if (failed.isEmpty()) {
+    poll_timer_.stop();
+  } else if (!poll_timer_.isActive()) {
+    poll_timer_.start();
+  }
+}
+
+QStringList SessionState::WatchedPaths() const { return watcher_.directories() + watcher_.files(); }
+
+void SessionState::SetWatcherEnabled(bool enabled) {
+  watcher_enabled_ = enabled;
   if (!watcher_.directories().isEmpty()) watcher_.removePaths(watcher_.directories());
   if (!watcher_.files().isEmpty()) watcher_.removePaths(watcher_.files());
-  const SessionPaths paths = Paths();
-  for (const std::string& path : {paths.dir, paths.images, paths.results})
-    if (QFileInfo(QString::fromStdString(path)).isDir()) watcher_.addPath(QString::fromStdString(path));
-  // Files written in place (`>>`, an editor) change no folder entry.
-  for (const std::string& path : {paths.legs, paths.plan, paths.config, paths.camera_poses})
-    if (QFileInfo(QString::fromStdString(path)).isFile()) watcher_.addPath(QString::fromStdString(path));
+  watched_inode_.clear();
+  poll_timer_.stop();
+  if (enabled && IsOpen()) Reload();
+}
+
+bool SessionState::ReloadIfChanged() {
+  if (!IsOpen()) return false;
+  const std::string before = stamps_;
+  StatusOr<SessionConfig> config = LoadSessionConfig(dir_.toStdString());
+  const DiskPaths paths = Dependencies(config.ok() ? &*config : nullptr);
+  std::string now;
+  for (const QStringList* list : {&paths.folders, &paths.files})
+    for (const QString& path : *list) now += Stamp(path);
+  if (now == before) return false;
+  Reload();
+  return true;
 }
 
 // Every step's state at once, from the files' contents (workflow/session_status.h);
@@ -82,20 +203,26 @@ std::string SessionState::Resolve(const std::string& name) const {
   return workflow::ResolveSessionFile(dir_.toStdString(), name);
 }
 
-Status SessionState::LoadAll(const QString& dir) {
-  // Resolve() reads dir_: point it at the new folder, and back if it does not load.
-  const QString previous = dir_;
+void SessionState::LoadAll(const QString& dir) {
   dir_ = dir;
-  const auto fail = [&](const Status& status) {
-    dir_ = previous;
-    return status;
-  };
+  // Watched first, then read: a change made while the files are read is seen
+  // by the watch, or else by ReloadIfChanged's stamps, taken before reading.
   StatusOr<SessionConfig> config = LoadSessionConfig(dir.toStdString());
-  if (!config.ok()) return fail(config.status());
-  StatusOr<Robot> robot = LoadRobot(Resolve(config->robot));
-  if (!robot.ok()) return fail(robot.status());
+  Watch(Dependencies(config.ok() ? &*config : nullptr));
+  load_error_.clear();
+  if (!config.ok()) {
+    // The open session's session.yaml went away or broke: every step is
+    // broken with its message (the status's error) until it loads again.
+    load_error_ = QString::fromStdString(config.status().message());
+    status_.reset();
+    results_ = config.status();
+    study_ = config.status();
+    return;
+  }
   config_ = *config;
-  robot_ = *robot;
+  // The robot as it now is, or the last that loaded (the status says why not).
+  StatusOr<Robot> robot = LoadRobot(Resolve(config_.robot));
+  if (robot.ok()) robot_ = *robot;
   // Camera and target are needed from the Measure step on: a session may be
   // opened to plan before they exist, so their errors show there, not here.
   StatusOr<Camera> camera = LoadCamera(Resolve(config_.camera));
@@ -118,17 +245,21 @@ Status SessionState::LoadAll(const QString& dir) {
     }
   }
   LoadStatus();
-  Watch();
-  return Status::Ok();
 }
 
 Status SessionState::Open(const QString& dir) {
+  // The folder must hold a session whose robot loads; once open, whatever
+  // fails to load later is shown as the status says (Reload).
+  const QString absolute = QDir(dir).absolutePath();
+  StatusOr<SessionConfig> config = LoadSessionConfig(absolute.toStdString());
+  if (!config.ok()) return config.status();
+  StatusOr<Robot> robot = LoadRobot(workflow::ResolveSessionFile(absolute.toStdString(), config->robot));
+  if (!robot.ok()) return robot.status();
   const QString previous = dir_;
-  Status loaded = LoadAll(QDir(dir).absolutePath());
-  if (!loaded.ok()) return loaded;
+  LoadAll(absolute);
   if (dir_ != previous) emit Switched();
   emit Changed();
-  return loaded;
+  return Status::Ok();
 }
 
 Status SessionState::Create(const QString& dir, const SessionConfig& config) {
@@ -139,6 +270,7 @@ Status SessionState::Create(const QString& dir, const SessionConfig& config) {
 
 void SessionState::Reload() {
   if (!IsOpen()) return;
+  reload_timer_.stop();  // this reload reads what the pending one would
   LoadAll(dir_);
   emit Changed();
 }
@@ -217,12 +349,14 @@ const char* WorkflowStep(Step step) {
 }  // namespace
 
 StepState SessionState::State(Step step) const {
+  if (IsOpen() && !load_error_.isEmpty()) return StepState::kBroken;
   const workflow::StepReport* report = IsOpen() && status_ ? status_->Find(WorkflowStep(step)) : nullptr;
   return report != nullptr ? report->status : StepState::kTodo;
 }
 
 QString SessionState::Why(Step step) const {
   if (!IsOpen()) return "no session open";
+  if (!load_error_.isEmpty()) return load_error_;
   if (!status_) return "the session's status could not be read";
   const workflow::StepReport* report = status_->Find(WorkflowStep(step));
   return report != nullptr ? QString::fromStdString(report->detail) : QString();

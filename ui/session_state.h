@@ -5,10 +5,11 @@
 // legs.csv, images/): the folder is the autosave, so nothing is lost if the
 // application dies. An edit is applied to the file as it is on disk, under the
 // session lock (workflow/session_edits.h), never by writing back a copy held
-// in memory; a conflict comes back to the caller to ask the operator. The
-// folder is watched: what other programs write is reloaded and shown. Panels
-// change the session only through this class, which then emits Changed() so
-// that every panel and the step list refresh.
+// in memory; a conflict comes back to the caller to ask the operator. Every
+// file the status depends on is watched, wherever it lives (docs/gui.md, "How
+// the window notices changes"): what other programs write is reloaded and
+// shown. Panels change the session only through this class, which then emits
+// Changed() so that every panel and the step list refresh.
 #pragma once
 
 #include <QFileSystemWatcher>
@@ -16,7 +17,9 @@
 #include <QString>
 #include <QTimer>
 #include <functional>
+#include <map>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/robot.h"
@@ -50,8 +53,21 @@ class SessionState : public QObject {
   Status Open(const QString& dir);
   Status Create(const QString& dir, const SessionConfig& config);
   // Re-reads the files after a step wrote them (measurements, results), or
-  // another program did (the folder watch calls it).
+  // another program did (the watch calls it), and before an action that uses
+  // the status (calibrate, export, report). Of an open session whose
+  // session.yaml no longer loads, every step is then broken with the reason,
+  // and its robot, plan and readings stay as last read.
   void Reload();
+  // Reload() if a file or folder the status depends on is not as it was when
+  // last read (its inode, size, modification and change times: nothing is
+  // hashed); the window calls it when it gains focus, for what a watcher
+  // misses (a network file system). True when it reloaded.
+  bool ReloadIfChanged();
+  // The files and folders watched now (the robot, camera and target files and
+  // their folders wherever they are, every file of images/, results/, study/).
+  QStringList WatchedPaths() const;
+  // Tests: the watcher off, as on a file system that reports no change.
+  void SetWatcherEnabled(bool enabled);
 
   bool IsOpen() const { return !dir_.isEmpty(); }
   const QString& Dir() const { return dir_; }
@@ -107,11 +123,20 @@ class SessionState : public QObject {
   void Changed();
 
  private:
-  Status LoadAll(const QString& dir);
+  // Reads DIR, which stays open whatever fails to load (the status says what).
+  void LoadAll(const QString& dir);
   workflow::EditOutcome ApplyEdit(bool overwrite,
                                   const std::function<workflow::EditOutcome(const workflow::EditOptions&)>& edit);
   void LoadStatus();
-  void Watch();
+  // What the status reads: the folders (whose entries change on a rename, a
+  // deletion, a new file) and the files (written in place).
+  struct DiskPaths {
+    QStringList folders, files;
+  };
+  DiskPaths Dependencies(const SessionConfig* config) const;
+  // Watches exactly `paths` (the watch of a file replaced since is renewed)
+  // and records their stamps, before they are read.
+  void Watch(const DiskPaths& paths);
 
   QString dir_;
   SessionConfig config_;
@@ -124,8 +149,13 @@ class SessionState : public QObject {
   std::optional<workflow::SessionStatus> status_;  // none when the status could not be read
   StatusOr<workflow::SessionResults> results_ = Status::Error("No results yet: run the Calibrate step.");
   StatusOr<workflow::SessionStudy> study_ = Status::Error(kNoStudyYet);
+  QString load_error_;  // why session.yaml does not load since the last reload; empty when it does
   QFileSystemWatcher watcher_;
+  bool watcher_enabled_ = true;
+  std::map<QString, std::string> watched_inode_;  // a watched file's inode when its watch began
+  std::string stamps_;                            // of every watched path, when last read (ReloadIfChanged)
   QTimer reload_timer_;  // folds a burst of changes (an atomic write is several) into one reload
+  QTimer poll_timer_;    // ReloadIfChanged, while the watcher could not take every path (its limit reached)
 };
 
 }  // namespace hexcal::ui

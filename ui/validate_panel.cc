@@ -102,7 +102,9 @@ void ValidatePanel::Refresh() {
                            static_cast<QWidget*>(orientation_chart_)})
     figures->setVisible(validated);
   if (!report.ok()) return status_->setText(Breakable(QString::fromStdString(report.status().message())));
-  verdict_->Show(workflow::MakeVerdict(*report));
+  // Never a verdict without its stale mark (issue 40): the figures below are of the same results.
+  verdict_->Show(workflow::MakeVerdict(*report),
+                 session_->State(Step::kCalibrate) == StepState::kStale ? session_->ResultsNote() : QString());
   if (!report->validation) {
     status_->setText(
         "No image was held out (holdout column of legs.csv), so there is nothing to validate on. "
@@ -144,8 +146,32 @@ void ValidatePanel::ShowValidation(const workflow::ValidationSummary& validation
             charts::ValidationPerImageChart(images, charts::ValidationQuantity::kOrientation, length_unit));
 }
 
+// The session read again (what a watcher missed is seen), then: results
+// that do not load are refused, stale ones used only when the operator says
+// so with the reason in front of them (issue 40).
+bool ValidatePanel::ResultsUsable(const QString& what) {
+  session_->Reload();
+  switch (session_->State(Step::kCalibrate)) {
+    case StepState::kDone:
+      return true;
+    case StepState::kStale:
+      return ConfirmStale(this, what,
+                          "The results are stale: " + session_->InSession(session_->ResultsNote()) +
+                              "\nThey were computed from files that have changed since.");
+    case StepState::kBroken:
+      ShowError(this, what, "The results do not load: " + session_->InSession(session_->ResultsNote()));
+      return false;
+    case StepState::kTodo:
+      break;
+  }
+  ShowError(this, what, "No results yet: run the Calibrate step.");
+  return false;
+}
+
 void ValidatePanel::ExportCalibratedRobot(const QString& chosen) {
+  if (!session_->IsOpen()) return ShowError(this, "Export robot", "Open a session first (File menu).");
   const QString source = QString::fromStdString((fs::path(session_->Paths().results) / "calibrated.yaml").string());
+  if (!ResultsUsable("Export robot")) return;
   if (!QFile::exists(source))
     return ShowError(this, "Export robot", "No calibrated robot yet: run the Calibrate step.");
   const QString path = chosen.isEmpty() ? QFileDialog::getSaveFileName(this, "Export calibrated robot",
@@ -158,6 +184,7 @@ void ValidatePanel::ExportCalibratedRobot(const QString& chosen) {
 
 void ValidatePanel::ExportHtmlReport(const QString& chosen) {
   if (!session_->IsOpen()) return ShowError(this, "Export report", "Open a session first (File menu).");
+  if (!ResultsUsable("Export report")) return;
   const QString path = chosen.isEmpty()
                            ? QFileDialog::getSaveFileName(this, "Export HTML report", "report.html", "HTML (*.html)")
                            : chosen;

@@ -35,11 +35,13 @@ class ValidatePanel : public QWidget {
 
  public slots:
   void Refresh();
-  // Empty path: ask with a file dialog.
+  // Empty path: ask with a file dialog. Both read the session again first;
+  // stale results only when the operator confirms (ConfirmStale).
   void ExportCalibratedRobot(const QString& path = {});
   void ExportHtmlReport(const QString& path = {});
 
  private:
+  bool ResultsUsable(const QString& what);
   void ShowValidation(const workflow::ValidationSummary& validation, const QString& unit);
 
   SessionState* session_;

@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "ui/gui_terms.h"
+#include "ui/text_wrap.h"
 
 namespace hexcal::ui {
 namespace {
@@ -90,11 +91,19 @@ void VerdictView::resizeEvent(QResizeEvent* event) {
   FitFindings();
 }
 
-void VerdictView::Show(const workflow::Verdict& verdict) {
-  level_->setText(QString("<span style=\"color:%1;font-size:large\"><b>Verdict: %2</b></span>")
-                      .arg(Colour(verdict.level), workflow::VerdictLevelName(verdict.level)));
+void VerdictView::Show(const workflow::Verdict& verdict, const QString& stale) {
+  // Stale: the mark under the level, the reason on the findings' first line.
+  constexpr const char* kStaleColour = "#c86e00";  // the step list's ⟳
+  level_->setText(
+      QString("<span style=\"color:%1;font-size:large\"><b>Verdict: %2</b></span>")
+          .arg(Colour(verdict.level), workflow::VerdictLevelName(verdict.level)) +
+      (stale.isEmpty() ? QString() : QString("<br><span style=\"color:%1\"><b>⟳ stale</b></span>").arg(kStaleColour)));
   level_text_ = workflow::VerdictLevelName(verdict.level);
-  findings_->setText(FindingsHtml(verdict));
+  stale_ = stale;
+  findings_->setText((stale.isEmpty() ? QString()
+                                      : QString("<span style=\"color:%1\"><b>Stale:</b></span> %2<br>")
+                                            .arg(kStaleColour, Breakable(stale).toHtmlEscaped())) +
+                     FindingsHtml(verdict));
   findings_->setToolTip(FindingsTooltip(verdict));
   level_->setToolTip(
       "The worst of the findings; hover over them for each figure, threshold and meaning "
@@ -106,6 +115,7 @@ void VerdictView::Show(const workflow::Verdict& verdict) {
 void VerdictView::Clear() {
   level_->clear();
   level_text_.clear();
+  stale_.clear();
   findings_->clear();
   findings_->setToolTip(QString());
   setVisible(false);

@@ -7,6 +7,7 @@
 //
 //   auto* verdict = new VerdictView;
 //   verdict->Show(workflow::MakeVerdict(report));
+//   verdict->Show(workflow::MakeVerdict(report), "legs.csv changed since the results …");  // stale results
 #pragma once
 
 #include <QWidget>
@@ -22,9 +23,13 @@ class VerdictView : public QWidget {
   Q_OBJECT
  public:
   explicit VerdictView(QWidget* parent = nullptr);
-  void Show(const workflow::Verdict& verdict);
+  // `stale`: why the results judged are stale (SessionState::ResultsNote), shown
+  // with the verdict, first, so that no verdict is seen without it (issue 40).
+  void Show(const workflow::Verdict& verdict, const QString& stale = {});
   void Clear();               // no results: nothing shown
   QString LevelText() const;  // "good", "acceptable", "poor" or empty
+  // Why the results are stale, or empty.
+  QString StaleText() const { return stale_; }
 
  protected:
   void resizeEvent(QResizeEvent* event) override;
@@ -35,6 +40,7 @@ class VerdictView : public QWidget {
   QLabel *level_, *findings_;
   QScrollArea* findings_scroll_;
   QString level_text_;
+  QString stale_;
 };
 
 }  // namespace hexcal::ui

@@ -219,9 +219,8 @@ void OutliersFromJson(JsonFields& fields, CalibrationReport* report) {
   }
 }
 
-}  // namespace
-
-nlohmann::json ToJson(const CalibrationReport& report) {
+// report.json but for the instrument.
+nlohmann::json ReportJson(const CalibrationReport& report) {
   return {{"session", report.session},
           {"images", report.images},
           {"unusable_images", report.unusable_images},
@@ -249,10 +248,19 @@ nlohmann::json ToJson(const CalibrationReport& report) {
           {"camera_frame_residuals", CameraFrameJson(report.camera_frame_residuals)}};
 }
 
+}  // namespace
+
+nlohmann::json ToJson(const CalibrationReport& report) {
+  nlohmann::json json = ReportJson(report);
+  if (report.instrument != "camera") json["instrument"] = report.instrument;  // a camera report as it always was
+  return json;
+}
+
 StatusOr<CalibrationReport> CalibrationReportFromJson(const nlohmann::json& json, const std::string& source) {
   JsonFields fields(json, source);
   CalibrationReport report;
   report.session = fields.String("session");
+  if (fields.Has("instrument")) report.instrument = fields.String("instrument");
   report.images = fields.Int("images");
   report.unusable_images = fields.Int("unusable_images");
   report.calibration_images = fields.Int("calibration_images");

@@ -93,6 +93,9 @@ struct NoiseExpectation {
 
 struct CalibrationReport {
   std::string session;
+  // What measured the poses (core/session.h): "camera", or "points" (a laser
+  // tracker's; then "images" below count poses). In report.json only for points.
+  std::string instrument = "camera";
   int images = 0, unusable_images = 0, calibration_images = 0, held_out_images = 0;
   std::string length_unit;
   RegistrationSummary registration;

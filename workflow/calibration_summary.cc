@@ -52,9 +52,10 @@ std::string FormatCalibrationSummary(const CalibrationReport& report) {
   const std::string& unit = report.length_unit;
   const RegistrationSummary& reg = report.registration;
   std::ostringstream out;
-  out << "session " << report.session << ": " << report.images << " images, " << report.calibration_images
-      << " for calibration, " << report.held_out_images << " held out, " << report.unusable_images
-      << " without a usable target pose\n"
+  const bool points = report.instrument == "points";
+  out << "session " << report.session << ": " << report.images << (points ? " poses, " : " images, ")
+      << report.calibration_images << " for calibration, " << report.held_out_images << " held out, "
+      << report.unusable_images << (points ? " whose points do not fit\n" : " without a usable target pose\n")
       << "registration (nominal robot" << RegistrationNote(report) << "): closure RMS " << reg.position_rms << " "
       << unit << ", " << reg.angle_rms_deg << " deg\n"
       << "after calibration: closure RMS " << report.closure_position_rms << " " << unit << ", "

@@ -12,6 +12,7 @@
 #include "core/session.h"
 #include "workflow/demo_scene.h"
 #include "workflow/json_forms.h"
+#include "workflow/point_demo_scene.h"
 #include "workflow/plan_step.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_report.h"
@@ -146,10 +147,13 @@ Status RecordDemo(const DemoRequest& request, const DemoScene& scene, const Plan
     if (!drawn.ok()) return drawn.status().AsFailure();
     held_out = std::move(*drawn);
   }
-  if (Status s =
-          RecordDemoSession(scene, robot_name, kSimulatedCameraName, plan.poses, held_out, request.out, hooks.progress);
-      !s.ok())
-    return s.AsFailure();
+  const Status recorded =
+      request.instrument == Instrument::kPoints
+          ? RecordPointDemoSession(scene, PointDemoOptions{request.point_sigma_m / MetresPerUnit(scene.nominal.length_unit)},
+                                   robot_name, plan.poses, held_out, request.out)
+          : RecordDemoSession(scene, robot_name, kSimulatedCameraName, plan.poses, held_out, request.out,
+                              hooks.progress);
+  if (!recorded.ok()) return recorded.AsFailure();
   if (Status s = WritePlanCsv(SessionPaths(request.out).plan, model, plan.poses); !s.ok()) return s;
   if (Status s = WriteWrongCamera(request, scene.camera); !s.ok()) return s;
   if (request.random_poses) return Status::Ok();  // no planner iterations to record
@@ -158,11 +162,22 @@ Status RecordDemo(const DemoRequest& request, const DemoScene& scene, const Plan
 
 std::string PlanStepText(const DemoRequest& request) {
   const std::string poses = std::to_string(request.poses);
-  if (request.random_poses) return "draw " + poses + " random feasible poses with the target in the camera's view";
+  const std::string seen = request.instrument == Instrument::kPoints ? " (the tracker sees every reflector)"
+                                                                     : " with the target in the camera's view";
+  if (request.random_poses) return "draw " + poses + " random feasible poses" + seen;
   return "plan " + poses +
          (request.quick_plan ? " poses (IOOPS: O1, Tabu 4; quick) among random candidates"
                              : " poses (IOOPS: O1, secondary O4, Tabu 4) among random and boundary candidates") +
-         " with the target in the camera's view";
+         seen;
+}
+
+// What step 2 records: rendered images, or a tracker's point sets.
+std::string RecordedText(const DemoRequest& request, LengthUnit unit) {
+  const std::string count = std::to_string(request.poses + request.holdout);
+  if (request.instrument == Instrument::kCamera) return count + " rendered images";
+  const double sigma = request.point_sigma_m / MetresPerUnit(unit);
+  return count + " point sets of 4 reflectors (σ " + FormatSignificant(sigma) + " " + LengthUnitName(unit) +
+         " per coordinate)";
 }
 
 std::string FormatPlanLine(int candidates, const PlanResult& plan) {
@@ -175,10 +190,14 @@ std::string FormatPlanLine(int candidates, const PlanResult& plan) {
 // Steps 3-5 on the recorded folder: calibrate, compare, report.
 Status CalibrateAndCompare(const DemoRequest& request, const DemoScene& scene, StepLog* steps, const JobHooks& hooks,
                            DemoResult* result) {
-  steps->Step(std::string("measure the images, register the camera and target frames, calibrate, validate ") +
-              (request.from_pixels ? "(calibrate --session)" : "(calibrate --session --two-stage)"));
+  const bool from_pixels = request.from_pixels && request.instrument == Instrument::kCamera;
+  steps->Step(request.instrument == Instrument::kPoints
+                  ? std::string("fit each pose to its points, register the tracker and reflector frames, calibrate, "
+                                "validate (calibrate --session)")
+                  : std::string("measure the images, register the camera and target frames, calibrate, validate ") +
+                        (from_pixels ? "(calibrate --session)" : "(calibrate --session --two-stage)"));
   CalibrateSessionRequest calibrate{request.out};
-  calibrate.from_pixels.enabled = request.from_pixels;
+  calibrate.from_pixels.enabled = from_pixels;
   StatusOr<CalibrationReport> calibration = CalibrateSession(calibrate, hooks);
   if (!calibration.ok()) return calibration.status();
   std::istringstream lines(FormatCalibrationSummary(*calibration));
@@ -209,6 +228,8 @@ Status DemoRequest::Check() const {
     return Status::Error("--holdout must be between 0 and " + std::to_string(kMaxDemoHoldout));
   }
   if (!(std::abs(focal_error_percent) <= 20)) return Status::Error("--focal-error must be between -20 and 20 (percent)");
+  if (!(point_sigma_m >= 1e-7 && point_sigma_m <= 1e-3))
+    return Status::Error("--point-sigma must be between 0.0001 and 1 (mm)");
   return Status::Ok();
 }
 
@@ -238,13 +259,17 @@ StatusOr<DemoResult> RunDemo(const DemoRequest& request, const JobHooks& hooks) 
   result.held_out = request.holdout;
 
   steps.Step(PlanStepText(request));
-  const PlanningModel model{*nominal, std::nullopt, scene.view};
+  // A tracker sees the reflectors from anywhere in the pose box (line of sight is not modelled).
+  const PlanningModel model{*nominal, std::nullopt,
+                            request.instrument == Instrument::kPoints ? std::nullopt
+                                                                      : std::optional<MeasurementConstraints>(scene.view)};
   StatusOr<PlanResult> plan =
       request.random_poses ? RandomDemoPoses(request, model) : PlanDemo(request, model, hooks, &result.plan_candidates);
   if (!plan.ok()) return plan.status();
   if (!request.random_poses) hooks.Note(FormatPlanLine(result.plan_candidates, *plan));
   result.random_poses = request.random_poses;
-  result.from_pixels = request.from_pixels;
+  result.from_pixels = request.from_pixels && request.instrument == Instrument::kCamera;
+  result.instrument = request.instrument;
   result.focal_error_percent = request.focal_error_percent;
   result.random_indices = plan->initial;
   result.plan_indices = plan->final;
@@ -254,7 +279,7 @@ StatusOr<DemoResult> RunDemo(const DemoRequest& request, const JobHooks& hooks) 
   const double perturb = scene_options.perturb_m / MetresPerUnit(nominal->length_unit);
   steps.Step("record the session in " + request.out + ": hidden true robot (every parameter ±" +
              FormatSignificant(perturb) + " " + result.length_unit + "), " +
-             std::to_string(request.poses + request.holdout) + " rendered images (" + std::to_string(request.holdout) +
+             RecordedText(request, nominal->length_unit) + " (" + std::to_string(request.holdout) +
              " held out), leg readings ±" + FormatNumber(scene.noise.leg) + " " + result.length_unit);
   if (Status s = RecordDemo(request, scene, model, *plan, robot_name, hooks); !s.ok()) return s;
   if (Status s = CalibrateAndCompare(request, scene, &steps, hooks, &result); !s.ok()) return s;
@@ -287,6 +312,7 @@ nlohmann::json ToJson(const DemoResult& r) {
           {"usable_images", r.usable_images},
           {"random_poses", r.random_poses},
           {"from_pixels", r.from_pixels},
+          {"instrument", InstrumentName(r.instrument)},
           {"focal_error_percent", r.focal_error_percent},
           {"plan", {{"random", IndicesJson(r.random_indices)}, {"selected", IndicesJson(r.plan_indices)}}},
           {"parameter_error",
@@ -314,10 +340,11 @@ std::string FormatDemoSummary(const DemoResult& r) {
   out += text;
   if (const std::optional<ValidationSummary>& v = r.calibration.validation) {
     std::snprintf(text, sizeof text,
-                  "held-out pose error (RMS over %d images, FK against the camera):\n"
+                  "held-out pose error (RMS over %d %s, FK against the %s):\n"
                   "  before calibration: position %.4g %s, orientation %.4g deg\n"
                   "  after calibration:  position %.4g %s, orientation %.4g deg\n",
-                  v->rows, v->before.position_rms, unit, v->before.orientation_rms, v->after.position_rms, unit,
+                  v->rows, r.instrument == Instrument::kPoints ? "poses" : "images",
+                  r.instrument == Instrument::kPoints ? "tracker" : "camera", v->before.position_rms, unit, v->before.orientation_rms, v->after.position_rms, unit,
                   v->after.orientation_rms);
     out += text;
   } else {

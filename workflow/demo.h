@@ -9,6 +9,8 @@
 //     every pose (demo_scene.h) and noisy leg readings, plus random held-out
 //     poses (none with holdout 0);
 //  3. measure → register → calibrate → validate (CalibrateSession);
+//     with `instrument` kPoints, a laser tracker's reflector points stand in
+//     for the camera's images (point_demo_scene.h);
 //  4. compare the calibrated parameters with the truth in the registered
 //     frames (the gauge, docs/session.md), and write results/report.html.
 //
@@ -24,6 +26,7 @@
 #include "core/design_criteria.h"
 #include "core/job_hooks.h"
 #include "core/observability.h"
+#include "core/session.h"
 #include "core/status.h"
 #include "workflow/calibration_report.h"
 #include "workflow/calibration_verdict.h"
@@ -59,6 +62,11 @@ struct DemoRequest {
   // percent (the renderer keeps the true ones): a focal error for the
   // calibration to live with, or, from pixels, to estimate. Within ±20.
   double focal_error_percent = 0;
+  // kPoints: a laser tracker measures 4 reflectors on the platform instead of
+  // the camera seeing the board (point_demo_scene.h), with this σ on each
+  // coordinate, metres; the calibration is then two-stage.
+  Instrument instrument = Instrument::kCamera;
+  double point_sigma_m = 0.00002;
 
   Status Check() const;
 };
@@ -78,6 +86,7 @@ struct DemoResult {
   bool random_poses = false;                          // the poses are random, not planned
   bool from_pixels = false;                           // calibrated from pixels
   double focal_error_percent = 0;                     // of the calibration's camera file
+  Instrument instrument = Instrument::kCamera;        // what measured the poses
   double error_mean = 0, error_max = 0;                  // calibrated − truth
   double nominal_error_mean = 0, nominal_error_max = 0;  // nominal − truth
   double within_3sigma = 0;                              // fraction of the parameters with a σ

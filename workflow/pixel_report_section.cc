@@ -40,6 +40,10 @@ std::string Comparison(const PixelFitSummary& fit, const CalibrationReport& repo
 }  // namespace
 
 std::string CalibrationMethodSection(const CalibrationReport& report) {
+  if (report.instrument == "points") {
+    return "<h2>Calibration</h2><p>Two-stage: each pose fitted to its points (weighted, with its covariance), "
+           "the tracker and reflector frames registered, the legs fitted to the poses.</p>\n";
+  }
   if (!report.from_pixels) {
     return "<h2>Calibration</h2><p>Two-stage: the legs fitted to the board poses (calibrate --session "
            "--two-stage, or the calibration from pixels failed: see the run's warning).</p>\n";

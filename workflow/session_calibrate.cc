@@ -23,6 +23,7 @@
 #include "workflow/corner_residuals_file.h"
 #include "workflow/expected_error.h"
 #include "workflow/measure_step.h"
+#include "workflow/point_session.h"
 #include "workflow/session_measure.h"
 #include "workflow/session_pixels.h"
 #include "workflow/session_results.h"
@@ -52,16 +53,37 @@ StatusOr<SessionInputs> LoadSessionInputs(const std::string& dir) {
     return Status::Error(SessionPaths(dir).legs + ": " + s.message());
   }
   if (Status s = CheckRowsNearStroke(*nominal, *legs); !s.ok()) return s.Prefixed(dir + ": ");
-  StatusOr<Camera> camera = LoadCamera(ResolveSessionFile(dir, config->camera));
-  if (!camera.ok()) return camera.status();
-  StatusOr<Target> target = LoadTarget(ResolveSessionFile(dir, config->target));
-  if (!target.ok()) return target.status();
   const std::optional<PoseBox> box = nominal->limits.SamplingBox();
   if (!box || !box->IsComplete()) return Status::Error(robot_name + ": needs a complete pose_box to start the FK from");
   Vector6d centre;
   for (int k = 0; k < 6; ++k) centre[k] = box->bounds[k]->Centre();
   const Pose fk_start = nominal->PoseFromVector(centre);
+  if (config->instrument == Instrument::kPoints)  // no camera, no target: the points play their part
+    return SessionInputs{*config, *legs, robot_name, *nominal, Camera{}, Target{}, fk_start};
+  StatusOr<Camera> camera = LoadCamera(ResolveSessionFile(dir, config->camera));
+  if (!camera.ok()) return camera.status();
+  StatusOr<Target> target = LoadTarget(ResolveSessionFile(dir, config->target));
+  if (!target.ok()) return target.status();
   return SessionInputs{*config, *legs, robot_name, *nominal, *camera, *target, fk_start};
+}
+
+// A points session's Measure step (point_session.h): every row's pose fitted
+// to its points; the session's pose noise then comes from the fits.
+StatusOr<CameraPoses> MeasurePointSession(const std::string& dir, SessionInputs* in, const JobHooks& hooks) {
+  const SessionConfig& config = in->config;
+  StatusOr<double> factor = SessionNoiseFactor(dir);  // hexcal session check-noise's, 1 without
+  if (!factor.ok()) return factor.status();
+  const PointFiles files{ResolveSessionFile(dir, config.points),
+                         config.reflectors.empty() ? "" : ResolveSessionFile(dir, config.reflectors),
+                         config.point_sigma, *factor};
+  StatusOr<PointPoses> measured = MeasurePointPoses(files, in->legs, config.noise, hooks);
+  if (!measured.ok()) return measured.status();
+  const int ok = static_cast<int>(in->legs.size()) - measured->left_out;
+  if (ok < kMinBoardPoses)
+    return Status::Error(dir + ": " + std::to_string(ok) + " poses with fitted points; the calibration needs " +
+                         std::to_string(kMinBoardPoses));
+  in->config.noise = measured->noise;
+  return measured->poses;
 }
 
 // The camera pose of every image with readings, measured where
@@ -126,7 +148,7 @@ SplitRows SplitSessionRows(const SessionInputs& in, const CameraPoses& poses, do
 // results/ as one unit (session_results.h): the calibrated robot, the rows it
 // was fitted to, report.json and manifest.json go into a fresh folder that is
 // swapped in whole; then the registered frames into session.yaml.
-Status WriteCalibrationResults(const std::string& dir, SessionInputs* in, const CameraCalibrationResult& result,
+Status WriteCalibrationResults(const std::string& dir, const SessionInputs* in, const CameraCalibrationResult& result,
                                const CalibrationOptions& calibration, const CalibrationReport& report,
                                const std::optional<Camera>& fitted_camera, const CornerResidualTable* corners,
                                const ContentHashes& inputs) {
@@ -159,10 +181,13 @@ Status WriteCalibrationResults(const std::string& dir, SessionInputs* in, const 
   const std::string manifest_file = staged->File(fs::path(ResultsManifestPath(dir)).filename().string());
   if (Status s = WriteFileAtomically(manifest_file, ManifestToJsonText(manifest)); !s.ok()) return s;
   if (Status s = staged->Publish(); !s.ok()) return s;
-  // A copy of report.json's frames, for display; results/ is the record.
-  in->config.base_from_camera = result.registration.base_from_camera;
-  in->config.platform_from_target = result.registration.platform_from_target;
-  return SaveSessionConfig(dir, in->config);
+  // A copy of report.json's frames, for display; results/ is the record. The
+  // file as it is (a points session's noise was replaced by the fits' in `in`).
+  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
+  if (!config.ok()) return config.status();
+  config->base_from_camera = result.registration.base_from_camera;
+  config->platform_from_target = result.registration.platform_from_target;
+  return SaveSessionConfig(dir, *config);
 }
 
 // What was read at the start must still be there: a run whose inputs changed
@@ -310,9 +335,13 @@ StatusOr<OpenSession> OpenAndMeasure(const std::string& dir, LockWait wait, cons
   StatusOr<SessionInputs> in = LoadSessionInputs(dir);
   if (!in.ok()) return in.status();
   std::map<std::string, BoardObservation> observations;
-  StatusOr<CameraPoses> poses = MeasureSession(dir, *in, *hashes, hooks, keep_observations ? &observations : nullptr);
+  const bool points = in->config.instrument == Instrument::kPoints;
+  StatusOr<CameraPoses> poses = points ? MeasurePointSession(dir, &*in, hooks)
+                                       : MeasureSession(dir, *in, *hashes, hooks,
+                                                        keep_observations ? &observations : nullptr);
   if (!poses.ok()) return poses.status();
-  const double scale = MetresPerUnit(in->target.length_unit) / MetresPerUnit(in->nominal.length_unit);
+  // The points are in the robot's unit; the board's poses in the target's.
+  const double scale = points ? 1 : MetresPerUnit(in->target.length_unit) / MetresPerUnit(in->nominal.length_unit);
   return OpenSession{std::move(*lock), std::move(*hashes), std::move(*in), std::move(*poses), scale,
                      std::move(observations)};
 }
@@ -339,9 +368,9 @@ std::optional<CameraFrameResiduals> CameraFrameDiagnosis(const SessionInputs& in
                                      SessionBiasModels(camera, in.target, robot_per_target_unit), hooks);
 }
 
-}  // namespace
 
-StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& request, const JobHooks& hooks) {
+// The calibration of a session whose request fits its instrument.
+StatusOr<CalibrationReport> CalibrateChecked(const CalibrateSessionRequest& request, const JobHooks& hooks) {
   const std::string& dir = request.session;
   StatusOr<OpenSession> open = OpenAndMeasure(dir, request.wait, hooks, request.from_pixels.enabled);
   if (!open.ok()) return open.status();
@@ -386,7 +415,8 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   report.validation = *validation;
   if (from_pixels) report.from_pixels = from_pixels->summary;
   report.noise = ExpectedNoise(*in, held_out, result->calibration.robot);
-  report.camera_frame_residuals = CameraFrameDiagnosis(*in, split, scale, *result, from_pixels, calibration, hooks);
+  if (in->config.instrument == Instrument::kCamera)  // the bias along a camera's optical axis
+    report.camera_frame_residuals = CameraFrameDiagnosis(*in, split, scale, *result, from_pixels, calibration, hooks);
   if (request.outliers.enabled) {
     report.screening = OutlierScreeningSummary{request.outliers.threshold, request.outliers.keep,
                                                report.calibration_images >= kMinRowsToScreen};
@@ -398,6 +428,18 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
       !s.ok())
     return s.AsFailure();
   return report;
+}
+
+}  // namespace
+
+StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& request, const JobHooks& hooks) {
+  const std::string& dir = request.session;
+  CalibrateSessionRequest effective = request;
+  if (StatusOr<SessionConfig> config = LoadSessionConfig(dir);
+      config.ok() && config->instrument == Instrument::kPoints && request.from_pixels.enabled) {
+    effective.from_pixels.enabled = false;  // no pixels: the points' fits are the measurements
+  }
+  return CalibrateChecked(effective, hooks);
 }
 
 StatusOr<MeasuredSession> LoadMeasuredSession(const std::string& dir, LockWait wait, const JobHooks& hooks) {

@@ -239,9 +239,11 @@ StatusOr<std::string> SessionReportHtml(const std::string& dir) {
   html += "<h1>Session " + Escape(dir) + "</h1>\n";
   html += StaleWarning(*loaded);
   html += VerdictBox(MakeVerdict(report));
-  html += "<p>" + std::to_string(report.images) + " images: " + std::to_string(report.calibration_images) +
-          " for calibration, " + std::to_string(report.held_out_images) + " held out, " +
-          std::to_string(report.unusable_images) + " without a usable target pose.</p>\n";
+  const bool points = report.instrument == "points";
+  html += "<p>" + std::to_string(report.images) + (points ? " poses measured by points: " : " images: ") +
+          std::to_string(report.calibration_images) + " for calibration, " +
+          std::to_string(report.held_out_images) + " held out, " + std::to_string(report.unusable_images) +
+          (points ? " whose points do not fit.</p>\n" : " without a usable target pose.</p>\n");
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   if (!config.ok()) return config.status();
   StatusOr<Robot> nominal = LoadRobot(ResolveSessionFile(dir, config->robot));

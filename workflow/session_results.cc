@@ -4,10 +4,12 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
+#include "core/csv.h"
 #include "core/noise_model.h"
 #include "core/session.h"
 #include "core/sha256.h"
 #include "workflow/json_fields.h"
+#include "workflow/point_session.h"
 #include "workflow/session_calibrate.h"
 
 namespace hexcal::workflow {
@@ -18,7 +20,33 @@ namespace fs = std::filesystem;
 constexpr int kManifestFormat = 1;
 constexpr const char* kConfigInputs = "session.yaml (robot, camera, target, noise)";
 
+// A points session's inputs: the robot, the points file and the reflector
+// file (when given), and its keys of session.yaml.
+StatusOr<std::string> HashPointConfigInputs(const std::string& dir, const SessionConfig& config,
+                                            ContentHashes* hashes) {
+  StatusOr<std::string> robot = HashSessionFile(dir, config.robot);
+  if (!robot.ok()) return robot.status();
+  (*hashes)["robot " + config.robot] = *robot;
+  for (const auto& [kind, name] : {std::pair{"points ", &config.points}, std::pair{"reflectors ", &config.reflectors}}) {
+    if (name->empty()) continue;
+    StatusOr<std::string> hash = Sha256OfFile(ResolveSessionFile(dir, *name), kMaxTableBytes);
+    if (!hash.ok()) return hash.status();
+    (*hashes)[kind + *name] = *hash;
+  }
+  const std::string check = (fs::path(dir) / kNoiseCheckFile).string();  // hexcal session check-noise's
+  std::error_code error;
+  if (fs::exists(fs::symlink_status(check, error))) {
+    StatusOr<std::string> hash = Sha256OfFile(check, kMaxYamlBytes);
+    if (!hash.ok()) return hash.status();
+    (*hashes)[kNoiseCheckFile] = *hash;
+  }
+  return Sha256Hex("robot: " + config.robot + "\ninstrument: points\npoints: " + config.points +
+                   "\nreflectors: " + config.reflectors + "\npoint_sigma: " + FormatNumber(config.point_sigma) +
+                   "\nnoise: " + NoiseModelText(config.noise) + "\n");
+}
+
 StatusOr<std::string> HashConfigInputs(const std::string& dir, const SessionConfig& config, ContentHashes* hashes) {
+  if (config.instrument == Instrument::kPoints) return HashPointConfigInputs(dir, config, hashes);
   const std::pair<const char*, const std::string*> named[] = {
       {"robot ", &config.robot}, {"camera ", &config.camera}, {"target ", &config.target}};
   for (const auto& [kind, name] : named) {
@@ -116,6 +144,7 @@ StatusOr<ContentHashes> HashSessionInputs(const std::string& dir) {
   StatusOr<std::string> legs = Sha256OfFile(paths.legs, kMaxTableBytes);
   if (!legs.ok()) return legs.status();
   hashes["legs.csv"] = *legs;
+  if (config->instrument == Instrument::kPoints) return hashes;  // no images: the points file is hashed above
   StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(dir);
   if (!rows.ok()) return rows.status();
   for (const LegsRow& row : *rows) {

@@ -11,6 +11,7 @@
 #include "core/session.h"
 #include "workflow/acquire_step.h"
 #include "workflow/plan_captures.h"
+#include "workflow/point_session.h"
 #include "workflow/reading_check.h"
 #include "workflow/readings_table.h"
 #include "workflow/session_calibrate.h"
@@ -69,7 +70,7 @@ int RecordedPlanPoses(const std::string& dir, const StatusOr<Robot>& robot, cons
 // Readings are done when legs.csv loads; an acquisition of the plan begun and
 // not finished (some pose_NNNN.png recorded, not all) is still to do.
 StepReport ReadingsStep(const std::string& dir, const StatusOr<Robot>& robot, const SessionConfig& config,
-                        std::vector<LegsRow>* rows) {
+                        const std::string& noun, std::vector<LegsRow>* rows) {
   const SessionPaths paths(dir);
   std::error_code error;
   if (!fs::exists(fs::symlink_status(paths.legs, error)))
@@ -80,7 +81,7 @@ StepReport ReadingsStep(const std::string& dir, const StatusOr<Robot>& robot, co
   *rows = *legs;
   int held_out = 0;
   for (const LegsRow& row : *rows) held_out += row.holdout;
-  const std::string count = Count(rows->size(), "image") + " with readings, " + std::to_string(held_out) + " held out";
+  const std::string count = Count(rows->size(), noun) + " with readings, " + std::to_string(held_out) + " held out";
   int planned = 0;
   const int recorded = RecordedPlanPoses(dir, robot, config, &planned);
   if (recorded > 0 && recorded < planned)
@@ -101,6 +102,17 @@ StepReport MeasureStep(const std::string& dir, const std::vector<LegsRow>& rows,
   if (!state->reason.empty())
     return {"measure", StepStatus::kStale, count + " to measure again: " + state->reason};
   return {"measure", StepStatus::kTodo, count + " images not measured yet (calibrate --session measures them)"};
+}
+
+// A points session's Measure step: the points file loads and has every row's pose.
+StepReport PointMeasureStep(const std::string& dir, const SessionConfig& config, const std::vector<LegsRow>& rows) {
+  if (rows.empty()) return {"measure", StepStatus::kTodo, "no poses with readings yet"};
+  const PointFiles files{ResolveSessionFile(dir, config.points),
+                         config.reflectors.empty() ? "" : ResolveSessionFile(dir, config.reflectors),
+                         config.point_sigma};
+  StatusOr<std::string> described = DescribePointPoses(files, rows);
+  if (!described.ok()) return {"measure", StepStatus::kBroken, described.status().message()};
+  return {"measure", StepStatus::kDone, *described};
 }
 
 std::string Figure(double value) {
@@ -130,8 +142,8 @@ void ResultSteps(const std::string& dir, const ContentHashes* hashes, SessionSta
   status->steps.push_back(
       {"calibrate", stale ? StepStatus::kStale : StepStatus::kDone,
        stale ? ListNames(results->changed_inputs) + " changed since the results" + since + ": calibrate again"
-             : Count(report.calibration_images, "image") + ", closure RMS " + Figure(report.closure_position_rms) +
-                   " " + report.length_unit + since});
+             : Count(report.calibration_images, report.instrument == "points" ? "pose" : "image") +
+                   ", closure RMS " + Figure(report.closure_position_rms) + " " + report.length_unit + since});
   if (!report.validation) {
     status->steps.push_back({"validate", StepStatus::kTodo, "no image held out (holdout column of legs.csv)"});
     return;
@@ -182,14 +194,16 @@ StatusOr<SessionStatus> ReadSessionStatus(const std::string& dir, StatusOr<Sessi
                                     : StepReport{"robot", StepStatus::kBroken, robot.status().message()});
   status.steps.push_back(PlanStep(dir, robot));
   std::vector<LegsRow> rows;
-  status.steps.push_back(ReadingsStep(dir, robot, *config, &rows));
+  status.steps.push_back(
+      ReadingsStep(dir, robot, *config, config->instrument == Instrument::kPoints ? "pose" : "image", &rows));
   // Every input hashed once, for the measure record and the results manifest
   // both (images are most of it); on an error each hashes what it needs and
   // reports its own error.
   const StatusOr<ContentHashes> hashes = HashSessionInputs(dir);
   const ContentHashes* known = hashes.ok() ? &*hashes : nullptr;
   if (inputs != nullptr) *inputs = hashes;
-  status.steps.push_back(MeasureStep(dir, rows, known));
+  status.steps.push_back(config->instrument == Instrument::kPoints ? PointMeasureStep(dir, *config, rows)
+                                                                   : MeasureStep(dir, rows, known));
   ResultSteps(dir, known, &status, results);
   return status;
 }

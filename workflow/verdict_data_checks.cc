@@ -33,11 +33,28 @@ Finding CheckPoses(const CalibrationReport& report) {
   return finding;
 }
 
+// A points session's poses whose points could not be fitted (point_session.h).
+Finding CheckUnfittedPoses(const CalibrationReport& report, VerdictLevel level) {
+  Finding finding{"unusable poses",
+                  level,
+                  std::to_string(report.unusable_images) + " of " + Plural(report.images, "pose") +
+                      " whose points do not fit",
+                  "good: none, acceptable ≤ " + Figure(100 * kUnusableFractionAcceptable) + " %",
+                  "every pose's points fitted the reflectors.",
+                  ""};
+  if (level != VerdictLevel::kGood) {
+    finding.meaning = "poses with fewer than 3 points, an outlier point or an unknown reflector are left out.";
+    finding.advice = "see the warnings of calibrate --session, which name each pose and why; measure it again";
+  }
+  return finding;
+}
+
 Finding CheckUnusableImages(const CalibrationReport& report) {
   const double fraction = report.images > 0 ? static_cast<double>(report.unusable_images) / report.images : 0;
   const VerdictLevel level = report.unusable_images == 0               ? VerdictLevel::kGood
                              : fraction <= kUnusableFractionAcceptable ? VerdictLevel::kAcceptable
                                                                        : VerdictLevel::kPoor;
+  if (report.instrument == "points") return CheckUnfittedPoses(report, level);
   Finding finding{
       "unusable images",
       level,

@@ -1,5 +1,6 @@
 // hexcal demo [--robot inria-left-hand|deltalab-table|FILE] [--out DIR] [--poses 24] [--holdout 8]
-//             [--random-poses] [--from-pixels | --two-stage] [--focal-error PERCENT] [--seed 1] [--force] [--json]
+//             [--random-poses] [--from-pixels | --two-stage] [--focal-error PERCENT]
+//             [--instrument camera|points] [--point-sigma MM] [--seed 1] [--force] [--json]
 //
 // The whole calibration flow on a virtual robot and camera (workflow/demo.h,
 // docs/session.md).
@@ -49,10 +50,24 @@ void AddDemoCommand(CLI::App& app, int* exit_code) {
                   "give the calibration a camera file whose focal length is off by this many percent (-20..20); "
                   "the images keep the true one")
       ->capture_default_str();
+  auto instrument = std::make_shared<std::string>("camera");
+  auto point_sigma_mm = std::make_shared<double>(request->point_sigma_m * 1000);
+  sub->add_option("--instrument", *instrument,
+                  "what measures the poses: camera (rendered images of the board) or points (a laser tracker's "
+                  "4 reflectors; calibrated in two stages)")
+      ->check(CLI::IsMember({"camera", "points"}))
+      ->capture_default_str();
+  sub->add_option("--point-sigma", *point_sigma_mm,
+                  "with --instrument points: the tracker's sigma on each coordinate, mm (0.0001 to 1)")
+      ->capture_default_str();
   sub->add_option("--seed", request->seed, "seed of the truth, the candidates and the noise")->capture_default_str();
   sub->add_flag("--force", request->force, "replace an earlier demo in --out");
   sub->add_flag("--json", *json, "print one JSON object on stdout (progress on stderr)");
-  sub->callback([=] { *exit_code = RunDemoCommand(*request, *json, std::cout, std::cerr); });
+  sub->callback([=] {
+    request->instrument = *instrument == "points" ? Instrument::kPoints : Instrument::kCamera;
+    request->point_sigma_m = *point_sigma_mm / 1000;
+    *exit_code = RunDemoCommand(*request, *json, std::cout, std::cerr);
+  });
 }
 
 }  // namespace hexcal::cli

@@ -1,7 +1,10 @@
 // hexcal session init --robot R --camera C --target T DIR [--noise-position p]
+// hexcal session init --robot R --instrument points --points FILE [--reflectors FILE] [--point-sigma S] DIR
 //   [--noise-angle a] [--noise-leg l] [--json]
 // hexcal session status DIR [--json]
+// hexcal session check-noise DIR (--points FILE | --images FOLDER) [--wait] [--json]
 // hexcal session record DIR --image NAME --legs L1,...,L6 [--from FILE] [--holdout] [--replace] [--wait] [--json]
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -10,14 +13,17 @@
 #include "app/commands/cli_common.h"
 #include "app/commands/command_table.h"
 #include "app/commands/option_flags.h"
+#include "core/atomic_file.h"
 #include "core/csv.h"
+#include "core/point_file.h"
 #include "core/robot_io.h"
 #include "core/session.h"
-#include "vision/camera.h"
-#include "vision/target.h"
+#include "workflow/noise_check.h"
 #include "workflow/session_edits.h"
 #include "workflow/session_init.h"
 #include "workflow/session_status.h"
+#include "vision/camera.h"
+#include "vision/target.h"
 
 namespace hexcal::cli {
 namespace {
@@ -25,19 +31,95 @@ namespace {
 struct SessionInitOptions {
   std::string dir;
   SessionConfig config;
+  std::string instrument = "camera";
+  double point_sigma_mm = 0.02;  // --point-sigma when not given: a laser tracker's, 0.02 mm
+  bool point_sigma_given = false;
   bool json = false;
   std::shared_ptr<OptionEntries> noise = std::make_shared<OptionEntries>();  // --noise-*
 };
 
+// A file the user named from here, as session.yaml keeps it: relative to the
+// session folder (workflow/session_init.h, which the GUI's New session uses too).
+using workflow::AsSessionPath;
+
+// With a reflector file and no --noise-position or --noise-angle: the pose
+// noise the tracker's σ implies for these reflectors (√3 σ as the uniform
+// half-width, core/noise_model.h), which `hexcal plan` and the GUI's plan
+// weigh by; the calibration replaces it by the measured fits' own.
+Status PoseNoiseFromReflectors(SessionInitOptions* cli) {
+  SessionConfig& config = cli->config;
+  if (config.reflectors.empty()) return Status::Ok();
+  for (const auto& [key, value] : *cli->noise)
+    if (key == "position" || key == "angle_deg" || key == "angle") return Status::Ok();
+  StatusOr<std::string> text = ReadFileToString(config.reflectors, kMaxTableBytes);
+  if (!text.ok()) return text.status();
+  StatusOr<std::vector<NamedPoint>> reflectors = ParseReflectorFile(*text, config.reflectors);
+  if (!reflectors.ok()) return reflectors.status();
+  StatusOr<std::pair<double, double>> sigma = PoseSigmaOfReflectors(*reflectors, config.point_sigma);
+  if (!sigma.ok()) return Status::Error(config.reflectors + ": " + sigma.status().message());
+  config.noise.position = std::sqrt(3.0) * sigma->first;
+  config.noise.angle_deg = std::sqrt(3.0) * sigma->second;
+  return Status::Ok();
+}
+
+// --instrument points: the points file (which the tracker may write later),
+// the reflector file (checked now when given) and the σ, robot unit.
+Status PreparePointSession(const Robot& robot, SessionInitOptions* cli) {
+  SessionConfig& config = cli->config;
+  if (!config.camera.empty() || !config.target.empty())
+    return Status::Error("--camera and --target are for camera sessions; a points session has --points");
+  if (config.points.empty()) return Status::Error("--instrument points needs --points FILE (the tracker's export)");
+  if (!config.reflectors.empty()) {
+    StatusOr<std::string> text = ReadFileToString(config.reflectors, kMaxTableBytes);
+    if (!text.ok()) return text.status();
+    if (StatusOr<std::vector<NamedPoint>> parsed = ParseReflectorFile(*text, config.reflectors); !parsed.ok())
+      return parsed.status();
+  }
+  config.instrument = Instrument::kPoints;
+  if (!cli->point_sigma_given) config.point_sigma = cli->point_sigma_mm * 0.001 / MetresPerUnit(robot.length_unit);
+  if (Status s = PoseNoiseFromReflectors(cli); !s.ok()) return s;
+  for (std::string* name : {&config.robot, &config.points, &config.reflectors})
+    if (!name->empty()) *name = AsSessionPath(cli->dir, *name);
+  return Status::Ok();
+}
+
+Status PrepareCameraSession(SessionInitOptions* cli) {
+  SessionConfig& config = cli->config;
+  if (config.camera.empty() || config.target.empty())
+    return Status::Error("a camera session needs --camera and --target (or --instrument points)");
+  if (StatusOr<Camera> camera = LoadCamera(config.camera); !camera.ok()) return camera.status();
+  if (StatusOr<Target> target = LoadTarget(config.target); !target.ok()) return target.status();
+  for (std::string* name : {&config.robot, &config.camera, &config.target}) *name = AsSessionPath(cli->dir, *name);
+  return Status::Ok();
+}
+
+// Where a name session.yaml keeps (relative to the session) is from here.
+std::string ResolvedInSession(const std::string& dir, const std::string& name) {
+  const std::filesystem::path path(name);
+  return path.is_absolute() ? name : (std::filesystem::path(dir) / path).lexically_normal().string();
+}
+
 int RunSessionInit(SessionInitOptions cli, std::ostream& out, std::ostream& err) {
   if (Status s = ApplyOptionEntries(NoiseModelOptions(), *cli.noise, &cli.config.noise, "noise"); !s.ok())
     return ReportError(err, "session init", s);
-  // The names load now rather than at the first calibration; nothing is
-  // created when one does not (workflow/session_init.h).
-  if (Status s = workflow::CreateSession(cli.dir, cli.config); !s.ok()) return ReportError(err, "session init", s);
+  // Check that the names load now rather than at the first calibration.
+  StatusOr<Robot> robot = LoadRobot(cli.config.robot);
+  if (!robot.ok()) return ReportError(err, "session init", robot.status());
+  const Status prepared =
+      cli.instrument == "points" ? PreparePointSession(*robot, &cli) : PrepareCameraSession(&cli);
+  if (!prepared.ok()) return ReportError(err, "session init", prepared);
+  if (Status s = InitSession(cli.dir, cli.config); !s.ok()) return ReportError(err, "session init", s);
   const SessionPaths paths(cli.dir);
   if (cli.json) {
     out << JsonText({{"session", cli.dir}, {"config", paths.config}, {"images", paths.images}});
+  } else if (cli.config.instrument == Instrument::kPoints) {
+    out << "session " << cli.dir << ": wrote " << paths.config << "; put the measured points in "
+        << ResolvedInSession(cli.dir, cli.config.points) << " and their readings in " << paths.legs
+        << " (pose,L1..L6,holdout; pose as the points file names it)\n"
+        << "noise: " << NoiseModelText(cli.config.noise)
+        << (cli.config.reflectors.empty() ? "" : " (position and angle_deg from the reflectors and --point-sigma)")
+        << "; plan with hexcal plan --noise-position " << FormatSignificant(cli.config.noise.position)
+        << " --noise-angle " << FormatSignificant(cli.config.noise.angle_deg) << "\n";
   } else {
     out << "session " << cli.dir << ": wrote " << paths.config << "; put the images in " << paths.images
         << " and their readings in " << paths.legs << " (image,L1..L6,holdout)\n";
@@ -118,6 +200,43 @@ void AddSessionStatus(CLI::App* session, int* exit_code) {
   });
 }
 
+struct CheckNoiseOptions {
+  std::string dir, points, images;
+  bool wait = false, json = false;
+};
+
+// One pose measured k times against the session's declared noise (workflow/noise_check.h).
+int RunCheckNoise(const CheckNoiseOptions& cli, std::ostream& out, std::ostream& err) {
+  StatusOr<SessionConfig> config = LoadSessionConfig(cli.dir);
+  if (!config.ok()) return ReportError(err, "session check-noise", config.status());
+  const bool points = config->instrument == Instrument::kPoints;
+  const std::string& input = points ? cli.points : cli.images;
+  if (input.empty() || !(points ? cli.images : cli.points).empty())
+    return ReportError(err, "session check-noise",
+                       Status::Error(points ? "a points session's repeatability takes --points FILE (k point sets of "
+                                              "one pose)"
+                                            : "a camera session's repeatability takes --images FOLDER (k images of "
+                                              "one pose)"));
+  TerminalJob job("", cli.json ? &err : &out);
+  StatusOr<workflow::NoiseCheck> check = workflow::CheckSessionNoise(
+      {cli.dir, input, cli.wait ? LockWait::kForever : LockWait::kNo}, job.hooks());
+  if (!check.ok()) return ReportError(err, "session check-noise", check.status());
+  out << (cli.json ? JsonText(workflow::ToJson(*check)) : workflow::FormatNoiseCheck(*check));
+  return kExitOk;
+}
+
+void AddSessionCheckNoise(CLI::App* session, int* exit_code) {
+  auto options = std::make_shared<CheckNoiseOptions>();
+  CLI::App* check = session->add_subcommand(
+      "check-noise", "measure one pose k times and compare the scatter with the session's declared noise");
+  check->add_option("dir", options->dir, "session folder")->required()->check(CLI::ExistingDirectory);
+  check->add_option("--points", options->points, "points sessions: k point sets of one pose (either points layout)");
+  check->add_option("--images", options->images, "camera sessions: a folder of k images of one pose");
+  check->add_flag("--wait", options->wait, "when another program writes the session, wait for it (else exit 3)");
+  check->add_flag("--json", options->json, "print one JSON object on stdout");
+  check->callback([=] { *exit_code = RunCheckNoise(*options, std::cout, std::cerr); });
+}
+
 }  // namespace
 
 void AddSessionCommand(CLI::App& app, int* exit_code) {
@@ -128,13 +247,30 @@ void AddSessionCommand(CLI::App& app, int* exit_code) {
   CLI::App* init = session->add_subcommand("init", "create DIR with session.yaml, images/ and results/");
   init->add_option("dir", options->dir, "session folder")->required();
   init->add_option("--robot", options->config.robot, "nominal robot file or preset name")->required();
-  init->add_option("--camera", options->config.camera, "camera file (hexcal intrinsics)")->required();
-  init->add_option("--target", options->config.target, "target file or name")->required();
+  init->add_option("--instrument", options->instrument,
+                   "what measures the platform's pose: camera (images of an AprilTag board) or points (named 3D "
+                   "points, a laser tracker's or CMM's; docs/calibration.md, Point measurements)")
+      ->check(CLI::IsMember({"camera", "points"}))
+      ->capture_default_str();
+  init->add_option("--camera", options->config.camera, "camera sessions: camera file (hexcal intrinsics)");
+  init->add_option("--target", options->config.target, "camera sessions: target file or name");
+  init->add_option("--points", options->config.points,
+                   "points sessions: the points file, CSV pose,point,x,y,z[,sigma] or SpatialAnalyzer ASCII, robot "
+                   "unit (it may be written later)");
+  init->add_option("--reflectors", options->config.reflectors,
+                   "points sessions: the reflectors' positions on the platform, CSV point,x,y,z (default: estimated "
+                   "from the measured poses)");
+  init->add_option("--point-sigma", options->config.point_sigma,
+                   "points sessions: sigma of each coordinate where the points file gives none, robot unit "
+                   "(default: 0.02 mm in the robot's unit)")
+      ->check(CLI::PositiveNumber)
+      ->each([options](const std::string&) { options->point_sigma_given = true; });
   AddOptionFlags(init, NoiseModelOptions(), options->noise, "noise-");
   init->add_flag("--json", options->json, "print one JSON object on stdout");
   init->callback([=] { *exit_code = RunSessionInit(*options, std::cout, std::cerr); });
   AddSessionRecord(session, exit_code);
   AddSessionStatus(session, exit_code);
+  AddSessionCheckNoise(session, exit_code);
 }
 
 }  // namespace hexcal::cli

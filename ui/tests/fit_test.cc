@@ -168,9 +168,11 @@ TEST(UiFit, LongNamesStaleResultsAndAPoorVerdictFit) {
   ExpectFits(&window, "acquire", "by-hand");
   window.Acquire()->Disconnect();
 
-  window.Calibrate()->VerdictWidget()->Show(PoorVerdict());
+  // The results are stale here: the verdict with its stale mark, as the panels show it.
+  ASSERT_FALSE(window.Session()->ResultsNote().isEmpty());
+  window.Calibrate()->VerdictWidget()->Show(PoorVerdict(), window.Session()->ResultsNote());
   ExpectFits(&window, "calibrate", "poor");
-  window.Validate()->VerdictWidget()->Show(PoorVerdict());
+  window.Validate()->VerdictWidget()->Show(PoorVerdict(), window.Session()->ResultsNote());
   ExpectFits(&window, "validate", "poor");
 
   // Another camera: no image is "ok" with measurements made with the old one.

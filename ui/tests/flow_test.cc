@@ -774,6 +774,7 @@ TEST(UiFlow, OneFormatPerQuantityAndTheGuisOwnTerms) {
       "4 of 8 images not measured yet (calibrate --session measures them)",
       "no results: hexcal calibrate --session /s",
       "legs.csv changed since the results: run hexcal calibrate --session again",
+      "results/report.json: does not match results/manifest.json; run `hexcal calibrate --session /s/x y` again",
       "recalibrate the camera (hexcal intrinsics) or make results/camera.yaml the session's camera",
       "add poses (hexcal plan) and calibrate again",
       "plan poses with hexcal plan (IOOPS) instead of random or repeated ones",
