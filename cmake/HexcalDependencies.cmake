@@ -20,6 +20,11 @@ find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs calib3d videoio
 # Debian's libapriltag-dev ships only a pkg-config file.
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(APRILTAG REQUIRED IMPORTED_TARGET apriltag)
+# The log lines of FFmpeg and GLib (GStreamer), which OpenCV's videoio loads:
+# kept off stderr unless hexcal --verbose (vision/library_logs.h). Optional:
+# without their headers those lines come through as they did.
+pkg_check_modules(AVUTIL IMPORTED_TARGET libavutil)
+pkg_check_modules(GLIB IMPORTED_TARGET glib-2.0)
 # GenICam cameras (the aravis: camera, workflow/aravis_frame_source.h) and the
 # fake GigE Vision camera of the tests: optional. Without it hexcal builds and
 # refuses aravis: URLs, saying what to install.

@@ -10,9 +10,11 @@
 
 #include "core/candidates.h"
 #include "core/continuous_addfind.h"
+#include "core/quadratic_form_cache.h"
 #include "core/observability.h"
 #include "core/plan_certificate.h"
 #include "core/planning_model.h"
+#include "core/quadratic_form_cache.h"
 #include "tests/robot_presets.h"
 #include "tests/test_support.h"
 

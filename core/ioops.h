@@ -23,6 +23,7 @@
 
 #include "core/job_hooks.h"
 #include "core/observability.h"
+#include "core/option_spec.h"
 #include "core/planning_model.h"
 
 namespace hexcal {
@@ -31,7 +32,7 @@ struct PlannerOptions {
   int num_poses = 18;                     // N
   Criterion criterion = Criterion::kO1;   // primary (AddFind and RemoveFind)
   std::optional<Criterion> secondary;     // section 6.2: chooses among the best `keep` of AddFind
-  double keep = 0.8;                      // fraction kept on the primary criterion, (0, 1]
+  double keep = 0.8;                      // fraction kept on the primary criterion, 0.01..1
   int tabu = 0;                           // n: last n added poses RemoveFind may not drop (0: off)
   int iterations = 0;                     // budget; 0: 200 with Tabu, else 10 N (stops earlier on add == remove)
   int addfind_starts = 0;                 // U; 0: every candidate (finite) or 40 starts (continuous)
@@ -46,9 +47,16 @@ struct PlannerOptions {
   // same (ioops_test checks it against the plain scoring of every candidate, false).
   bool screen = true;
 
+  // The ranges of PlannerOptionSpecs, then the rules between options.
   bool IsValid(std::string* error) const;
   int IterationBudget() const;
 };
+
+// The descriptors of the planner options whose range is a rule of the planner
+// itself: `poses` (at least 7, a leg's parameters) and `keep`. IsValid checks
+// them, and the plan's option table (workflow/plan_options.h) takes them whole
+// for the CLI flags, the settings file and the GUI form.
+const OptionTable<PlannerOptions>& PlannerOptionSpecs();
 
 struct PlanIteration {
   int iteration = 0;

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <functional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -53,6 +54,30 @@ struct OptionSpec {
 
 template <typename T>
 using OptionTable = std::vector<OptionSpec<T>>;
+
+// A numeric option (kInteger, kNumber or kFlag) bound to the field of T that
+// `field` returns by reference: its value is read and written as a double.
+//
+//   NumberOption<PlannerOptions>("keep", "Keep on primary", OptionType::kNumber, "fraction", 0.01, 1,
+//                                "...", [](PlannerOptions& o) -> double& { return o.keep; });
+template <typename T, typename Field>
+OptionSpec<T> NumberOption(std::string key, std::string label, OptionType type, std::string unit, double min,
+                           double max, std::string help, Field field) {
+  OptionSpec<T> spec;
+  spec.key = std::move(key);
+  spec.label = std::move(label);
+  spec.type = type;
+  spec.unit = std::move(unit);
+  spec.min = min;
+  spec.max = max;
+  spec.help = std::move(help);
+  spec.get_number = [field](const T& s) { return static_cast<double>(field(const_cast<T&>(s))); };
+  spec.set_number = [field](T& s, double v) {
+    auto& target = field(s);
+    target = static_cast<std::remove_reference_t<decltype(target)>>(v);
+  };
+  return spec;
+}
 
 // The flag a user types: a flag option that is on by default is turned off
 // with --no-KEY.
@@ -128,6 +153,17 @@ inline Status CheckIntegerText(const std::string& text, double value, double min
   return Status::Error(where + ": must be at most " + FormatNumber(max) + unit + ", got " + text);
 }
 
+// A number against the option's inclusive range; the error starts with `where`.
+template <typename T>
+Status CheckOptionRange(const OptionSpec<T>& spec, double value, const std::string& where) {
+  const std::string unit = spec.unit.empty() ? "" : " " + spec.unit;
+  if (!(value >= spec.min))
+    return Status::Error(where + ": must be at least " + FormatNumber(spec.min) + unit + ", got " + FormatNumber(value));
+  if (!(value <= spec.max))
+    return Status::Error(where + ": must be at most " + FormatNumber(spec.max) + unit + ", got " + FormatNumber(value));
+  return Status::Ok();
+}
+
 template <typename T>
 Status ApplyOptionText(const OptionSpec<T>& spec, const std::string& text, T* values, const std::string& where) {
   if (spec.type == OptionType::kChoice || spec.type == OptionType::kChoiceList) {
@@ -147,16 +183,54 @@ Status ApplyOptionText(const OptionSpec<T>& spec, const std::string& text, T* va
   if (!value.ok()) return Status::Error(where + ": expected a finite number");
   if (spec.type == OptionType::kInteger && *value != std::floor(*value))
     return Status::Error(where + ": expected a whole number, got " + FormatNumber(*value));
-  const std::string unit = spec.unit.empty() ? "" : " " + spec.unit;
   if (spec.type == OptionType::kInteger) {
+    const std::string unit = spec.unit.empty() ? "" : " " + spec.unit;
     if (Status s = CheckIntegerText(text, *value, spec.min, spec.max, where, unit); !s.ok()) return s;
   }
-  if (*value < spec.min)
-    return Status::Error(where + ": must be at least " + FormatNumber(spec.min) + unit + ", got " + FormatNumber(*value));
-  if (*value > spec.max)
-    return Status::Error(where + ": must be at most " + FormatNumber(spec.max) + unit + ", got " + FormatNumber(*value));
+  if (Status s = CheckOptionRange(spec, *value, where); !s.ok()) return s;
   spec.set_number(*values, *value);
   return Status::Ok();
+}
+
+// The range check of a numeric option's value that code set rather than text
+// gave: a core IsValid checks its struct against the descriptor the CLI, the
+// settings files and the GUI read the option with, so the range is written
+// once (issue 37). NaN is out of every range.
+template <typename T>
+Status CheckOptionRanges(const OptionTable<T>& table, const T& values, const std::string& prefix = "") {
+  for (const OptionSpec<T>& spec : table) {
+    if (spec.type != OptionType::kInteger && spec.type != OptionType::kNumber) continue;
+    if (Status s = CheckOptionRange(spec, spec.get_number(values), prefix + spec.key); !s.ok()) return s;
+  }
+  return Status::Ok();
+}
+
+// An option of a struct held inside another (`Inner` in `Outer`, reached
+// through `inner`): the same key, range, help and choices, read and written
+// through the outer struct. A front end's table takes a lower layer's
+// option whole instead of restating its range.
+template <typename Outer, typename Inner, typename Access>
+OptionSpec<Outer> NestedOption(const OptionSpec<Inner>& spec, Access inner) {
+  OptionSpec<Outer> nested;
+  nested.key = spec.key;
+  nested.label = spec.label;
+  nested.type = spec.type;
+  nested.unit = spec.unit;
+  nested.min = spec.min;
+  nested.max = spec.max;
+  nested.help = spec.help;
+  nested.choices = spec.choices;
+  nested.flag = spec.flag;
+  nested.file_allowed = spec.file_allowed;
+  if (spec.get_number) {
+    nested.get_number = [get = spec.get_number, inner](const Outer& o) { return get(inner(const_cast<Outer&>(o))); };
+    nested.set_number = [set = spec.set_number, inner](Outer& o, double v) { set(inner(o), v); };
+  }
+  if (spec.get_choice) {
+    nested.get_choice = [get = spec.get_choice, inner](const Outer& o) { return get(inner(const_cast<Outer&>(o))); };
+    nested.set_choice = [set = spec.set_choice, inner](Outer& o, const std::string& v) { set(inner(o), v); };
+  }
+  return nested;
 }
 
 // Applies the (key, text) entries of a settings-file section; an unknown key

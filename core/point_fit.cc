@@ -121,6 +121,8 @@ Status CheckScale(const std::vector<PointPair>& pairs) {
       if (closest == 0 || std::abs(std::log(ratio)) < std::abs(std::log(closest))) closest = ratio;
     }
   if (closest > 0.5 && closest < 2) return Status::Ok();
+  // Distances that overflow (coordinates near 1e300) give no ratio.
+  if (!std::isfinite(closest)) return Status::Error("the points' coordinates are too large to fit");
   return Status::Error("the measured points are " + FormatSignificant(closest) +
                        " times as far apart as their reflectors: are they in another length unit?");
 }

@@ -99,4 +99,26 @@ double RotationDistance(const Eigen::Matrix3d& r1, const Eigen::Matrix3d& r2) {
   return Eigen::AngleAxisd(r1.transpose() * r2).angle();
 }
 
+Pose Compose(const Pose& a_from_b, const Pose& b_from_c) {
+  Pose a_from_c;
+  a_from_c.rotation = a_from_b.rotation * b_from_c.rotation;
+  a_from_c.position = a_from_b.rotation * b_from_c.position + a_from_b.position;
+  return a_from_c;
+}
+
+Pose Inverse(const Pose& a_from_b) {
+  Pose b_from_a;
+  b_from_a.rotation = a_from_b.rotation.transpose();
+  b_from_a.position = -(b_from_a.rotation * a_from_b.position);
+  return b_from_a;
+}
+
+Pose BaseFromPlatform(const Pose& base_from_camera, const Pose& camera_from_target, const Pose& platform_from_target) {
+  return Compose(Compose(base_from_camera, camera_from_target), Inverse(platform_from_target));
+}
+
+Pose CameraFromTarget(const Pose& base_from_camera, const Pose& base_from_platform, const Pose& platform_from_target) {
+  return Compose(Compose(Inverse(base_from_camera), base_from_platform), platform_from_target);
+}
+
 }  // namespace hexcal

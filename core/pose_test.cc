@@ -156,5 +156,77 @@ TEST(Pose, DegreeConversion) {
   EXPECT_DOUBLE_EQ(RadToDeg(kPi / 6), 30.0);
 }
 
+// Pose algebra (issue 37): the properties Compose, Inverse and the camera
+// registration's chain must have, on random rigid transforms.
+Pose RandomPose() {
+  Vector6d v;
+  v << Uniform(-100, 100), Uniform(-100, 100), Uniform(-100, 100), Uniform(-170, 170), Uniform(-80, 80),
+      Uniform(-170, 170);
+  return PoseFromVector(v, EulerConvention::kXYZ);
+}
+
+::testing::AssertionResult PoseNear(const Pose& a, const Pose& b, double tolerance) {
+  if (::testing::AssertionResult r = MatrixNear(a.rotation, b.rotation, tolerance); !r) return r << " (rotation)";
+  if (::testing::AssertionResult r = MatrixNear(a.position, b.position, tolerance); !r) return r << " (position)";
+  return ::testing::AssertionSuccess();
+}
+
+TEST(PoseAlgebra, InverseOfComposeIsIdentity) {
+  for (int trial = 0; trial < 100; ++trial) {
+    const Pose a_from_b = RandomPose();
+    EXPECT_TRUE(PoseNear(Compose(Inverse(a_from_b), a_from_b), Pose{}, 1e-12)) << "trial " << trial;
+    EXPECT_TRUE(PoseNear(Compose(a_from_b, Inverse(a_from_b)), Pose{}, 1e-12)) << "trial " << trial;
+    EXPECT_TRUE(PoseNear(Inverse(Inverse(a_from_b)), a_from_b, 1e-12)) << "trial " << trial;
+  }
+}
+
+TEST(PoseAlgebra, ComposeIsAssociativeAndActsAsTheProductOnPoints) {
+  for (int trial = 0; trial < 100; ++trial) {
+    const Pose a_from_b = RandomPose(), b_from_c = RandomPose(), c_from_d = RandomPose();
+    EXPECT_TRUE(PoseNear(Compose(Compose(a_from_b, b_from_c), c_from_d), Compose(a_from_b, Compose(b_from_c, c_from_d)),
+                         1e-9))
+        << "trial " << trial;
+    const Eigen::Vector3d p_in_c(Uniform(-10, 10), Uniform(-10, 10), Uniform(-10, 10));
+    EXPECT_TRUE(MatrixNear(Compose(a_from_b, b_from_c) * p_in_c, a_from_b * (b_from_c * p_in_c), 1e-9));
+    // The inverse of a product is the product of the inverses, reversed.
+    EXPECT_TRUE(PoseNear(Inverse(Compose(a_from_b, b_from_c)), Compose(Inverse(b_from_c), Inverse(a_from_b)), 1e-9));
+  }
+}
+
+TEST(PoseAlgebra, IdentityIsNeutral) {
+  const Pose a_from_b = RandomPose();
+  EXPECT_TRUE(PoseNear(Compose(Pose{}, a_from_b), a_from_b, 0));
+  EXPECT_TRUE(PoseNear(Compose(a_from_b, Pose{}), a_from_b, 0));
+  EXPECT_TRUE(PoseNear(Inverse(Pose{}), Pose{}, 0));
+}
+
+// The registration's chain A · Y = X · B both ways: what the camera sees at a
+// platform pose maps back to that pose, and the reverse.
+TEST(PoseAlgebra, CameraFromTargetAndBaseFromPlatformRoundTrip) {
+  for (int trial = 0; trial < 100; ++trial) {
+    const Pose base_from_camera = RandomPose(), platform_from_target = RandomPose();
+    const Pose base_from_platform = RandomPose();
+    const Pose camera_from_target = CameraFromTarget(base_from_camera, base_from_platform, platform_from_target);
+    EXPECT_TRUE(PoseNear(BaseFromPlatform(base_from_camera, camera_from_target, platform_from_target),
+                         base_from_platform, 1e-9))
+        << "trial " << trial;
+    EXPECT_TRUE(PoseNear(Compose(base_from_platform, platform_from_target), Compose(base_from_camera, camera_from_target),
+                         1e-9));
+    const Pose seen = RandomPose();
+    EXPECT_TRUE(PoseNear(CameraFromTarget(base_from_camera,
+                                          BaseFromPlatform(base_from_camera, seen, platform_from_target),
+                                          platform_from_target),
+                         seen, 1e-9))
+        << "trial " << trial;
+  }
+}
+
+// The chains are the products the registration documents, in that order.
+TEST(PoseAlgebra, ChainsAreTheDocumentedProducts) {
+  const Pose x = RandomPose(), y = RandomPose(), a = RandomPose(), b = RandomPose();
+  EXPECT_TRUE(PoseNear(CameraFromTarget(x, a, y), Compose(Compose(Inverse(x), a), y), 0));
+  EXPECT_TRUE(PoseNear(BaseFromPlatform(x, b, y), Compose(Compose(x, b), Inverse(y)), 0));
+}
+
 }  // namespace
 }  // namespace hexcal

@@ -20,20 +20,6 @@ RegistrationOptions RegistrationOptionsFromNoise(const NoiseModel& noise) {
   return options;
 }
 
-Pose Compose(const Pose& a_from_b, const Pose& b_from_c) {
-  Pose a_from_c;
-  a_from_c.rotation = a_from_b.rotation * b_from_c.rotation;
-  a_from_c.position = a_from_b.rotation * b_from_c.position + a_from_b.position;
-  return a_from_c;
-}
-
-Pose Inverse(const Pose& a_from_b) {
-  Pose b_from_a;
-  b_from_a.rotation = a_from_b.rotation.transpose();
-  b_from_a.position = -(b_from_a.rotation * a_from_b.position);
-  return b_from_a;
-}
-
 bool RegistrationOptions::IsValid(std::string* error) const {
   if (!(position_sigma > 0) || !std::isfinite(position_sigma)) {
     *error = "registration position_sigma must be a positive number";
@@ -222,8 +208,7 @@ StatusOr<Registration> EstimateRegistration(const std::vector<Pose>& base_from_p
 }
 
 Pose BaseFromPlatform(const Registration& registration, const Pose& camera_from_target) {
-  return Compose(Compose(registration.base_from_camera, camera_from_target),
-                 Inverse(registration.platform_from_target));
+  return BaseFromPlatform(registration.base_from_camera, camera_from_target, registration.platform_from_target);
 }
 
 Robot ExpressInFrames(const Robot& robot, const Pose& new_base_from_old_base,

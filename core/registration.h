@@ -51,10 +51,6 @@
 
 namespace hexcal {
 
-// Rigid transform helpers on Pose (position = translation, rotation = R).
-Pose Compose(const Pose& a_from_b, const Pose& b_from_c);
-Pose Inverse(const Pose& a_from_b);
-
 struct RegistrationOptions {
   double position_sigma = 1.0;    // robot unit; weight of the position residuals
   double angle_sigma_deg = 0.05;  // degrees; weight of the rotation residuals
@@ -85,7 +81,7 @@ StatusOr<Registration> EstimateRegistration(const std::vector<Pose>& base_from_p
                                             const std::vector<Pose>& camera_from_target,
                                             const RegistrationOptions& options = {});
 
-// The pose of the platform in the registered base frame: X · B · Y⁻¹.
+// The pose of the platform in the registered base frame: X · B · Y⁻¹ (core/pose.h).
 Pose BaseFromPlatform(const Registration& registration, const Pose& camera_from_target);
 
 // The robot with its frames moved: a_i → G a_i (G = new_base_from_old_base),

@@ -73,4 +73,11 @@ Robot WithParameters(const Robot& robot, const ParameterVector& params) {
   return out;
 }
 
+Vector6d WorkspaceCentre(const Robot& robot) {
+  Vector6d centre = Vector6d::Zero();
+  if (const std::optional<PoseBox> box = robot.limits.SamplingBox(); box && box->IsComplete())
+    for (int k = 0; k < 6; ++k) centre[k] = box->bounds[k]->Centre();
+  return centre;
+}
+
 }  // namespace hexcal

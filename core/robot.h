@@ -99,4 +99,8 @@ LegParameters LegParametersOf(const Leg& leg);
 // A copy of `robot` with its 42 parameters replaced (strokes and limits kept).
 Robot WithParameters(const Robot& robot, const ParameterVector& params);
 
+// The centre of the robot's sampling box (robot unit, degrees; zero without
+// one): where the sim machine starts, and the LinuxCNC controller's via pose.
+Vector6d WorkspaceCentre(const Robot& robot);
+
 }  // namespace hexcal

@@ -55,7 +55,8 @@ SessionPaths::SessionPaths(std::string folder)
       images((fs::path(dir) / "images").string()),
       legs((fs::path(dir) / "legs.csv").string()),
       camera_poses((fs::path(dir) / "camera_poses.csv").string()),
-      results((fs::path(dir) / "results").string()) {}
+      results((fs::path(dir) / "results").string()),
+      noise_check((fs::path(dir) / kNoiseCheckFile).string()) {}
 
 namespace {
 

@@ -59,9 +59,13 @@ struct SessionConfig {
   bool IsValid(std::string* error) const;
 };
 
+// `hexcal session check-noise` keeps its result in the session folder (workflow/noise_check.h).
+constexpr const char* kNoiseCheckFile = "noise_check.json";
+
 struct SessionPaths {
   explicit SessionPaths(std::string dir);
   std::string dir, config, plan, images, legs, camera_poses, results;
+  std::string noise_check;  // kNoiseCheckFile
 };
 
 // Creates DIR (may exist, but must not hold a session.yaml), images/, results/

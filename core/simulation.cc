@@ -193,9 +193,18 @@ SimulationPoseSet FixedPoseSet(const std::string& name, std::vector<Vector6d> po
   return set;
 }
 
+const OptionTable<SimulationOptions>& SimulationOptionSpecs() {
+  static const OptionTable<SimulationOptions> table = [] {
+    return OptionTable<SimulationOptions>{NumberOption<SimulationOptions>(
+        "runs", "Runs", OptionType::kInteger, "", 1, 1000000, "repetitions",
+        [](SimulationOptions& o) -> int& { return o.runs; })};
+  }();
+  return table;
+}
+
 bool SimulationOptions::IsValid(std::string* error) const {
-  if (runs < 1 || runs > 1000000) {
-    *error = "runs must be between 1 and 1000000, got " + std::to_string(runs);
+  if (Status s = CheckOptionRanges(SimulationOptionSpecs(), *this); !s.ok()) {
+    *error = s.message();
     return false;
   }
   if (!std::isfinite(perturb) || perturb < 0) {

@@ -33,6 +33,7 @@
 #include "core/calibration.h"
 #include "core/error_stats.h"
 #include "core/job_hooks.h"
+#include "core/option_spec.h"
 
 namespace hexcal {
 
@@ -62,6 +63,10 @@ struct SimulationOptions {
 
   bool IsValid(std::string* error) const;
 };
+
+// The descriptor of `runs` (1..1000000): IsValid checks it, and `hexcal
+// simulate --runs` takes its range and help from it.
+const OptionTable<SimulationOptions>& SimulationOptionSpecs();
 
 struct SetError {
   std::string name;

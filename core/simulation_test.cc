@@ -149,7 +149,8 @@ TEST(Simulation, BadRequestsAreErrors) {
               HasSubstr("'random' has 5 poses"));
   EXPECT_THAT(Simulate(nominal, {RandomPoseSet(8), RandomPoseSet(9)}, SmallStudy(1)).status().message(),
               HasSubstr("listed twice"));
-  EXPECT_THAT(Simulate(nominal, {RandomPoseSet(8)}, SmallStudy(0)).status().message(), HasSubstr("runs must be"));
+  EXPECT_THAT(Simulate(nominal, {RandomPoseSet(8)}, SmallStudy(0)).status().message(),
+              HasSubstr("runs: must be at least 1, got 0"));
   // A degenerate fixed set fails in every run: an error with the calibration's reason.
   const std::vector<Vector6d> one_pose(8, CandidatePoses(nominal, CandidateKind::kUniform, 1)[0]);
   EXPECT_THAT(Simulate(nominal, {FixedPoseSet("same", one_pose)}, SmallStudy(2)).status().message(),

@@ -11,6 +11,7 @@
 
 #include "core/error_stats.h"
 #include "core/ioops.h"
+#include "core/observability.h"
 #include "core/parallel.h"
 #include "core/planning_model.h"
 #include "core/validation.h"
@@ -231,8 +232,12 @@ std::string SubsetMetricLabel(SubsetMetric metric, const std::string& length_uni
       return "held-out position RMS (" + length_unit + ")";
     case SubsetMetric::kHeldOutOrientation:
       return "held-out orientation RMS (deg)";
-    default:
-      return SubsetMetricName(metric);
+    default: {
+      // O1..O4 with their unit (issue 39): O2 is a ratio, the others lengths.
+      const int k = static_cast<int>(metric) - static_cast<int>(SubsetMetric::kO1) + 1;
+      const std::string unit = IndexUnit(k, length_unit);
+      return std::string(SubsetMetricName(metric)) + " (" + (unit.empty() ? "a ratio" : unit) + ")";
+    }
   }
 }
 

@@ -101,7 +101,7 @@ constexpr SubsetMetric kSubsetMetrics[] = {SubsetMetric::kO1,
                                            SubsetMetric::kHeldOutPosition,
                                            SubsetMetric::kHeldOutOrientation};
 const char* SubsetMetricName(SubsetMetric metric);  // "O1", ..., "heldout_position_rms", "heldout_orientation_rms"
-// What a person reads: "O1", ..., "held-out position RMS (cm)", "held-out orientation RMS (deg)".
+// What a person reads: "O1 (cm)", "O2 (a ratio)", ..., "held-out position RMS (cm)", "held-out orientation RMS (deg)".
 std::string SubsetMetricLabel(SubsetMetric metric, const std::string& length_unit);
 bool HigherIsBetter(SubsetMetric metric);           // the indices; the errors are better lower
 double MetricValue(const SubsetOutcome& outcome, SubsetMetric metric);

@@ -16,6 +16,10 @@
 // sim controller and camera, a pair that connects; another session starts
 // from them again. The session is written after every pose
 // (workflow::RecordCaptureBytes under the lock).
+//
+//   auto* acquire = new AcquirePanel(session);
+//   acquire->Connect("sim", "sim");  // or linuxcnc://HOST:PORT and aravis:NAME
+//   acquire->CapturePose();          // records pose CurrentPose(), then moves on
 #pragma once
 
 #include <QWidget>

@@ -145,7 +145,8 @@ void CalibratePanel::Run() {
   session_->Reload();  // the checks below on the files as they are now, whatever a watcher missed
   if (!session_->LegsError().isEmpty())
     return ShowError(this, "Calibrate", "legs.csv: " + session_->LegsError() + "\nFix it in the Measure step.");
-  if (!session_->SessionCamera() || !session_->SessionTarget())
+  // A points session has neither: its poses come from the points file.
+  if (!session_->IsPointsSession() && (!session_->SessionCamera() || !session_->SessionTarget()))
     return ShowError(this, "Calibrate", "The session's camera or target does not load: fix session.yaml.");
   const std::string dir = session_->Dir().toStdString();
   run_->setEnabled(false);
@@ -172,7 +173,9 @@ void CalibratePanel::Finish(const Status& status) {
     SetOutcome("failed: " + QString::fromStdString(status.message()).trimmed() + " results/ is unchanged.");
     ShowError(this, "Calibrate",
               QString::fromStdString(status.message()).trimmed() +
-                  "\nCheck the Measure step: enough images with an ok target pose and their readings.");
+                  (session_->IsPointsSession()
+                       ? "\nCheck the Measure step: enough poses whose points fit, and their readings."
+                       : "\nCheck the Measure step: enough images with an ok target pose and their readings."));
   } else {
     SetOutcome("done: results/ written; the run's lines are in the run log.");
   }
@@ -193,12 +196,20 @@ void CalibratePanel::Refresh() {
       outcome_.clear();
     }
   }
+  const bool points = session_->IsPointsSession();
+  run_->setToolTip(points ? "Fit each pose's points to the reflectors, register the tracker and the reflectors with "
+                            "the nominal robot, calibrate on the poses not held out, validate on the held-out ones; "
+                            "writes results/."
+                          : "Measure the images not yet measured, register camera and target with the nominal robot, "
+                            "calibrate on the images not held out, validate on the held-out ones; writes results/.");
   // Between runs the line under the buttons says what the results are.
   if (!job_->Running() && (outcome_.isEmpty() || outcome_ == idle_)) {
     const StepState state = session_->State(Step::kCalibrate);
     idle_ = state == StepState::kDone     ? "Results up to date with the session's files."
             : state == StepState::kStale  ? "Results stale: " + session_->ResultsNote()
             : state == StepState::kBroken ? "Results do not load: " + session_->InSession(session_->ResultsNote())
+            : points                      ? "Record the points file and the readings of its poses (Measure), then "
+                                            "calibrate."
                                           : "Record images and readings (Acquire, Measure), then calibrate.";
     idle_ = InGuiTerms(idle_);  // as SetOutcome shows it, to compare with
     SetOutcome(idle_);
@@ -222,12 +233,15 @@ void CalibratePanel::Refresh() {
   const QString unit = QString::fromStdString(report.length_unit);
   // The counts and the closure once; the rest of what the CLI prints (the
   // fit from pixels, the camera-frame residuals, outliers) in the run log.
-  summary_->setText(QString("%1: %2 for calibration, %3 held out, %4 without a usable target pose. "
-                            "Closure (camera vs robot) RMS: nominal robot %5, %6; calibrated %7, %8.")
-                        .arg(FormatCount(report.images, "image"))
+  // A points session's report counts poses measured by the tracker.
+  const bool tracker = report.instrument == "points";
+  summary_->setText(QString("%1: %2 for calibration, %3 held out, %4 without a usable %5. "
+                            "Closure (%6 vs robot) RMS: nominal robot %7, %8; calibrated %9, %10.")
+                        .arg(FormatCount(report.images, tracker ? "pose" : "image"))
                         .arg(report.calibration_images)
                         .arg(report.held_out_images)
                         .arg(report.unusable_images)
+                        .arg(tracker ? "fit of their points" : "target pose", tracker ? "tracker" : "camera")
                         .arg(FormatLength(reg.position_rms, unit).toHtmlEscaped(), FormatAngle(reg.angle_rms_deg),
                              FormatLength(report.closure_position_rms, unit).toHtmlEscaped(),
                              FormatAngle(report.closure_angle_rms_deg)) +

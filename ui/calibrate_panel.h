@@ -7,6 +7,9 @@
 // (ui/verdict_view.h), and two tabs: the 42 parameters (nominal, calibrated,
 // change, σ, identified) and the leg residuals of the nominal and the
 // calibrated robot on the calibration poses.
+//
+//   auto* calibrate = new CalibratePanel(session);
+//   calibrate->Run();  // a worker; Job()->Running() until the verdict is shown
 #pragma once
 
 #include <QWidget>

@@ -1,6 +1,9 @@
 // Errors the operator can act on. Interactive: a message box. In --screenshot
 // and test runs (SetInteractive(false)): one line on stderr, never blocking.
 // Message boxes show their text as plain text: it quotes file names.
+//
+//   SetInteractive(false);  // tests and --screenshot: one line on stderr
+//   ShowError(window, "Open session", QString::fromStdString(status.message()));
 #pragma once
 
 #include <QString>

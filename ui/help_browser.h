@@ -4,6 +4,10 @@
 // window's width, the links between the pages followed in place and Back to
 // the page before. The folder is HEXCAL_DOCS_DIR if set, else the one the
 // build was made from, else the installed one (/usr/share/doc/hexcal).
+//
+//   AddHelpMenu(menuBar(), this);  // Help > each page of docs/
+//   HelpBrowser help(this);
+//   help.ShowPage("gui.md");
 #pragma once
 
 #include <QDialog>

@@ -2,6 +2,9 @@
 // the target reprojected with the estimated board pose (red corner crosses),
 // the pose status and the reprojection RMS. Runs on a worker thread: it makes
 // a QImage (thread-safe), never a widget or pixmap.
+//
+//   OverlayResult shown = DetectAndDraw(file, camera, target);  // on a worker
+//   const QString problem = ReadinessProblem(shown);             // empty: ready
 #pragma once
 
 #include <QImage>

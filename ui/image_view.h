@@ -2,6 +2,10 @@
 // step, the Acquire step's live view): it fits the view until zoomed; the
 // wheel (or +/−) zooms about the cursor, dragging pans, a double click or 0
 // fits again. Without an image it shows a sentence.
+//
+//   auto* view = new ImageView;
+//   view->SetImage(shown.image);  // or SetMessage("No image yet")
+//   view->ZoomBy(2);
 #pragma once
 
 #include <QGraphicsView>

@@ -2,6 +2,10 @@
 // Acquire, Measure, Calibrate, Validate) around one SessionState, with the step list
 // and the File menu (new, open, open demo, reload, recent sessions). The panels
 // own their work; this class only wires them together.
+//
+//   MainWindow window;
+//   window.OpenSession("build/demo");
+//   window.ShowStep(Step::kCalibrate);
 #pragma once
 
 #include <QMainWindow>

@@ -75,24 +75,36 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
   report_->setMaximumHeight(140);
   report_->setVisible(false);  // shown with an intrinsics report: room for the image until then
 
+  list_title_ = new QLabel("Images (status from camera_poses.csv)");
+  points_summary_ = new QLabel;
+  points_summary_->setTextFormat(Qt::PlainText);
+  points_summary_->setWordWrap(true);
+  points_summary_->setObjectName("points_summary");
+  points_summary_->setVisible(false);
   // Two buttons a row: one a row left the image list two rows at 1024×600.
-  auto* buttons = new QGridLayout;
+  buttons_ = new QGridLayout;
+  QGridLayout* buttons = buttons_;
   const auto add_button = [&](const QString& text, const QString& tip, auto slot) {
     auto* button = new QPushButton(text);
     button->setToolTip(tip);
     connect(button, &QPushButton::clicked, this, slot);
     buttons->addWidget(button, buttons->count() / 2, buttons->count() % 2);
+    all_buttons_.push_back(button);
     return button;
   };
-  add_button("Load image folder…", "Copy the PNG/JPEG/TIFF images of a folder into the session's images/",
-             [this] { LoadImageFolder(); });
-  add_button("Import leg readings…", "Use a CSV image,L1..L6[,holdout] as the session's legs.csv",
-             [this] { ImportLegs(); });
-  add_button("Measure all images", "Detect the target in every image and write camera_poses.csv",
-             [this] { MeasureAll(); });
-  add_button("Intrinsics from folder…", "Calibrate the camera from target images; the session then uses camera.yaml",
-             [this] { IntrinsicsFromFolder(); });
+  camera_buttons_.push_back(add_button("Load image folder…",
+                                       "Copy the PNG/JPEG/TIFF images of a folder into the session's images/",
+                                       [this] { LoadImageFolder(); }));
+  import_legs_ = add_button("Import leg readings…", "Use a CSV image,L1..L6[,holdout] as the session's legs.csv",
+                            [this] { ImportLegs(); });
+  camera_buttons_.push_back(add_button("Measure all images",
+                                       "Detect the target in every image and write camera_poses.csv",
+                                       [this] { MeasureAll(); }));
+  camera_buttons_.push_back(add_button("Intrinsics from folder…",
+                                       "Calibrate the camera from target images; the session then uses camera.yaml",
+                                       [this] { IntrinsicsFromFolder(); }));
   cancel_ = add_button("Cancel", "Stop the running job", [this] { job_->Cancel(); });
+  camera_buttons_.push_back(cancel_);  // a points session runs no job here
   cancel_->setEnabled(false);
   connect(job_, &BackgroundJob::Started, this, [this](const QString& what) {
     cancel_->setEnabled(true);
@@ -119,17 +131,19 @@ MeasurePanel::MeasurePanel(SessionState* session, QWidget* parent)
 void MeasurePanel::ArrangeWidgets(QLayout* buttons) {
   auto* left = new QWidget;
   auto* left_layout = new QVBoxLayout(left);
-  left_layout->addWidget(new QLabel("Images (status from camera_poses.csv)"));
+  left_layout->addWidget(list_title_);
   left_layout->addWidget(images_, 1);
   left_layout->addLayout(buttons);
   left_layout->addWidget(progress_);
   left_layout->addWidget(status_);
   auto* centre = new QWidget;
   auto* centre_layout = new QVBoxLayout(centre);
+  centre_layout->addWidget(points_summary_);
   centre_layout->addWidget(picture_, 1);
   centre_layout->addWidget(picture_info_);
   centre_layout->addWidget(report_);
-  auto* top = new QSplitter;
+  centre_layout->addStretch();  // the labels at the top when there is no image (a points session)
+  auto* top = top_ = new QSplitter;
   top->addWidget(left);
   top->addWidget(centre);
   top->setStretchFactor(1, 3);
@@ -165,6 +179,7 @@ void MeasurePanel::ResetForSession() {
 }
 
 void MeasurePanel::Refresh() {
+  ShowInstrument();
   const int current = images_->currentRow();
   const std::map<QString, QString> measured = MeasuredStatus(session_->Paths());
   const std::map<QString, QString> again = ToMeasureAgain();
@@ -187,6 +202,7 @@ void MeasurePanel::Refresh() {
                                                            : QColor(Qt::red));
     images_->addItem(item);
   }
+  if (session_->IsPointsSession()) FillPoseList();
   images_->blockSignals(false);
   // Keep the selection; show the first image when there was none.
   if (images_->count() > 0) images_->setCurrentRow(current >= 0 && current < images_->count() ? current : 0);
@@ -228,11 +244,12 @@ std::map<QString, QString> MeasurePanel::ToMeasureAgain() const {
 void MeasurePanel::ShowReadingsHint() {
   const int missing = legs_->MissingRows();
   const QString unit = LengthUnitName(session_->NominalRobot().length_unit);
-  readings_hint_->setText(missing == 0 ? QString("Leg readings (robot unit, %1) of each image:").arg(unit)
-                                       : QString("%1 image(s) have no readings yet: type L1..L6 (%2) in their rows, "
+  const QString noun = session_->RowNoun();
+  readings_hint_->setText(missing == 0 ? QString("Leg readings (robot unit, %1) of each %2:").arg(unit, noun)
+                                       : QString("%1 %2(s) have no readings yet: type L1..L6 (%3) in their rows, "
                                                  "or paste lines of six numbers with Ctrl+V.")
                                              .arg(missing)
-                                             .arg(unit));
+                                             .arg(noun, unit));
 }
 
 void MeasurePanel::StartJob(const QString& what, JobWork work) {
@@ -242,6 +259,10 @@ void MeasurePanel::StartJob(const QString& what, JobWork work) {
 
 bool MeasurePanel::CameraAndTargetReady(const QString& step) {
   if (!session_->IsOpen()) return ShowError(this, step, "Open or create a session first (File menu)."), false;
+  if (session_->IsPointsSession()) {
+    ShowError(this, step, "A points session has no images or camera: its poses come from the points file.");
+    return false;
+  }
   if (!session_->SessionCamera() || !session_->SessionTarget()) {
     ShowError(this, step,
               "The session's camera or target does not load: fix 'camera:' and 'target:' in session.yaml, "
@@ -252,6 +273,7 @@ bool MeasurePanel::CameraAndTargetReady(const QString& step) {
 }
 
 void MeasurePanel::ShowImage(int row) {
+  if (session_->IsPointsSession()) return ShowPose(row);
   if (row < 0 || row >= images_->count() || !CameraAndTargetReady("Show image")) return;
   if (preview_->Running()) {
     pending_row_ = row;

@@ -3,22 +3,35 @@
 // import a CSV), each image with its detected tags and reprojected board, its
 // status and RMS; the batch measurement into camera_poses.csv; camera
 // intrinsics from a folder of target images, with their report.
+// A points session (docs/session.md) has no images or camera: the panel then
+// names its points and reflector files and lists each legs.csv pose with the
+// fit of its points (ok, or why not: workflow/point_session.h), and the
+// readings table is keyed by pose; the image and camera buttons are hidden.
+//
+//   auto* measure = new MeasurePanel(session);
+//   measure->LoadImageFolder("/data/run1/images");
+//   measure->MeasureAll();  // a worker: camera_poses.csv
 #pragma once
 
 #include <QWidget>
 #include <map>
+#include <optional>
+#include <vector>
 
 #include "ui/background_job.h"
 #include "ui/readings_editor.h"
 #include "ui/session_state.h"
+#include "workflow/point_session.h"
 
 class QLabel;
 class QLayout;
 class QListWidget;
 class QPlainTextEdit;
 class QProgressBar;
+class QGridLayout;
 class QPushButton;
 class QSpinBox;
+class QSplitter;
 class QTableWidget;
 
 namespace hexcal::ui {
@@ -35,7 +48,10 @@ class MeasurePanel : public QWidget {
   QListWidget* ImageList() const { return images_; }
   ImageView* Picture() const { return picture_; }
   ReadingsEditor* LegsTable() const { return legs_; }
+  // The selected image's detection status, or the selected pose's fit status.
   const QString& ShownStatus() const { return shown_status_; }
+  // A points session's description: its files, the reflectors, the fits.
+  QString PointsSummary() const;
 
  public slots:
   void Refresh();
@@ -49,6 +65,11 @@ class MeasurePanel : public QWidget {
 
  private:
   void ArrangeWidgets(QLayout* buttons);
+  // Points session or camera session: the widgets that make sense for it (measure_points.cc).
+  void ShowInstrument();
+  void LayOutButtons();  // the visible buttons, two a row
+  void FillPoseList();   // each legs.csv pose and its fit, into the list
+  void ShowPose(int row);
   bool CameraAndTargetReady(const QString& step);
   void ShowReadingsHint();  // how many images lack readings, after every refill
   std::map<QString, QString> ToMeasureAgain() const;  // image name: why its measurement is stale
@@ -57,7 +78,16 @@ class MeasurePanel : public QWidget {
   SessionState* session_;
   BackgroundJob* job_;      // measuring, capture, intrinsics: one at a time
   BackgroundJob* preview_;  // the selected image's detection
-  QListWidget* images_;
+  QListWidget* images_;  // the images, or a points session's poses
+  QLabel* list_title_;
+  QLabel* points_summary_;  // a points session's files and reflectors
+  QSplitter* top_;          // the list | the image (a points session: the summary)
+  QGridLayout* buttons_;
+  std::vector<QPushButton*> all_buttons_;     // in their order
+  std::vector<QPushButton*> camera_buttons_;  // hidden in a points session
+  std::optional<bool> arranged_for_points_;   // what ShowInstrument last arranged the widgets for
+  QPushButton* import_legs_;
+  std::vector<workflow::PointPoseFit> fits_;  // the poses listed, in a points session
   ImageView* picture_;
   QLabel* picture_info_;
   ReadingsEditor* legs_;

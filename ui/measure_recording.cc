@@ -28,6 +28,8 @@ QString Message(const Status& status) { return QString::fromStdString(status.mes
 
 void MeasurePanel::LoadImageFolder(const QString& chosen) {
   if (!session_->IsOpen()) return ShowError(this, "Load images", "Open or create a session first (File menu).");
+  if (session_->IsPointsSession())
+    return ShowError(this, "Load images", "A points session has no images: its poses come from the points file.");
   const QString folder = chosen.isEmpty() ? QFileDialog::getExistingDirectory(this, "Folder of images") : chosen;
   if (folder.isEmpty()) return;
   StatusOr<std::vector<std::string>> files = ListImages(folder.toStdString());
@@ -61,6 +63,8 @@ void MeasurePanel::ImportLegs(const QString& chosen) {
 }
 
 void MeasurePanel::IntrinsicsFromFolder(const QString& chosen) {
+  if (session_->IsPointsSession())
+    return ShowError(this, "Intrinsics", "A points session has no camera: its poses come from the points file.");
   if (!session_->IsOpen() || !session_->SessionTarget())
     return ShowError(this, "Intrinsics", "Open a session whose target loads first.");
   const QString folder = chosen.isEmpty() ? QFileDialog::getExistingDirectory(this, "Folder of target images") : chosen;

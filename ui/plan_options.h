@@ -1,6 +1,10 @@
 // The Plan panel's options form: every row comes from
 // workflow::PlanSetupOptions() (ui/option_form.h), the table that also makes
 // the `hexcal plan` flags and the settings file's `planner:` section.
+//
+//   auto* form = new PlanOptionsForm;
+//   form->SetValue("poses", 24);
+//   StatusOr<workflow::PlanSetup> setup = form->Options();  // checked as the CLI checks
 #pragma once
 
 #include <QWidget>

@@ -8,6 +8,10 @@
 // pose edited or deleted) asks first: keep them (images with readings the
 // calibration uses), archive them (moved to archive/), discard them, or
 // cancel (workflow/plan_captures.h).
+//
+//   auto* plan = new PlanPanel(session);
+//   plan->Options()->SetValue("poses", 16);
+//   plan->Run();  // a worker; the session's plan.csv when it finishes
 #pragma once
 
 #include <QWidget>

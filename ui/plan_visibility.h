@@ -4,6 +4,10 @@
 // from the session (the camera and target frames registered by a calibration,
 // the field of view from the camera's intrinsics) or from a plan settings file
 // as `hexcal plan --settings` reads it; or they are off.
+//
+//   auto* visibility = new VisibilityForm(session);
+//   visibility->Choose("session");  // or "off", or a plan settings file
+//   StatusOr<std::optional<MeasurementConstraints>> constraints = visibility->Constraints();
 #pragma once
 
 #include <QWidget>

@@ -7,6 +7,10 @@
 // px"); a ratio is "2.3×"; a count names its noun in the right number ("1
 // pose", "3 poses"). In a table whose header names the unit, the cells are
 // the same numbers without it (FormatSignificant, FormatCoordinate).
+//
+//   FormatLength(0.0041321, "cm");  // "0.00413 cm"
+//   FormatCount(1, "pose");          // "1 pose"
+//   FormatRatio(2.31);              // "2.3×"
 #pragma once
 
 #include <QString>

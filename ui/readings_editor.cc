@@ -33,8 +33,7 @@ ReadingsEditor::ReadingsEditor(SessionState* session, QWidget* parent)
   // The image column as wide as an acquired image's name (widen it for longer ones).
   horizontalHeader()->setSectionResizeMode(0, QHeaderView::Interactive);
   setColumnWidth(0, fontMetrics().horizontalAdvance("pose_0000.png") + 24);
-  setToolTip("Leg readings at each image (robot unit): type them, or paste lines of six numbers with Ctrl+V. "
-             "legs.csv is saved at once. holdout 1 keeps the image out of the calibration to validate it.");
+  ShowKeyColumn();
   connect(this, &QTableWidget::cellChanged, this, &ReadingsEditor::OnCellEdited);
 }
 
@@ -56,12 +55,16 @@ void ReadingsEditor::Refill() {
     StatusOr<std::vector<workflow::ReadingsRow>> rows = workflow::ReadReadingsTable(session_->Dir().toStdString());
     if (rows.ok()) rows_ = *rows;
   }
+  ShowKeyColumn();
   setRowCount(static_cast<int>(rows_.size()));
   for (int r = 0; r < rowCount(); ++r) {
     const workflow::ReadingsRow& row = rows_[r];
     QTableWidgetItem* image = Cell(QString::fromStdString(row.image), false);
     if (!row.recorded) image->setToolTip("no readings yet: type L1..L6");
-    if (!row.image_present) image->setToolTip("legs.csv names this image, but it is not in images/");
+    if (!row.image_present)
+      image->setToolTip(session_->IsPointsSession()
+                            ? "legs.csv names this pose, but the points file has no points for it"
+                            : "legs.csv names this image, but it is not in images/");
     image->setForeground(!row.recorded ? QColor(200, 110, 0) : row.image_present ? QColor(0, 0, 0) : QColor(190, 0, 0));
     setItem(r, 0, image);
     const auto typed = typed_.find(row.image);
@@ -162,8 +165,18 @@ int ReadingsEditor::PasteReadings(const QString& text, int first) {
     pasted.push_back({rows_[row++], *legs});
   }
   for (const auto& [shown, legs] : pasted) written += WriteRow(shown.image, legs, shown.holdout, /*overwrite=*/true);
-  if (written > 0) emit Note(QString("pasted the readings of %1 images into legs.csv").arg(written));
+  if (written > 0)
+    emit Note(QString("pasted the readings of %1 %2(s) into legs.csv").arg(written).arg(session_->RowNoun()));
   return written;
+}
+
+// legs.csv's key column: `pose` in a points session, `image` otherwise.
+void ReadingsEditor::ShowKeyColumn() {
+  const QString noun = session_->RowNoun();
+  horizontalHeaderItem(0)->setText(noun);
+  setToolTip(QString("Leg readings at each %1 (robot unit): type them, or paste lines of six numbers with Ctrl+V. "
+                     "legs.csv is saved at once. holdout 1 keeps the %1 out of the calibration to validate it.")
+                 .arg(noun));
 }
 
 workflow::ReadingCheck ReadingsEditor::Check() const {

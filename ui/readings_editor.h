@@ -1,5 +1,6 @@
-// The leg readings table of the Measure and Acquire steps: one row per image,
-// L1..L6 in the robot unit and the holdout flag. Rows come from
+// The leg readings table of the Measure and Acquire steps: one row per image
+// (per pose in a points session, its column `pose`), L1..L6 in the robot unit
+// and the holdout flag. Rows come from
 // workflow::ReadReadingsTable, so an image without readings has a blank row to
 // type into; its row enters legs.csv when the sixth reading is typed. Ctrl+V
 // pastes lines of six numbers (a spreadsheet's rows) from the current row on.
@@ -11,6 +12,9 @@
 // the table is refilled when the editor closes, and the typed value is
 // applied against the value shown when typing began, so a change of the same
 // cell on disk meanwhile asks Use mine / Keep theirs (issue 35).
+//
+//   auto* legs = new ReadingsEditor(session);
+//   legs->PasteReadings("3.1 3.2 3.3 3.4 3.5 3.6\n", 0);  // row 0 into legs.csv
 #pragma once
 
 #include <QTableWidget>
@@ -56,6 +60,7 @@ class ReadingsEditor : public QTableWidget {
   // The session's check of typed readings: its robot's strokes, its noise (workflow/reading_check.h).
   workflow::ReadingCheck Check() const;
   void Refuse(const Status& why);
+  void ShowKeyColumn();  // the first column's name and the table's tooltip, by the session's kind
 
   SessionState* session_;
   std::vector<workflow::ReadingsRow> rows_;

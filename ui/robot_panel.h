@@ -1,6 +1,9 @@
 // Robot step: the nominal robot of the session (its file, legs, strokes) and
 // the 3D view, with the planned poses to scrub through and show as ghosts,
 // workspace samples, and the camera and target once registered.
+//
+//   auto* robot = new RobotPanel(session);
+//   robot->ShowPlannedPose(0);  // the platform at the plan's first pose
 #pragma once
 
 #include <QWidget>

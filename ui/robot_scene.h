@@ -2,6 +2,10 @@
 // coloured by stroke use: green at mid-stroke, red at an end, magenta beyond),
 // the planned poses as ghosts of the platform, workspace samples as points,
 // the camera frustum and the target. Pure VTK: robot_view.h puts it in a widget.
+//
+//   RobotScene scene;
+//   scene.SetRobot(robot);
+//   scene.SetPose(pose);  // legs coloured by StrokeUse
 #pragma once
 
 #include <vtkActor.h>

@@ -1,6 +1,10 @@
 // The 3D view widget: RobotScene in a QVTKOpenGLNativeWidget, with Reset view
 // and Save screenshot buttons. Rotate with the left mouse button, zoom with
 // the wheel or the right button, pan with the middle button (VTK trackball).
+//
+//   auto* view = new RobotView;
+//   view->Scene().SetRobot(robot);
+//   view->Render();
 #pragma once
 
 #include <QWidget>

@@ -9,6 +9,7 @@
 #include <QStringList>
 
 #include "workflow/plan_step.h"
+#include "workflow/point_session.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_init.h"
 #include "workflow/session_results.h"
@@ -74,12 +75,13 @@ SessionState::SessionState(QObject* parent) : QObject(parent) {
 
 // Folders: the session's (atomic writes and the swap of results/ are renames
 // in it), images/, results/, study/, and the folder of each robot, camera and
-// target file wherever it is (a file replaced or made again there is a new
-// entry). Files, for what is written in place (cp over it, `>>`, an editor
-// that keeps the inode): session.yaml, plan.csv, legs.csv, the measurements,
-// the robot, camera and target files, and every file of images/, results/
-// and study/. A name that is a preset has no file; a file named in
-// session.yaml that is missing is watched for through its folder.
+// target file (a points session: robot, points and reflector file) wherever
+// it is (a file replaced or made again there is a new entry). Files, for what
+// is written in place (cp over it, `>>`, an editor that keeps the inode):
+// session.yaml, plan.csv, legs.csv, the measurements, noise_check.json, the
+// files session.yaml names, and every file of images/, results/ and study/.
+// A name that is a preset has no file; a file named in session.yaml that is
+// missing is watched for through its folder.
 SessionState::DiskPaths SessionState::Dependencies(const SessionConfig* config) const {
   DiskPaths paths;
   QSet<QString> seen;
@@ -95,7 +97,8 @@ SessionState::DiskPaths SessionState::Dependencies(const SessionConfig* config) 
   add(&paths.folders, dir);
   for (const std::string& name : {session.config, session.plan, session.legs, session.camera_poses})
     add(&paths.files, QString::fromStdString(name));
-  for (const char* name : {"camera_poses.json", "plan_history.csv"}) add(&paths.files, QDir(dir).filePath(name));
+  for (const char* name : {"camera_poses.json", "plan_history.csv", kNoiseCheckFile})
+    add(&paths.files, QDir(dir).filePath(name));
   for (const std::string& folder : {session.images, session.results, workflow::StudyFolderPath(session.dir)}) {
     const QDir listed(QString::fromStdString(folder));
     if (!listed.exists()) continue;
@@ -104,7 +107,10 @@ SessionState::DiskPaths SessionState::Dependencies(const SessionConfig* config) 
       add(&paths.files, listed.filePath(file));
   }
   if (config == nullptr) return paths;
-  for (const std::string* name : {&config->robot, &config->camera, &config->target}) {
+  const bool points = config->instrument == Instrument::kPoints;
+  for (const std::string* name : {&config->robot, points ? &config->points : &config->camera,
+                                  points ? &config->reflectors : &config->target}) {
+    if (name->empty()) continue;  // no reflector file: they are estimated
     const QString in_session = QDir(dir).filePath(QString::fromStdString(*name));
     const QFileInfo resolved(QString::fromStdString(Resolve(*name)));
     // The file (a symbolic link is watched through to its target), its folder and its target's folder.
@@ -225,10 +231,15 @@ void SessionState::LoadAll(const QString& dir) {
   if (robot.ok()) robot_ = *robot;
   // Camera and target are needed from the Measure step on: a session may be
   // opened to plan before they exist, so their errors show there, not here.
-  StatusOr<Camera> camera = LoadCamera(Resolve(config_.camera));
-  camera_ = camera.ok() ? std::optional<Camera>(*camera) : std::nullopt;
-  StatusOr<Target> target = LoadTarget(Resolve(config_.target));
-  target_ = target.ok() ? std::optional<Target>(*target) : std::nullopt;
+  // A points session has neither.
+  camera_.reset();
+  target_.reset();
+  if (config_.instrument == Instrument::kCamera) {
+    StatusOr<Camera> camera = LoadCamera(Resolve(config_.camera));
+    if (camera.ok()) camera_ = *camera;
+    StatusOr<Target> target = LoadTarget(Resolve(config_.target));
+    if (target.ok()) target_ = *target;
+  }
   plan_.clear();
   if (Exists(Paths().plan)) {
     StatusOr<std::vector<Vector6d>> plan = LoadPoses(Paths().plan);

@@ -10,6 +10,10 @@
 // the window notices changes"): what other programs write is reloaded and
 // shown. Panels change the session only through this class, which then emits
 // Changed() so that every panel and the step list refresh.
+//
+//   SessionState session;
+//   if (Status s = session.Open("build/demo"); !s.ok()) ShowError(window, "Open", ...);
+//   connect(&session, &SessionState::Changed, panel, &RobotPanel::Refresh);
 #pragma once
 
 #include <QFileSystemWatcher>
@@ -63,8 +67,9 @@ class SessionState : public QObject {
   // hashed); the window calls it when it gains focus, for what a watcher
   // misses (a network file system). True when it reloaded.
   bool ReloadIfChanged();
-  // The files and folders watched now (the robot, camera and target files and
-  // their folders wherever they are, every file of images/, results/, study/).
+  // The files and folders watched now (the robot, camera and target files, or
+  // a points session's points and reflector files, and their folders wherever
+  // they are, noise_check.json, every file of images/, results/, study/).
   QStringList WatchedPaths() const;
   // Tests: the watcher off, as on a file system that reports no change.
   void SetWatcherEnabled(bool enabled);
@@ -73,6 +78,11 @@ class SessionState : public QObject {
   const QString& Dir() const { return dir_; }
   SessionPaths Paths() const { return SessionPaths(dir_.toStdString()); }
   const SessionConfig& Config() const { return config_; }
+  // A points session (docs/session.md): poses from a tracker's points file,
+  // legs.csv keyed by `pose`, no images, camera or target.
+  bool IsPointsSession() const { return IsOpen() && config_.instrument == Instrument::kPoints; }
+  // What legs.csv's rows are: "pose" in a points session, else "image".
+  QString RowNoun() const { return IsPointsSession() ? "pose" : "image"; }
   const Robot& NominalRobot() const { return robot_; }
   const std::optional<Camera>& SessionCamera() const { return camera_; }
   const std::optional<Target>& SessionTarget() const { return target_; }

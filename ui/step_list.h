@@ -2,6 +2,8 @@
 // Calibrate, Validate, each marked done (✓), stale (⟳, an input changed since),
 // broken (✗, a file that does not load) or to do (○), with the reason as its
 // tooltip: the states of `hexcal session status`. Picking a step shows its panel.
+//
+//   auto* steps = new StepList(session);  // refreshes on SessionState::Changed
 #pragma once
 
 #include <QListWidget>

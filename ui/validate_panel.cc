@@ -105,20 +105,23 @@ void ValidatePanel::Refresh() {
   // Never a verdict without its stale mark (issue 40): the figures below are of the same results.
   verdict_->Show(workflow::MakeVerdict(*report),
                  session_->State(Step::kCalibrate) == StepState::kStale ? session_->ResultsNote() : QString());
+  // A points session's rows are poses, measured by the tracker.
+  const QString noun = report->instrument == "points" ? "pose" : "image";
   if (!report->validation) {
-    status_->setText(
-        "No image was held out (holdout column of legs.csv), so there is nothing to validate on. "
-        "Mark some images with holdout 1 in the Measure step and calibrate again.");
+    status_->setText(QString("No %1 was held out (holdout column of legs.csv), so there is nothing to validate on. "
+                             "Mark some %1s with holdout 1 in the Measure step and calibrate again.")
+                         .arg(noun));
     return;
   }
-  ShowValidation(*report->validation, QString::fromStdString(report->length_unit));
+  ShowValidation(*report->validation, QString::fromStdString(report->length_unit), noun);
 }
 
-void ValidatePanel::ShowValidation(const workflow::ValidationSummary& validation, const QString& unit) {
-  status_->setText(QString("%1 held-out images: forward kinematics from their readings against the camera's pose, "
-                           "lengths in %2. Rows where FK did not converge: before %3, after %4.")
+void ValidatePanel::ShowValidation(const workflow::ValidationSummary& validation, const QString& unit,
+                                   const QString& noun) {
+  status_->setText(QString("%1 held-out %2s: forward kinematics from their readings against the %3's pose, "
+                           "lengths in %4. Rows where FK did not converge: before %5, after %6.")
                        .arg(validation.rows)
-                       .arg(unit)
+                       .arg(noun, noun == "pose" ? "tracker" : "camera", unit)
                        .arg(validation.before.failed)
                        .arg(validation.after.failed));
   const auto figures = [](const workflow::PoseErrorStats& s) {

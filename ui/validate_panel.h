@@ -4,6 +4,9 @@
 // readings against the camera pose, from results/report.json); and the
 // section 8 study of the session's poses (ui/study_view.h). Below both,
 // export of the calibrated robot file and of the HTML report (`hexcal report`).
+//
+//   auto* validate = new ValidatePanel(session);
+//   validate->ExportHtmlReport("report.html");  // as hexcal report
 #pragma once
 
 #include <QWidget>
@@ -42,7 +45,8 @@ class ValidatePanel : public QWidget {
 
  private:
   bool ResultsUsable(const QString& what);
-  void ShowValidation(const workflow::ValidationSummary& validation, const QString& unit);
+  // `noun`: "image", or "pose" in a points session (measured by the tracker).
+  void ShowValidation(const workflow::ValidationSummary& validation, const QString& unit, const QString& noun);
 
   SessionState* session_;
   VerdictView* verdict_;  // the verdict on results/report.json (ui/verdict_view.h)

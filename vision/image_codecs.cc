@@ -2,11 +2,13 @@
 
 #include <dlfcn.h>
 
+#include <atomic>
 #include <cstdlib>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 
 #include "core/atomic_file.h"
+#include "vision/library_logs.h"
 #include "vision/opencv_io_plugin.h"
 
 namespace hexcal {
@@ -48,16 +50,21 @@ LoadedPlugin LoadPlugin() {
     if (!entry) return {nullptr, path + ": not a hexcal_opencv_io module"};
     const OpenCvIoPlugin* plugin = entry();
     if (plugin->version != kOpenCvIoPluginVersion) return {nullptr, path + ": from another hexcal build"};
+    plugin->show_library_logs(LibraryLogsShown());
+    SetLibraryLogsListener(&ApplyLibraryLogsToCodecs);  // later changes reach it too
     return {plugin, ""};
   }
   return {nullptr, "image and video support (" + std::string(kPluginFile) + ") cannot be loaded: " + tried +
                        " (rebuild hexcal, or set HEXCAL_OPENCV_IO to the module's path)"};
 }
 
+std::atomic<const OpenCvIoPlugin*> loaded_plugin{nullptr};  // for ApplyLibraryLogsToCodecs
+
 // The plugin, loaded once by whichever thread asks first.
 StatusOr<const OpenCvIoPlugin*> Plugin() {
   static const LoadedPlugin loaded = LoadPlugin();
   if (!loaded.plugin) return Status::IoError(loaded.error);
+  loaded_plugin = loaded.plugin;
   return loaded.plugin;
 }
 
@@ -108,6 +115,10 @@ StatusOr<std::unique_ptr<VideoStream>> OpenVideoDevice(int index, int api) {
   std::unique_ptr<VideoStream> stream((*plugin)->open_video_device(index, api, &error));
   if (!stream) return Status::IoError("cannot open video device " + std::to_string(index) + " (" + error + ")");
   return stream;
+}
+
+void ApplyLibraryLogsToCodecs() {
+  if (const OpenCvIoPlugin* plugin = loaded_plugin) plugin->show_library_logs(LibraryLogsShown());
 }
 
 }  // namespace hexcal

@@ -35,4 +35,8 @@ StatusOr<std::unique_ptr<VideoStream>> OpenVideoFile(const std::string& path);
 // `api`: a cv::VideoCaptureAPIs value, e.g. cv::CAP_V4L2.
 StatusOr<std::unique_ptr<VideoStream>> OpenVideoDevice(int index, int api);
 
+// Passes LibraryLogsShown() (library_logs.h) to the module's libraries when the
+// module is loaded; it is passed again whenever the module loads.
+void ApplyLibraryLogsToCodecs();
+
 }  // namespace hexcal

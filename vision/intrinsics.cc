@@ -268,6 +268,17 @@ StatusOr<IntrinsicsResult> Run(int count, const std::vector<std::string>& names,
   }
   const int usable = static_cast<int>(
       std::count_if(result.views.begin(), result.views.end(), [](const CalibrationView& v) { return v.used; }));
+  const auto loaded = std::find_if(detected->begin(), detected->end(), [](const Detected& d) { return d.loaded; });
+  if (usable == 0 && loaded != detected->end()) {
+    // Bad input, as measure and calibrate --session have it: the wrong
+    // images, or a target file that does not describe the printed board.
+    const CalibrationView& first = result.views[static_cast<size_t>(loaded - detected->begin())];
+    return Status::Error("no image shows the target: 0 of " + std::to_string(count) + " images show at least " +
+                         std::to_string(options.min_tags_per_view) + " target tags (" + first.file + ": " +
+                         std::to_string(first.tags) + " tags" +
+                         "); check that these are images of the board and that --target describes it as printed "
+                         "(hexcal detect --images IMAGE says what an image holds)");
+  }
   if (usable < options.min_views) {
     return Status::Failed("too few usable views: " + std::to_string(usable) + " of " + std::to_string(count) +
                           " images show at least " + std::to_string(options.min_tags_per_view) +

@@ -2,9 +2,19 @@
 // videoio (image_codecs.h says why). Every OpenCV exception stays in here.
 #include "vision/opencv_io_plugin.h"
 
+#include <cstdarg>
 #include <exception>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
+
+#ifdef HEXCAL_HAVE_AVUTIL
+extern "C" {
+#include <libavutil/log.h>
+}
+#endif
+#ifdef HEXCAL_HAVE_GLIB
+#include <glib.h>
+#endif
 
 namespace hexcal {
 namespace {
@@ -74,11 +84,34 @@ VideoStream* OpenDevice(int index, int api, std::string* error) {
   return OpenWith([&] { return std::make_unique<cv::VideoCapture>(index, api); }, error);
 }
 
+#ifdef HEXCAL_HAVE_AVUTIL
+void DropFfmpegLine(void*, int, const char*, va_list) {}
+#endif
+#ifdef HEXCAL_HAVE_GLIB
+// GLib's errors abort the process whatever the handler; say why first.
+void DropGlibLine(const gchar* domain, GLogLevelFlags level, const gchar* message, gpointer data) {
+  if ((level & G_LOG_LEVEL_ERROR) != 0) g_log_default_handler(domain, level, message, data);
+}
+#endif
+
+// FFmpeg's lines ("[mov,mp4,m4a,3gp,3g2,mj2 @ 0x...] moov atom not found" for
+// a corrupt video) and GLib's (GStreamer's warnings) on stderr or dropped.
+void ShowLibraryLogs(bool shown) {
+#ifdef HEXCAL_HAVE_AVUTIL
+  av_log_set_callback(shown ? av_log_default_callback : DropFfmpegLine);
+#endif
+#ifdef HEXCAL_HAVE_GLIB
+  g_log_set_default_handler(shown ? g_log_default_handler : DropGlibLine, nullptr);
+#endif
+  (void)shown;
+}
+
 }  // namespace
 }  // namespace hexcal
 
 extern "C" __attribute__((visibility("default"))) const hexcal::OpenCvIoPlugin* hexcal_opencv_io_plugin() {
-  static const hexcal::OpenCvIoPlugin plugin = {hexcal::kOpenCvIoPluginVersion, hexcal::Decode, hexcal::Encode,
-                                                hexcal::OpenFile, hexcal::OpenDevice};
+  static const hexcal::OpenCvIoPlugin plugin = {
+      hexcal::kOpenCvIoPluginVersion, hexcal::Decode, hexcal::Encode, hexcal::OpenFile, hexcal::OpenDevice,
+      hexcal::ShowLibraryLogs};
   return &plugin;
 }

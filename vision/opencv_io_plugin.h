@@ -19,9 +19,11 @@ struct OpenCvIoPlugin {
   // nullptr and `error` set when the file or device cannot be opened.
   VideoStream* (*open_video_file)(const std::string& path, std::string* error);
   VideoStream* (*open_video_device)(int index, int api, std::string* error);
+  // FFmpeg's and GLib's log lines on stderr or dropped (library_logs.h).
+  void (*show_library_logs)(bool shown);
 };
 
-constexpr int kOpenCvIoPluginVersion = 2;
+constexpr int kOpenCvIoPluginVersion = 3;
 
 }  // namespace hexcal
 

@@ -32,6 +32,7 @@
 #include "core/session_lock.h"
 #include "core/status.h"
 #include "workflow/controller.h"
+#include "workflow/device_urls.h"
 #include "workflow/frame_source.h"
 
 namespace hexcal::workflow {

@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
+#include "vision/library_logs.h"
 #include "workflow/glib_handles.h"
 
 namespace hexcal::workflow {
@@ -20,6 +22,14 @@ std::string Number(double value) {
   std::ostringstream text;
   text << value;
   return text.str();
+}
+
+// Aravis' own lines on stderr ("[12:00:01.234] 🅸 policies> ..." by default)
+// only with hexcal --verbose (vision/library_logs.h): then its warnings, or
+// what $ARV_DEBUG asks for; else none, whatever $ARV_DEBUG says.
+void ApplyLibraryLogsToAravis() {
+  const char* asked = std::getenv("ARV_DEBUG");
+  arv_debug_enable(!LibraryLogsShown() ? "all:0" : asked != nullptr && *asked != '\0' ? asked : "all:1");
 }
 
 std::string CamerasSeen() {
@@ -253,6 +263,7 @@ std::string DescribeCamera(ArvCamera* camera, const std::string& url) {
 }  // namespace
 
 std::vector<std::string> ListAravisCameras() {
+  ApplyLibraryLogsToAravis();
   arv_update_device_list();
   std::vector<std::string> cameras;
   for (unsigned k = 0; k < arv_get_n_devices(); ++k) {
@@ -267,6 +278,7 @@ std::vector<std::string> ListAravisCameras() {
 StatusOr<std::unique_ptr<FrameSource>> OpenAravisFrameSource(const std::string& url) {
   StatusOr<AravisUrl> parsed = ParseAravisUrl(url);
   if (!parsed.ok()) return parsed.status();
+  ApplyLibraryLogsToAravis();
   GErrorHolder error;
   GObjectPtr<ArvCamera> camera(arv_camera_new(parsed->device_id.c_str(), error.out()));
   if (!camera) {

@@ -17,6 +17,7 @@
 #include <regex>
 #include <thread>
 
+#include "workflow/device_urls.h"
 #include "workflow/fake_genicam_camera.h"
 #include "workflow/frame_source.h"
 

@@ -1,6 +1,6 @@
 // Robot controllers for the Acquire step (docs/acquisition.md): one
 // interface, opened from a URL, for the CLI (`hexcal acquire --controller URL`)
-// and the GUI's Acquire step alike.
+// and the GUI's Acquire step alike; OpenController (device_urls.h) opens one by URL.
 //
 //   sim                    the sim world (workflow/sim_world.h): a hidden true
 //                          robot that the nominal robot's IK drives
@@ -74,14 +74,9 @@ struct ControllerOptions {
 // The accepted URL forms, for messages and --help.
 constexpr const char* kControllerForms = "sim, linuxcnc://HOST:PORT";
 
-StatusOr<std::unique_ptr<Controller>> OpenController(const std::string& url, const ControllerOptions& options = {});
-
 // Every controller refuses a pose the robot cannot take before moving: bad
 // input naming the pose and the limit it breaks by how much.
 Status CheckPoseInWorkspace(const Robot& robot, const Vector6d& pose);
-// The centre of the robot's sampling box (robot unit, degrees; zero without
-// one): where the sim machine starts, and the LinuxCNC controller's via pose.
-Vector6d WorkspaceCentre(const Robot& robot);
 // "(1, 2, 53, 0, 0, 5)": a pose in messages.
 std::string PoseText(const Vector6d& pose);
 

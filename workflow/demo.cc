@@ -180,10 +180,13 @@ std::string RecordedText(const DemoRequest& request, LengthUnit unit) {
          " per coordinate)";
 }
 
-std::string FormatPlanLine(int candidates, const PlanResult& plan) {
+// O1 and O2 with their unit and meaning (issue 39: they were bare numbers).
+std::string FormatPlanLine(int candidates, const PlanResult& plan, const std::string& unit) {
   std::ostringstream line;
-  line << "      " << candidates << " candidates; O1 " << plan.initial.o1 << " -> " << plan.final.o1 << ", O2 "
-       << plan.initial.o2 << " -> " << plan.final.o2 << " (random set -> plan) in " << plan.iterations << " iterations";
+  line << "      " << candidates << " candidates; O1 " << plan.initial.o1 << " -> " << plan.final.o1 << " " << unit
+       << ", O2 " << plan.initial.o2 << " -> " << plan.final.o2 << " (random set -> plan) in " << plan.iterations
+       << " iterations (larger is better: O1 the volume of the parameters' uncertainty, in " << unit
+       << "; O2 sigma_min / sigma_max, a ratio; hexcal indices says more)";
   return line.str();
 }
 
@@ -266,7 +269,7 @@ StatusOr<DemoResult> RunDemo(const DemoRequest& request, const JobHooks& hooks) 
   StatusOr<PlanResult> plan =
       request.random_poses ? RandomDemoPoses(request, model) : PlanDemo(request, model, hooks, &result.plan_candidates);
   if (!plan.ok()) return plan.status();
-  if (!request.random_poses) hooks.Note(FormatPlanLine(result.plan_candidates, *plan));
+  if (!request.random_poses) hooks.Note(FormatPlanLine(result.plan_candidates, *plan, result.length_unit));
   result.random_poses = request.random_poses;
   result.from_pixels = request.from_pixels && request.instrument == Instrument::kCamera;
   result.instrument = request.instrument;

@@ -14,7 +14,6 @@
 #include "core/simulation.h"
 #include "vision/image_codecs.h"
 #include "vision/renderer.h"
-#include "workflow/controller.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -126,8 +125,8 @@ Status RecordDemoSession(const DemoScene& scene, const std::string& robot_name, 
       static_cast<int>(poses.size()), 2,
       [&](int index, int) {
         const size_t j = static_cast<size_t>(index);
-        Pose camera_from_target = Compose(
-            Compose(Inverse(scene.base_from_camera), scene.truth.PoseFromVector(poses[j])), scene.platform_from_target);
+        Pose camera_from_target =
+            CameraFromTarget(scene.base_from_camera, scene.truth.PoseFromVector(poses[j]), scene.platform_from_target);
         camera_from_target.position *= to_target_unit;
         const RenderedView view = renderer.Render(camera_from_target, j);
         StatusOr<std::string> png = EncodePng(view.image);

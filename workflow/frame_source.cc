@@ -8,37 +8,15 @@
 
 #include "core/atomic_file.h"
 #include "vision/image_codecs.h"
-#include "workflow/sim_world.h"
-
-#ifdef HEXCAL_HAVE_ARAVIS
-#include "workflow/aravis_frame_source.h"
-#endif
 
 namespace hexcal::workflow {
 namespace {
 
 namespace fs = std::filesystem;
 
-Status BadUrl(const std::string& url, const std::string& problem) {
-  return Status::Error("camera '" + url + "': " + problem + "; accepted forms: " + kFrameSourceForms);
-}
-
 double MillisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
-
-class SimFrameSource final : public FrameSource {
- public:
-  explicit SimFrameSource(std::shared_ptr<SimWorld> world) : world_(std::move(world)) {}
-  StatusOr<cv::Mat> Grab(std::chrono::milliseconds) override { return world_->RenderFrame(); }
-  std::string Describe() const override {
-    const Camera& camera = world_->scene().camera;
-    return "sim camera (" + std::to_string(camera.width) + "x" + std::to_string(camera.height) + ", rendered)";
-  }
-
- private:
-  std::shared_ptr<SimWorld> world_;
-};
 
 // An image file: the same frame at every Grab (a still scene, or a test).
 class StillImageSource final : public FrameSource {
@@ -110,8 +88,14 @@ bool IsStillImage(const std::string& path) {
   return false;
 }
 
-StatusOr<std::unique_ptr<FrameSource>> OpenFile(const std::string& url, const std::string& path) {
-  if (path.empty()) return BadUrl(url, "no path after 'file:'");
+}  // namespace
+
+Status BadFrameSourceUrl(const std::string& url, const std::string& problem) {
+  return Status::Error("camera '" + url + "': " + problem + "; accepted forms: " + kFrameSourceForms);
+}
+
+StatusOr<std::unique_ptr<FrameSource>> OpenFileFrameSource(const std::string& url, const std::string& path) {
+  if (path.empty()) return BadFrameSourceUrl(url, "no path after 'file:'");
   // A FIFO or /dev/zero said "no such file"; a video has no size cap of its own.
   if (Status s = CheckFileForReading(path, std::numeric_limits<size_t>::max()); !s.ok()) return s.Prefixed(url + ": ");
   if (IsStillImage(path)) {
@@ -124,10 +108,10 @@ StatusOr<std::unique_ptr<FrameSource>> OpenFile(const std::string& url, const st
   return std::unique_ptr<FrameSource>(std::make_unique<CaptureSource>(url, std::move(*capture), false));
 }
 
-StatusOr<std::unique_ptr<FrameSource>> OpenV4l2(const std::string& url, const std::string& device) {
+StatusOr<std::unique_ptr<FrameSource>> OpenV4l2FrameSource(const std::string& url, const std::string& device) {
   const bool digits = !device.empty() && device.size() <= 3 &&
                       std::all_of(device.begin(), device.end(), [](unsigned char c) { return std::isdigit(c); });
-  if (!digits) return BadUrl(url, "expected a device number after 'v4l2:' (v4l2:0 is /dev/video0)");
+  if (!digits) return BadFrameSourceUrl(url, "expected a device number after 'v4l2:' (v4l2:0 is /dev/video0)");
   StatusOr<std::unique_ptr<VideoStream>> capture = OpenVideoDevice(std::stoi(device), cv::CAP_V4L2);
   if (!capture.ok())
     return Status::IoError(url + ": cannot open /dev/video" + device +
@@ -135,35 +119,12 @@ StatusOr<std::unique_ptr<FrameSource>> OpenV4l2(const std::string& url, const st
   return std::unique_ptr<FrameSource>(std::make_unique<CaptureSource>(url, std::move(*capture), true));
 }
 
-}  // namespace
-
 Status FrameSource::SetExposure(double) {
   return Status::Error(Describe() + ": setting the exposure is not supported by this camera");
 }
 
 Status FrameSource::SetGain(double) {
   return Status::Error(Describe() + ": setting the gain is not supported by this camera");
-}
-
-StatusOr<std::unique_ptr<FrameSource>> OpenFrameSource(const std::string& url, const FrameSourceOptions& options) {
-  if (url == "sim") {
-    if (!options.sim) return Status::Error("camera 'sim' looks at the sim world: use it with --controller sim");
-    return std::unique_ptr<FrameSource>(std::make_unique<SimFrameSource>(options.sim));
-  }
-  const size_t colon = url.find(':');
-  const std::string scheme = colon == std::string::npos ? url : url.substr(0, colon);
-  const std::string rest = colon == std::string::npos ? "" : url.substr(colon + 1);
-  if (scheme == "file") return OpenFile(url, rest);
-  if (scheme == "v4l2") return OpenV4l2(url, rest);
-  if (scheme == "aravis") {
-#ifdef HEXCAL_HAVE_ARAVIS
-    return OpenAravisFrameSource(url);
-#else
-    return Status::Error("camera '" + url +
-                         "': this hexcal was built without Aravis (install libaravis-dev: scripts/install-deps.sh)");
-#endif
-  }
-  return BadUrl(url, url.empty() ? "empty URL" : "unknown kind '" + scheme + "'");
 }
 
 }  // namespace hexcal::workflow

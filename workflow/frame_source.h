@@ -1,6 +1,6 @@
 // Cameras for the Acquire step (docs/acquisition.md): one interface, opened
-// from a URL, so that the CLI (`hexcal acquire --camera URL`) and the GUI's
-// Acquire step take frames the same way.
+// from a URL (OpenFrameSource, device_urls.h), so that the CLI (`hexcal
+// acquire --camera URL`) and the GUI's Acquire step take frames the same way.
 //
 //   sim            the sim world's camera (workflow/sim_world.h): the board
 //                  rendered at the simulated platform's true pose
@@ -53,6 +53,11 @@ struct FrameSourceOptions {
 // The accepted URL forms, for messages and --help.
 constexpr const char* kFrameSourceForms = "sim, v4l2:N, file:PATH, aravis:NAME[?exposure=US&gain=DB]";
 
-StatusOr<std::unique_ptr<FrameSource>> OpenFrameSource(const std::string& url, const FrameSourceOptions& options = {});
+// The refusal of a camera URL: bad input naming the URL, the problem and the forms.
+Status BadFrameSourceUrl(const std::string& url, const std::string& problem);
+// file:PATH (`path` after the colon) and v4l2:N (`device`); OpenFrameSource
+// (device_urls.h) opens every kind by URL.
+StatusOr<std::unique_ptr<FrameSource>> OpenFileFrameSource(const std::string& url, const std::string& path);
+StatusOr<std::unique_ptr<FrameSource>> OpenV4l2FrameSource(const std::string& url, const std::string& device);
 
 }  // namespace hexcal::workflow

@@ -18,6 +18,7 @@
 #include "tests/fake_line_server.h"
 #include "tests/robot_presets.h"
 #include "tests/test_support.h"
+#include "workflow/device_urls.h"
 #include "workflow/line_client.h"
 #include "workflow/linuxcnc_geometry.h"
 

@@ -13,6 +13,7 @@
 #include "core/forward_kinematics.h"
 #include "core/robot_io.h"
 #include "workflow/controller.h"
+#include "workflow/device_urls.h"
 #include "workflow/hal_push.h"
 #include "workflow/linuxcnc_controller.h"
 #include "workflow/linuxcnc_geometry.h"

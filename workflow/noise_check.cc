@@ -10,7 +10,7 @@
 #include "core/robot_io.h"
 #include "vision/measure.h"
 #include "workflow/point_session.h"
-#include "workflow/session_calibrate.h"
+#include "workflow/session_models.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -113,7 +113,7 @@ StatusOr<NoiseCheck> CheckSessionNoise(const NoiseCheckRequest& request, const J
   if (!figures.ok()) return figures.status();
   check.figures = *figures;
   check.judgement = Judge(figures->ratio);
-  const std::string record = (fs::path(dir) / kNoiseCheckFile).string();
+  const std::string record = SessionPaths(dir).noise_check;
   if (Status s = WriteFileAtomically(record, ToJson(check).dump(2) + "\n"); !s.ok()) return s;
   return check;
 }

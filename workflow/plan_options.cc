@@ -30,20 +30,8 @@ std::string JoinNames(const std::vector<std::string>& names) {
 template <typename Field>
 Spec Number(std::string key, std::string label, OptionType type, std::string unit, double min, double max,
             std::string help, Field field) {
-  Spec spec;
-  spec.key = std::move(key);
-  spec.label = std::move(label);
-  spec.type = type;
-  spec.unit = std::move(unit);
-  spec.min = min;
-  spec.max = max;
-  spec.help = std::move(help);
-  spec.get_number = [field](const PlanSetup& s) { return static_cast<double>(field(const_cast<PlanSetup&>(s))); };
-  spec.set_number = [field](PlanSetup& s, double v) {
-    auto& target = field(s);
-    target = static_cast<std::remove_reference_t<decltype(target)>>(v);
-  };
-  return spec;
+  return NumberOption<PlanSetup>(std::move(key), std::move(label), type, std::move(unit), min, max, std::move(help),
+                                 field);
 }
 
 Spec Choice(std::string key, std::string label, OptionType type, std::vector<std::string> choices, std::string help,
@@ -57,6 +45,12 @@ Spec Choice(std::string key, std::string label, OptionType type, std::vector<std
   spec.get_choice = std::move(get);
   spec.set_choice = std::move(set);
   return spec;
+}
+
+// An option whose range is the planner's own rule (core/ioops.h), taken whole.
+Spec Planner(const std::string& key) {
+  return NestedOption<PlanSetup>(*FindOption(PlannerOptionSpecs(), key),
+                                 [](PlanSetup& s) -> PlannerOptions& { return s.planner; });
 }
 
 void AddCriteria(OptionTable<PlanSetup>* t) {
@@ -74,14 +68,11 @@ void AddCriteria(OptionTable<PlanSetup>* t) {
       [](PlanSetup& s, const std::string& v) {
         s.planner.secondary = v == "none" ? std::nullopt : ParseCriterion(v);
       }));
-  t->push_back(Number("keep", "Keep on primary", OptionType::kNumber, "fraction", 0.01, 1,
-                      "section 6.2: fraction of AddFind's results kept on the primary before the secondary picks",
-                      [](PlanSetup& s) -> double& { return s.planner.keep; }));
+  t->push_back(Planner("keep"));
 }
 
 void AddSearch(OptionTable<PlanSetup>* t) {
-  t->push_back(Number("poses", "Poses N", OptionType::kInteger, "poses", 7, 100000, "N, the poses in the plan",
-                      [](PlanSetup& s) -> int& { return s.planner.num_poses; }));
+  t->push_back(Planner("poses"));
   t->push_back(Number("tabu", "Tabu list n", OptionType::kInteger, "poses", 0, 100000,
                       "section 4.3: the last n added poses may not be removed; 0 turns Tabu off",
                       [](PlanSetup& s) -> int& { return s.planner.tabu; }));

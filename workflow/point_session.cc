@@ -9,6 +9,7 @@
 #include "core/csv.h"
 #include "core/point_fit.h"
 #include "core/reflector_estimate.h"
+#include "workflow/session_models.h"
 #include "workflow/json_fields.h"
 
 namespace hexcal::workflow {
@@ -157,8 +158,43 @@ StatusOr<std::string> DescribePointPoses(const PointFiles& files, const std::vec
          (loaded->estimated ? " (estimated from the poses)" : "");
 }
 
+StatusOr<PointFiles> SessionPointFiles(const std::string& dir, const SessionConfig& config, bool with_noise_factor) {
+  PointFiles files{ResolveSessionFile(dir, config.points),
+                   config.reflectors.empty() ? "" : ResolveSessionFile(dir, config.reflectors), config.point_sigma};
+  if (!with_noise_factor) return files;
+  StatusOr<double> factor = SessionNoiseFactor(dir);
+  if (!factor.ok()) return factor.status();
+  files.noise_factor = *factor;
+  return files;
+}
+
+StatusOr<PointPoseReview> ReviewPointPoses(const PointFiles& files, const std::vector<std::string>& poses) {
+  StatusOr<LoadedPoints> loaded = LoadPoints(files);
+  if (!loaded.ok()) return loaded.status();
+  std::map<std::string, const PointSet*> by_name;
+  for (const PointSet& set : loaded->sets) by_name[set.pose] = &set;
+  PointPoseReview review;
+  review.reflectors = static_cast<int>(loaded->reflectors.size());
+  review.reflectors_estimated = loaded->estimated;
+  const std::string file = fs::path(files.points).filename().string();
+  for (const std::string& pose : poses) {
+    PointPoseFit row{pose, "no_points", "no points in " + file, 0, 0};
+    const auto found = by_name.find(pose);
+    if (found != by_name.end()) {
+      row.points = static_cast<int>(found->second->points.size());
+      const StatusOr<PointFit> fit = FitPointPose(loaded->reflectors, found->second->points);
+      row.status = fit.ok() ? "ok" : "bad_points";
+      row.message = fit.ok() ? "" : fit.status().message();
+      row.rms = fit.ok() ? fit->rms : 0;
+    }
+    review.fitted += row.status == "ok";
+    review.poses.push_back(row);
+  }
+  return review;
+}
+
 StatusOr<double> SessionNoiseFactor(const std::string& session_dir) {
-  const std::string record = (fs::path(session_dir) / kNoiseCheckFile).string();
+  const std::string record = SessionPaths(session_dir).noise_check;
   std::error_code error;
   if (!fs::exists(fs::symlink_status(record, error))) return 1.0;
   StatusOr<std::string> text = ReadFileToString(record, kMaxYamlBytes);

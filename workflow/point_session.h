@@ -61,9 +61,6 @@ struct PointMeasureResult {
 };
 StatusOr<PointMeasureResult> MeasurePointFile(const PointFiles& files, const std::string& out, bool force);
 
-// `hexcal session check-noise` keeps its result here, in the session folder (noise_check.h).
-constexpr const char* kNoiseCheckFile = "noise_check.json";
-
 // The factor a points session's fits' σ are scaled by: the measured/declared
 // ratio of DIR/noise_check.json when above 1 (the declared noise was
 // optimistic), else 1, and 1 without a check.
@@ -72,5 +69,32 @@ StatusOr<double> SessionNoiseFactor(const std::string& session_dir);
 // The same files read only to say whether they load and cover legs.csv: for
 // `hexcal session status` ("24 point sets, 4 reflectors estimated").
 StatusOr<std::string> DescribePointPoses(const PointFiles& files, const std::vector<LegsRow>& rows);
+
+// The files session.yaml names, resolved against the session folder, with the
+// σ the points file gives none for and the factor of noise_check.json (1
+// without one, or when `with_noise_factor` is false).
+StatusOr<PointFiles> SessionPointFiles(const std::string& session_dir, const SessionConfig& config,
+                                       bool with_noise_factor = true);
+
+// Each pose's fit as the GUI's Measure step lists it: the points of the pose
+// fitted to the reflectors, or why not. Unlike MeasurePointPoses, a pose the
+// points file lacks is a row ("no_points"), not an error, so that the list
+// shows what else fits.
+struct PointPoseFit {
+  std::string pose;
+  std::string status;   // "ok", "bad_points" (the fit failed: message says why) or "no_points"
+  std::string message;  // why not ok; empty when ok
+  int points = 0;       // measured points of the pose
+  double rms = 0;       // of the point residuals, robot unit (ok only)
+};
+struct PointPoseReview {
+  std::vector<PointPoseFit> poses;  // in the order asked for
+  int reflectors = 0;
+  bool reflectors_estimated = false;
+  int fitted = 0;  // poses whose status is ok
+};
+// Error: the points file or the reflector file does not load, or the
+// reflectors cannot be estimated.
+StatusOr<PointPoseReview> ReviewPointPoses(const PointFiles& files, const std::vector<std::string>& poses);
 
 }  // namespace hexcal::workflow

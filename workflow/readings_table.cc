@@ -5,9 +5,12 @@
 #include <set>
 #include <sstream>
 
+#include "core/atomic_file.h"
 #include "core/csv.h"
+#include "core/point_file.h"
 #include "core/session.h"
 #include "vision/measure.h"
+#include "workflow/session_calibrate.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -24,13 +27,26 @@ std::set<std::string> ImageNames(const std::string& folder) {
   return names;
 }
 
-// legs.csv's rows as cells; a missing file has none.
-StatusOr<std::vector<ReadingsRow>> RecordedRows(const std::string& path, const std::set<std::string>& images) {
+// The poses a points session's points file has; none when it does not load
+// (yet: the tracker may write it later).
+std::set<std::string> PoseNames(const std::string& dir, const SessionConfig& config) {
+  std::set<std::string> names;
+  StatusOr<std::string> text = ReadFileToString(ResolveSessionFile(dir, config.points), kMaxTableBytes);
+  if (!text.ok()) return names;
+  StatusOr<PointSets> sets = ParsePointFile(*text, config.points, config.point_sigma);
+  if (sets.ok())
+    for (const PointSet& set : *sets) names.insert(set.pose);
+  return names;
+}
+
+// legs.csv's rows as cells, keyed by `key`; a missing file has none.
+StatusOr<std::vector<ReadingsRow>> RecordedRows(const std::string& path, const std::string& key,
+                                                const std::set<std::string>& images) {
   std::error_code error;
   if (!fs::exists(fs::symlink_status(path, error))) return std::vector<ReadingsRow>{};
   StatusOr<CsvTable> table = ReadCsv(path);
   if (!table.ok()) return table.status();
-  StatusOr<int> image = ColumnIndex(*table, "image");
+  StatusOr<int> image = ColumnIndex(*table, key);
   if (!image.ok()) return image.status();
   std::array<int, kNumLegs> legs{};
   for (int i = 0; i < kNumLegs; ++i) {
@@ -70,8 +86,11 @@ StatusOr<std::vector<ReadingsRow>> RecordedRows(const std::string& path, const s
 
 StatusOr<std::vector<ReadingsRow>> ReadReadingsTable(const std::string& dir) {
   const SessionPaths paths(dir);
-  const std::set<std::string> images = ImageNames(paths.images);
-  StatusOr<std::vector<ReadingsRow>> rows = RecordedRows(paths.legs, images);
+  // A session.yaml that does not load: read as a camera session's (the status says what is wrong).
+  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
+  const bool points = config.ok() && config->instrument == Instrument::kPoints;
+  const std::set<std::string> images = points ? PoseNames(dir, *config) : ImageNames(paths.images);
+  StatusOr<std::vector<ReadingsRow>> rows = RecordedRows(paths.legs, points ? "pose" : "image", images);
   if (!rows.ok()) return rows.status();
   std::set<std::string> recorded;
   for (const ReadingsRow& row : *rows) recorded.insert(row.image);

@@ -71,12 +71,10 @@ StatusOr<SessionInputs> LoadSessionInputs(const std::string& dir) {
 // to its points; the session's pose noise then comes from the fits.
 StatusOr<CameraPoses> MeasurePointSession(const std::string& dir, SessionInputs* in, const JobHooks& hooks) {
   const SessionConfig& config = in->config;
-  StatusOr<double> factor = SessionNoiseFactor(dir);  // hexcal session check-noise's, 1 without
-  if (!factor.ok()) return factor.status();
-  const PointFiles files{ResolveSessionFile(dir, config.points),
-                         config.reflectors.empty() ? "" : ResolveSessionFile(dir, config.reflectors),
-                         config.point_sigma, *factor};
-  StatusOr<PointPoses> measured = MeasurePointPoses(files, in->legs, config.noise, hooks);
+  // Scaled by hexcal session check-noise's ratio, 1 without.
+  StatusOr<PointFiles> files = SessionPointFiles(dir, config);
+  if (!files.ok()) return files.status();
+  StatusOr<PointPoses> measured = MeasurePointPoses(*files, in->legs, config.noise, hooks);
   if (!measured.ok()) return measured.status();
   const int ok = static_cast<int>(in->legs.size()) - measured->left_out;
   if (ok < kMinBoardPoses)
@@ -302,24 +300,6 @@ CalibrationOptions SessionCalibrationOptions(const NoiseModel& noise, const Outl
   calibration.uncertainty_scale = UncertaintyScale::kAtLeastAPriori;
   calibration.outliers = outliers;
   return calibration;
-}
-
-std::string ResolveSessionFile(const std::string& dir, const std::string& name) {
-  std::error_code error;
-  const fs::path in_session = fs::path(dir) / name;
-  return fs::exists(in_session, error) ? in_session.string() : name;
-}
-
-StatusOr<SessionModels> LoadSessionModels(const std::string& dir) {
-  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
-  if (!config.ok()) return config.status();
-  StatusOr<Robot> robot = LoadRobot(ResolveSessionFile(dir, config->robot));
-  if (!robot.ok()) return robot.status();
-  StatusOr<Camera> camera = LoadCamera(ResolveSessionFile(dir, config->camera));
-  if (!camera.ok()) return camera.status();
-  StatusOr<Target> target = LoadTarget(ResolveSessionFile(dir, config->target));
-  if (!target.ok()) return target.status();
-  return SessionModels{std::move(*config), std::move(*robot), std::move(*camera), std::move(*target)};
 }
 
 namespace {

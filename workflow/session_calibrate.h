@@ -23,6 +23,7 @@
 #include "vision/target.h"
 #include "workflow/calibration_report.h"
 #include "workflow/calibration_summary.h"
+#include "workflow/session_models.h"
 #include "workflow/session_pixels.h"
 #include "workflow/session_results.h"
 
@@ -45,19 +46,6 @@ struct CalibrateSessionRequest {
 // calibrate" (progress: legs). A cancelled run returns Status::Cancelled and
 // writes nothing new to results/.
 StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& request, const JobHooks& hooks = {});
-
-// A name in session.yaml: a file relative to the session folder when one
-// exists there, otherwise as given (a preset name or a path).
-std::string ResolveSessionFile(const std::string& dir, const std::string& name);
-
-// The session's configuration and the robot, camera and target it names, loaded.
-struct SessionModels {
-  SessionConfig config;
-  Robot robot;
-  Camera camera;
-  Target target;
-};
-StatusOr<SessionModels> LoadSessionModels(const std::string& dir);
 
 // The options `calibrate --session` calibrates with: weighted by each image's
 // own pose covariance and the model's reading noise; σ at least the a priori

@@ -18,7 +18,22 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kLegsHeader{"image", "L1", "L2", "L3", "L4", "L5", "L6", "holdout"};
+// legs.csv's key column: `image` (camera sessions), `pose` (points sessions).
+StatusOr<std::string> KeyColumn(const std::string& dir) {
+  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
+  if (!config.ok()) return config.status();
+  return std::string(config->instrument == Instrument::kPoints ? "pose" : "image");
+}
+
+// What a points session cannot do: it has no images (docs/session.md).
+Status RefuseInPointsSession(const std::string& dir, const std::string& what) {
+  StatusOr<std::string> key = KeyColumn(dir);
+  if (!key.ok()) return key.status();
+  if (*key == "pose")
+    return Status::Error(dir + ": a points session has no images (its poses come from its points file): cannot " +
+                         what);
+  return Status::Ok();
+}
 
 EditOutcome Failed(Status status) { return EditOutcome{std::move(status), false, ""}; }
 EditOutcome Conflict(std::string text) { return EditOutcome{Status::Ok(), true, std::move(text)}; }
@@ -42,6 +57,15 @@ Status CheckImageName(const std::string& name) {
   return Status::Error(Excerpt(name) + ": not a .png, .jpg or .tif name");
 }
 
+// A pose of a points session's legs.csv: the name its points file gives it,
+// on one line (a line break would split the row).
+Status CheckPoseName(const std::string& name) {
+  const auto control = [](unsigned char c) { return c < 0x20 || c == 0x7f; };
+  if (name.empty() || std::any_of(name.begin(), name.end(), control))
+    return Status::Error(Excerpt(name) + ": not a pose name (empty, or a control character legs.csv cannot hold)");
+  return Status::Ok();
+}
+
 // Readings are finite numbers: a NaN written into legs.csv would make every
 // later command refuse the file.
 Status CheckReadings(const LegsEdit& edit) {
@@ -53,12 +77,16 @@ Status CheckReadings(const LegsEdit& edit) {
 
 // legs.csv as it is on disk; a missing file is an empty table with the usual
 // header. A file that does not parse is never rewritten: its rows would be lost.
-StatusOr<CsvTable> ReadLegsTable(const std::string& path) {
+// `key` names the rows (KeyColumn).
+StatusOr<CsvTable> ReadLegsTable(const std::string& path, const std::string& key) {
   std::error_code error;
-  if (!fs::exists(fs::symlink_status(path, error))) return CsvTable{path, kLegsHeader, {}, {}};
+  if (!fs::exists(fs::symlink_status(path, error)))
+    return CsvTable{path, {key, "L1", "L2", "L3", "L4", "L5", "L6", "holdout"}, {}, {}};
   StatusOr<CsvTable> table = ReadCsv(path);
   if (!table.ok()) return Status::Error(table.status().message() + " (fix legs.csv before recording more readings)");
-  for (const char* column : {"image", "L1", "L2", "L3", "L4", "L5", "L6"})
+  std::vector<std::string> columns = {key};
+  for (int i = 1; i <= kNumLegs; ++i) columns.push_back("L" + std::to_string(i));
+  for (const std::string& column : columns)
     if (!ColumnIndex(*table, column).ok()) return ColumnIndex(*table, column).status();
   return table;
 }
@@ -73,16 +101,16 @@ int ColumnOf(CsvTable* table, const std::string& name, const std::string& fill =
   return static_cast<int>(table->header.size()) - 1;
 }
 
-int RowOf(const CsvTable& table, const std::string& image) {
-  const int column = static_cast<int>(std::find(table.header.begin(), table.header.end(), "image") - table.header.begin());
+int RowOf(const CsvTable& table, const std::string& key, const std::string& image) {
+  const int column = static_cast<int>(std::find(table.header.begin(), table.header.end(), key) - table.header.begin());
   for (size_t r = 0; r < table.rows.size(); ++r)
     if (table.rows[r][column] == image) return static_cast<int>(r);
   return -1;
 }
 
-std::vector<std::string> RowCells(CsvTable* table, const LegsRow& row) {
+std::vector<std::string> RowCells(CsvTable* table, const std::string& key, const LegsRow& row) {
   // Every column first (a holdout column may be added), then the row's size.
-  const int image = ColumnOf(table, "image"), holdout = ColumnOf(table, "holdout");
+  const int image = ColumnOf(table, key), holdout = ColumnOf(table, "holdout");
   int legs[kNumLegs];
   for (int i = 0; i < kNumLegs; ++i) legs[i] = ColumnOf(table, "L" + std::to_string(i + 1));
   // A capture's commanded pose (core/session.h); a file without the columns
@@ -101,11 +129,11 @@ std::vector<std::string> RowCells(CsvTable* table, const LegsRow& row) {
 
 // The edit on the table in memory; a conflict text when the value the
 // operator saw is no longer there, "" when the edit applied.
-StatusOr<std::string> EditTable(CsvTable* table, const LegsEdit& edit, bool overwrite) {
-  const int row = RowOf(*table, edit.image);
+StatusOr<std::string> EditTable(CsvTable* table, const std::string& key, const LegsEdit& edit, bool overwrite) {
+  const int row = RowOf(*table, key, edit.image);
   if (edit.kind == LegsEdit::Kind::kSetRow) {
     if (row >= 0 && !overwrite) return "legs.csv already has readings for " + edit.image + " (written by another program)";
-    const std::vector<std::string> cells = RowCells(table, edit.row);
+    const std::vector<std::string> cells = RowCells(table, key, edit.row);
     if (row >= 0) {
       table->rows[row] = cells;
     } else {
@@ -162,11 +190,13 @@ namespace {
 StatusOr<CsvTable> EditedLegs(const std::string& dir, const LegsEdit& edit, bool overwrite, EditOutcome* outcome) {
   if (edit.kind == LegsEdit::Kind::kSetReading && (edit.leg < 0 || edit.leg >= kNumLegs))
     return Status::Error("leg " + std::to_string(edit.leg + 1) + ": legs are 1 to 6");
-  if (Status s = CheckImageName(edit.image); !s.ok()) return s;
+  StatusOr<std::string> key = KeyColumn(dir);
+  if (!key.ok()) return key.status();
+  if (Status s = *key == "pose" ? CheckPoseName(edit.image) : CheckImageName(edit.image); !s.ok()) return s;
   if (Status s = CheckReadings(edit); !s.ok()) return s;
-  StatusOr<CsvTable> table = ReadLegsTable(SessionPaths(dir).legs);
+  StatusOr<CsvTable> table = ReadLegsTable(SessionPaths(dir).legs, *key);
   if (!table.ok()) return table.status();
-  StatusOr<std::string> conflict = EditTable(&*table, edit, overwrite);
+  StatusOr<std::string> conflict = EditTable(&*table, *key, edit, overwrite);
   if (!conflict.ok()) return conflict.status();
   if (!conflict->empty()) {
     *outcome = Conflict(*conflict);
@@ -200,6 +230,7 @@ Status CheckWritableInside(const std::string& dir, const std::string& folder) {
 
 EditOutcome RecordCapture(const std::string& dir, const std::string& image_file, const LegsRow& row,
                           const EditOptions& options) {
+  if (Status s = RefuseInPointsSession(dir, "record an image"); !s.ok()) return Failed(s);
   StatusOr<std::string> bytes = ReadFileToString(image_file, kMaxImageBytes);
   if (!bytes.ok()) return Failed(bytes.status());
   return RecordCaptureBytes(dir, *bytes, row, options);
@@ -207,6 +238,7 @@ EditOutcome RecordCapture(const std::string& dir, const std::string& image_file,
 
 EditOutcome RecordCaptureBytes(const std::string& dir, const std::string& image_bytes, const LegsRow& row,
                                const EditOptions& options) {
+  if (Status s = RefuseInPointsSession(dir, "record an image"); !s.ok()) return Failed(s);
   if (Status s = CheckWritableInside(dir, "images"); !s.ok()) return Failed(s);
   StatusOr<SessionLock> lock = SessionLock::Acquire(dir, options.wait);
   if (!lock.ok()) return Failed(lock.status());
@@ -327,13 +359,14 @@ EditOutcome ApplyCameraEdit(const std::string& dir, const std::string& seen, con
 }
 
 Status RemoveCapture(const std::string& dir, const std::string& image, LockWait wait) {
+  if (Status s = RefuseInPointsSession(dir, "remove a capture"); !s.ok()) return s;
   if (Status s = CheckImageName(image); !s.ok()) return s;
   if (Status s = CheckWritableInside(dir, "images"); !s.ok()) return s;
   StatusOr<SessionLock> lock = SessionLock::Acquire(dir, wait);
   if (!lock.ok()) return lock.status();
-  StatusOr<CsvTable> table = ReadLegsTable(SessionPaths(dir).legs);
+  StatusOr<CsvTable> table = ReadLegsTable(SessionPaths(dir).legs, "image");
   if (!table.ok()) return table.status();
-  const int row = RowOf(*table, image);
+  const int row = RowOf(*table, "image", image);
   // The row first: a kill before the image goes leaves an image without a
   // row, which the next capture of the pose records again (acquire_step.h).
   if (row >= 0) {

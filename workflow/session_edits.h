@@ -28,7 +28,7 @@ namespace hexcal::workflow {
 struct LegsEdit {
   enum class Kind { kSetReading, kSetHoldout, kSetRow };
   Kind kind = Kind::kSetRow;
-  std::string image;  // the row's key: the image file name in images/
+  std::string image;  // the row's key: the image file name in images/, or in a points session its pose
   int leg = 0;        // kSetReading: 0..5 (L1..L6)
   // kSetReading, kSetHoldout: the value the operator saw; another value on
   // disk is a conflict. kSetRow: the row must not exist yet (else a conflict).
@@ -71,6 +71,10 @@ EditOutcome RecordCapture(const std::string& session_dir, const std::string& ima
 // by the Acquire step, workflow/acquire_step.h).
 EditOutcome RecordCaptureBytes(const std::string& session_dir, const std::string& image_bytes, const LegsRow& row,
                                const EditOptions& options = {});
+
+// In a points session legs.csv's rows are keyed by the column `pose`
+// (core/session.h): the edits above find and write that column, and the
+// captures below, which add images, are refused.
 
 // legs.csv replaced by `legs_file` (the GUI's "Import readings"), under the
 // lock; if the session's rows do not load with it, or a reading is not

@@ -15,6 +15,7 @@
 #include "vision/camera.h"
 #include "vision/target.h"
 #include "workflow/demo.h"
+#include "workflow/readings_table.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_results.h"
 
@@ -54,6 +55,44 @@ TEST(SessionEdits, ACaptureTakenBackLeavesNeitherRowNorImage) {
   EXPECT_FALSE(RemoveCapture(s, "a.png").ok());         // gone already
   EXPECT_FALSE(RemoveCapture(s, "../session.yaml").ok());  // never outside images/
   EXPECT_TRUE(fs::exists(s + "/session.yaml"));
+}
+
+// A points session's legs.csv is keyed by `pose` (issue 38): the edits find
+// and write that column, a new file gets it, captures (images) are refused,
+// and the readings table has a blank row for each pose of the points file
+// without readings.
+TEST(SessionEdits, APointsSessionsRowsAreKeyedByPose) {
+  TempDir dir;
+  const std::string s = dir.File("p");
+  SessionConfig config;
+  config.robot = "inria-left-hand";
+  config.instrument = Instrument::kPoints;
+  config.points = "points.csv";
+  config.point_sigma = 0.002;
+  ASSERT_TRUE(InitSession(s, config).ok());
+  WriteTextFile(s + "/points.csv", "pose,point,x,y,z\np1,R1,0,0,0\np2,R1,0,0,0\np3,R1,0,0,0\n");
+  LegsRow row;
+  row.image = "p1";
+  row.legs << 50, 51, 52, 53, 54, 55;
+  ASSERT_TRUE(ApplyLegsEdit(s, LegsEdit::SetRow(row)).status.ok());
+  EXPECT_EQ(ReadTextFile(s + "/legs.csv"), "pose,L1,L2,L3,L4,L5,L6,holdout\np1,50,51,52,53,54,55,0\n");
+  ASSERT_TRUE(ApplyLegsEdit(s, LegsEdit::SetReading("p1", 2, 52, 52.5)).status.ok());
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s);
+  ASSERT_TRUE(rows.ok()) << rows.status().message();
+  EXPECT_EQ((*rows)[0].legs[2], 52.5);
+  EXPECT_FALSE(ApplyLegsEdit(s, LegsEdit::SetReading("p9", 0, 50, 51)).status.ok());  // no such pose
+
+  const EditOutcome capture = RecordCaptureBytes(s, "image", row);
+  EXPECT_NE(capture.status.message().find("a points session has no images"), std::string::npos)
+      << capture.status.message();
+  EXPECT_FALSE(RemoveCapture(s, "a.png").ok());
+
+  StatusOr<std::vector<ReadingsRow>> table = ReadReadingsTable(s);
+  ASSERT_TRUE(table.ok()) << table.status().message();
+  ASSERT_EQ(table->size(), 3u);  // p1 recorded, p2 and p3 to type
+  EXPECT_TRUE((*table)[0].recorded && (*table)[0].image_present);
+  EXPECT_EQ((*table)[1].image, "p2");
+  EXPECT_FALSE((*table)[1].recorded);
 }
 
 TEST(SessionEdits, AnEditKeepsTheRowsAnotherProgramAppended) {

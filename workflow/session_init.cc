@@ -21,9 +21,12 @@ Status CreateSession(const std::string& dir, SessionConfig config) {
   // The names are checked as given (from the current directory), before
   // anything is written.
   if (StatusOr<Robot> robot = LoadRobot(config.robot); !robot.ok()) return robot.status();
-  if (StatusOr<Camera> camera = LoadCamera(config.camera); !camera.ok()) return camera.status();
-  if (StatusOr<Target> target = LoadTarget(config.target); !target.ok()) return target.status();
-  for (std::string* name : {&config.robot, &config.camera, &config.target}) *name = AsSessionPath(dir, *name);
+  config.robot = AsSessionPath(dir, config.robot);
+  if (config.instrument == Instrument::kCamera) {
+    if (StatusOr<Camera> camera = LoadCamera(config.camera); !camera.ok()) return camera.status();
+    if (StatusOr<Target> target = LoadTarget(config.target); !target.ok()) return target.status();
+    for (std::string* name : {&config.camera, &config.target}) *name = AsSessionPath(dir, *name);
+  }
   return InitSession(dir, config);
 }
 

@@ -21,7 +21,10 @@ std::string AsSessionPath(const std::string& dir, const std::string& name);
 
 // Loads the robot, camera and target `config` names (an error names the one
 // that does not load, and nothing is written), then InitSession with their
-// names made AsSessionPath.
+// names made AsSessionPath. A points session has no camera or target; its
+// points and reflector files are kept as given (the points file may be
+// written later; `hexcal session init` and the GUI's dialog check and place
+// them).
 Status CreateSession(const std::string& dir, SessionConfig config);
 
 }  // namespace hexcal::workflow

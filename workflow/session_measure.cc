@@ -12,7 +12,7 @@
 #include "core/sha256.h"
 #include "vision/measure.h"
 #include "workflow/json_fields.h"
-#include "workflow/session_calibrate.h"
+#include "workflow/session_models.h"
 #include "workflow/session_results.h"
 
 namespace hexcal::workflow {

@@ -107,27 +107,44 @@ StatusOr<PixelCalibrationResult> ScreenedFit(PixelCalibrationInput input, PixelC
 
 }  // namespace
 
+const OptionSpec<FromPixelsRequest>& PixelEstimatesOption() {
+  static const OptionSpec<FromPixelsRequest> spec = [] {
+    OptionSpec<FromPixelsRequest> s;
+    s.key = "estimate";
+    s.label = "Estimate";
+    s.type = OptionType::kChoiceList;
+    s.choices = {"focal", "principal", "scale", "none"};
+    s.help = "camera and target quantities the calibration from pixels estimates, comma-separated: focal, "
+             "principal, scale; or none";
+    s.get_choice = [](const FromPixelsRequest& r) {
+      std::string text;
+      if (r.focal) text += ",focal";
+      if (r.principal_point) text += ",principal";
+      if (r.target_scale) text += ",scale";
+      return text.empty() ? std::string("none") : text.substr(1);
+    };
+    s.set_choice = [](FromPixelsRequest& r, const std::string& list) {
+      r.focal = r.principal_point = r.target_scale = false;
+      for (const std::string& word : SplitOptionList(list)) {
+        r.focal = r.focal || word == "focal";
+        r.principal_point = r.principal_point || word == "principal";
+        r.target_scale = r.target_scale || word == "scale";
+      }
+    };
+    return s;
+  }();
+  return spec;
+}
+
 StatusOr<FromPixelsRequest> ParsePixelEstimates(const std::string& list) {
   FromPixelsRequest request;
+  const OptionSpec<FromPixelsRequest>& spec = PixelEstimatesOption();
+  if (Status s = ApplyOptionText(spec, list, &request, spec.Flag()); !s.ok()) return s;
+  // "none" is the whole list or absent: with a quantity beside it, it would mean both.
+  const std::vector<std::string> words = SplitOptionList(list);
+  if (words.size() > 1 && std::find(words.begin(), words.end(), "none") != words.end())
+    return Status::Error(spec.Flag() + ": none stands alone (no quantity estimated), not in a list");
   request.enabled = true;
-  request.focal = false;
-  if (list == "none") return request;
-  size_t start = 0;
-  while (start <= list.size()) {
-    const size_t end = std::min(list.find(',', start), list.size());
-    const std::string word = list.substr(start, end - start);
-    if (word == "focal") {
-      request.focal = true;
-    } else if (word == "principal") {
-      request.principal_point = true;
-    } else if (word == "scale") {
-      request.target_scale = true;
-    } else {
-      return Status::Error("--estimate: '" + word.substr(0, 40) +
-                           "' is not one of focal, principal, scale (comma-separated), or none");
-    }
-    start = end + 1;
-  }
   return request;
 }
 

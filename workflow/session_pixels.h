@@ -19,6 +19,7 @@
 
 #include "core/job_hooks.h"
 #include "core/noise_model.h"
+#include "core/option_spec.h"
 #include "core/outlier_screening.h"
 #include "core/registration.h"
 #include "core/status.h"
@@ -43,9 +44,13 @@ struct FromPixelsRequest {
   bool target_scale = false;     // estimate the printed board's scale
 };
 
-// The camera and target quantities to estimate from a comma-separated list
-// of "focal", "principal", "scale" or the single word "none" (the flag
-// --estimate); the request comes back enabled, falling back. Bad input names the word.
+// The option `estimate` (the flag --estimate): the camera and target
+// quantities the calibration from pixels estimates, a list of choices
+// "focal", "principal", "scale", or the single word "none".
+const OptionSpec<FromPixelsRequest>& PixelEstimatesOption();
+
+// The request of an `estimate` list, read by PixelEstimatesOption; it comes
+// back enabled, falling back. Bad input names the option and the choices.
 StatusOr<FromPixelsRequest> ParsePixelEstimates(const std::string& list);
 
 // What the fit needs of the session: the images in the order of the

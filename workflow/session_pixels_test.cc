@@ -61,7 +61,9 @@ TEST_P(FromPixels, IsAsAccurateAsTwoStageWithTheTrueCamera) {
 
 INSTANTIATE_TEST_SUITE_P(BothRobots, FromPixels, ::testing::Values("inria-left-hand", "deltalab-table"));
 
-TEST(ParsePixelEstimates, ReadsTheListAndNamesABadWord) {
+// --estimate is read by its option descriptor (a list of choices), as every
+// other option: a bad word gets the choices, "none" stands alone.
+TEST(ParsePixelEstimates, ReadsTheListAndNamesTheChoices) {
   StatusOr<FromPixelsRequest> request = ParsePixelEstimates("focal,scale");
   ASSERT_TRUE(request.ok());
   EXPECT_TRUE(request->enabled && request->focal && request->target_scale && !request->principal_point);
@@ -70,7 +72,11 @@ TEST(ParsePixelEstimates, ReadsTheListAndNamesABadWord) {
   EXPECT_FALSE(request->focal || request->principal_point || request->target_scale);
   request = ParsePixelEstimates("focal,zoom");
   ASSERT_FALSE(request.ok());
-  EXPECT_THAT(request.status().message(), HasSubstr("'zoom' is not one of focal, principal, scale"));
+  EXPECT_THAT(request.status().message(), HasSubstr("--estimate: expected one or more of focal, principal, scale, none"));
+  request = ParsePixelEstimates("none,focal");
+  ASSERT_FALSE(request.ok());
+  EXPECT_THAT(request.status().message(), HasSubstr("none stands alone"));
+  EXPECT_EQ(OptionText(PixelEstimatesOption(), FromPixelsRequest{}), "focal");  // the CLI's default
 }
 
 }  // namespace

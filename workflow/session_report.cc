@@ -117,6 +117,19 @@ std::string VerdictBox(const Verdict& verdict) {
   return html + "</table></div>\n";
 }
 
+// "O1 4.3 cm (the volume of ...), O2 0.012 (sigma_min / sigma_max: ...), ...":
+// each index with its unit and meaning (core/observability.h).
+std::string IndexItems(const ObservabilityIndices& o, const std::string& unit) {
+  const double values[] = {o.o1, o.o2, o.o3, o.o4};
+  std::string items;
+  for (int k = 1; k <= 4; ++k) {
+    const std::string k_unit = IndexUnit(k, unit);
+    items += std::string(k > 1 ? ", " : "") + "O" + std::to_string(k) + " " + Figure(values[k - 1]) +
+             (k_unit.empty() ? "" : " " + k_unit) + " (" + Escape(IndexMeaning(k)) + ")";
+  }
+  return items;
+}
+
 // The plan: its indices with the nominal robot (paper section 2) and the leg
 // readings of every pose against the strokes (Fig. 8).
 std::string PlanSection(const SessionPaths& paths, const Robot& nominal) {
@@ -129,8 +142,8 @@ std::string PlanSection(const SessionPaths& paths, const Robot& nominal) {
   const ObservabilityIndices o = ComputeIndices(nominal, poses);
   std::string html = "<h2>Plan</h2><p>" + std::to_string(poses.size()) +
                      " planned poses (plan.csv). Observability of the identification Jacobian with the nominal "
-                     "robot: O1 " + Figure(o.o1) + ", O2 " + Figure(o.o2) + ", O3 " + Figure(o.o3) + ", O4 " +
-                     Figure(o.o4) + ".</p>\n";
+                     "robot (larger is better): " + IndexItems(o, LengthUnitName(nominal.length_unit)) +
+                     ".</p>\n";
   // Fig. 8: planned poses crowd at the stroke ends.
   return html + ChartHtml(charts::LegReadingsChart(nominal, *plan));
 }

@@ -9,8 +9,7 @@
 #include "core/session.h"
 #include "core/sha256.h"
 #include "workflow/json_fields.h"
-#include "workflow/point_session.h"
-#include "workflow/session_calibrate.h"
+#include "workflow/session_models.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -33,7 +32,7 @@ StatusOr<std::string> HashPointConfigInputs(const std::string& dir, const Sessio
     if (!hash.ok()) return hash.status();
     (*hashes)[kind + *name] = *hash;
   }
-  const std::string check = (fs::path(dir) / kNoiseCheckFile).string();  // hexcal session check-noise's
+  const std::string check = SessionPaths(dir).noise_check;  // hexcal session check-noise's
   std::error_code error;
   if (fs::exists(fs::symlink_status(check, error))) {
     StatusOr<std::string> hash = Sha256OfFile(check, kMaxYamlBytes);

@@ -107,10 +107,8 @@ StepReport MeasureStep(const std::string& dir, const std::vector<LegsRow>& rows,
 // A points session's Measure step: the points file loads and has every row's pose.
 StepReport PointMeasureStep(const std::string& dir, const SessionConfig& config, const std::vector<LegsRow>& rows) {
   if (rows.empty()) return {"measure", StepStatus::kTodo, "no poses with readings yet"};
-  const PointFiles files{ResolveSessionFile(dir, config.points),
-                         config.reflectors.empty() ? "" : ResolveSessionFile(dir, config.reflectors),
-                         config.point_sigma};
-  StatusOr<std::string> described = DescribePointPoses(files, rows);
+  StatusOr<PointFiles> files = SessionPointFiles(dir, config, /*with_noise_factor=*/false);
+  StatusOr<std::string> described = DescribePointPoses(*files, rows);
   if (!described.ok()) return {"measure", StepStatus::kBroken, described.status().message()};
   return {"measure", StepStatus::kDone, *described};
 }

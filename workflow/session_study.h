@@ -23,8 +23,8 @@
 #include <vector>
 
 #include "core/session_lock.h"
+#include "workflow/study_outcome.h"
 #include "workflow/study_record.h"
-#include "workflow/study_step.h"
 
 namespace hexcal::workflow {
 

@@ -19,6 +19,7 @@
 #include "workflow/session_edits.h"
 #include "workflow/session_report.h"
 #include "workflow/study_report_section.h"
+#include "workflow/study_step.h"
 
 namespace hexcal::workflow {
 namespace {

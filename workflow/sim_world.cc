@@ -1,6 +1,8 @@
 #include "workflow/sim_world.h"
 
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "core/constraints.h"
 #include "core/csv.h"
@@ -10,12 +12,56 @@
 #include "core/session.h"
 #include "vision/renderer.h"
 #include "workflow/controller.h"
-#include "workflow/session_calibrate.h"
+#include "workflow/session_models.h"
 
 namespace hexcal::workflow {
 namespace {
 
+// The sim machine moves at once; settling is waited for as asked, so that a
+// run's timing is that of the real machine's settle time.
+class SimController final : public Controller {
+ public:
+  explicit SimController(std::shared_ptr<SimWorld> world) : world_(std::move(world)) {}
+
+  Status MoveTo(const Vector6d& pose) override { return world_->Command(pose); }
+  Status WaitSettled(double settle_seconds) override {
+    if (settle_seconds > 0) std::this_thread::sleep_for(std::chrono::duration<double>(settle_seconds));
+    return Status::Ok();
+  }
+  StatusOr<LegReadings> ReadLegs() override { return world_->ReadLegs(); }
+  // The sim camera renders the pose the sim world holds: no latency to wait for.
+  double DefaultSettleSeconds() const override { return 0; }
+  std::string Describe() const override {
+    return "sim controller (" + world_->scene().nominal.name + ", hidden true robot of seed " +
+           std::to_string(world_->scene().seed) + ")";
+  }
+
+ private:
+  std::shared_ptr<SimWorld> world_;
+};
+
+class SimFrameSource final : public FrameSource {
+ public:
+  explicit SimFrameSource(std::shared_ptr<SimWorld> world) : world_(std::move(world)) {}
+  StatusOr<cv::Mat> Grab(std::chrono::milliseconds) override { return world_->RenderFrame(); }
+  std::string Describe() const override {
+    const Camera& camera = world_->scene().camera;
+    return "sim camera (" + std::to_string(camera.width) + "x" + std::to_string(camera.height) + ", rendered)";
+  }
+
+ private:
+  std::shared_ptr<SimWorld> world_;
+};
+
 }  // namespace
+
+std::unique_ptr<Controller> MakeSimController(std::shared_ptr<SimWorld> world) {
+  return std::make_unique<SimController>(std::move(world));
+}
+
+std::unique_ptr<FrameSource> MakeSimFrameSource(std::shared_ptr<SimWorld> world) {
+  return std::make_unique<SimFrameSource>(std::move(world));
+}
 
 StatusOr<std::shared_ptr<SimWorld>> SimWorld::ForSession(const std::string& dir, uint64_t seed) {
   StatusOr<SessionModels> models = LoadSessionModels(dir);
@@ -74,8 +120,7 @@ cv::Mat SimWorld::RenderFrame() {
     index = frames_rendered_++;
   }
   // camera_from_target = X⁻¹ · base_from_platform · Y, in the target's unit (as RecordDemoSession).
-  Pose camera_from_target =
-      Compose(Compose(Inverse(scene_.base_from_camera), base_from_platform), scene_.platform_from_target);
+  Pose camera_from_target = CameraFromTarget(scene_.base_from_camera, base_from_platform, scene_.platform_from_target);
   camera_from_target.position *= MetresPerUnit(scene_.nominal.length_unit) / MetresPerUnit(scene_.target.length_unit);
   return renderer_->Render(camera_from_target, index).image;
 }

@@ -29,7 +29,9 @@
 #include "core/inverse_kinematics.h"
 #include "core/pose.h"
 #include "core/status.h"
+#include "workflow/controller.h"
 #include "workflow/demo_scene.h"
+#include "workflow/frame_source.h"
 
 namespace hexcal {
 class Renderer;
@@ -84,5 +86,11 @@ class SimWorld {
   std::mt19937_64 reading_noise_;
   uint64_t frames_rendered_ = 0;
 };
+
+// The `sim` controller, which moves `world` at once (settling is waited for as
+// asked), and the `sim` camera, which renders what `world` shows; opened by
+// URL through device_urls.h.
+std::unique_ptr<Controller> MakeSimController(std::shared_ptr<SimWorld> world);
+std::unique_ptr<FrameSource> MakeSimFrameSource(std::shared_ptr<SimWorld> world);
 
 }  // namespace hexcal::workflow

@@ -13,20 +13,8 @@ using Spec = OptionSpec<StudyRequest>;
 template <typename Field>
 Spec Number(std::string key, std::string label, OptionType type, std::string unit, double min, double max,
             std::string help, Field field) {
-  Spec spec;
-  spec.key = std::move(key);
-  spec.label = std::move(label);
-  spec.type = type;
-  spec.unit = std::move(unit);
-  spec.min = min;
-  spec.max = max;
-  spec.help = std::move(help);
-  spec.get_number = [field](const StudyRequest& r) { return static_cast<double>(field(const_cast<StudyRequest&>(r))); };
-  spec.set_number = [field](StudyRequest& r, double v) {
-    auto& target = field(r);
-    target = static_cast<std::remove_reference_t<decltype(target)>>(v);
-  };
-  return spec;
+  return NumberOption<StudyRequest>(std::move(key), std::move(label), type, std::move(unit), min, max,
+                                    std::move(help), field);
 }
 
 std::vector<std::string> CriterionChoices(bool with_none) {

@@ -33,38 +33,42 @@ Finding CheckPoses(const CalibrationReport& report) {
   return finding;
 }
 
-// A points session's poses whose points could not be fitted (point_session.h).
-Finding CheckUnfittedPoses(const CalibrationReport& report, VerdictLevel level) {
-  Finding finding{"unusable poses",
-                  level,
-                  std::to_string(report.unusable_images) + " of " + Plural(report.images, "pose") +
-                      " whose points do not fit",
-                  "good: none, acceptable ≤ " + Figure(100 * kUnusableFractionAcceptable) + " %",
-                  "every pose's points fitted the reflectors.",
-                  ""};
-  if (level != VerdictLevel::kGood) {
-    finding.meaning = "poses with fewer than 3 points, an outlier point or an unknown reflector are left out.";
-    finding.advice = "see the warnings of calibrate --session, which name each pose and why; measure it again";
-  }
-  return finding;
+namespace {
+
+// What the unusable-measurement finding says for each instrument.
+struct UnusableWords {
+  const char *aspect, *noun, *why, *all_fine, *meaning, *advice;
+};
+
+const UnusableWords& WordsFor(const std::string& instrument) {
+  static const UnusableWords camera{
+      "unusable images", "image", " without a usable board pose", "the board was found in every image.",
+      "images where the board was not found or fitted badly are left out.",
+      "see each image's status with hexcal measure --session; keep the whole board in view and sharp"};
+  static const UnusableWords points{  // a points session's poses (point_session.h)
+      "unusable poses", "pose", " whose points do not fit", "every pose's points fitted the reflectors.",
+      "poses with fewer than 3 points, an outlier point or an unknown reflector are left out.",
+      "see the warnings of calibrate --session, which name each pose and why; measure it again"};
+  return instrument == "points" ? points : camera;
 }
+
+}  // namespace
 
 Finding CheckUnusableImages(const CalibrationReport& report) {
   const double fraction = report.images > 0 ? static_cast<double>(report.unusable_images) / report.images : 0;
   const VerdictLevel level = report.unusable_images == 0               ? VerdictLevel::kGood
                              : fraction <= kUnusableFractionAcceptable ? VerdictLevel::kAcceptable
                                                                        : VerdictLevel::kPoor;
-  if (report.instrument == "points") return CheckUnfittedPoses(report, level);
-  Finding finding{
-      "unusable images",
-      level,
-      std::to_string(report.unusable_images) + " of " + Plural(report.images, "image") + " without a usable board pose",
-      "good: none, acceptable ≤ " + Figure(100 * kUnusableFractionAcceptable) + " %",
-      "the board was found in every image.",
-      ""};
+  const UnusableWords& words = WordsFor(report.instrument);
+  Finding finding{words.aspect,
+                  level,
+                  std::to_string(report.unusable_images) + " of " + Plural(report.images, words.noun) + words.why,
+                  "good: none, acceptable ≤ " + Figure(100 * kUnusableFractionAcceptable) + " %",
+                  words.all_fine,
+                  ""};
   if (level != VerdictLevel::kGood) {
-    finding.meaning = "images where the board was not found or fitted badly are left out.";
-    finding.advice = "see each image's status with hexcal measure --session; keep the whole board in view and sharp";
+    finding.meaning = words.meaning;
+    finding.advice = words.advice;
   }
   return finding;
 }

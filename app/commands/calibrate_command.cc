@@ -23,7 +23,8 @@ namespace hexcal::cli {
 namespace {
 
 struct CalibrateCliOptions {
-  std::string robot, measurements, out, session, loss = "none", estimate = "focal";
+  std::string robot, measurements, out, session, loss = "none";
+  std::string estimate = OptionText(workflow::PixelEstimatesOption(), workflow::FromPixelsRequest{});
   bool from_pixels = false, two_stage = false;
   double loss_scale = 1.0;
   bool weighted = false, force = false, json = false, wait = false;
@@ -232,9 +233,7 @@ void AddCalibrateCommand(CLI::App& app, int* exit_code) {
                                          "only fit the legs to the board poses (no calibration from pixels)")
                                ->needs(session)
                                ->excludes(from_pixels);
-  sub->add_option("--estimate", options->estimate,
-                  "camera and target quantities the calibration from pixels estimates, comma-separated: focal, "
-                  "principal, scale; or none")
+  sub->add_option(workflow::PixelEstimatesOption().Flag(), options->estimate, workflow::PixelEstimatesOption().help)
       ->capture_default_str()
       ->needs(session)
       ->excludes(two_stage);

@@ -3,11 +3,10 @@
 #include <iostream>
 #include <string>
 
-#include <opencv2/core/utils/logger.hpp>
-
 #include "app/commands/cli_common.h"
 #include "app/commands/terminal_text.h"
 #include "app/commands/help_examples.h"
+#include "vision/library_logs.h"
 
 namespace hexcal::cli {
 
@@ -75,12 +74,12 @@ void AddAllCommands(CLI::App& app, int* exit_code) {
 int RunHexcal(int argc, const char* const* argv) {
   CLI::App app{"hexcal: pose planning and calibration for Gough-Stewart platforms"};
   app.set_version_flag("--version", "hexcal 0.1.0");
-  app.add_flag("--verbose", "before the command: let the libraries' own messages (OpenCV's) through to stderr");
-  // hexcal says what failed in its own words; OpenCV's log lines ("[ WARN:0]
-  // ... can't open camera by index") only repeat it, or are noise.
-  const bool verbose = VerboseAsked(argc, argv);
-  cv::utils::logging::setLogLevel(verbose ? cv::utils::logging::LOG_LEVEL_INFO
-                                          : cv::utils::logging::LOG_LEVEL_SILENT);
+  app.add_flag("--verbose",
+               "before the command: let the libraries' own messages (OpenCV's, FFmpeg's, GStreamer's, Aravis') "
+               "through to stderr");
+  // hexcal says what failed in its own words; the libraries' log lines only
+  // repeat it, or are noise (vision/library_logs.h).
+  ShowLibraryLogs(VerboseAsked(argc, argv));
   int exit_code = kExitOk;
   AddAllCommands(app, &exit_code);
   const TerminalEscaping escaping;  // names from files never reach the terminal raw

@@ -40,6 +40,7 @@ const std::map<std::string, std::string>& HelpExamples() {
       {"session init",
        "hexcal session init run1 --robot inria-left-hand --camera sim-4.2mm-1024x768 --target aprilgrid-6x6"},
       {"session status", "hexcal session status example"},
+      {"session check-noise", "hexcal session check-noise run1 --images still/   # k images of one pose"},
       {"session record",
        "hexcal session record run1 --image pose_0001.png --from capture.png --legs "
        "1.21,0.83,2.07,1.71,0.42,2.93"},

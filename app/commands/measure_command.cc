@@ -40,6 +40,28 @@ int RunMeasurePoints(const MeasureCliOptions& cli, std::ostream& out, std::ostre
   return kExitOk;
 }
 
+// No image gave a pose. Bad input (exit 2, as calibrate --session has it)
+// when no image that was searched shows the target: the wrong images, or a
+// target file that does not describe the printed board. A failed computation
+// (exit 1) when images show it but fit it badly, or none could be read.
+Status NoPose(const workflow::MeasureResult& result, const std::string& diagnosis) {
+  auto count = [&](const char* status) {
+    const auto it = result.counts.find(status);
+    return it == result.counts.end() ? 0 : it->second;
+  };
+  const int hidden = count("no_target") + count("too_few_tags");
+  const int shown = count("high_rms") + count("ambiguous") + count("failed");
+  if (hidden > 0 && shown == 0) {
+    std::string statuses;
+    for (const auto& [status, n] : result.counts)
+      statuses += (statuses.empty() ? "" : ", ") + status + " " + std::to_string(n);
+    return Status::Error("no image shows the target (" + statuses + " of " + std::to_string(result.rows.size()) +
+                         " images); check that these are images of the board and that --target describes it as "
+                         "printed (hexcal detect --images IMAGE says what an image holds)");
+  }
+  return Status::Failed("no image gave a pose" + (diagnosis.empty() ? "" : ": " + diagnosis));
+}
+
 int RunMeasure(const MeasureCliOptions& cli, std::ostream& out, std::ostream& err) {
   if (!cli.points.empty()) return RunMeasurePoints(cli, out, err);
   if (cli.request.camera.empty() || cli.request.images.empty())
@@ -49,9 +71,7 @@ int RunMeasure(const MeasureCliOptions& cli, std::ostream& out, std::ostream& er
   if (!result.ok()) return ReportError(err, "measure", result.status());
   out << (cli.json ? JsonText(workflow::ToJson(*result)) : workflow::FormatMeasureSummary(*result));
   const std::string diagnosis = workflow::DiagnoseMeasurements(*result);
-  if (result->ok() == 0) {
-    return ReportError(err, "measure", Status::Failed("no image gave a pose" + (diagnosis.empty() ? "" : ": " + diagnosis)));
-  }
+  if (result->ok() == 0) return ReportError(err, "measure", NoPose(*result, diagnosis));
   if (!diagnosis.empty()) err << "hexcal measure: warning: " << diagnosis << "\n";
   return kExitOk;
 }

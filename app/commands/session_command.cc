@@ -16,9 +16,11 @@
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/point_file.h"
+#include "core/reading_units.h"
 #include "core/robot_io.h"
 #include "core/session.h"
 #include "workflow/noise_check.h"
+#include "workflow/reading_check.h"
 #include "workflow/session_edits.h"
 #include "workflow/session_init.h"
 #include "workflow/session_status.h"
@@ -142,12 +144,50 @@ Status CheckImageInSession(const SessionPaths& paths, const std::string& image) 
   return CheckFileForReading(path.string(), kMaxImageBytes);
 }
 
+// Readings as typed on the command line (issue 36: 1e300 and -1000 were
+// recorded "done"): each within a stroke length of its leg's stroke in the
+// session's robot file, the bound calibrate --measurements applies
+// (core/reading_units.h). Not the stroke itself: a real robot's readings, the
+// demo's too, fall a little outside the nominal file's strokes. Bad input
+// naming the reading, its value and the range; readings in another length
+// unit are named as such.
+Status CheckTypedLegs(const std::string& dir, const std::vector<double>& legs) {
+  StatusOr<workflow::ReadingCheck> check = workflow::SessionReadingCheck(dir);
+  if (!check.ok()) return check.status();
+  const Robot& robot = check->robot;
+  LegReadings readings;
+  for (int i = 0; i < kNumLegs; ++i) readings[i] = legs[static_cast<size_t>(i)];
+  if (Status s = CheckReadingsUnit(robot, {readings}, ""); !s.ok()) return Status::Error("--legs: " + s.message());
+  const std::string unit = " " + std::string(LengthUnitName(robot.length_unit));
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Leg& leg = robot.legs[i];
+    const double slack = kFarOutsideStrokes * (leg.stroke_max - leg.stroke_min);
+    if (readings[i] >= leg.stroke_min - slack && readings[i] <= leg.stroke_max + slack) continue;
+    return Status::Error("--legs: L" + std::to_string(i + 1) + " = " + FormatNumber(readings[i]) + unit +
+                         " is outside [" + FormatNumber(leg.stroke_min - slack) + ", " +
+                         FormatNumber(leg.stroke_max + slack) + "]" + unit + ", leg " + std::to_string(i + 1) +
+                         "'s stroke [" + FormatNumber(leg.stroke_min) + ", " + FormatNumber(leg.stroke_max) + "]" +
+                         unit + " give or take a stroke length; not saved (a typo?)");
+  }
+  return Status::Ok();
+}
+
 // One row of legs.csv, written under the session lock into legs.csv as it is
 // on disk (workflow/session_edits.h): rows others wrote are kept.
 int RunSessionRecord(const SessionRecordOptions& cli, std::ostream& out, std::ostream& err) {
   const SessionPaths paths(cli.dir);
   StatusOr<std::vector<double>> legs = ParseNumberList(cli.legs, kNumLegs, "--legs");
   if (!legs.ok()) return ReportError(err, "session record", legs.status());
+  // Images only: a points session's legs.csv is keyed by pose, and an image
+  // row written into it would break it.
+  StatusOr<SessionConfig> config = LoadSessionConfig(cli.dir);
+  if (!config.ok()) return ReportError(err, "session record", config.status());
+  if (config->instrument == Instrument::kPoints)
+    return ReportError(err, "session record",
+                       Status::Error(cli.dir + " is a points session: its legs.csv rows are poses " +
+                                     "(pose,L1..L6,holdout), not images; write them there or in the GUI's readings "
+                                     "table (Measure step)"));
+  if (Status s = CheckTypedLegs(cli.dir, *legs); !s.ok()) return ReportError(err, "session record", s);
   if (cli.from.empty())
     if (Status s = CheckImageInSession(paths, cli.image); !s.ok()) return ReportError(err, "session record", s);
   LegsRow row;

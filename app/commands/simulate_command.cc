@@ -8,6 +8,7 @@
 #include "app/commands/command_table.h"
 #include "app/commands/option_flags.h"
 #include "core/noise_model.h"
+#include "core/simulation.h"
 #include "workflow/simulate_step.h"
 
 namespace hexcal::cli {
@@ -40,7 +41,10 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
   CLI::Option* poses = sub->add_option("--poses", options->request.poses, "poses of the random set (and of boundary if given)")
                            ->check(CountRange(1, 100000))
                            ->capture_default_str();
-  sub->add_option("--runs", options->request.study.runs, "repetitions")->check(CountRange(1, 1000000))->capture_default_str();
+  const OptionSpec<SimulationOptions>& runs = *FindOption(SimulationOptionSpecs(), "runs");
+  sub->add_option(runs.Flag(), options->request.study.runs, runs.help)
+      ->check(CountRange(static_cast<long long>(runs.min), static_cast<long long>(runs.max)))
+      ->capture_default_str();
   sub->add_option("--seed", options->request.study.seed, "random seed")->capture_default_str();
   sub->add_option("--perturb", options->request.study.perturb, "half-width of the parameter perturbation (robot unit)")
       ->capture_default_str();

@@ -120,4 +120,13 @@ PY
 grep -q "v4l2:97: cannot open /dev/video97" "$dir/quiet" && ! grep -q "WARN" "$dir/quiet" || { cat "$dir/quiet"; exit 1; }
 "$hexcal" --verbose acquire --session "$s" --controller sim --camera v4l2:97 >/dev/null 2>"$dir/loud" || true
 grep -q "WARN.*cap_v4l" "$dir/loud" || { cat "$dir/loud"; exit 1; }
+# A corrupt video: hexcal's one line, not FFmpeg's ("[matroska,webm @ 0x...]
+# EBML header parsing failed"), which --verbose lets through (issue 36).
+video=$(dirname "$0")/../data/bad_inputs/video_corrupt.mkv
+code=0
+"$hexcal" acquire --session "$s" --controller sim --camera "file:$video" >/dev/null 2>"$dir/quiet" || code=$?
+[ "$code" -eq 2 ] && [ "$(wc -l <"$dir/quiet")" -eq 1 ] && grep -q "^hexcal acquire: .*not a video" "$dir/quiet" ||
+  { cat "$dir/quiet"; exit 1; }
+"$hexcal" --verbose acquire --session "$s" --controller sim --camera "file:$video" >/dev/null 2>"$dir/loud" || true
+grep -q "matroska.*EBML header parsing failed" "$dir/loud" || { cat "$dir/loud"; exit 1; }
 echo "acquire: ok"

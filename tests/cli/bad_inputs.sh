@@ -8,6 +8,9 @@
 # Images are the exception: `measure` records an unreadable image, or one
 # without the target, as a row of its (complete) measurements table, so for
 # them the output must exist and give the row that status (OUT=table:STATUS).
+# SESSION is a session folder with a plan (for acquire's --camera file:).
+# No case may let a library's own log lines through to stderr (FFmpeg's
+# "[matroska,webm @ 0x...]", OpenCV's "[ WARN:0]"): hexcal --verbose only.
 set -u
 hexcal=$1 data=$2
 corpus=$data/bad_inputs
@@ -93,9 +96,16 @@ image_truncated.jpg | 1 | truncated JPEG \(no end-of-image marker\) | measure --
 image_bad_crc.png | 1 | cannot decode: corrupt, truncated or not an image | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
 image_garbage.png | 1 | cannot decode: not a PNG, JPEG or TIFF file | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
 image_dicom_assert.png | 1 | cannot decode: not a PNG, JPEG or TIFF file | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:unreadable
-image_no_target.png | 1 | no_target: no tag of the target found | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:no_target
+image_no_target.png | 2 | no_target: no tag of the target found | measure --camera sim-4.2mm-1024x768 --images @IN@ --out @OUT@ OUT=table:no_target
+image_no_target.png | 2 | : 0 tags\); check that these are images of the board | intrinsics --images @IN@ --out @OUT@.yaml
+video_corrupt.mkv | 2 | not a video OpenCV can read | acquire --session SESSION --controller sim --camera file:@IN@
 EOF
 )
+
+session=$work/session
+"$hexcal" session init "$session" $ROBOT --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 >/dev/null || exit 1
+cp "$data/poses/inria_sample.csv" "$session/plan.csv"
+library_lines='^\[( ?(WARN|INFO|ERROR)|[a-z0-9_,]+ @ 0x)|GStreamer-|Aravis-|moov atom'
 
 cases=0 failures=0
 declare -A covered=()
@@ -114,6 +124,7 @@ while IFS='|' read -r file code pattern args; do
       ROBOT) argv+=($ROBOT) ;;
       IMAGE) argv+=("$corpus/image_garbage.png") ;;
       POSES) argv+=("$data/poses/vision_views.csv") ;;
+      SESSION) argv+=("$session") ;;
       OUT=table:*) expect_status=${word#OUT=table:} ;;
       *) word=${word//@IN@/$corpus/$file}; argv+=("${word//@OUT@/$out}") ;;
     esac
@@ -127,6 +138,8 @@ while IFS='|' read -r file code pattern args; do
     problem="exit code $got, expected $code"
   elif ! grep -Eq -- "$file.*$pattern" <<<"$output"; then
     problem="output does not name the file and match /$pattern/"
+  elif grep -Eq -- "$library_lines" <<<"$output"; then
+    problem="a library's log lines on stderr"
   elif [ -n "$expect_status" ]; then
     grep -q "$file,.*,$expect_status," "$out" 2>/dev/null || problem="no '$expect_status' row for it in $out"
   elif compgen -G "$out*" >/dev/null || compgen -G "$dir/.out*" >/dev/null; then

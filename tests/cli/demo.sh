@@ -17,6 +17,11 @@ for robot in inria-left-hand deltalab-table; do
   grep -q "\[5/5" "$dir/log"  # progress of every step
   # The virtual camera has no bias (docs/calibration.md, "Bias along the optical axis").
   grep -q "camera-frame residuals (.*, 14 images, .*): no bias along the optical axis" "$dir/log"
+  unit=$([ "$robot" = inria-left-hand ] && echo cm || echo mm)
+  # One length unit per line (issue 39: "±0.5 mm" stood beside "±0.001 cm").
+  if grep -E '\bmm\b' "$dir/log" | grep -Eq '\bcm\b'; then grep -E '\bmm\b' "$dir/log" | grep -E '\bcm\b'; exit 1; fi
+  # O1 and O2 with their unit and meaning, on the plan's line and in the report (issue 39).
+  grep -q "candidates; O1 [0-9.]* -> [0-9.]* $unit, O2 [0-9.e-]* -> [0-9.e-]* (random set -> plan) .*O1 the volume of the parameters' uncertainty, in $unit; O2 sigma_min / sigma_max, a ratio" "$dir/log"
   python3 - "$dir/summary.json" <<'PY'
 import json, sys
 s = json.load(open(sys.argv[1]))
@@ -29,6 +34,7 @@ assert v["after"]["orientation_rms"] * 3 < v["before"]["orientation_rms"], v
 assert s["usable_images"] == 18, s["usable_images"]
 PY
   report=$out/results/report.html
+  grep -q "O2 [0-9.e-]* (sigma_min / sigma_max: the conditioning of the identification Jacobian), O3 [0-9.e-]* $unit (sigma_min" "$report"
   [ "$(grep -c '<svg' "$report")" -eq 8 ]
   for section in Plan Registration "Per-corner diagnostics" Measurements Validation "Camera-frame residuals" Residuals \
       "Calibrated parameters"; do

@@ -299,6 +299,17 @@ text_and_numbers)
   cp -r s dup && cp "$data/../../fuzz/seeds/session_duplicate_key.yaml" dup/session.yaml
   expect 2 "dup/session.yaml: frames.base_from_camera: duplicate key \(lines 6 and 7\)" session status dup
   expect 2 "--legs: '0x10' is not a finite number" session record s --image a.png --legs 0x10,1,1,1,1,1 --from "$IMG"
+  # Readings more than a stroke length outside the robot file's strokes
+  # (INRIA: [0, 3.5] cm, so [-3.5, 7] cm) are refused with the reading, its
+  # value and the range (they were recorded "done"); mm on a cm robot is named.
+  expect 2 "--legs: L1 = 1e\+300 cm is outside \[-3.5, 7\] cm, leg 1's stroke \[0, 3.5\] cm give or take" \
+    session record s --image a.png --legs 1e300,1,1,1,1,1 --from "$IMG"
+  expect 2 "--legs: L1 = -1000 cm is outside \[-3.5, 7\] cm" session record s --image a.png \
+    --legs -1000,1,1,1,1,1 --from "$IMG"
+  expect 2 "--legs: L6 = 7.2 cm is outside \[-3.5, 7\] cm, leg 6's stroke" session record s --image a.png \
+    --legs 1,1,1,1,1,7.2 --from "$IMG"
+  expect 2 "--legs: readings look like mm, the robot 'inria-left-hand' is in cm: L1 = 22.1" session record s \
+    --image a.png --legs 22.1,22.4,21.9,22.0,22.3,22.2 --from "$IMG"
   expect 2 "--seed: must be at most 9007199254740992, got 9007199254740993" study --session s --seed 9007199254740993
   expect 2 "--seed: '0x10' is not a whole number in decimal digits" candidates $R --count 5 --seed 0x10 --out c.csv
   expect 2 "--seed: '010': a leading 0" candidates $R --count 5 --seed 010 --out c.csv

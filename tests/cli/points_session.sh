@@ -10,7 +10,8 @@
 #   within 20 %, and a declared σ half the truth as optimistic;
 # - the camera's: 12 renders of one pose against the board poses' covariance;
 # - bad files: a point 1 m off, a pose with 2 points, a point twice, NaN, a
-#   pose legs.csv names that the points file lacks, points in mm for a cm robot.
+#   pose legs.csv names that the points file lacks, points in mm for a cm robot;
+# - `session record` (images only) refuses a points session.
 set -eu
 hexcal=$1
 dir=$(mktemp -d)
@@ -53,6 +54,16 @@ grep -q "^Verdict: \(good\|acceptable\)$" "$dir/hand.txt" || fail "by hand: verd
   --reflectors "$demo/reflectors.csv" "$dir/refl" >"$dir/init2.txt"
 grep -q "^noise: position: 0.00[0-9]*, angle_deg: 0.0[0-9]*, leg: 0.001 (position and angle_deg from the reflectors and --point-sigma); plan with hexcal plan --noise-position" "$dir/init2.txt" ||
   fail "init with reflectors" "$dir/init2.txt"
+
+# session record writes images' rows: refused in a points session, legs.csv untouched.
+cp "$dir/hand/legs.csv" "$dir/legs_before.csv"
+if "$hexcal" session record "$dir/hand" --image a.png --legs 1,2,3,4,5,6 >"$dir/record.txt" 2>&1; then
+  fail "session record in a points session was not refused" "$dir/record.txt"
+fi
+grep -q "is a points session: its legs.csv rows are poses (pose,L1..L6,holdout), not images" "$dir/record.txt" ||
+  fail "session record: message" "$dir/record.txt"
+cmp -s "$dir/hand/legs.csv" "$dir/legs_before.csv" || fail "session record changed legs.csv" "$dir/hand/legs.csv"
+[ ! -e "$dir/hand/images/a.png" ] || fail "session record wrote an image" "$dir/record.txt"
 
 # measure --points: every pose fitted, outside a session.
 "$hexcal" measure --points "$demo/points.txt" --reflectors "$demo/reflectors.csv" --point-sigma 0.002 \

@@ -29,7 +29,7 @@ code=$?
 [ $code -eq 3 ] || fail "a second calibrate gave exit $code, not 3: $(cat "$work/second.log")"
 grep -q "session in use by PID $first (hexcal calibrate --session" "$work/second.log" ||
   fail "the refusal does not name PID $first: $(cat "$work/second.log")"
-"$hexcal" session record "$s" --image "$(ls "$s/images" | head -1)" --legs 1,2,3,4,5,6 --replace >"$work/rec.log" 2>&1
+"$hexcal" session record "$s" --image "$(ls "$s/images" | head -1)" --legs 1,2,3,1,2,3 --replace >"$work/rec.log" 2>&1
 [ $? -eq 3 ] || fail "session record during a calibration was not refused"
 "$hexcal" calibrate --session "$s" --wait >"$work/waited.log" 2>&1 || fail "calibrate --wait: $(cat "$work/waited.log")"
 wait $first || fail "the first calibrate failed: $(cat "$work/first.log")"

@@ -45,6 +45,9 @@ PY
 grep -q "^selected: IOOPS on O1, secondary O4 (rows weighted by the session.s noise model), 9 of the measured poses" "$dir/text"
 grep -q "validates better than .* % of the random subsets" "$dir/text"
 grep -q "^held-out position RMS (cm) " "$dir/text"
+# O1..O4 with their unit and meaning (issue 39).
+grep -q "^O1 (cm) " "$dir/text" && grep -q "^O2 (a ratio) " "$dir/text" && grep -q "^O4 (cm) " "$dir/text"
+grep -q "^(O1..O4: the subset's observability indices, larger is better: O1 the volume" "$dir/text"
 for figure in fig18_o1 fig18_o2 fig18_o3 fig18_o4 fig19_position fig19_orientation; do
   grep -q "</svg>" "$dir/plots/$figure.svg"
   [ "$(head -c 8 "$dir/plots/$figure.png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]

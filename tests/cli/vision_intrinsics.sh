@@ -87,6 +87,14 @@ code=0
 "$hexcal" intrinsics --images "$dir/few" --out "$dir/few.yaml" 2>"$dir/err" || code=$?
 [ "$code" -eq 1 ]  # too few usable views: a failed computation, like too few feasible poses
 grep -q "too few usable views: 2 of 2 images" "$dir/err"
+# Images, none of which shows the target: bad input (exit 2; issue 36), as
+# measure and calibrate --session have it.
+mkdir "$dir/blank"
+cp "$data/bad_inputs/image_no_target.png" "$dir/blank/grey.png"
+code=0
+"$hexcal" intrinsics --images "$dir/blank" --out "$dir/blank.yaml" 2>"$dir/err" || code=$?
+[ "$code" -eq 2 ] || { cat "$dir/err"; exit 1; }
+grep -q "no image shows the target: 0 of 1 images show at least 4 target tags (.*blank/grey.png: 0 tags)" "$dir/err"
 "$hexcal" target print --out "$dir/few/print.png" --dpi 50 >/dev/null
 code=0
 "$hexcal" intrinsics --images "$dir/few" --out "$dir/few.yaml" 2>"$dir/err" || code=$?

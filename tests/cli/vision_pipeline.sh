@@ -55,12 +55,13 @@ grep -q '^text.jpg,.*,unreadable,' "$dir/bad.csv"
 grep -q '^blank.png,.*,no_target,' "$dir/bad.csv"
 grep -q '^print.png,.*,wrong_size,' "$dir/bad.csv"
 grep -q '"unreadable": 3' "$dir/bad.json"
-# Nothing measurable at all: exit 1, the table still written.
+# No image shows the target: bad input (exit 2, as calibrate --session has
+# it; issue 36), the table still written.
 rm "$dir/bad/good.png"
 code=0
 "$hexcal" measure --camera $cam --images "$dir/bad" --out "$dir/none.csv" >/dev/null 2>"$dir/err" || code=$?
-[ "$code" -eq 1 ]
-grep -q "no image gave a pose" "$dir/err"
+[ "$code" -eq 2 ]
+grep -q "no image shows the target (no_target 1, unreadable 3, wrong_size 1 of 5 images)" "$dir/err"
 [ "$(wc -l <"$dir/none.csv")" -eq 6 ]
 [ -z "$(find "$dir" -name '.*tmp*')" ]
 echo "ok: vision pipeline"

@@ -4,6 +4,8 @@
 //   OUT/calibrated/ the demo session: planned, measured, calibrated
 //   OUT/rendered/   its 16 images, not yet in a session (the flow test loads them)
 //   OUT/session/    session.yaml and legs.csv of the same run, images/ empty
+//   OUT/points/     a points session (a simulated laser tracker, issue 38):
+//                   12 planned and 4 held-out poses, its reflector file, calibrated
 #include <filesystem>
 #include <iostream>
 
@@ -46,5 +48,13 @@ int main(int argc, char** argv) {
     return 1;
   }
   fs::copy_file(out / "calibrated" / "legs.csv", out / "session" / "legs.csv");
+  workflow::DemoRequest points = demo;
+  points.out = (out / "points").string();
+  points.instrument = Instrument::kPoints;
+  points.quick_plan = true;  // a calibrated session is wanted, not the demo's figures
+  if (StatusOr<workflow::DemoResult> made_points = workflow::RunDemo(points); !made_points.ok()) {
+    std::cerr << "make_session: " << made_points.status().message() << "\n";
+    return 1;
+  }
   return 0;
 }

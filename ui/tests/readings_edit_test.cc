@@ -28,9 +28,10 @@
 #include "ui/tests/gui_test_support.h"
 
 namespace hexcal::ui {
-namespace {
 
-QString sessions_dir;  // argv[1]: what make_session wrote
+QString sessions_dir;  // argv[1]: what make_session wrote (points_session_test.cc too)
+
+namespace {
 
 // L`leg` of `row` in legs.csv as it is on disk.
 double OnDisk(const QString& dir, int row, int leg) {

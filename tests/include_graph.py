@@ -1,0 +1,190 @@
+#!/usr/bin/env python3
+"""The include graph of hexcal's layers, checked against docs/architecture.md.
+
+A module is a header and the source of the same name (workflow/controller.h
+and workflow/controller.cc); module A depends on module B when a file of A
+includes B's header. The check fails on
+  - a cycle between modules (A includes B and B, directly or not, includes A)
+    other than the KNOWN_CYCLES below, or a known one that is gone,
+  - an include from one layer into another that the "depends on" column of
+    docs/architecture.md's layer table does not allow (transitively: app may
+    include core because workflow depends on it).
+Test files (*_test.cc, ui/tests/) are modules of their own: nothing includes
+them, so they sit in no cycle; their includes of tests/ (test support) are
+allowed. Prints every finding and exits 1, or a one-line summary and 0.
+
+  tests/include_graph.py [SOURCE_DIR]     # CTest: project/include_graph
+"""
+import os
+import re
+import sys
+
+LAYERS = ["core", "vision", "charts", "workflow", "app", "ui"]
+# Cycles known when the check was added (issue 37), each a file split in two
+# whose halves include each other (a helper header that includes the main
+# one back). They may only go: one that is broken must leave this list, and a
+# cycle not in it fails the check.
+KNOWN_CYCLES = [
+    {"core/calibration", "core/calibration_leg", "core/outlier_screening"},
+    {"core/optimal_design", "core/working_set_design"},
+    {"vision/image_codecs", "vision/opencv_io_plugin"},
+    {"vision/intrinsics", "vision/intrinsics_diagnosis"},
+    {"vision/pixel_calibration", "vision/pixel_calibration_covariance"},
+    {"workflow/calibration_verdict", "workflow/verdict_checks"},
+]
+INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
+SOURCE_SUFFIXES = (".h", ".cc", ".inc", ".c")
+
+
+def allowed_directions(architecture_md):
+    """{layer: layers it may include}, from the layer table's "depends on" column, closed transitively."""
+    direct = {}
+    for line in open(architecture_md, encoding="utf-8"):
+        cells = [c.strip() for c in line.split("|")]
+        if len(cells) < 5:
+            continue
+        match = re.fullmatch(r"`(\w+)/`", cells[1])
+        if not match or match.group(1) not in LAYERS:
+            continue
+        words = set(re.findall(r"[A-Za-z]+", cells[3]))
+        direct[match.group(1)] = {layer for layer in LAYERS if layer in words}
+    missing = [layer for layer in LAYERS if layer not in direct]
+    if missing:
+        sys.exit("include_graph: docs/architecture.md's layer table has no row for " + ", ".join(missing))
+    closed = {}
+    for layer in LAYERS:
+        seen, todo = set(), [layer]
+        while todo:
+            for dep in direct[todo.pop()]:
+                if dep not in seen:
+                    seen.add(dep)
+                    todo.append(dep)
+        closed[layer] = seen | {layer}
+    return closed
+
+
+def module_of(path):
+    return os.path.splitext(path)[0]
+
+
+def is_test(path):
+    return path.endswith("_test.cc") or "/tests/" in path
+
+
+def scan(source_dir):
+    """[(including file, included path)] of every project include in the layers' files."""
+    edges = []
+    for layer in LAYERS:
+        for root, _, files in os.walk(os.path.join(source_dir, layer)):
+            for name in sorted(files):
+                if not name.endswith(SOURCE_SUFFIXES):
+                    continue
+                full = os.path.join(root, name)
+                path = os.path.relpath(full, source_dir).replace(os.sep, "/")
+                text = open(full, encoding="utf-8", errors="replace").read()
+                for included in INCLUDE.findall(text):
+                    if included.split("/")[0] in LAYERS + ["tests"]:
+                        edges.append((path, included))
+    return edges
+
+
+def find_cycles(graph):
+    """Each strongly connected component of more than one module (Tarjan), sorted."""
+    index, low, on_stack, stack, components = {}, {}, set(), [], []
+    counter = [0]
+
+    def visit(node):
+        index[node] = low[node] = counter[0]
+        counter[0] += 1
+        stack.append(node)
+        on_stack.add(node)
+        for succ in sorted(graph.get(node, ())):
+            if succ not in index:
+                visit(succ)
+                low[node] = min(low[node], low[succ])
+            elif succ in on_stack:
+                low[node] = min(low[node], index[succ])
+        if low[node] == index[node]:
+            component = []
+            while True:
+                member = stack.pop()
+                on_stack.discard(member)
+                component.append(member)
+                if member == node:
+                    break
+            if len(component) > 1:
+                components.append(sorted(component))
+
+    sys.setrecursionlimit(10000)
+    for node in sorted(graph):
+        if node not in index:
+            visit(node)
+    return sorted(components)
+
+
+def shortest_cycle(graph, component):
+    """A shortest cycle within `component`, through one of its modules that no known cycle holds."""
+    members = set(component)
+    unknown = [m for m in component if not any(m in known for known in KNOWN_CYCLES)] or component
+    best = None
+    for start in unknown:
+        parents, frontier = {start: None}, [start]
+        while frontier and best is None:
+            following = []
+            for node in frontier:
+                for succ in sorted(graph.get(node, ())):
+                    if succ == start:
+                        path, at = [start], node
+                        while at is not None:
+                            path.append(at)
+                            at = parents[at]
+                        path.reverse()
+                        if best is None or len(path) < len(best):
+                            best = path
+                    elif succ in members and succ not in parents:
+                        parents[succ] = node
+                        following.append(succ)
+            frontier = following
+    return best
+
+
+def main():
+    source_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..")
+    allowed = allowed_directions(os.path.join(source_dir, "docs", "architecture.md"))
+    edges = scan(source_dir)
+    problems = []
+    graph = {}
+    for path, included in edges:
+        source_layer, target_layer = path.split("/")[0], included.split("/")[0]
+        if target_layer == "tests":
+            if not is_test(path):
+                problems.append(f"{path}: includes {included}, test support, outside a test")
+            continue
+        if target_layer not in allowed[source_layer]:
+            problems.append(f"{path}: includes {included}: {source_layer}/ may include only "
+                            + ", ".join(sorted(allowed[source_layer])) + " (docs/architecture.md)")
+        if not os.path.exists(os.path.join(source_dir, included)):
+            continue  # generated (embedded presets) or a typo the compiler reports
+        source, target = (path if is_test(path) else module_of(path)), module_of(included)
+        if source != target:
+            graph.setdefault(source, set()).add(target)
+    cycles = find_cycles(graph)
+    for component in cycles:
+        if set(component) in KNOWN_CYCLES:
+            continue
+        problems.append(f"include cycle ({len(component)} modules include each other): "
+                        + " -> ".join(shortest_cycle(graph, component)))
+    for known in KNOWN_CYCLES:
+        if not any(known <= set(component) for component in cycles):
+            problems.append("no cycle between " + ", ".join(sorted(known)) + " any more: take it out of KNOWN_CYCLES")
+    for problem in problems:
+        print(problem)
+    if problems:
+        return 1
+    print(f"include graph: {len(graph)} modules, {sum(len(v) for v in graph.values())} module includes, "
+          f"no new cycle ({len(KNOWN_CYCLES)} known, listed), every layer include allowed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
