@@ -3,13 +3,14 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <set>
 #include <sstream>
 
 #include "core/atomic_file.h"
-#include "core/noise_yaml.h"
 #include "core/csv.h"
+#include "core/noise_yaml.h"
 #include "core/yaml_document.h"
 
 namespace hexcal {
@@ -159,6 +160,23 @@ Status ReadInstrument(const YAML::Node& root, const std::string& source, Session
 
 }  // namespace
 
+StatusOr<std::optional<Vector6d>> CommandedPoseAt(const CsvTable& table, size_t row, const std::array<int, 6>& columns,
+                                                  const std::string& where) {
+  int empty = 0;
+  for (int k = 0; k < 6; ++k) empty += table.rows[row][columns[k]].empty();
+  if (empty == 6) return std::optional<Vector6d>();
+  if (empty != 0)
+    return Status::Error(where + "the commanded pose has " + std::to_string(6 - empty) +
+                         " of its six cells; fill all six or none");
+  Vector6d pose;
+  for (int k = 0; k < 6; ++k) {
+    StatusOr<double> value = NumberAt(table, row, columns[k]);
+    if (!value.ok()) return value.status();
+    pose[k] = *value;
+  }
+  return std::optional<Vector6d>(pose);
+}
+
 Status SaveSessionConfig(const std::string& dir, const SessionConfig& config) {
   std::string error;
   if (!config.IsValid(&error)) return Status::Error(error);
@@ -237,6 +255,16 @@ StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir) {
   }
   const auto holdout_it = std::find(table->header.begin(), table->header.end(), "holdout");
   const int holdout_column = holdout_it == table->header.end() ? -1 : int(holdout_it - table->header.begin());
+  std::array<int, 6> commanded_columns{};
+  int commanded_found = 0;
+  for (int k = 0; k < 6; ++k) {
+    const auto it = std::find(table->header.begin(), table->header.end(), kCommandedColumns[k]);
+    commanded_columns[k] = it == table->header.end() ? -1 : int(it - table->header.begin());
+    commanded_found += commanded_columns[k] >= 0;
+  }
+  if (commanded_found != 0 && commanded_found != 6)
+    return Status::Error(paths.legs + ": has " + std::to_string(commanded_found) +
+                         " of the six commanded_x..commanded_q3 columns; it needs all six or none");
 
   const std::set<std::string> images = ImageFiles(paths.images);
   std::set<std::string> seen;
@@ -260,6 +288,11 @@ StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir) {
       const std::string& cell = table->rows[r][holdout_column];
       if (cell != "0" && cell != "1") return Status::Error(where + "column 'holdout': '" + cell + "' is not 0 or 1");
       row.holdout = cell == "1";
+    }
+    if (commanded_found == 6) {
+      StatusOr<std::optional<Vector6d>> commanded = CommandedPoseAt(*table, r, commanded_columns, where);
+      if (!commanded.ok()) return commanded.status();
+      row.commanded = *commanded;
     }
     rows.push_back(row);
   }

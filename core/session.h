@@ -3,8 +3,9 @@
 //   DIR/session.yaml       robot, camera, target, registered frames, noise model
 //   DIR/plan.csv           the planned poses (hexcal plan --out), optional
 //   DIR/images/            the images, as recorded (never written by hexcal)
-//   DIR/legs.csv           image,L1..L6[,holdout]: the readings at each image
-//                          (recorded; never written by hexcal)
+//   DIR/legs.csv           image,L1..L6[,holdout][,commanded_x..commanded_q3]:
+//                          the readings at each image and, for a capture of
+//                          the Acquire step, the pose it was commanded to
 //   DIR/camera_poses.csv   camera_from_target per image (hexcal measure columns)
 //   DIR/results/           calibrated robot, report
 //
@@ -18,10 +19,12 @@
 //   StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs("run1");
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/csv.h"
 #include "core/inverse_kinematics.h"
 #include "core/noise_model.h"
 #include "core/pose.h"
@@ -73,17 +76,32 @@ StatusOr<SessionConfig> LoadSessionConfig(const std::string& dir);
 // Rewrites session.yaml atomically.
 Status SaveSessionConfig(const std::string& dir, const SessionConfig& config);
 
+// legs.csv's optional columns of the pose a capture was commanded to (the
+// Acquire step writes them; robot unit and degrees, as plan.csv): they tie an
+// image to the planned pose it was taken at by content, not by its name
+// (issue 35). Empty cells in a row taken otherwise (loaded, typed).
+inline constexpr const char* kCommandedColumns[6] = {"commanded_x",  "commanded_y",  "commanded_z",
+                                                     "commanded_q1", "commanded_q2", "commanded_q3"};
+
 struct LegsRow {
   std::string image;  // file name inside images/; in a points session, the pose's name in the points file
   LegReadings legs = LegReadings::Zero();
   bool holdout = false;  // kept out of the calibration, used to validate it
   int line = 0;          // line of legs.csv
+  std::optional<Vector6d> commanded{};  // the pose a capture was commanded to, when legs.csv says
 };
 
-// Reads legs.csv: columns image, L1..L6 and optionally holdout (0 or 1), in any
+// Reads legs.csv: columns image, L1..L6 and optionally holdout (0 or 1) and
+// the six commanded columns (all six numbers, or all six empty), in any
 // order. Every row's image must be in images/, no image twice, and every image
 // in images/ must have a row. A points session's legs.csv names its poses in a
 // column `pose` instead (the group of the points file), with no images.
 StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir);
+
+// The commanded pose of legs.csv's row `row` from its six `columns`: none when
+// all six cells are empty; an error after `where` ("legs.csv:4: ") when only
+// some are, or one is not a number.
+StatusOr<std::optional<Vector6d>> CommandedPoseAt(const CsvTable& table, size_t row, const std::array<int, 6>& columns,
+                                                  const std::string& where);
 
 }  // namespace hexcal

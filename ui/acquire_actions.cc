@@ -52,10 +52,15 @@ void AcquirePanel::Connect(const QString& controller_url, const QString& camera_
     pending_ = [this] { Connect({}, {}); };  // after the live frame (or dropped job) in flight
     return;
   }
-  const std::string controller = controller_url_->currentText().trimmed().toStdString();
-  const std::string camera = camera_url_->currentText().trimmed().toStdString();
+  const std::string controller = ControllerChoice().toStdString();
+  const std::string camera = CameraChoice().toStdString();
   const std::string dir = session_->Dir().toStdString();
   const bool by_hand = ByHand(QString::fromStdString(controller));
+  // Said here in the panel's terms (the workflow's message names the CLI's flag).
+  if (camera == "sim" && controller != "sim")
+    return ShowError(this, "Connect",
+                     "The sim camera shows the sim controller's platform: choose 'sim' in the Controller list too, "
+                     "or another camera (aravis:NAME, v4l2:N, file:PATH).");
   Disconnect();
   devices_->setText("Connecting (a machine may power on and home first)…");
   job_->Start("connecting", [this, controller, camera, dir, by_hand](const JobContext&) -> GuiContinuation {
@@ -85,6 +90,7 @@ void AcquirePanel::Connected(std::shared_ptr<workflow::AcquisitionRig> rig, cons
                                                         : "no controller (move the robot by hand, type the readings)",
                                        QString::fromStdString(rig_->camera->Describe()))));  // a file: camera's path
   connect_->setText("Disconnect");
+  UpdateButtons();
   GrabLiveFrame();
 }
 
@@ -96,6 +102,7 @@ void AcquirePanel::Disconnect() {
   live_->SetMessage("Connect a camera to see it live.");
   readiness_->setText("No camera connected.");
   frame_ = OverlayResult{};
+  UpdateButtons();
 }
 
 bool AcquirePanel::ReadyToAct(const QString& what, std::function<void()> action) {
@@ -114,7 +121,8 @@ bool AcquirePanel::ReadyToAct(const QString& what, std::function<void()> action)
 
 void AcquirePanel::MoveToPose() {
   if (!ReadyToAct("Move", [this] { MoveToPose(); })) return;
-  if (!rig_->controller) return ShowError(this, "Move", "No controller connected: move the robot by hand.");
+  if (!rig_->controller)
+    return ShowError(this, "Move", "No controller connected: move the robot by hand to the lengths shown.");
   const Vector6d pose = session_->Plan()[current_];
   const int index = current_;
   SetOutcome(QString("moving to pose %1…").arg(index + 1));
@@ -147,41 +155,42 @@ void AcquirePanel::CapturePose(const std::optional<LegReadings>& typed) {
   }
   const Camera camera = *session_->SessionCamera();
   const Target target = *session_->SessionTarget();
-  job_->Start("grabbing", [this, rig = rig_, camera, target, index, typed](const JobContext&) -> GuiContinuation {
-    StatusOr<cv::Mat> frame = rig->camera->Grab(kGrabTimeout);
-    StatusOr<std::string> png = frame.ok() ? EncodePng(*frame) : StatusOr<std::string>(frame.status());
-    if (!png.ok()) frame = png.status();
-    const OverlayResult overlay = frame.ok() ? DetectAndDraw(*frame, camera, target) : OverlayResult{};
-    const std::string bytes = png.ok() ? *png : std::string();
-    const Status grabbed = frame.ok() ? Status::Ok() : frame.status();
-    return [this, grabbed, overlay, bytes, index, typed] {
-      if (!grabbed.ok()) return Recorded(index, grabbed);
-      ShowFrame(overlay);
-      const std::optional<LegReadings> readings = typed ? typed : AskReadings(index);
-      if (!readings) return SetOutcome("not recorded: no readings entered.");
-      const Status plausible =
-          workflow::CheckTypedReadings(workflow::MakeReadingCheck(session_->NominalRobot(), session_->Config().noise),
-                                       workflow::AcquiredImageName(index), *readings);
-      if (!plausible.ok()) {
-        SetOutcome("not recorded: " + Message(plausible));
-        return ShowError(this, "Capture", Message(plausible) + "\nCapture again and check the readings.");
-      }
-      LegsRow row;
-      row.image = workflow::AcquiredImageName(index);
-      row.legs = *readings;
-      const bool saved = ApplySessionEdit(this, "Capture", [&](bool overwrite) {
-        return session_->RecordCaptureBytes(bytes, row, overwrite);
+  const std::string image = ImageOfPose(index).toStdString();
+  job_->Start(
+      "grabbing", [this, rig = rig_, camera, target, index, typed, pose, image](const JobContext&) -> GuiContinuation {
+        StatusOr<cv::Mat> frame = rig->camera->Grab(kGrabTimeout);
+        StatusOr<std::string> png = frame.ok() ? EncodePng(*frame) : StatusOr<std::string>(frame.status());
+        if (!png.ok()) frame = png.status();
+        const OverlayResult overlay = frame.ok() ? DetectAndDraw(*frame, camera, target) : OverlayResult{};
+        const std::string bytes = png.ok() ? *png : std::string();
+        const Status grabbed = frame.ok() ? Status::Ok() : frame.status();
+        return [this, grabbed, overlay, bytes, index, typed, pose, image] {
+          if (!grabbed.ok()) return Recorded(index, grabbed);
+          ShowFrame(overlay);
+          const std::optional<LegReadings> readings = typed ? typed : AskReadings(index);
+          if (!readings) return SetOutcome("not recorded: no readings entered.");
+          // Against the stroke and the commanded pose's IK lengths (reading_check.h).
+          const Status plausible = workflow::CheckTypedReadings(
+              workflow::MakeReadingCheck(session_->NominalRobot(), session_->Config().noise), image, *readings, pose);
+          if (!plausible.ok()) {
+            SetOutcome("not recorded: " + Message(plausible));
+            return ShowError(this, "Capture", Message(plausible) + "\nCapture again and check the readings.");
+          }
+          LegsRow row;
+          row.image = image;
+          row.legs = *readings;
+          row.commanded = pose;  // ties the image to this planned pose (workflow/plan_captures.h)
+          const bool saved = ApplySessionEdit(
+              this, "Capture", [&](bool overwrite) { return session_->RecordCaptureBytes(bytes, row, overwrite); });
+          Recorded(index, saved ? Status::Ok() : Status::Failed("not saved"));
+        };
       });
-      Recorded(index, saved ? Status::Ok() : Status::Failed("not saved"));
-    };
-  });
 }
 
 // After the capture of pose `index` (the one the job was started for, even if
 // the operator has picked another since): the checklist, the next pose, or
 // the failure marked.
 void AcquirePanel::Recorded(int index, const Status& status) {
-  const QString image = QString::fromStdString(workflow::AcquiredImageName(index));
   if (status.cancelled()) return SetOutcome("cancelled: nothing recorded for this pose.");
   if (!status.ok()) {
     marks_[index] = "failed: " + Message(status);
@@ -190,6 +199,7 @@ void AcquirePanel::Recorded(int index, const Status& status) {
     return;
   }
   FillChecklist();
+  const QString image = ImageOfPose(index);
   const bool more = NextPose();
   SetOutcome(QString("pose %1 recorded as %2 (saved to the session).%3")
                  .arg(index + 1)
@@ -232,7 +242,8 @@ std::optional<LegReadings> AcquirePanel::AskReadings(int index) {
 
 void AcquirePanel::RedoPose() {
   if (!ReadyToAct("Redo", [this] { RedoPose(); })) return;
-  const std::string image = workflow::AcquiredImageName(current_);
+  if (current_ >= static_cast<int>(captures_.size()) || captures_[current_].empty()) return CapturePose();
+  const std::string image = captures_[current_];  // the capture of this pose, whatever its name
   if (Interactive() &&
       QMessageBox::question(this, "Redo pose", QString("Remove %1 and its readings, and capture pose %2 again?")
                                                    .arg(QString::fromStdString(image))
@@ -247,7 +258,8 @@ void AcquirePanel::RedoPose() {
 
 void AcquirePanel::RunRest() {
   if (!ReadyToAct("Run the rest", [this] { RunRest(); })) return;
-  if (!rig_->controller) return ShowError(this, "Run the rest", "Needs a controller: connect one first.");
+  if (!rig_->controller)
+    return ShowError(this, "Run the rest", "Needs a controller: choose one in the Controller list and Connect.");
   workflow::AcquireRequest request;
   request.session = session_->Dir().toStdString();
   SetOutcome("acquiring the poses not yet recorded…");
@@ -270,9 +282,16 @@ void AcquirePanel::GrabLiveFrame() {
   const Target target = *session_->SessionTarget();
   job_->Start(kLiveJob, [this, rig = rig_, camera, target](const JobContext&) -> GuiContinuation {
     StatusOr<cv::Mat> frame = rig->camera->Grab(kGrabTimeout);
-    if (!frame.ok()) return [this, s = frame.status()] { readiness_->setText("No frame: " + Message(s).toHtmlEscaped()); };
+    // A frame of devices disconnected meanwhile is not shown: "Not connected"
+    // beside the last frame and its "ready" would be a text outliving its job.
+    if (!frame.ok())
+      return [this, rig, s = frame.status()] {
+        if (rig_ == rig) readiness_->setText("No frame: " + Message(s).toHtmlEscaped());
+      };
     const OverlayResult overlay = DetectAndDraw(*frame, camera, target);
-    return [this, overlay] { ShowFrame(overlay); };
+    return [this, rig, overlay] {
+      if (rig_ == rig) ShowFrame(overlay);
+    };
   });
 }
 

@@ -21,16 +21,23 @@
 #include "core/inverse_kinematics.h"
 #include "ui/background_job.h"
 #include "ui/error_dialog.h"
+#include "ui/gui_terms.h"
 #include "ui/image_view.h"
 #include "ui/quantity_format.h"
 #include "ui/text_wrap.h"
 #include "workflow/acquire_step.h"
+#include "workflow/plan_captures.h"
+#include "workflow/reading_check.h"
 #include "workflow/readings_table.h"
 
 namespace hexcal::ui {
 namespace {
 
 constexpr int kLiveIntervalMs = 600;
+// The devices a session starts with: the sim controller and its camera, a
+// pair that connects (the sim camera renders the sim controller's platform).
+constexpr int kDefaultController = 1;  // "sim"
+constexpr int kDefaultCamera = 0;      // "sim"
 const QString kPlanBroken = "The plan does not load: ";
 const QString kPlanAgain = " Fix plan.csv, or plan again (Plan step).";
 
@@ -64,20 +71,27 @@ AcquirePanel::AcquirePanel(SessionState* session, QWidget* parent)
     pending_ = nullptr;
     action();
   });
+  connect(job_, &BackgroundJob::Started, this, &AcquirePanel::UpdateButtons);
+  connect(job_, &BackgroundJob::Finished, this, &AcquirePanel::UpdateButtons);
   connect(session_, &SessionState::Switched, this, &AcquirePanel::ResetForSession);
   connect(session_, &SessionState::Changed, this, &AcquirePanel::Refresh);
+  UpdateButtons();
 }
 
 AcquirePanel::~AcquirePanel() = default;
 
 void AcquirePanel::BuildLayout() {
   controller_url_ = new QComboBox;
+  controller_url_->setObjectName("acquire_controller");
   controller_url_->setEditable(true);
   controller_url_->addItems({"none (move the robot by hand)", "sim", "linuxcnc://localhost:5007"});
+  controller_url_->setCurrentIndex(kDefaultController);
   controller_url_->setToolTip("The controller that moves the robot and reads its legs (docs/acquisition.md)");
   camera_url_ = new QComboBox;
+  camera_url_->setObjectName("acquire_camera");
   camera_url_->setEditable(true);
   camera_url_->addItems({"sim", "aravis:", "v4l2:0", "file:"});
+  camera_url_->setCurrentIndex(kDefaultCamera);
   camera_url_->setToolTip(
       "The camera: sim, aravis:NAME (GenICam through Aravis), v4l2:N (OpenCV), file:PATH (a video or an image)");
   connect_ = new QPushButton("Connect");
@@ -104,16 +118,18 @@ void AcquirePanel::BuildLayout() {
   connect(copy_, &QPushButton::clicked, this, [this] { QApplication::clipboard()->setText(pose_label_->text()); });
   const auto button = [this](const QString& text, const QString& tip, auto slot) {
     auto* made = new QPushButton(text);
+    made->setObjectName("acquire_" + text.toLower().replace(' ', '_'));  // "acquire_run_the_rest"
     made->setToolTip(tip);
     connect(made, &QPushButton::clicked, this, slot);
     return made;
   };
-  move_ = button("Move", "Command the controller to this pose and wait until it settles", [this] { MoveToPose(); });
+  move_ = button("Move", "Command the controller to this pose and wait until it settles (needs a controller)",
+                 [this] { MoveToPose(); });
   capture_ = button("Capture", "Grab a frame and record it with the leg readings, then go to the next pose",
                     [this] { CapturePose(); });
   skip_ = button("Skip", "Leave this pose for later and go to the next", [this] { SkipPose(); });
   redo_ = button("Redo", "Remove this pose's image and readings and capture it again", [this] { RedoPose(); });
-  run_rest_ = button("Run the rest", "With a controller: move, capture and record every pose not yet recorded",
+  run_rest_ = button("Run the rest", "Move, capture and record every pose not yet recorded (needs a controller)",
                      [this] { RunRest(); });
   cancel_ = button("Cancel", "Stop after the current pose", [this] { job_->Cancel(); });
   live_on_ = new QCheckBox("Live view");
@@ -178,30 +194,50 @@ void AcquirePanel::ArrangeWidgets() {
   layout->addWidget(splitter);
 }
 
-// The images with readings: a pose is recorded when its image has a row.
 QString AcquirePanel::PoseState(int index) const {
   const auto mark = marks_.find(index);
   if (mark != marks_.end()) return mark->second;
   return "to do";
 }
 
+QString AcquirePanel::ControllerChoice() const { return controller_url_->currentText().trimmed(); }
+QString AcquirePanel::CameraChoice() const { return camera_url_->currentText().trimmed(); }
+
+QString AcquirePanel::ImageOfPose(int index) const {
+  if (index < 0) return {};
+  if (index < static_cast<int>(captures_.size()) && !captures_[index].empty())
+    return QString::fromStdString(captures_[index]);
+  if (index < static_cast<int>(free_names_.size())) return QString::fromStdString(free_names_[index]);
+  return QString::fromStdString(workflow::AcquiredImageName(index));
+}
+
+// A pose is recorded when a legs.csv row holds the pose it was commanded to
+// and its image is there: by content, so an image of an earlier plan that
+// happens to have the name of this plan's pose does not count
+// (workflow/plan_captures.h).
 void AcquirePanel::FillChecklist() {
-  std::set<std::string> recorded;
   StatusOr<std::vector<workflow::ReadingsRow>> rows =
       session_->IsOpen() ? workflow::ReadReadingsTable(session_->Dir().toStdString())
                          : StatusOr<std::vector<workflow::ReadingsRow>>(std::vector<workflow::ReadingsRow>{});
-  if (rows.ok())
-    for (const workflow::ReadingsRow& row : *rows)
-      if (row.recorded && row.image_present) recorded.insert(row.image);
+  const std::vector<workflow::ReadingsRow> shown = rows.ok() ? *rows : std::vector<workflow::ReadingsRow>{};
   const std::vector<Vector6d>& plan = session_->Plan();
+  const std::vector<int> found = workflow::CapturesOfPlan(
+      workflow::MakeReadingCheck(session_->NominalRobot(), session_->Config().noise), plan, shown);
+  captures_.assign(plan.size(), std::string());
+  free_names_.clear();
+  checklist_->horizontalHeaderItem(2)->setText(
+      QString("x  y  z (%1)").arg(LengthUnitName(session_->NominalRobot().length_unit)));
   checklist_->blockSignals(true);
   checklist_->setRowCount(static_cast<int>(plan.size()));
   for (int k = 0; k < static_cast<int>(plan.size()); ++k) {
-    const bool done = recorded.count(workflow::AcquiredImageName(k)) > 0;
+    const bool done = found[k] >= 0 && shown[found[k]].image_present;
+    if (done) captures_[k] = shown[found[k]].image;
+    free_names_.push_back(workflow::CaptureImageName(k, shown));
     if (done) marks_.erase(k);
     const QString state = done ? "✓ recorded" : PoseState(k);
     checklist_->setItem(k, 0, Cell(QString::number(k + 1)));
     QTableWidgetItem* state_cell = Cell(state);
+    if (done) state_cell->setToolTip(QString::fromStdString(captures_[k]));
     state_cell->setForeground(done ? QColor(0, 120, 0) : state.startsWith("failed") ? QColor(190, 0, 0)
                                                                                     : QColor(90, 90, 90));
     checklist_->setItem(k, 1, state_cell);
@@ -212,6 +248,8 @@ void AcquirePanel::FillChecklist() {
 }
 
 void AcquirePanel::Refresh() {
+  // A line about another plan ("12 recorded, of 12 poses") does not outlive it.
+  if (!job_->Running() && !outcome_.isEmpty() && session_->Plan() != outcome_plan_) SetOutcome({});
   FillChecklist();
   const int poses = checklist_->rowCount();
   if (current_ < 0 || current_ >= poses) {
@@ -223,28 +261,61 @@ void AcquirePanel::Refresh() {
   // The plan line from the status (issue 40): no plan, or one that does not
   // load; gone as soon as a plan is listed.
   if (poses == 0) {
+    current_ = -1;
+    pose_label_->setText("no pose");
     SetOutcome(session_->State(Step::kPlan) == StepState::kBroken
                    ? kPlanBroken + session_->InSession(session_->Why(Step::kPlan)) + kPlanAgain
                    : QString(kNoPlan));
+    UpdateButtons();
   } else if (outcome_ == kNoPlan || outcome_.startsWith(kPlanBroken)) {
     SetOutcome({});  // a plan came: the line would send the operator back for nothing
   }
 }
 
+// Nothing of the last session stays: its devices, pose, lengths, marks and
+// texts; the device choice is the default pair again.
 void AcquirePanel::ResetForSession() {
   job_->Abandon();
   Disconnect();
   marks_.clear();
+  captures_.clear();
+  free_names_.clear();
   current_ = -1;
+  controller_url_->setCurrentIndex(kDefaultController);
+  camera_url_->setCurrentIndex(kDefaultCamera);
+  pose_label_->setText("no pose");
+  checklist_->setRowCount(0);
   progress_->reset();
   SetOutcome({});
+  UpdateButtons();
+}
+
+void AcquirePanel::UpdateButtons() {
+  const bool busy = job_->Running() && !job_->Abandoned() && job_->What() != "live";
+  const bool pose = current_ >= 0;
+  const bool controller = rig_ && rig_->controller;
+  capture_->setEnabled(rig_ && pose);
+  const bool recorded = pose && current_ < static_cast<int>(captures_.size()) && !captures_[current_].empty();
+  redo_->setEnabled(rig_ && recorded);  // a pose not recorded is captured, not redone
+  skip_->setEnabled(pose);
+  copy_->setEnabled(pose);
+  move_->setEnabled(controller && pose);
+  run_rest_->setEnabled(controller && pose);
+  cancel_->setEnabled(busy);
+  const QString why = !rig_ ? "Connect the devices first (Controller, Camera, Connect)."
+                            : "No controller connected: choose one (Controller) and Connect; by hand, move the robot "
+                              "to the lengths shown and press Capture.";
+  // A tooltip's first line is the button's; a second, while it is disabled, says why.
+  for (QPushButton* needs : {move_, run_rest_})
+    needs->setToolTip(needs->isEnabled() ? needs->toolTip().section("\n", 0, 0)
+                                         : needs->toolTip().section("\n", 0, 0) + "\n" + why);
 }
 
 void AcquirePanel::SelectPose(int index) {
   const std::vector<Vector6d>& plan = session_->Plan();
   if (index < 0 || index >= static_cast<int>(plan.size())) {
     pose_label_->setText("no pose");
-    return;
+    return UpdateButtons();
   }
   current_ = index;
   if (checklist_->currentRow() != index) {
@@ -256,11 +327,13 @@ void AcquirePanel::SelectPose(int index) {
   const LegReadings legs = InverseKinematics(robot, robot.PoseFromVector(plan[index]));
   QStringList lengths;
   for (int i = 0; i < kNumLegs; ++i) lengths << FormatCoordinate(legs[i]);
-  pose_label_->setText(QString("pose %1 of %2 (%3): x y z q1 q2 q3 = %4  %5\nL1..L6 = %6")
+  pose_label_->setText(QString("pose %1 of %2 (%3): x y z = %4 %7, q1 q2 q3 = %5°\nL1..L6 = %6 %7")
                            .arg(index + 1)
                            .arg(plan.size())
-                           .arg(QString::fromStdString(workflow::AcquiredImageName(index)))
-                           .arg(Joined(plan[index], 0, 3), Joined(plan[index], 3, 3), lengths.join("  ")));
+                           .arg(ImageOfPose(index))
+                           .arg(Joined(plan[index], 0, 3), Joined(plan[index], 3, 3), lengths.join("  "),
+                                LengthUnitName(robot.length_unit)));
+  UpdateButtons();
 }
 
 // The next pose after the current one that is neither recorded nor skipped.
@@ -286,8 +359,9 @@ void AcquirePanel::SkipPose() {
 }
 
 void AcquirePanel::SetOutcome(const QString& text) {
-  outcome_ = text;
-  status_->setText(Breakable(text));  // it may quote a long path
+  outcome_ = InGuiTerms(text);  // the workflow's errors name the CLI's flags
+  outcome_plan_ = session_->Plan();
+  status_->setText(Breakable(outcome_));  // it may quote a long path
 }
 
 }  // namespace hexcal::ui

@@ -3,14 +3,19 @@
 //
 // Left, the plan as a checklist: pose k of N with the x..q3 to command and
 // the L1..L6 the nominal robot needs there (Copy puts them on the clipboard),
-// each marked recorded (its image pose_000k.png has readings in legs.csv),
+// each marked recorded (a legs.csv row holds the pose it was commanded to and
+// its image is there: by content, not by name, workflow/plan_captures.h),
 // skipped, failed or to do. Right, the camera live with the detection overlay
 // and readiness indicators: the whole board in view, the reprojection RMS,
 // the sharpness. Capture grabs a frame and records it with the readings —
 // read from the controller when one is connected, else typed or pasted into
 // a dialog prefilled with the commanded lengths — then moves on to the next
-// pose; Skip, Redo and (with a controller) Move and Run the rest. The session
-// is written after every pose (workflow::RecordCaptureBytes under the lock).
+// pose; Skip, Redo and (with a controller) Move and Run the rest, disabled
+// without one. Typed readings are checked against the stroke and the IK of
+// the commanded pose (workflow/reading_check.h). The devices default to the
+// sim controller and camera, a pair that connects; another session starts
+// from them again. The session is written after every pose
+// (workflow::RecordCaptureBytes under the lock).
 //
 //   auto* acquire = new AcquirePanel(session);
 //   acquire->Connect("sim", "sim");  // or linuxcnc://HOST:PORT and aravis:NAME
@@ -22,6 +27,8 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "ui/image_overlay.h"
 #include "ui/session_state.h"
@@ -56,6 +63,11 @@ class AcquirePanel : public QWidget {
   const QString& LastOutcome() const { return outcome_; }
   const OverlayResult& LastFrame() const { return frame_; }
   bool Connected() const { return rig_ != nullptr; }
+  // The device URLs as chosen in the combo boxes.
+  QString ControllerChoice() const;
+  QString CameraChoice() const;
+  // The image a capture of plan row `index` has, or would get (workflow/plan_captures.h).
+  QString ImageOfPose(int index) const;
 
  public slots:
   void Refresh();
@@ -84,6 +96,10 @@ class AcquirePanel : public QWidget {
   // frame in flight is not a reason: `action` then runs when it ends.
   bool ReadyToAct(const QString& what, std::function<void()> action);
   void SetOutcome(const QString& text);
+  // Each button enabled when it can act: Capture with devices, Redo with
+  // devices on a recorded pose, Move and Run the rest with a controller,
+  // Cancel while a step runs.
+  void UpdateButtons();
   void ShowFrame(const OverlayResult& frame);
   std::optional<LegReadings> AskReadings(int index);
   void Recorded(int index, const Status& status);
@@ -105,7 +121,10 @@ class AcquirePanel : public QWidget {
   std::function<void()> pending_;  // the operator's action waiting for a live frame
   int current_ = -1;
   std::map<int, QString> marks_;  // poses skipped or failed this session: why
+  std::vector<std::string> captures_;    // per plan row: its capture's image, "" when none
+  std::vector<std::string> free_names_;  // per plan row: the name its next capture gets
   QString outcome_;
+  std::vector<Vector6d> outcome_plan_;  // the plan outcome_ is about
   static constexpr const char* kAllDone = "Every planned pose is recorded or skipped: go on to Measure and Calibrate.";
   static constexpr const char* kNoPlan =
       "No plan yet: plan the poses first (Plan step), then come back to record them.";

@@ -19,6 +19,7 @@
 #include "ui/background_job.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
+#include "ui/gui_terms.h"
 #include "ui/quantity_format.h"
 #include "ui/run_log.h"
 #include "ui/text_wrap.h"
@@ -50,7 +51,7 @@ class NumberItem : public QTableWidgetItem {
 QTableWidgetItem* IdentifiedItem(const workflow::ParameterEstimate& p) {
   if (!p.sigma || *p.sigma <= 0) return new NumberItem("—", -1);
   const double ratio = std::abs(p.estimate - p.nominal) / *p.sigma;
-  return new NumberItem(QString("%1, %2σ").arg(ratio > 3 ? "yes" : "no").arg(ratio, 0, 'g', 3), ratio);
+  return new NumberItem(QString("%1, %2σ").arg(ratio > 3 ? "yes" : "no", FormatSignificant(ratio)), ratio);
 }
 
 }  // namespace
@@ -130,12 +131,13 @@ void CalibratePanel::ResetForSession() {
   job_->Abandon();
   progress_->reset();
   run_log_->SetText({});
+  outcome_from_job_ = false;
   SetOutcome({});
 }
 
 void CalibratePanel::SetOutcome(const QString& text) {
-  outcome_ = text;
-  status_->setText(Breakable(text));  // a stale note may quote a long path
+  outcome_ = InGuiTerms(text);            // the workflow's errors name the CLI's flags
+  status_->setText(Breakable(outcome_));  // a stale note may quote a long path
 }
 
 void CalibratePanel::Run() {
@@ -162,6 +164,8 @@ void CalibratePanel::Run() {
 }
 
 void CalibratePanel::Finish(const Status& status) {
+  outcome_from_job_ = true;
+  outcome_basis_ = QString();  // noted by the refresh the reload below brings
   // One line here: the figures are in the summary below, the printed lines in the run log.
   if (status.cancelled()) {
     SetOutcome("cancelled: results/ is unchanged.");
@@ -173,12 +177,25 @@ void CalibratePanel::Finish(const Status& status) {
                        ? "\nCheck the Measure step: enough poses whose points fit, and their readings."
                        : "\nCheck the Measure step: enough images with an ok target pose and their readings."));
   } else {
-    SetOutcome("done: results/ written; the lines `hexcal calibrate --session` prints are in the run log.");
+    SetOutcome("done: results/ written; the run's lines are in the run log.");
   }
   session_->Reload();
 }
 
 void CalibratePanel::Refresh() {
+  // A run's outcome line lasts while the results are as the run left them:
+  // the first refresh after it notes the step's state, a later one that finds
+  // it changed (a reading edited, an image added) shows the idle line again.
+  if (!job_->Running() && outcome_from_job_) {
+    const QString now =
+        QString::number(static_cast<int>(session_->State(Step::kCalibrate))) + session_->Why(Step::kCalibrate);
+    if (outcome_basis_.isNull()) {
+      outcome_basis_ = now;
+    } else if (now != outcome_basis_) {
+      outcome_from_job_ = false;
+      outcome_.clear();
+    }
+  }
   const bool points = session_->IsPointsSession();
   run_->setToolTip(points ? "Fit each pose's points to the reflectors, register the tracker and the reflectors with "
                             "the nominal robot, calibrate on the poses not held out, validate on the held-out ones; "
@@ -194,10 +211,14 @@ void CalibratePanel::Refresh() {
             : points                      ? "Record the points file and the readings of its poses (Measure), then "
                                             "calibrate."
                                           : "Record images and readings (Acquire, Measure), then calibrate.";
+    idle_ = InGuiTerms(idle_);  // as SetOutcome shows it, to compare with
     SetOutcome(idle_);
   }
   parameters_->setSortingEnabled(false);
   parameters_->setRowCount(0);
+  // The headers in this session's unit, with results or without (another
+  // session's unit stayed until its results loaded).
+  SetUnitHeaders(LengthUnitName(session_->NominalRobot().length_unit));
   summary_->clear();
   verdict_->Clear();
   run_log_->SetText({});
@@ -214,10 +235,9 @@ void CalibratePanel::Refresh() {
   // fit from pixels, the camera-frame residuals, outliers) in the run log.
   // A points session's report counts poses measured by the tracker.
   const bool tracker = report.instrument == "points";
-  summary_->setText(QString("%1 %2: %3 for calibration, %4 held out, %5 without a usable %6. "
-                            "Closure (%7 vs robot) RMS: nominal robot %8, %9; calibrated %10, %11.")
-                        .arg(report.images)
-                        .arg(tracker ? "poses" : "images")
+  summary_->setText(QString("%1: %2 for calibration, %3 held out, %4 without a usable %5. "
+                            "Closure (%6 vs robot) RMS: nominal robot %7, %8; calibrated %9, %10.")
+                        .arg(FormatCount(report.images, tracker ? "pose" : "image"))
                         .arg(report.calibration_images)
                         .arg(report.held_out_images)
                         .arg(report.unusable_images)
@@ -227,7 +247,7 @@ void CalibratePanel::Refresh() {
                              FormatAngle(report.closure_angle_rms_deg)) +
                     (session_->ResultsNote().isEmpty() || outcome_ == idle_  // the line above says it
                          ? QString()
-                         : "<br><b>Stale:</b> " + Breakable(session_->ResultsNote()).toHtmlEscaped()));
+                         : "<br><b>Stale:</b> " + Breakable(InGuiTerms(session_->ResultsNote())).toHtmlEscaped()));
   run_log_->SetText(QString::fromStdString(workflow::FormatCalibrationSummary(report)).trimmed());
   verdict_->Show(workflow::MakeVerdict(report),
                  session_->State(Step::kCalibrate) == StepState::kStale ? session_->ResultsNote() : QString());
@@ -235,9 +255,13 @@ void CalibratePanel::Refresh() {
   PlotResiduals();
 }
 
-void CalibratePanel::FillParameterTable(const std::vector<workflow::ParameterEstimate>& rows, const QString& unit) {
+void CalibratePanel::SetUnitHeaders(const QString& unit) {
   for (const auto& [column, name] : {std::pair<int, QString>{2, "nominal"}, {3, "calibrated"}, {4, "change"}, {5, "σ"}})
     parameters_->horizontalHeaderItem(column)->setText(name + " (" + unit + ")");
+}
+
+void CalibratePanel::FillParameterTable(const std::vector<workflow::ParameterEstimate>& rows, const QString& unit) {
+  SetUnitHeaders(unit);
   const auto cell = [](const QVariant& v) {
     auto* item = new QTableWidgetItem;
     item->setData(Qt::DisplayRole, v);
@@ -252,8 +276,8 @@ void CalibratePanel::FillParameterTable(const std::vector<workflow::ParameterEst
     // Values to the robot unit's 1e-4, changes and σ to three digits (ui/quantity_format.h).
     parameters_->setItem(r, 2, new NumberItem(FormatCoordinate(p.nominal), p.nominal));
     parameters_->setItem(r, 3, new NumberItem(FormatCoordinate(p.estimate), p.estimate));
-    parameters_->setItem(r, 4, new NumberItem(QString::number(change, 'g', 3), change));
-    parameters_->setItem(r, 5, p.sigma ? new NumberItem(QString::number(*p.sigma, 'g', 3), *p.sigma) : cell("—"));
+    parameters_->setItem(r, 4, new NumberItem(FormatSignificant(change), change));
+    parameters_->setItem(r, 5, p.sigma ? new NumberItem(FormatSignificant(*p.sigma), *p.sigma) : cell("—"));
     parameters_->setItem(r, 6, IdentifiedItem(p));
   }
   parameters_->setSortingEnabled(true);

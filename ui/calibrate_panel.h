@@ -53,6 +53,7 @@ class CalibratePanel : public QWidget {
   void ArrangeWidgets();
   void Finish(const Status& status);
   void PlotResiduals();
+  void SetUnitHeaders(const QString& unit);  // "nominal (cm)", ...
   void FillParameterTable(const std::vector<workflow::ParameterEstimate>& rows, const QString& unit);
   void SetOutcome(const QString& text);
 
@@ -67,6 +68,8 @@ class CalibratePanel : public QWidget {
   QtCharts::QChartView* residuals_;
   QString outcome_;
   QString idle_;  // the outcome line shown between runs
+  bool outcome_from_job_ = false;  // outcome_ is a run's, shown until the step's state changes
+  QString outcome_basis_;          // the step's state and sentence when the run's line was shown
 };
 
 }  // namespace hexcal::ui

@@ -3,12 +3,17 @@
 #include <QMessageBox>
 #include <QPushButton>
 #include <iostream>
+#include <vector>
+
+#include "ui/gui_terms.h"
 
 namespace hexcal::ui {
 namespace {
 bool interactive = true;
 ConflictAnswerer answerer;        // empty: ask in a message box
 ConflictAnswerer stale_answerer;  // the same for ConfirmStale
+ChoiceAnswerer choice_answerer;
+QString last_error;
 
 void Show(QWidget* parent, QMessageBox::Icon icon, const QString& what, const QString& message) {
   QMessageBox box(icon, "hexcal — " + what, message, QMessageBox::Ok, parent);
@@ -32,6 +37,26 @@ bool AskUseMine(QWidget* parent, const QString& what, const QString& text) {
 }  // namespace
 
 void SetInteractive(bool value) { interactive = value; }
+QString LastShownError() { return last_error; }
+void SetChoiceAnswerer(ChoiceAnswerer value) { choice_answerer = std::move(value); }
+
+int AskChoice(QWidget* parent, const QString& what, const QString& text, const QString& detail,
+              const QStringList& choices, int fallback) {
+  if (choice_answerer) return choice_answerer(what, text, choices);
+  std::cerr << "hexcal-gui: " << what.toStdString() << ": " << text.toStdString() << "\n";
+  if (!interactive) return fallback;
+  QMessageBox box(QMessageBox::Question, "hexcal — " + what, text, QMessageBox::NoButton, parent);
+  box.setTextFormat(Qt::PlainText);
+  box.setInformativeText(detail);
+  std::vector<QPushButton*> buttons;
+  for (const QString& choice : choices) buttons.push_back(box.addButton(choice, QMessageBox::ActionRole));
+  box.setDefaultButton(buttons[fallback]);
+  box.setEscapeButton(buttons.back());
+  box.exec();
+  for (size_t k = 0; k < buttons.size(); ++k)
+    if (box.clickedButton() == buttons[k]) return static_cast<int>(k);
+  return static_cast<int>(buttons.size()) - 1;
+}
 void SetConflictAnswerer(ConflictAnswerer value) { answerer = std::move(value); }
 void SetStaleAnswerer(ConflictAnswerer value) { stale_answerer = std::move(value); }
 
@@ -50,12 +75,15 @@ bool ConfirmStale(QWidget* parent, const QString& what, const QString& reason) {
 }
 bool Interactive() { return interactive; }
 
-void ShowError(QWidget* parent, const QString& what, const QString& message) {
+void ShowError(QWidget* parent, const QString& what, const QString& text) {
+  const QString message = InGuiTerms(text);  // the workflow's messages name the CLI's flags
+  last_error = what + ": " + message;
   std::cerr << "hexcal-gui: " << what.toStdString() << ": " << message.toStdString() << "\n";
   if (interactive) Show(parent, QMessageBox::Warning, what, message);
 }
 
-void ShowInfo(QWidget* parent, const QString& what, const QString& message) {
+void ShowInfo(QWidget* parent, const QString& what, const QString& text) {
+  const QString message = InGuiTerms(text);
   if (interactive) {
     Show(parent, QMessageBox::Information, what, message);
   } else {

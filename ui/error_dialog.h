@@ -7,6 +7,7 @@
 #pragma once
 
 #include <QString>
+#include <QStringList>
 #include <functional>
 
 #include "workflow/session_edits.h"
@@ -20,6 +21,8 @@ bool Interactive();
 // `what` is the step that failed ("Plan", "Open session"); `message` says what to fix.
 void ShowError(QWidget* parent, const QString& what, const QString& message);
 void ShowInfo(QWidget* parent, const QString& what, const QString& message);
+// The last ShowError's "what: message" as shown (tests read what the operator was told).
+QString LastShownError();
 
 // Runs an edit of the session's files (workflow/session_edits.h). When the
 // file changed on disk under the operator's edit, asks whether to apply it
@@ -33,6 +36,16 @@ bool ApplySessionEdit(QWidget* parent, const QString& what,
 using ConflictAnswerer = std::function<bool(const QString& what, const QString& text)>;
 // An empty function restores the message box (keep theirs when not interactive).
 void SetConflictAnswerer(ConflictAnswerer answerer);
+
+// A question with several answers (`choices`, button texts, the last one the
+// answer of Escape or closing the box); returns the index of the one picked.
+// `fallback` is the default button, and the answer when not interactive
+// (--screenshot, tests without an answerer).
+int AskChoice(QWidget* parent, const QString& what, const QString& text, const QString& detail,
+              const QStringList& choices, int fallback);
+using ChoiceAnswerer = std::function<int(const QString& what, const QString& text, const QStringList& choices)>;
+// An empty function restores the message box.
+void SetChoiceAnswerer(ChoiceAnswerer answerer);
 
 // Before exporting or reporting stale results: `reason` says what changed
 // since they were computed. True when the operator goes on anyway ("Use the

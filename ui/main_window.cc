@@ -156,9 +156,11 @@ void MainWindow::OpenDemoSession() {
     const StatusOr<workflow::DemoResult> demo = workflow::RunDemo(request, JobHooks{context.progress, context.cancel});
     const Status status = demo.ok() ? Status::Ok() : demo.status();
     return [this, dir, status] {
-      if (!status.ok())
+      if (!status.ok()) {
+        statusBar()->showMessage("The demo session could not be made.");  // not "making…" after the job
         return ShowError(this, "Demo session", "The demo session could not be made: " +
                                                    QString::fromStdString(status.message()));
+      }
       OpenSession(dir);
     };
   });

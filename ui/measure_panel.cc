@@ -182,14 +182,24 @@ void MeasurePanel::Refresh() {
   ShowInstrument();
   const int current = images_->currentRow();
   const std::map<QString, QString> measured = MeasuredStatus(session_->Paths());
+  const std::map<QString, QString> again = ToMeasureAgain();
   images_->blockSignals(true);
   images_->clear();
   for (const QString& file : session_->ImageFiles()) {
     const QString name = QFileInfo(file).fileName();
     const auto found = measured.find(name);
-    auto* item = new QListWidgetItem(name + "  —  " + (found == measured.end() ? "not measured" : found->second));
+    const auto stale = again.find(name);
+    // A row measured with another camera, target or image is no "ok" now.
+    const QString state = found == measured.end() ? "not measured"
+                          : stale != again.end()  ? "to measure again"
+                                                  : found->second;
+    auto* item = new QListWidgetItem(name + "  —  " + state);
     item->setData(Qt::UserRole, file);
-    if (found != measured.end()) item->setForeground(found->second.startsWith("ok") ? Qt::darkGreen : Qt::red);
+    if (stale != again.end()) item->setToolTip(QString("Measured as %1, but %2.").arg(found->second, stale->second));
+    if (found != measured.end())
+      item->setForeground(stale != again.end()             ? QColor(200, 110, 0)
+                          : found->second.startsWith("ok") ? QColor(Qt::darkGreen)
+                                                           : QColor(Qt::red));
     images_->addItem(item);
   }
   if (session_->IsPointsSession()) FillPoseList();
@@ -207,6 +217,28 @@ void MeasurePanel::Refresh() {
   }
   shown_legs_error_ = legs_error;
   legs_->Refill();
+}
+
+// The measured images whose row no longer holds (session_measure.h: the
+// camera, the target or the image changed since), with the reason. None when
+// the Measure step is done or nothing is measured: hashing every image is then
+// not needed. (Not only when it is stale: with legs.csv broken the step is
+// "to do", and the rows were still measured with the old camera.)
+std::map<QString, QString> MeasurePanel::ToMeasureAgain() const {
+  std::map<QString, QString> again;
+  if (!session_->IsOpen() || session_->State(Step::kMeasure) == StepState::kDone ||
+      !QFileInfo::exists(QString::fromStdString(session_->Paths().camera_poses)))
+    return again;
+  std::vector<std::string> images;
+  for (const QString& file : session_->ImageFiles()) images.push_back(QFileInfo(file).fileName().toStdString());
+  StatusOr<workflow::MeasureState> state = workflow::SessionMeasureState(session_->Dir().toStdString(), images);
+  if (!state.ok() || state->reason.empty()) return again;
+  // "2 image(s) changed since they were measured" is, for each of them:
+  const QString reason = QString::fromStdString(state->reason).endsWith("image(s) changed since they were measured")
+                             ? "the image changed since it was measured"
+                             : QString::fromStdString(state->reason);
+  for (const std::string& image : state->to_measure) again[QString::fromStdString(image)] = reason;
+  return again;
 }
 
 void MeasurePanel::ShowReadingsHint() {

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <QWidget>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -71,6 +72,7 @@ class MeasurePanel : public QWidget {
   void ShowPose(int row);
   bool CameraAndTargetReady(const QString& step);
   void ShowReadingsHint();  // how many images lack readings, after every refill
+  std::map<QString, QString> ToMeasureAgain() const;  // image name: why its measurement is stale
   void StartJob(const QString& what, JobWork work);
 
   SessionState* session_;

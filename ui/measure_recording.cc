@@ -45,8 +45,9 @@ void MeasurePanel::LoadImageFolder(const QString& chosen) {
     if (QFileInfo::exists(target)) continue;  // recorded images are never overwritten
     copied += QFile::copy(QString::fromStdString(file), target);
   }
-  status_->setText(
-      QString("copied %1 of %2 images into images/ (existing names kept).").arg(copied).arg(files->size()));
+  status_->setText(QString("copied %1 of %2 into images/ (existing names kept).")
+                       .arg(copied)
+                       .arg(FormatCount(static_cast<long long>(files->size()), "image")));
   session_->Reload();
 }
 
@@ -81,24 +82,22 @@ void MeasurePanel::IntrinsicsFromFolder(const QString& chosen) {
                   : StatusOr<workflow::IntrinsicsOutcome>(lock.status());
     if (!outcome.ok())
       return [this, s = outcome.status()] {
+        // The "intrinsics…" line of the job's start does not outlive it.
+        status_->setText(s.cancelled() ? "intrinsics cancelled: camera.yaml is unchanged." : "intrinsics failed.");
         if (!s.cancelled())
           ShowError(this, "Intrinsics", Message(s) + "\nUse more views of the target, tilted and filling the image.");
       };
     const IntrinsicsResult* result = &outcome->result;
-    QString report = QString("%1 of %2 views used, RMS %3\nfx %4 fy %5 cx %6 cy %7 (px)")
+    QString report = QString("%1 of %2 used, RMS %3\nfx %4, fy %5, cx %6, cy %7")
                          .arg(result->used_views)
-                         .arg(result->views.size())
+                         .arg(FormatCount(static_cast<long long>(result->views.size()), "view"))
                          .arg(FormatPixels(result->rms_px))
-                         .arg(result->camera.fx)
-                         .arg(result->camera.fy)
-                         .arg(result->camera.cx)
-                         .arg(result->camera.cy);
+                         .arg(FormatPixelCoordinate(result->camera.fx), FormatPixelCoordinate(result->camera.fy),
+                              FormatPixelCoordinate(result->camera.cx), FormatPixelCoordinate(result->camera.cy));
     if (result->std_dev.size() >= 4)  // empty for a model whose calibration gives none
-      report += QString(" (σ %1 %2 %3 %4)")
-                    .arg(result->std_dev[0], 0, 'g', 3)
-                    .arg(result->std_dev[1], 0, 'g', 3)
-                    .arg(result->std_dev[2], 0, 'g', 3)
-                    .arg(result->std_dev[3], 0, 'g', 3);
+      report += QString(" (σ %1, %2, %3, %4)")
+                    .arg(FormatPixels(result->std_dev[0]), FormatPixels(result->std_dev[1]),
+                         FormatPixels(result->std_dev[2]), FormatPixels(result->std_dev[3]));
     report += "\n";
     for (const CalibrationView& view : result->views)
       report += QString("%1: %2\n")
@@ -108,8 +107,10 @@ void MeasurePanel::IntrinsicsFromFolder(const QString& chosen) {
     return [this, report] {
       report_->setPlainText(report);
       report_->setVisible(true);
-      ApplySessionEdit(this, "Intrinsics",
-                       [this](bool overwrite) { return session_->SetCamera("camera.yaml", overwrite); });
+      const bool used = ApplySessionEdit(
+          this, "Intrinsics", [this](bool overwrite) { return session_->SetCamera("camera.yaml", overwrite); });
+      status_->setText(used ? "intrinsics: camera.yaml written; the session uses it (measure the images again)."
+                            : "intrinsics: camera.yaml written; the session's camera is unchanged.");
     };
   });
 }

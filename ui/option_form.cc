@@ -29,7 +29,14 @@ OptionRow NumberRow(OptionType type, const std::string& unit, double min, double
   spin->setDecimals(type == OptionType::kInteger ? 0 : DecimalsFor(initial.ok() ? *initial : 0));
   if (type == OptionType::kNumber) spin->setSingleStep(max - min <= 1 ? 0.05 : 1);
   if (!unit.empty()) spin->setSuffix(QString(" ") + QString::fromStdString(unit));
+  // A count's unit in the right number: "1 pose", "4 poses" (not "1 poses").
+  const QString plural = QString::fromStdString(unit);
+  if (type == OptionType::kInteger && plural.endsWith('s'))
+    QObject::connect(spin, qOverload<double>(&QDoubleSpinBox::valueChanged), spin, [spin, plural](double v) {
+      spin->setSuffix(" " + (v == 1 ? plural.chopped(1) : plural));
+    });
   spin->setValue(initial.ok() ? *initial : min);
+  if (type == OptionType::kInteger && plural.endsWith('s') && spin->value() == 1) spin->setSuffix(" " + plural.chopped(1));
   return {spin, [spin] { return FormatNumber(spin->value()); },
           [spin](const std::string& text) {
             StatusOr<double> v = ParseNumber(text);

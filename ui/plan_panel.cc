@@ -26,14 +26,19 @@
 #include "ui/background_job.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
+#include "ui/gui_terms.h"
 #include "ui/plan_options.h"
 #include "ui/plan_visibility.h"
 #include "ui/quantity_format.h"
 #include "ui/text_wrap.h"
+#include "workflow/plan_captures.h"
 #include "workflow/plan_step.h"
+#include "workflow/readings_table.h"
 
 namespace hexcal::ui {
 namespace {
+
+constexpr const char* kIdleOutcome = "Choose the options and run the planner.";
 
 const QStringList kColumns = {"#",  "x",  "y",  "z",  "q1 °", "q2 °", "q3 °",
                               "L1", "L2", "L3", "L4", "L5",   "L6",   "feasible"};
@@ -43,11 +48,18 @@ std::string HistoryPath(const SessionState& session) {
 }
 
 
+// The text of FormatCoordinate (ui/quantity_format.h: "3.5000", not "3.5"
+// beside "-18.17"), sorted by the number it reads as.
+class CoordinateItem : public QTableWidgetItem {
+ public:
+  explicit CoordinateItem(const QString& text) : QTableWidgetItem(text) {}
+  bool operator<(const QTableWidgetItem& other) const override {
+    return text().toDouble() < other.text().toDouble();
+  }
+};
+
 QTableWidgetItem* NumberItem(double value, bool editable) {
-  auto* item = new QTableWidgetItem;
-  // As FormatCoordinate (ui/quantity_format.h), but a number, so that the
-  // column sorts: IK round-off (1e-15) reads as 0.
-  item->setData(Qt::DisplayRole, FormatCoordinate(value).toDouble());
+  auto* item = new CoordinateItem(FormatCoordinate(value));
   if (!editable) item->setFlags(item->flags() & ~Qt::ItemIsEditable);
   return item;
 }
@@ -65,7 +77,7 @@ PlanPanel::PlanPanel(SessionState* session, QWidget* parent)
   cancel_ = new QPushButton("Cancel");
   cancel_->setEnabled(false);
   progress_ = new QProgressBar;
-  status_ = new QLabel("Choose the options and run the planner.");
+  status_ = new QLabel(kIdleOutcome);
   status_->setTextFormat(Qt::PlainText);  // file names are shown as they are, never as HTML
   status_->setWordWrap(true);
   status_->setObjectName("plan_status");
@@ -156,7 +168,8 @@ void PlanPanel::ResetForSession() {
   options_->Reset();
   visibility_->Reset();
   progress_->reset();
-  SetOutcome("Choose the options and run the planner.");
+  outcome_from_job_ = false;
+  SetOutcome(kIdleOutcome);
 }
 
 // The robot, the session's noise model and the camera visibility chosen.
@@ -167,7 +180,7 @@ StatusOr<PlanningModel> PlanPanel::Model() const {
 }
 
 void PlanPanel::SetOutcome(const QString& text) {
-  outcome_ = text;
+  outcome_ = InGuiTerms(text);
   status_->setText(Breakable(text));  // it may quote a long path
 }
 
@@ -232,23 +245,78 @@ void PlanPanel::Finish(const Status& status, const workflow::PlanOutcome& outcom
         this, "Plan",
         QString::fromStdString(status.message()) + "\nTry more candidates, another candidate kind, or fewer poses.");
   }
-  if (!ApplySessionEdit(this, "Plan", [&](bool overwrite) {
-        return session_->SetPlan(result.poses, overwrite, &plan_at_start_);
-      }))
-    return SetOutcome("not saved: plan.csv was kept as another program wrote it.");
+  if (!ApplyPlan(result.poses, &plan_at_start_)) return;
   StatusOr<SessionLock> lock = SessionLock::Acquire(session_->Dir().toStdString(), LockWait::kBriefly);
   const Status history = lock.ok() ? workflow::WriteHistoryCsv(HistoryPath(*session_), result) : lock.status();
   if (!history.ok()) ShowError(this, "Plan", QString::fromStdString(history.message()));
   PlotHistory();  // the whole run, as plan_history.csv now holds it (SetPlan's refresh read the old one)
-  SetOutcome(QString("done: %1 iterations in %2 s%3; O1 %4 → %5, O3 %6 → %7")
-                 .arg(result.iterations)
-                 .arg(result.seconds, 0, 'g', 2)
-                 .arg(result.converged ? " (converged)" : "")
-                 .arg(result.initial.o1, 0, 'g', 4)
-                 .arg(result.final.o1, 0, 'g', 4)
-                 .arg(result.initial.o3, 0, 'g', 4)
-                 .arg(result.final.o3, 0, 'g', 4) +
-             PredictionText(outcome));
+  outcome_from_job_ = true;
+  outcome_plan_ = session_->Plan();
+  SetOutcome(QString("done: %1 in %2%3; O1 %4 → %5, O3 %6 → %7")
+                 .arg(FormatCount(result.iterations, "iteration"), FormatSeconds(result.seconds),
+                      result.converged ? " (converged)" : "", FormatSignificant(result.initial.o1),
+                      FormatSignificant(result.final.o1), FormatSignificant(result.initial.o3),
+                      FormatSignificant(result.final.o3)) +
+             PredictionText(outcome) + (plan_note_.isEmpty() ? QString() : "\n" + plan_note_));
+}
+
+bool PlanPanel::ApplyPlan(const std::vector<Vector6d>& plan, const std::vector<Vector6d>* seen) {
+  const std::string dir = session_->Dir().toStdString();
+  StatusOr<std::vector<workflow::ReadingsRow>> rows = workflow::ReadReadingsTable(dir);
+  const std::vector<std::string> left =
+      rows.ok()
+          ? workflow::CapturesLeftByPlan(workflow::MakeReadingCheck(session_->NominalRobot(), session_->Config().noise),
+                                         session_->Plan(), plan, *rows)
+          : std::vector<std::string>{};
+  plan_note_.clear();
+  workflow::CaptureDisposal disposal = workflow::CaptureDisposal::kKeep;
+  if (!left.empty()) {
+    QStringList names;
+    for (size_t k = 0; k < left.size() && k < 4; ++k) names << QString::fromStdString(left[k]);
+    if (left.size() > 4) names << "…";
+    const QString text = QString("The new plan leaves %1 without its pose (%2): taken at poses it does not have.")
+                             .arg(FormatCount(static_cast<int>(left.size()), "recorded capture"), names.join(", "));
+    const int answer =
+        AskChoice(this, "Plan", text,
+                  "Keep: they stay images with readings, which the calibration uses; the new plan's poses are captured "
+                  "under new names.\nArchive: moved with their readings into the session's archive/ folder, out of the "
+                  "calibration.\nDiscard: deleted with their readings.",
+                  {"Keep captures", "Archive captures", "Discard captures", "Cancel"}, 0);
+    if (answer < 0 || answer > 2) {
+      SetOutcome("cancelled: the plan is unchanged.");
+      return false;
+    }
+    disposal = static_cast<workflow::CaptureDisposal>(answer);
+  }
+  if (!ApplySessionEdit(this, "Plan", [&](bool overwrite) { return session_->SetPlan(plan, overwrite, seen); })) {
+    SetOutcome("not saved: plan.csv was kept as another program wrote it.");
+    return false;
+  }
+  if (left.empty()) return true;
+  const QString count = FormatCount(static_cast<int>(left.size()), "capture");
+  // After the plan is written: a plan not saved leaves the captures as they were.
+  Status disposed = Status::Ok();
+  if (disposal == workflow::CaptureDisposal::kKeep) {
+    plan_note_ = QString("Kept %1 of the earlier plan.").arg(count);
+  } else if (disposal == workflow::CaptureDisposal::kArchive) {
+    StatusOr<std::string> archive = workflow::ArchiveCaptures(dir, left);
+    disposed = archive.ok() ? Status::Ok() : archive.status();
+    if (archive.ok())
+      plan_note_ = QString("Moved %1 of the earlier plan to %2.")
+                       .arg(count, session_->InSession(QString::fromStdString(*archive)));
+  } else {
+    disposed = workflow::DiscardCaptures(dir, left);
+    plan_note_ = QString("Deleted %1 of the earlier plan.").arg(count);
+  }
+  session_->Reload();
+  if (!disposed.ok()) {
+    plan_note_.clear();
+    ShowError(this, "Plan",
+              "The plan is saved, but the captures were not " + QString(workflow::CaptureDisposalName(disposal)) +
+                  "d: " + QString::fromStdString(disposed.message()));
+  }
+  if (!plan_note_.isEmpty()) SetOutcome(plan_note_);
+  return true;
 }
 
 void PlanPanel::Cancel() {
@@ -257,6 +325,11 @@ void PlanPanel::Cancel() {
 }
 
 void PlanPanel::Refresh() {
+  // The planner's outcome line lasts while plan.csv holds its plan.
+  if (outcome_from_job_ && !job_->Running() && session_->Plan() != outcome_plan_) {
+    outcome_from_job_ = false;
+    SetOutcome(kIdleOutcome);
+  }
   FillTable();
   PlotLegLengths();
   PlotHistory();
@@ -271,7 +344,8 @@ void PlanPanel::FillTable() {
   const PlanningModel model = chosen.ok() ? *chosen : PlanningModel{session_->NominalRobot(), {}, {}};
   table_->setRowCount(static_cast<int>(plan.size()));
   for (int j = 0; j < static_cast<int>(plan.size()); ++j) {
-    QTableWidgetItem* index = NumberItem(j + 1, false);
+    QTableWidgetItem* index = new CoordinateItem(QString::number(j + 1));
+    index->setFlags(index->flags() & ~Qt::ItemIsEditable);
     index->setData(Qt::UserRole, j);
     table_->setItem(j, 0, index);
     for (int k = 0; k < 6; ++k) table_->setItem(j, 1 + k, NumberItem(plan[j][k], true));
@@ -289,8 +363,14 @@ void PlanPanel::OnCellEdited(int row, int column) {
   if (filling_ || column < 1 || column > 6) return;
   std::vector<Vector6d> plan = session_->Plan();
   const int index = table_->item(row, 0)->data(Qt::UserRole).toInt();
-  plan[index][column - 1] = table_->item(row, column)->data(Qt::DisplayRole).toDouble();
-  ApplySessionEdit(this, "Plan", [&](bool overwrite) { return session_->SetPlan(plan, overwrite); });
+  bool number = false;
+  const double value = table_->item(row, column)->text().toDouble(&number);
+  if (!number || !std::isfinite(value)) {
+    FillTable();  // the plan as it is
+    return ShowError(this, "Plan", "A pose coordinate is a number: x, y, z in the robot unit, q1..q3 in degrees.");
+  }
+  plan[index][column - 1] = value;
+  if (!ApplyPlan(plan)) FillTable();  // the table shows plan.csv again
 }
 
 void PlanPanel::DeleteSelectedPoses() {
@@ -301,7 +381,7 @@ void PlanPanel::DeleteSelectedPoses() {
   std::vector<Vector6d> plan;
   for (int j = 0; j < static_cast<int>(session_->Plan().size()); ++j)
     if (!doomed.count(j)) plan.push_back(session_->Plan()[j]);
-  ApplySessionEdit(this, "Plan", [&](bool overwrite) { return session_->SetPlan(plan, overwrite); });
+  ApplyPlan(plan);
 }
 
 void PlanPanel::AddPose() {
@@ -310,7 +390,7 @@ void PlanPanel::AddPose() {
     for (int k = 0; k < 6; ++k) home[k] = box->bounds[k]->Centre();
   std::vector<Vector6d> plan = session_->Plan();
   plan.push_back(home);
-  ApplySessionEdit(this, "Plan", [&](bool overwrite) { return session_->SetPlan(plan, overwrite); });
+  ApplyPlan(plan);
 }
 
 void PlanPanel::ExportPlan() {

@@ -4,6 +4,10 @@
 // add poses); the leg lengths per pose against the strokes (fig. 8); export.
 // The plan is the session's plan.csv, written on every change; the indices
 // per iteration go to plan_history.csv (the columns of `hexcal plan --history`).
+// A change that leaves recorded captures without their pose (a new plan, a
+// pose edited or deleted) asks first: keep them (images with readings the
+// calibration uses), archive them (moved to archive/), discard them, or
+// cancel (workflow/plan_captures.h).
 //
 //   auto* plan = new PlanPanel(session);
 //   plan->Options()->SetValue("poses", 16);
@@ -41,6 +45,10 @@ class PlanPanel : public QWidget {
   BackgroundJob* Job() const { return job_; }
   QTableWidget* PoseTable() const { return table_; }
   const QString& LastOutcome() const { return outcome_; }
+  // plan.csv becomes `plan` (the change started from `seen`, the plan shown
+  // by default), after asking what becomes of the captures it leaves without
+  // their pose; false when cancelled or not written.
+  bool ApplyPlan(const std::vector<Vector6d>& plan, const std::vector<Vector6d>* seen = nullptr);
 
  public slots:
   void Run();
@@ -78,6 +86,9 @@ class PlanPanel : public QWidget {
   QtCharts::QChartView *indices_chart_, *legs_chart_;
   charts::ChartSpec indices_;  // what indices_chart_ shows; the live plot appends to it
   QString outcome_;
+  QString plan_note_;                   // what ApplyPlan did with the captures the new plan left
+  bool outcome_from_job_ = false;       // outcome_ is the planner's, shown while plan.csv holds its plan
+  std::vector<Vector6d> outcome_plan_;  // that plan
   // The plan when the planner started: the plan its result replaces, so that
   // a plan.csv another program wrote meanwhile is a conflict, not overwritten.
   std::vector<Vector6d> plan_at_start_;

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "core/pose.h"
+#include "ui/quantity_format.h"
 #include "ui/text_wrap.h"
 
 namespace hexcal::ui {
@@ -38,14 +39,9 @@ StatusOr<MeasurementConstraints> FromSession(const SessionState& session) {
 
 QString DescribeConstraints(const MeasurementConstraints& c, const QString& unit) {
   const Eigen::Vector3d& p = c.base_from_camera.position;
-  return QString("camera at (%1, %2, %3) %4, field of view %5° × %6°, view angle ≤ %7°")
-      .arg(p.x(), 0, 'g', 4)
-      .arg(p.y(), 0, 'g', 4)
-      .arg(p.z(), 0, 'g', 4)
-      .arg(unit)
-      .arg(2 * c.half_fov_x_deg, 0, 'f', 1)
-      .arg(2 * c.half_fov_y_deg, 0, 'f', 1)
-      .arg(c.max_view_angle_deg, 0, 'f', 0);
+  return QString("camera at (%1, %2, %3) %4, field of view %5 × %6, view angle ≤ %7")
+      .arg(FormatCoordinate(p.x()), FormatCoordinate(p.y()), FormatCoordinate(p.z()), unit,
+           FormatAngle(2 * c.half_fov_x_deg), FormatAngle(2 * c.half_fov_y_deg), FormatAngle(c.max_view_angle_deg));
 }
 
 VisibilityForm::VisibilityForm(SessionState* session, QWidget* parent) : QWidget(parent), session_(session) {

@@ -87,7 +87,8 @@ void ReadingsEditor::OnCellEdited(int row, int column) {
   }
   const workflow::ReadingsRow shown = rows_[row];
   if (column != kHoldoutColumn) {
-    const Status plausible = workflow::CheckTypedReading(Check(), shown.image, column - 1, value);
+    // The stroke, and the commanded pose's IK length for an acquired image.
+    const Status plausible = workflow::CheckTypedReading(Check(), shown.image, column - 1, value, shown.commanded);
     if (!plausible.ok()) return Refuse(plausible);
   }
   if (shown.recorded) return EditRecorded(shown, column, value);
@@ -154,7 +155,9 @@ int ReadingsEditor::PasteReadings(const QString& text, int first) {
     }
     LegReadings readings;
     for (int i = 0; i < kNumLegs; ++i) readings[i] = (*legs)[i];
-    const Status plausible = workflow::CheckTypedReadings(Check(), "pasted line " + std::to_string(k + 1), readings);
+    const Status plausible =
+        workflow::CheckTypedReadings(Check(), "pasted line " + std::to_string(k + 1) + " (" + rows_[row].image + ")",
+                                     readings, rows_[row].commanded);
     if (!plausible.ok()) {
       emit Note(QString::fromStdString(plausible.message()) + ": stopped there");
       break;

@@ -4,8 +4,9 @@
 // workflow::ReadReadingsTable, so an image without readings has a blank row to
 // type into; its row enters legs.csv when the sixth reading is typed. Ctrl+V
 // pastes lines of six numbers (a spreadsheet's rows) from the current row on.
-// A reading outside its leg's stroke is refused, naming the image, the leg
-// and the value (workflow::CheckTypedReading).
+// A reading outside its leg's stroke, or, for an image the Acquire step
+// captured, far from the IK length of the pose it was commanded to, is
+// refused, naming the image, the leg and the value (workflow::CheckTypedReading).
 // Every change goes to legs.csv at once, as it is on disk (session_edits.h).
 // A reload while a cell is being edited leaves the editor and its text alone:
 // the table is refilled when the editor closes, and the typed value is

@@ -10,6 +10,7 @@
 #include <QVBoxLayout>
 
 #include "core/candidates.h"
+#include "ui/quantity_format.h"
 #include "ui/robot_view.h"
 
 namespace hexcal::ui {
@@ -18,7 +19,7 @@ namespace {
 constexpr int kWorkspaceSamples = 400;
 
 QString Vec(const Eigen::Vector3d& v) {
-  return QString("%1, %2, %3").arg(v.x(), 0, 'f', 3).arg(v.y(), 0, 'f', 3).arg(v.z(), 0, 'f', 3);
+  return QString("%1  %2  %3").arg(FormatCoordinate(v.x()), FormatCoordinate(v.y()), FormatCoordinate(v.z()));
 }
 
 }  // namespace
@@ -29,9 +30,9 @@ RobotPanel::RobotPanel(SessionState* session, QWidget* parent)
   summary_->setTextFormat(Qt::RichText);  // names from files are escaped where they are set
   summary_->setWordWrap(true);
   summary_->setObjectName("robot_summary");
-  legs_ = new QTableWidget(kNumLegs, 5);
+  legs_ = new QTableWidget(kNumLegs, 4);
   legs_->setObjectName("robot_legs");
-  legs_->setHorizontalHeaderLabels({"a (base)", "b (platform)", "offset l", "stroke min", "stroke max"});
+  legs_->setHorizontalHeaderLabels({"a (base)", "b (platform)", "offset l", "stroke"});
   legs_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   legs_->setEditTriggers(QAbstractItemView::NoEditTriggers);
 
@@ -68,7 +69,7 @@ RobotPanel::RobotPanel(SessionState* session, QWidget* parent)
   splitter->addWidget(left);
   splitter->addWidget(right);
   splitter->setStretchFactor(1, 2);
-  splitter->setSizes({520, 860});
+  splitter->setSizes({600, 780});  // the legs' table whole at 1280 px
   auto* layout = new QVBoxLayout(this);
   layout->addWidget(splitter);
   connect(session_, &SessionState::Changed, this, &RobotPanel::Refresh);
@@ -82,10 +83,14 @@ void RobotPanel::Refresh() {
                         .arg(QString::fromStdString(robot.name).toHtmlEscaped(),
                              QString::fromStdString(session_->Config().robot).toHtmlEscaped(),
                              LengthUnitName(robot.length_unit), EulerConventionName(robot.euler)));
+  const QString unit = LengthUnitName(robot.length_unit);
+  // Coordinates to 1e-4 of the robot unit, the unit in the header (ui/quantity_format.h).
+  legs_->setHorizontalHeaderLabels(
+      {"a (base, " + unit + ")", "b (platform, " + unit + ")", "offset l (" + unit + ")", "stroke (" + unit + ")"});
   for (int i = 0; i < kNumLegs; ++i) {
     const Leg& leg = robot.legs[i];
-    const QStringList cells = {Vec(leg.a_in_base), Vec(leg.b_in_platform), QString::number(leg.offset),
-                               QString::number(leg.stroke_min), QString::number(leg.stroke_max)};
+    const QStringList cells = {Vec(leg.a_in_base), Vec(leg.b_in_platform), FormatCoordinate(leg.offset),
+                               FormatCoordinate(leg.stroke_min) + " … " + FormatCoordinate(leg.stroke_max)};
     for (int c = 0; c < cells.size(); ++c) legs_->setItem(i, c, new QTableWidgetItem(cells[c]));
   }
   view_->Scene().SetRobot(robot);
@@ -112,15 +117,12 @@ void RobotPanel::ShowPlannedPose(int index) {
     if (scrub_->value() != index) scrub_->setValue(index);  // re-enters once with the same index
     view_->Scene().SetPose(plan[index]);
     const Vector6d& p = plan[index];
-    scrub_label_->setText(QString("pose %1 of %2: (%3, %4, %5) (%6°, %7°, %8°)")
+    scrub_label_->setText(QString("pose %1 of %2: x y z %3 %4 %5 %6, q1 q2 q3 %7 %8 %9°")
                               .arg(index + 1)
                               .arg(plan.size())
-                              .arg(p[0], 0, 'f', 2)
-                              .arg(p[1], 0, 'f', 2)
-                              .arg(p[2], 0, 'f', 2)
-                              .arg(p[3], 0, 'f', 1)
-                              .arg(p[4], 0, 'f', 1)
-                              .arg(p[5], 0, 'f', 1));
+                              .arg(FormatCoordinate(p[0]), FormatCoordinate(p[1]), FormatCoordinate(p[2]),
+                                   LengthUnitName(session_->NominalRobot().length_unit), FormatCoordinate(p[3]),
+                                   FormatCoordinate(p[4]), FormatCoordinate(p[5])));
   } else {
     scrub_label_->setText("no plan: the home pose");
   }

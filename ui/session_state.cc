@@ -11,6 +11,7 @@
 #include "workflow/plan_step.h"
 #include "workflow/point_session.h"
 #include "workflow/session_calibrate.h"
+#include "workflow/session_init.h"
 #include "workflow/session_results.h"
 #include "workflow/session_study.h"
 #include "core/csv.h"
@@ -273,7 +274,8 @@ Status SessionState::Open(const QString& dir) {
 }
 
 Status SessionState::Create(const QString& dir, const SessionConfig& config) {
-  if (Status made = InitSession(dir.toStdString(), config); !made.ok()) return made;
+  // Nothing is created when the robot, camera or target does not load (as the CLI).
+  if (Status made = workflow::CreateSession(dir.toStdString(), config); !made.ok()) return made;
   return Open(dir);
 }
 

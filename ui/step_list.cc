@@ -1,5 +1,7 @@
 #include "ui/step_list.h"
 
+#include "ui/gui_terms.h"
+
 namespace hexcal::ui {
 
 StepList::StepList(SessionState* session, QWidget* parent) : QListWidget(parent), session_(session) {
@@ -38,7 +40,8 @@ StateLook LookOf(StepState state) {
 
 }  // namespace
 
-// The marks and the tooltips' sentences are those of `hexcal session status`.
+// The marks and the tooltips' sentences are those of `hexcal session status`,
+// with the GUI's controls where it names the CLI's (ui/gui_terms.h).
 void StepList::Refresh() {
   for (int k = 0; k < kNumSteps; ++k) {
     const Step step = static_cast<Step>(k);
@@ -46,7 +49,7 @@ void StepList::Refresh() {
     const StateLook look = LookOf(state);
     QListWidgetItem* row = item(k);
     row->setText(QString("%1  %2").arg(look.mark, StepName(step)));
-    row->setToolTip(QString("%1: %2 — %3").arg(StepName(step), look.word, session_->Why(step)));
+    row->setToolTip(QString("%1: %2 — %3").arg(StepName(step), look.word, InGuiTerms(session_->Why(step))));
     row->setData(Qt::UserRole, static_cast<int>(state));
     row->setForeground(look.colour);
   }

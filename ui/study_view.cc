@@ -16,6 +16,7 @@
 #include "ui/background_job.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
+#include "ui/quantity_format.h"
 #include "ui/text_wrap.h"
 #include "workflow/session_study.h"
 #include "workflow/study_options.h"
@@ -35,7 +36,7 @@ int ChartIndex(SubsetMetric metric) { return static_cast<int>(metric); }  // kSu
 
 // Three significant digits, as every error in the GUI (ui/quantity_format.h);
 // the unit is in the row's header, so that a p5 – p95 range fits its cell.
-QString MetricText(double value) { return std::isfinite(value) ? QString::number(value, 'g', 3) : "—"; }
+QString MetricText(double value) { return FormatSignificant(value); }
 
 QString RowHeader(SubsetMetric metric, const QString& unit) {
   switch (metric) {
@@ -190,9 +191,8 @@ void StudyView::Finish(const std::shared_ptr<StatusOr<workflow::StudyOutcome>>& 
     SetOutcome("done, but not kept.");
     return ShowError(this, "Section 8 study", QString::fromStdString(saved.message()));
   }
-  SetOutcome(QString("done in %1 s on %2 threads; kept in %3.")
-                 .arg(done.seconds, 0, 'f', 1)
-                 .arg(done.threads)
+  SetOutcome(QString("done in %1 on %2; kept in %3.")
+                 .arg(FormatSeconds(done.seconds), FormatCount(done.threads, "thread"))
                  .arg(session_->InSession(QString::fromStdString(done.saved) + "/")));  // "study/"
   session_->Reload();  // shows what study/ now holds
 }
@@ -243,7 +243,7 @@ void StudyView::ShowStudy(const workflow::SessionStudy& study) {
     table_->verticalHeaderItem(row)->setText(RowHeader(m.metric, unit));
     const QString cells[] = {MetricText(m.selected), MetricText(m.random.mean), MetricText(m.random.median),
                              MetricText(m.random.p5) + " – " + MetricText(m.random.p95),
-                             std::isfinite(m.selected) ? QString::number(m.percentile, 'f', 1) + " %" : "—"};
+                             std::isfinite(m.selected) ? FormatPercent(m.percentile) : "—"};
     for (int c = 0; c < 5; ++c) table_->setItem(row, c, new QTableWidgetItem(cells[c]));
   }
   for (SubsetMetric metric : kSubsetMetrics)

@@ -6,6 +6,7 @@
 #include <QScrollBar>
 #include <algorithm>
 
+#include "ui/gui_terms.h"
 #include "ui/text_wrap.h"
 
 namespace hexcal::ui {
@@ -29,7 +30,8 @@ QString FindingsHtml(const workflow::Verdict& verdict) {
     }
     // What to do, on as few lines as possible; the figures are in the tooltip.
     html += QString("<span style=\"color:%1\"><b>%2</b></span> %3: %4.<br>")
-                .arg(Colour(f.level), workflow::VerdictLevelName(f.level), Html(f.aspect), Html(f.advice));
+                .arg(Colour(f.level), workflow::VerdictLevelName(f.level), Html(f.aspect),
+                     InGuiTerms(Html(f.advice)));  // the GUI's controls, not the CLI's flags
   }
   if (!good.isEmpty()) {
     html += QString("<span style=\"color:%1\">%2:</span> %3")

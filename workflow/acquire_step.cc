@@ -14,7 +14,9 @@
 #include "core/session.h"
 #include "vision/image_codecs.h"
 #include "workflow/acquire_files.h"
+#include "workflow/plan_captures.h"
 #include "workflow/reading_check.h"
+#include "workflow/readings_table.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_edits.h"
 #include "workflow/sim_world.h"
@@ -72,6 +74,21 @@ StatusOr<std::vector<Vector6d>> LoadRequestedPoses(const AcquireRequest& request
   return LoadPoses(path);
 }
 
+// The image name a new capture of plan row `pose_index` gets
+// (CaptureImageName); an error when the pose is recorded already, or an
+// operator's file is where the image would go (ClearImageSlot, which removes
+// the image a killed capture left when `remove`).
+StatusOr<std::string> FreeCaptureName(const std::string& dir, const ReadingCheck& check, int pose_index,
+                                      const Vector6d& pose, const JobHooks& hooks, bool remove) {
+  StatusOr<std::vector<ReadingsRow>> rows = ReadReadingsTable(dir);
+  if (!rows.ok()) return rows.status();
+  if (const int row = CaptureOfPose(check, pose_index, pose, *rows); row >= 0)
+    return Status::Error(dir + ": " + (*rows)[row].image + " is recorded already");
+  const std::string image = CaptureImageName(pose_index, *rows);
+  if (Status s = ClearImageSlot(dir, image, remove, hooks); !s.ok()) return s;
+  return image;
+}
+
 // AcquirePose; *refused (if given) says the controller's readings were refused.
 StatusOr<PoseRecord> AcquireOnePose(const std::string& dir, int pose_index, const Vector6d& pose,
                                     Controller& controller, FrameSource& camera, const AcquireOptions& options,
@@ -83,15 +100,14 @@ StatusOr<PoseRecord> AcquireOnePose(const std::string& dir, int pose_index, cons
   if (!check.ok()) return check.status();
   PoseRecord record;
   record.index = pose_index;
-  record.image = AcquiredImageName(pose_index);
   record.pose = pose;
   record.holdout = options.holdout_every > 0 && pose_index % options.holdout_every == options.holdout_every - 1;
-  // A recorded pose, or an operator's own file where the image would go:
-  // refused before the machine moves (and again under the lock, below).
-  StatusOr<std::set<std::string>> before = ImagesWithRows(dir);
-  if (!before.ok()) return before.status();
-  if (before->count(record.image)) return Status::Error(dir + ": " + record.image + " is recorded already");
-  if (Status s = ClearImageSlot(dir, record.image, false, hooks); !s.ok()) return s;
+  // A recorded pose (by the pose its row was commanded to, plan_captures.h),
+  // or an operator's own file where the image would go: refused before the
+  // machine moves (and again under the lock, below).
+  StatusOr<std::string> image = FreeCaptureName(dir, *check, pose_index, pose, hooks, false);
+  if (!image.ok()) return image.status();
+  record.image = *image;
   cv::Mat frame;
   const CancelFlagLent lent(controller, hooks);
   if (Status s = DriveAndCapture(pose, controller, camera, options, hooks, &frame, &record.readings); !s.ok()) return s;
@@ -104,14 +120,14 @@ StatusOr<PoseRecord> AcquireOnePose(const std::string& dir, int pose_index, cons
 
   StatusOr<SessionLock> lock = SessionLock::Acquire(dir, options.wait);
   if (!lock.ok()) return lock.status();
-  StatusOr<std::set<std::string>> recorded = ImagesWithRows(dir);
-  if (!recorded.ok()) return recorded.status();
-  if (recorded->count(record.image)) return Status::Error(dir + ": " + record.image + " is recorded already");
-  if (Status s = ClearImageSlot(dir, record.image, true, hooks); !s.ok()) return s;
+  image = FreeCaptureName(dir, *check, pose_index, pose, hooks, true);
+  if (!image.ok()) return image.status();
+  record.image = *image;
   LegsRow row;
   row.image = record.image;
   row.legs = record.readings;
   row.holdout = record.holdout;
+  row.commanded = pose;
   if (Status s = RecordWithPendingName(dir, *png, row, options.wait); !s.ok()) return s;
   record.seconds = SecondsSince(start);
   return record;
@@ -119,17 +135,11 @@ StatusOr<PoseRecord> AcquireOnePose(const std::string& dir, int pose_index, cons
 
 // One plan row: skipped when recorded, else acquired; a failure is recorded
 // in the result unless it stops the run.
-StatusOr<PoseRecord> RunOnePose(const AcquireRequest& request, int index, const Vector6d& pose,
-                                const std::set<std::string>& recorded, Controller& controller, FrameSource& camera,
-                                const JobHooks& hooks) {
-  PoseRecord skipped;
-  skipped.index = index;
-  skipped.image = AcquiredImageName(index);
-  skipped.pose = pose;
-  if (recorded.count(skipped.image)) {
-    skipped.state = PoseState::kAlreadyRecorded;
-    return skipped;
-  }
+StatusOr<PoseRecord> RunOnePose(const AcquireRequest& request, const PoseRecord& planned, Controller& controller,
+                                FrameSource& camera, const JobHooks& hooks) {
+  if (planned.state == PoseState::kAlreadyRecorded) return planned;
+  const int index = planned.index;
+  const Vector6d& pose = planned.pose;
   bool refused = false;
   StatusOr<PoseRecord> done =
       AcquireOnePose(request.session, index, pose, controller, camera, request.options, hooks, &refused);
@@ -140,7 +150,7 @@ StatusOr<PoseRecord> RunOnePose(const AcquireRequest& request, int index, const 
   if (!controller.Usable())
     return Status::Failed(done.status().message() + "; the run stops here: look at the machine, then run " +
                           "hexcal acquire again to go on");
-  PoseRecord failed = skipped;
+  PoseRecord failed = planned;
   failed.state = PoseState::kFailed;
   failed.error = done.status().message();
   return failed;
@@ -276,8 +286,10 @@ StatusOr<AcquireResult> AcquirePlan(const AcquireRequest& request, Controller& c
   if (!robot.ok()) return robot.status();
   StatusOr<SessionLock> lock = SessionLock::Acquire(request.session, request.options.wait);
   if (!lock.ok()) return lock.status();
-  StatusOr<std::set<std::string>> recorded = ImagesWithRows(request.session);
-  if (!recorded.ok()) return recorded.status();
+  StatusOr<ReadingCheck> check = SessionReadingCheck(request.session);
+  if (!check.ok()) return check.status();
+  StatusOr<std::vector<ReadingsRow>> rows = ReadReadingsTable(request.session);
+  if (!rows.ok()) return rows.status();
 
   AcquireResult result{request.session, controller.Describe(), camera.Describe(), {}, 0, 0, {}};
   result.settle_seconds = request.options.settle_seconds.value_or(controller.DefaultSettleSeconds());
@@ -286,10 +298,12 @@ StatusOr<AcquireResult> AcquirePlan(const AcquireRequest& request, Controller& c
   for (int index = 0; index < total; ++index) {
     PoseRecord& record = result.poses.emplace_back();
     record.index = index;
-    record.state = PoseState::kAlreadyRecorded;
-    record.image = AcquiredImageName(index);
     record.pose = (*poses)[index];
-    skip[index] = recorded->count(record.image) > 0;
+    // Recorded when a row holds this pose (plan_captures.h), whatever its name.
+    const int row = CaptureOfPose(*check, index, record.pose, *rows);
+    skip[index] = row >= 0;
+    record.state = skip[index] ? PoseState::kAlreadyRecorded : PoseState::kRecorded;
+    record.image = skip[index] ? (*rows)[row].image : CaptureImageName(index, *rows);
   }
   result.visit_order = VisitOrder(*robot, *poses, WorkspaceCentre(*robot), skip);
   hooks.Stage("acquire");
@@ -297,7 +311,7 @@ StatusOr<AcquireResult> AcquirePlan(const AcquireRequest& request, Controller& c
   int done = total - static_cast<int>(result.visit_order.size());
   for (const int index : result.visit_order) {
     if (hooks.Cancelled()) return Status::Cancelled();
-    StatusOr<PoseRecord> record = RunOnePose(request, index, (*poses)[index], *recorded, controller, camera, hooks);
+    StatusOr<PoseRecord> record = RunOnePose(request, result.poses[index], controller, camera, hooks);
     if (!record.ok()) return record.status();
     hooks.Note(PoseNote(*record, total));
     result.poses[index] = *record;

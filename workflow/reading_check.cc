@@ -61,21 +61,35 @@ Status CheckReadings(const ReadingCheck& check, const std::string& pose_name, co
   return Status::Ok();
 }
 
-Status CheckTypedReading(const ReadingCheck& check, const std::string& where, int leg, double value) {
+double TypedTolerance(const ReadingCheck& check, int leg) {
+  const Leg& stroke = check.robot.legs[leg];
+  return std::max(kTypedReadingStrokeShare * (stroke.stroke_max - stroke.stroke_min), check.tolerance);
+}
+
+Status CheckTypedReading(const ReadingCheck& check, const std::string& where, int leg, double value,
+                         const std::optional<Vector6d>& commanded) {
   const std::string unit = " " + std::string(LengthUnitName(check.robot.length_unit));
   const Leg& stroke = check.robot.legs[leg];
+  const double tolerance = TypedTolerance(check, leg);
   const std::string reading = where + ": L" + std::to_string(leg + 1) + " = " + Number(value);
   if (!std::isfinite(value)) return Status::Error(reading + " is not a finite number; not saved");
-  if (value < stroke.stroke_min - check.tolerance || value > stroke.stroke_max + check.tolerance)
+  if (value < stroke.stroke_min - tolerance || value > stroke.stroke_max + tolerance)
     return Status::Error(reading + unit + " is outside leg " + std::to_string(leg + 1) + "'s stroke [" +
                          Number(stroke.stroke_min) + ", " + Number(stroke.stroke_max) + "]" + unit +
                          "; not saved (a typo, or a reading in another unit?)");
-  return Status::Ok();
+  if (!commanded) return Status::Ok();
+  const double needed = InverseKinematics(check.robot, check.robot.PoseFromVector(*commanded))[leg];
+  if (std::abs(value - needed) <= tolerance) return Status::Ok();
+  return Status::Error(reading + unit + " is " + Number(std::abs(value - needed)) + unit + " from the " +
+                       Number(needed) + unit + " the commanded pose needs, more than " + Number(tolerance) + unit +
+                       " (" + Number(100 * kTypedReadingStrokeShare) +
+                       " % of the stroke); not saved (another pose's reading, swapped legs or a typo?)");
 }
 
-Status CheckTypedReadings(const ReadingCheck& check, const std::string& where, const LegReadings& readings) {
+Status CheckTypedReadings(const ReadingCheck& check, const std::string& where, const LegReadings& readings,
+                          const std::optional<Vector6d>& commanded) {
   for (int i = 0; i < kNumLegs; ++i)
-    if (Status s = CheckTypedReading(check, where, i, readings[i]); !s.ok()) return s;
+    if (Status s = CheckTypedReading(check, where, i, readings[i], commanded); !s.ok()) return s;
   return Status::Ok();
 }
 

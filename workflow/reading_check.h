@@ -14,6 +14,7 @@
 //   if (Status s = CheckReadings(*check, "pose_0007.png", pose, legs); !s.ok()) ...;  // refused
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "core/inverse_kinematics.h"
@@ -42,13 +43,27 @@ StatusOr<ReadingCheck> SessionReadingCheck(const std::string& session_dir);
 Status CheckReadings(const ReadingCheck& check, const std::string& pose_name, const Vector6d& pose,
                      const LegReadings& readings);
 
-// Readings an operator typed or pasted (the GUI's readings table and its
-// by-hand capture dialog; issue 35): each finite and within its leg's stroke,
-// with the same tolerance. Not compared with the IK of a commanded pose: a
-// robot moved by hand is only near it, and an image loaded from a folder has
-// none. An error (bad input) naming `where` ("view_0003.png", "pasted line
-// 2"), the leg, the value and the stroke; OK when plausible.
-Status CheckTypedReading(const ReadingCheck& check, const std::string& where, int leg, double value);
-Status CheckTypedReadings(const ReadingCheck& check, const std::string& where, const LegReadings& readings);
+// Readings an operator types, pastes or imports (the GUI's readings table,
+// its by-hand capture dialog and Import; issue 35) come from a person, not a
+// servo: they are held to a generous tolerance, per leg
+//   TypedTolerance = max(kTypedReadingStrokeShare · (stroke_max − stroke_min), tolerance)
+// (10 % of the stroke: 0.35 cm on the INRIA robot's 3.5 cm). An uncalibrated
+// robot reads within it of its nominal model (the demo's hidden robot within
+// 3 % of the stroke), and so does a robot moved by hand to the lengths shown;
+// a slipped digit, a reading in another unit, swapped legs or another pose's
+// row do not. Each reading must be finite and within the stroke widened by
+// it, and, when the image was captured at a commanded pose (the Acquire
+// step's; legs.csv's commanded columns), within it of the nominal IK of that
+// pose. An image loaded from a folder has no commanded pose: the stroke only.
+constexpr double kTypedReadingStrokeShare = 0.1;
+double TypedTolerance(const ReadingCheck& check, int leg);
+
+// An error (bad input) naming `where` ("view_0003.png", "pasted line 2"),
+// the leg, the value and what it broke (the stroke, or the commanded pose's
+// IK length and the tolerance); OK when plausible.
+Status CheckTypedReading(const ReadingCheck& check, const std::string& where, int leg, double value,
+                         const std::optional<Vector6d>& commanded = std::nullopt);
+Status CheckTypedReadings(const ReadingCheck& check, const std::string& where, const LegReadings& readings,
+                          const std::optional<Vector6d>& commanded = std::nullopt);
 
 }  // namespace hexcal::workflow

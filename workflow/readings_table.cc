@@ -55,6 +55,13 @@ StatusOr<std::vector<ReadingsRow>> RecordedRows(const std::string& path, const s
     legs[i] = *column;
   }
   const auto holdout = std::find(table->header.begin(), table->header.end(), "holdout");
+  std::array<int, 6> commanded{};
+  bool has_commanded = true;
+  for (int k = 0; k < 6; ++k) {
+    const auto it = std::find(table->header.begin(), table->header.end(), kCommandedColumns[k]);
+    has_commanded = has_commanded && it != table->header.end();
+    commanded[k] = static_cast<int>(it - table->header.begin());
+  }
   std::vector<ReadingsRow> rows;
   for (size_t r = 0; r < table->rows.size(); ++r) {
     ReadingsRow row;
@@ -66,6 +73,10 @@ StatusOr<std::vector<ReadingsRow>> RecordedRows(const std::string& path, const s
       if (value.ok()) row.legs[i] = *value;
     }
     if (holdout != table->header.end()) row.holdout = table->rows[r][holdout - table->header.begin()] == "1";
+    if (has_commanded) {
+      StatusOr<std::optional<Vector6d>> pose = CommandedPoseAt(*table, r, commanded, "");
+      if (pose.ok()) row.commanded = *pose;
+    }
     rows.push_back(row);
   }
   return rows;

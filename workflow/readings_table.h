@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/pose.h"
 #include "core/robot.h"
 #include "core/status.h"
 
@@ -26,6 +27,9 @@ struct ReadingsRow {
   bool holdout = false;
   bool recorded = false;       // legs.csv has a row for the image
   bool image_present = false;  // the image is in images/; points sessions: the points file has the pose
+  // The pose the capture was commanded to (legs.csv's commanded_x..q3,
+  // core/session.h); none for an image loaded or typed, or cells that do not read.
+  std::optional<Vector6d> commanded{};
 };
 
 // Rows of legs.csv in file order, then the images (poses) without one, by

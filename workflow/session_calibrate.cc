@@ -52,6 +52,7 @@ StatusOr<SessionInputs> LoadSessionInputs(const std::string& dir) {
   if (Status s = CheckReadingsUnit(*nominal, readings, "row"); !s.ok()) {
     return Status::Error(SessionPaths(dir).legs + ": " + s.message());
   }
+  if (Status s = CheckRowsNearStroke(*nominal, *legs); !s.ok()) return s.Prefixed(dir + ": ");
   const std::optional<PoseBox> box = nominal->limits.SamplingBox();
   if (!box || !box->IsComplete()) return Status::Error(robot_name + ": needs a complete pose_box to start the FK from");
   Vector6d centre;
@@ -358,6 +359,7 @@ StatusOr<CalibrationReport> CalibrateChecked(const CalibrateSessionRequest& requ
   const CameraPoses* poses = &open->poses;
   const double scale = open->scale;
   const SplitRows split = SplitSessionRows(*in, *poses, scale);
+  if (Status s = CheckNominalFk(in->nominal, in->fk_start, split.calibration_rows); !s.ok()) return s;
 
   const RegistrationOptions registration = SessionRegistrationOptions(in->config.noise);
   const CalibrationOptions calibration = SessionCalibrationOptions(in->config.noise, request.outliers);
@@ -428,6 +430,7 @@ StatusOr<MeasuredSession> LoadMeasuredSession(const std::string& dir, LockWait w
   const double scale = open->scale;
   MeasuredSession session{in->nominal, in->config.noise, {}, {}, {}, 0, open->hashes};
   CameraCalibrationInput input;
+  std::vector<const LegsRow*> used;
   for (const LegsRow& row : in->legs) {
     const CameraPose& pose = poses->at(row.image);
     if (!pose.ok) {
@@ -436,7 +439,9 @@ StatusOr<MeasuredSession> LoadMeasuredSession(const std::string& dir, LockWait w
     }
     AppendCameraRow(*in, row, pose, scale, &input);
     session.images.push_back(row.image);
+    used.push_back(&row);
   }
+  if (Status s = CheckNominalFk(in->nominal, in->fk_start, used); !s.ok()) return s;
   const CalibrationOptions calibration = SessionCalibrationOptions(in->config.noise, OutlierScreening{true});
   StatusOr<CameraCalibrationResult> registered = CalibrateFromCameraPoses(
       in->nominal, input, SessionRegistrationOptions(in->config.noise), calibration, {nullptr, hooks.cancel});

@@ -4,11 +4,13 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <map>
 
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/robot_io.h"
 #include "workflow/plan_step.h"
+#include "workflow/reading_check.h"
 #include "workflow/session_calibrate.h"
 
 namespace hexcal::workflow {
@@ -67,7 +69,9 @@ Status CheckPoseName(const std::string& name) {
 // Readings are finite numbers: a NaN written into legs.csv would make every
 // later command refuse the file.
 Status CheckReadings(const LegsEdit& edit) {
-  const bool finite = edit.kind == LegsEdit::Kind::kSetRow ? edit.row.legs.allFinite() : std::isfinite(edit.value);
+  const bool finite = edit.kind == LegsEdit::Kind::kSetRow
+                          ? edit.row.legs.allFinite() && (!edit.row.commanded || edit.row.commanded->allFinite())
+                          : std::isfinite(edit.value);
   return finite ? Status::Ok() : Status::Error(edit.image + ": a reading is not a finite number");
 }
 
@@ -87,11 +91,13 @@ StatusOr<CsvTable> ReadLegsTable(const std::string& path, const std::string& key
   return table;
 }
 
-int ColumnOf(CsvTable* table, const std::string& name) {
+// The column `name`, added to a file without one with `fill` in every row
+// (holdout 0; an empty commanded pose).
+int ColumnOf(CsvTable* table, const std::string& name, const std::string& fill = "0") {
   const auto found = std::find(table->header.begin(), table->header.end(), name);
   if (found != table->header.end()) return static_cast<int>(found - table->header.begin());
-  table->header.push_back(name);  // a holdout column added to a file without one
-  for (auto& row : table->rows) row.push_back("0");
+  table->header.push_back(name);
+  for (auto& row : table->rows) row.push_back(fill);
   return static_cast<int>(table->header.size()) - 1;
 }
 
@@ -107,10 +113,17 @@ std::vector<std::string> RowCells(CsvTable* table, const std::string& key, const
   const int image = ColumnOf(table, key), holdout = ColumnOf(table, "holdout");
   int legs[kNumLegs];
   for (int i = 0; i < kNumLegs; ++i) legs[i] = ColumnOf(table, "L" + std::to_string(i + 1));
+  // A capture's commanded pose (core/session.h); a file without the columns
+  // gets them, empty in its other rows.
+  int commanded[6] = {-1, -1, -1, -1, -1, -1};
+  if (row.commanded)
+    for (int k = 0; k < 6; ++k) commanded[k] = ColumnOf(table, kCommandedColumns[k], "");
   std::vector<std::string> cells(table->header.size(), "");
   cells[image] = row.image;
   for (int i = 0; i < kNumLegs; ++i) cells[legs[i]] = FormatNumber(row.legs[i]);
   cells[holdout] = row.holdout ? "1" : "0";
+  if (row.commanded)
+    for (int k = 0; k < 6; ++k) cells[commanded[k]] = FormatNumber((*row.commanded)[k]);
   return cells;
 }
 
@@ -243,6 +256,47 @@ EditOutcome RecordCaptureBytes(const std::string& dir, const std::string& image_
   return Failed(WriteFileAtomically(SessionPaths(dir).legs, FormatCsv(table->header, table->rows)));
 }
 
+namespace {
+
+// The commanded pose of each image in a legs.csv text (core/session.h's
+// columns); none for a text without them or that does not parse.
+std::map<std::string, Vector6d> CommandedPoses(const std::string& text, const std::string& source) {
+  std::map<std::string, Vector6d> poses;
+  StatusOr<CsvTable> table = ParseCsv(text, source);
+  if (!table.ok() || !ColumnIndex(*table, "image").ok()) return poses;
+  const int image = *ColumnIndex(*table, "image");
+  std::array<int, 6> columns{};
+  for (int k = 0; k < 6; ++k) {
+    StatusOr<int> column = ColumnIndex(*table, kCommandedColumns[k]);
+    if (!column.ok()) return poses;
+    columns[k] = *column;
+  }
+  for (size_t r = 0; r < table->rows.size(); ++r) {
+    StatusOr<std::optional<Vector6d>> pose = CommandedPoseAt(*table, r, columns, "");
+    if (pose.ok() && *pose) poses[table->rows[r][image]] = **pose;
+  }
+  return poses;
+}
+
+// The imported rows checked as typed readings (reading_check.h): within the
+// stroke, and near the IK of the pose the image was captured at, from the
+// imported file's commanded columns or, without them, the session's.
+Status CheckImportedReadings(const std::string& dir, const std::string& legs_file, const std::vector<LegsRow>& rows,
+                             const std::map<std::string, Vector6d>& session_commanded) {
+  StatusOr<ReadingCheck> check = SessionReadingCheck(dir);
+  if (!check.ok()) return check.status();
+  for (const LegsRow& row : rows) {
+    std::optional<Vector6d> commanded = row.commanded;
+    if (const auto found = session_commanded.find(row.image); !commanded && found != session_commanded.end())
+      commanded = found->second;
+    const std::string where = legs_file + ":" + std::to_string(row.line) + ": " + row.image;
+    if (Status s = CheckTypedReadings(*check, where, row.legs, commanded); !s.ok()) return s;
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
 Status ImportLegsFile(const std::string& dir, const std::string& legs_file) {
   StatusOr<SessionLock> lock = SessionLock::Acquire(dir, LockWait::kBriefly);
   if (!lock.ok()) return lock.status();
@@ -255,10 +309,12 @@ Status ImportLegsFile(const std::string& dir, const std::string& legs_file) {
   if (!previous.ok()) return previous.status();
   if (Status s = WriteFileAtomically(path, *text); !s.ok()) return s;
   StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(dir);
-  if (rows.ok()) return Status::Ok();
+  Status loaded = rows.ok() ? Status::Ok() : rows.status();
+  if (rows.ok()) loaded = CheckImportedReadings(dir, legs_file, *rows, CommandedPoses(*previous, path));
+  if (loaded.ok()) return Status::Ok();
   const Status restored = had_one ? WriteFileAtomically(path, *previous) : Status::Ok();
   if (!had_one) fs::remove(path, error);
-  return restored.ok() ? rows.status() : restored;
+  return restored.ok() ? loaded : restored;
 }
 
 EditOutcome ApplyPlanEdit(const std::string& dir, const std::vector<Vector6d>& seen,

@@ -77,9 +77,12 @@ EditOutcome RecordCaptureBytes(const std::string& session_dir, const std::string
 // captures below, which add images, are refused.
 
 // legs.csv replaced by `legs_file` (the GUI's "Import readings"), under the
-// lock; if the session's rows do not load with it, the old legs.csv is put
-// back (a kill in between leaves the imported file, which then fails to load
-// with its error named).
+// lock; if the session's rows do not load with it, or a reading is not
+// plausible (CheckTypedReadings, reading_check.h: the stroke, and the IK of
+// the pose the image was captured at, from the file's commanded columns or
+// the session's; the error names the file's line, the image, the leg and the
+// value), the old legs.csv is put back (a kill in between leaves the imported
+// file, which then fails to load with its error named).
 Status ImportLegsFile(const std::string& session_dir, const std::string& legs_file);
 
 // plan.csv becomes `wanted` (no file when empty); `seen` is the plan the

@@ -8,6 +8,8 @@
 #include <filesystem>
 
 #include "core/csv.h"
+#include "core/inverse_kinematics.h"
+#include "core/robot_io.h"
 #include "core/session.h"
 #include "tests/test_support.h"
 #include "vision/camera.h"
@@ -210,11 +212,57 @@ TEST(SessionEdits, AnImportThatDoesNotLoadKeepsTheOldReadings) {
   const Status refused = ImportLegsFile(s, dir.File("bad.csv"));
   EXPECT_NE(refused.message().find("missing.png"), std::string::npos) << refused.message();
   EXPECT_EQ(ReadTextFile(s + "/legs.csv"), before);
-  WriteTextFile(dir.File("good.csv"), "image,L1,L2,L3,L4,L5,L6\na.png,1,2,3,4,5,6\n");
+  // Readings beyond the stroke (0..3.5 cm) are refused by line, image, leg and value.
+  WriteTextFile(dir.File("typo.csv"), "image,L1,L2,L3,L4,L5,L6\na.png,1,2,3,0.5,1.5,999999\n");
+  const Status typo = ImportLegsFile(s, dir.File("typo.csv"));
+  EXPECT_NE(typo.message().find("typo.csv:2: a.png: L6 = 999999 cm is outside leg 6's stroke"), std::string::npos)
+      << typo.message();
+  EXPECT_EQ(ReadTextFile(s + "/legs.csv"), before);
+  WriteTextFile(dir.File("good.csv"), "image,L1,L2,L3,L4,L5,L6\na.png,1,2,3,0.5,1.5,2.5\n");
   EXPECT_TRUE(ImportLegsFile(s, dir.File("good.csv")).ok());
   StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s);
   ASSERT_TRUE(rows.ok()) << rows.status().message();
   EXPECT_EQ((*rows)[0].legs[0], 1);
+}
+
+// A capture's commanded pose goes into legs.csv's commanded columns, empty for
+// the other rows, and comes back from LoadSessionLegs. An import is checked
+// against it: readings far from the pose's IK lengths are refused (issue 35).
+TEST(SessionEdits, ACapturesCommandedPoseIsKeptAndImportsAreCheckedAgainstIt) {
+  TempDir dir;
+  const std::string s = MakeSession(dir);
+  WriteTextFile(s + "/legs.csv", "image,L1,L2,L3,L4,L5,L6,holdout\na.png,1,2,3,0.5,1.5,2.5,0\n");
+  StatusOr<Robot> robot = LoadRobot("inria-left-hand");
+  ASSERT_TRUE(robot.ok());
+  const Vector6d pose = (Vector6d() << 1, -0.5, 53, 2, -1, 4).finished();
+  LegsRow row;
+  row.image = "pose_0000.png";
+  row.legs = InverseKinematics(*robot, robot->PoseFromVector(pose));
+  row.commanded = pose;
+  ASSERT_TRUE(RecordCaptureBytes(s, "png bytes", row).status.ok());
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s);
+  ASSERT_TRUE(rows.ok()) << rows.status().message();
+  ASSERT_EQ(rows->size(), 2u);
+  EXPECT_FALSE((*rows)[0].commanded.has_value());
+  ASSERT_TRUE((*rows)[1].commanded.has_value());
+  EXPECT_EQ(*(*rows)[1].commanded, pose);  // exact: the shortest text that reads back the same
+  EXPECT_NE(ReadTextFile(s + "/legs.csv").find("commanded_q3"), std::string::npos);
+
+  // Half a commanded pose is named.
+  const std::string before = ReadTextFile(s + "/legs.csv");
+  std::string half = before;
+  half.replace(half.rfind(",4\n"), 3, ",\n");
+  WriteTextFile(dir.File("half.csv"), half);
+  EXPECT_NE(ImportLegsFile(s, dir.File("half.csv")).message().find("of its six cells"), std::string::npos);
+
+  // An import without the commanded columns is checked against the session's.
+  std::string moved = "image,L1,L2,L3,L4,L5,L6\na.png,1,2,3,0.5,1.5,2.5\npose_0000.png";
+  for (int i = 0; i < kNumLegs; ++i) moved += "," + FormatNumber(row.legs[i] + (i == 2 ? 1.0 : 0.0));
+  WriteTextFile(dir.File("moved.csv"), moved + "\n");
+  const Status far = ImportLegsFile(s, dir.File("moved.csv"));
+  EXPECT_NE(far.message().find("moved.csv:3: pose_0000.png: L3 = "), std::string::npos) << far.message();
+  EXPECT_NE(far.message().find("the commanded pose needs"), std::string::npos) << far.message();
+  EXPECT_EQ(ReadTextFile(s + "/legs.csv"), before);
 }
 
 TEST(SessionEdits, APlanOrCameraChangedOnDiskIsAConflict) {
@@ -235,6 +283,41 @@ TEST(SessionEdits, APlanOrCameraChangedOnDiskIsAConflict) {
   StatusOr<SessionConfig> config = LoadSessionConfig(s);
   ASSERT_TRUE(config.ok()) << config.status().message();
   EXPECT_EQ(config->camera, "mine.yaml");
+}
+
+// A reading far outside the stroke, or readings that fit no pose of the
+// nominal robot, are named by image and legs.csv line, not "pose 1" (issue 35).
+TEST(SessionCalibrate, ReadingsThatFitNoPoseAreNamedByImageAndLine) {
+  TempDir dir;
+  DemoRequest demo;
+  demo.out = dir.File("demo");
+  demo.poses = 8;
+  demo.holdout = 2;
+  demo.quick_plan = true;
+  ASSERT_TRUE(RunDemo(demo).ok());
+  const std::string s = demo.out;
+  StatusOr<CsvTable> table = ReadCsv(s + "/legs.csv");
+  ASSERT_TRUE(table.ok());
+  const std::string image = table->rows[1][0];  // line 3
+  auto with_legs = [&](const std::vector<std::string>& values) {
+    CsvTable changed = *table;
+    for (size_t i = 0; i < values.size(); ++i) changed.rows[1][1 + i] = values[i];
+    WriteTextFile(s + "/legs.csv", FormatCsv(changed.header, changed.rows));
+  };
+  with_legs({table->rows[1][1], table->rows[1][2], "999999"});
+  StatusOr<CalibrationReport> run = CalibrateSession({s});
+  ASSERT_FALSE(run.ok());
+  EXPECT_NE(run.status().message().find(image + " (legs.csv line 3): L3 = 999999 cm is far outside leg 3's stroke"),
+            std::string::npos)
+      << run.status().message();
+  // Within a stroke beyond each end (0..3.5 cm), but no pose has these lengths.
+  with_legs({"6.9", "-3.4", "6.9", "-3.4", "6.9", "-3.4"});
+  run = CalibrateSession({s});
+  ASSERT_FALSE(run.ok());
+  EXPECT_NE(run.status().message().find(image + " (legs.csv line 3): forward kinematics did not converge"),
+            std::string::npos)
+      << run.status().message();
+  EXPECT_NE(run.status().message().find("L1..L6 = "), std::string::npos) << run.status().message();
 }
 
 TEST(SessionResults, ACalibrationWhoseInputsChangeUnderneathPublishesNothing) {

@@ -4,6 +4,8 @@
 #include <filesystem>
 
 #include "core/calibration.h"
+#include "core/csv.h"
+#include "core/forward_kinematics.h"
 #include "workflow/expected_error.h"
 
 namespace hexcal::workflow {
@@ -49,6 +51,37 @@ std::vector<OutlierReading> OutlierReadings(const CalibrationResult& calibration
 }
 
 }  // namespace
+
+std::string RowName(const LegsRow& row) { return row.image + " (legs.csv line " + std::to_string(row.line) + ")"; }
+
+Status CheckRowsNearStroke(const Robot& nominal, const std::vector<LegsRow>& rows) {
+  const std::string unit = LengthUnitName(nominal.length_unit);
+  for (const LegsRow& row : rows) {
+    for (int i = 0; i < kNumLegs; ++i) {
+      const Leg& leg = nominal.legs[i];
+      const double span = leg.stroke_max - leg.stroke_min;
+      if (row.legs[i] >= leg.stroke_min - span && row.legs[i] <= leg.stroke_max + span) continue;
+      return Status::Error(RowName(row) + ": L" + std::to_string(i + 1) + " = " + FormatNumber(row.legs[i]) + " " +
+                           unit + " is far outside leg " + std::to_string(i + 1) + "'s stroke [" +
+                           FormatNumber(leg.stroke_min) + ", " + FormatNumber(leg.stroke_max) + "] " + unit +
+                           ": a typo, or a reading in another unit? Fix the reading");
+    }
+  }
+  return Status::Ok();
+}
+
+Status CheckNominalFk(const Robot& nominal, const Pose& start, const std::vector<const LegsRow*>& rows) {
+  for (const LegsRow* row : rows) {
+    StatusOr<LocalFkResult> fk = ForwardKinematicsLocal(nominal, row->legs, start);
+    if (fk.ok()) continue;
+    std::string legs;
+    for (int i = 0; i < kNumLegs; ++i) legs += (i ? ", " : "") + FormatSignificant(row->legs[i], 6);
+    return Status::Failed(RowName(*row) + ": " + fk.status().message() + "; its readings L1..L6 = " + legs + " " +
+                          LengthUnitName(nominal.length_unit) +
+                          " fit no pose of the nominal robot: check them (a typo, another image's readings?)");
+  }
+  return Status::Ok();
+}
 
 // Held-out rows: the camera pose mapped into the registered base frame.
 std::vector<Measurement> HeldOutMeasurements(const SessionInputs& in, const CameraPoses& poses,

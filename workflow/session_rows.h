@@ -47,6 +47,17 @@ struct SplitRows {
   int unusable = 0;
 };
 
+// How a row is named in messages: "view_0003.png (legs.csv line 5)".
+std::string RowName(const LegsRow& row);
+// Every row's readings within a stroke of its leg's stroke (beyond is a typo
+// or another unit, which would make FK fail or calibrate another robot); the
+// error names the image, its legs.csv line, the leg and the value.
+Status CheckRowsNearStroke(const Robot& nominal, const std::vector<LegsRow>& rows);
+// The nominal robot's FK from each row's readings converges from `start`
+// (what the registration starts from, core/registration.h); the error names
+// the image, its legs.csv line and its readings, not "pose 1".
+Status CheckNominalFk(const Robot& nominal, const Pose& start, const std::vector<const LegsRow*>& rows);
+
 // Held-out rows: the camera pose mapped into the registered base frame.
 std::vector<Measurement> HeldOutMeasurements(const SessionInputs& in, const CameraPoses& poses,
                                              const std::vector<const LegsRow*>& held_out,

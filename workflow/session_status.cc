@@ -10,7 +10,10 @@
 #include "core/robot_io.h"
 #include "core/session.h"
 #include "workflow/acquire_step.h"
+#include "workflow/plan_captures.h"
 #include "workflow/point_session.h"
+#include "workflow/reading_check.h"
+#include "workflow/readings_table.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_measure.h"
 #include "workflow/session_results.h"
@@ -19,6 +22,11 @@ namespace hexcal::workflow {
 namespace {
 
 namespace fs = std::filesystem;
+
+// "1 pose", "12 poses": the GUI's step list shows these sentences as they are.
+std::string Count(size_t count, const std::string& noun) {
+  return std::to_string(count) + " " + noun + (count == 1 ? "" : "s");
+}
 
 // A plan is judged by its content against the robot as it is now: a pose the
 // robot cannot reach (a new stroke, a moved joint) makes it stale, named with
@@ -31,7 +39,7 @@ StepReport PlanStep(const std::string& dir, const StatusOr<Robot>& robot) {
     return {"plan", StepStatus::kTodo, "no plan.csv: hexcal plan --out " + path};
   StatusOr<std::vector<Vector6d>> plan = LoadPoses(path);
   if (!plan.ok()) return {"plan", StepStatus::kBroken, plan.status().message()};
-  const std::string count = std::to_string(plan->size()) + " poses";
+  const std::string count = Count(plan->size(), "pose");
   if (!robot.ok()) return {"plan", StepStatus::kStale, count + ", not checked: the robot does not load"};
   int unreachable = 0;
   std::string first;
@@ -46,21 +54,23 @@ StepReport PlanStep(const std::string& dir, const StatusOr<Robot>& robot) {
               "): plan again"};
 }
 
-// How many poses of plan.csv have their image (pose_0007.png, the Acquire
-// step's names) among the rows; none without a plan.
-int RecordedPlanPoses(const std::string& dir, const std::vector<LegsRow>& rows, int* planned) {
+// How many poses of plan.csv are recorded: a row holds the pose it was
+// commanded to (plan_captures.h), whatever its image's name; none without a plan.
+int RecordedPlanPoses(const std::string& dir, const StatusOr<Robot>& robot, const SessionConfig& config, int* planned) {
   StatusOr<std::vector<Vector6d>> plan = LoadPoses(SessionPaths(dir).plan);
   *planned = plan.ok() ? static_cast<int>(plan->size()) : 0;
-  std::set<std::string> images;
-  for (const LegsRow& row : rows) images.insert(row.image);
+  StatusOr<std::vector<ReadingsRow>> rows = ReadReadingsTable(dir);
+  if (!plan.ok() || !rows.ok() || !robot.ok()) return 0;
+  const ReadingCheck check = MakeReadingCheck(*robot, config.noise);
   int recorded = 0;
-  for (int k = 0; k < *planned; ++k) recorded += images.count(AcquiredImageName(k)) > 0;
+  for (const int row : CapturesOfPlan(check, *plan, *rows)) recorded += row >= 0;
   return recorded;
 }
 
 // Readings are done when legs.csv loads; an acquisition of the plan begun and
 // not finished (some pose_NNNN.png recorded, not all) is still to do.
-StepReport ReadingsStep(const std::string& dir, const std::string& noun, std::vector<LegsRow>* rows) {
+StepReport ReadingsStep(const std::string& dir, const StatusOr<Robot>& robot, const SessionConfig& config,
+                        const std::string& noun, std::vector<LegsRow>* rows) {
   const SessionPaths paths(dir);
   std::error_code error;
   if (!fs::exists(fs::symlink_status(paths.legs, error)))
@@ -71,10 +81,9 @@ StepReport ReadingsStep(const std::string& dir, const std::string& noun, std::ve
   *rows = *legs;
   int held_out = 0;
   for (const LegsRow& row : *rows) held_out += row.holdout;
-  const std::string count =
-      std::to_string(rows->size()) + " " + noun + "s with readings, " + std::to_string(held_out) + " held out";
+  const std::string count = Count(rows->size(), noun) + " with readings, " + std::to_string(held_out) + " held out";
   int planned = 0;
-  const int recorded = RecordedPlanPoses(dir, *rows, &planned);
+  const int recorded = RecordedPlanPoses(dir, robot, config, &planned);
   if (recorded > 0 && recorded < planned)
     return {"readings", StepStatus::kTodo,
             count + "; " + std::to_string(recorded) + " of " + std::to_string(planned) +
@@ -88,7 +97,7 @@ StepReport MeasureStep(const std::string& dir, const std::vector<LegsRow>& rows,
   for (const LegsRow& row : rows) images.push_back(row.image);
   StatusOr<MeasureState> state = SessionMeasureState(dir, images, hashes);
   if (!state.ok()) return {"measure", StepStatus::kBroken, state.status().message()};
-  if (state->to_measure.empty()) return {"measure", StepStatus::kDone, std::to_string(images.size()) + " images measured"};
+  if (state->to_measure.empty()) return {"measure", StepStatus::kDone, Count(images.size(), "image") + " measured"};
   const std::string count = std::to_string(state->to_measure.size()) + " of " + std::to_string(images.size());
   if (!state->reason.empty())
     return {"measure", StepStatus::kStale, count + " to measure again: " + state->reason};
@@ -131,9 +140,8 @@ void ResultSteps(const std::string& dir, const ContentHashes* hashes, SessionSta
   status->steps.push_back(
       {"calibrate", stale ? StepStatus::kStale : StepStatus::kDone,
        stale ? ListNames(results->changed_inputs) + " changed since the results" + since + ": calibrate again"
-             : std::to_string(report.calibration_images) +
-                   (report.instrument == "points" ? " poses, closure RMS " : " images, closure RMS ") +
-                   Figure(report.closure_position_rms) + " " + report.length_unit + since});
+             : Count(report.calibration_images, report.instrument == "points" ? "pose" : "image") +
+                   ", closure RMS " + Figure(report.closure_position_rms) + " " + report.length_unit + since});
   if (!report.validation) {
     status->steps.push_back({"validate", StepStatus::kTodo, "no image held out (holdout column of legs.csv)"});
     return;
@@ -184,7 +192,8 @@ StatusOr<SessionStatus> ReadSessionStatus(const std::string& dir, StatusOr<Sessi
                                     : StepReport{"robot", StepStatus::kBroken, robot.status().message()});
   status.steps.push_back(PlanStep(dir, robot));
   std::vector<LegsRow> rows;
-  status.steps.push_back(ReadingsStep(dir, config->instrument == Instrument::kPoints ? "pose" : "image", &rows));
+  status.steps.push_back(
+      ReadingsStep(dir, robot, *config, config->instrument == Instrument::kPoints ? "pose" : "image", &rows));
   // Every input hashed once, for the measure record and the results manifest
   // both (images are most of it); on an error each hashes what it needs and
   // reports its own error.

@@ -22,6 +22,7 @@
 #include "workflow/noise_check.h"
 #include "workflow/reading_check.h"
 #include "workflow/session_edits.h"
+#include "workflow/session_init.h"
 #include "workflow/session_status.h"
 #include "vision/camera.h"
 #include "vision/target.h"
@@ -40,17 +41,8 @@ struct SessionInitOptions {
 };
 
 // A file the user named from here, as session.yaml keeps it: relative to the
-// session folder, so the session works from any directory (issue 36: it kept
-// the path as typed, and calibrate --session from elsewhere said "no such
-// file"). A preset name, or a name no file has, stays as it is.
-std::string AsSessionPath(const std::string& dir, const std::string& name) {
-  namespace fs = std::filesystem;
-  std::error_code error;
-  if (!fs::exists(fs::symlink_status(name, error))) return name;
-  const fs::path file = fs::absolute(name, error).lexically_normal();
-  const fs::path relative = file.lexically_relative(fs::absolute(dir, error).lexically_normal());
-  return error || relative.empty() ? file.string() : relative.string();
-}
+// session folder (workflow/session_init.h, which the GUI's New session uses too).
+using workflow::AsSessionPath;
 
 // With a reflector file and no --noise-position or --noise-angle: the pose
 // noise the tracker's σ implies for these reflectors (√3 σ as the uniform

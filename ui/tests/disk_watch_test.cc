@@ -31,6 +31,7 @@
 #include "ui/acquire_panel.h"
 #include "ui/calibrate_panel.h"
 #include "ui/error_dialog.h"
+#include "ui/gui_terms.h"
 #include "ui/main_window.h"
 #include "ui/measure_panel.h"
 #include "ui/study_view.h"
@@ -161,12 +162,13 @@ QString Mismatch(MainWindow* window, const nlohmann::json& status, const QString
     const QString tooltip = row->toolTip();
     if (status.contains("error")) {
       const QString error = QString::fromStdString(status["error"].get<std::string>());
-      if (shown_state != "broken" || !tooltip.contains(error))
+      if (shown_state != "broken" || !tooltip.contains(InGuiTerms(error)))
         problems << QString("%1 shows %2 (%3), the status fails: %4").arg(kGuiSteps[k], shown_state, tooltip, error);
       continue;
     }
     const QString state = QString::fromStdString(status["steps"][kGuiSteps[k]].get<std::string>());
-    const QString why = QString::fromStdString(status["why"][kGuiSteps[k]].get<std::string>());
+    // The status's sentence as the GUI words it (its controls for the CLI's flags, ui/gui_terms.h).
+    const QString why = InGuiTerms(QString::fromStdString(status["why"][kGuiSteps[k]].get<std::string>()));
     if (shown_state != state || !tooltip.endsWith(why))
       problems
           << QString("%1 shows %2 '%3', the status says %4 '%5'").arg(kGuiSteps[k], shown_state, tooltip, state, why);
@@ -175,7 +177,8 @@ QString Mismatch(MainWindow* window, const nlohmann::json& status, const QString
     return status.contains("steps") ? QString::fromStdString(status["steps"][name].get<std::string>()) : QString();
   };
   const auto why = [&](const char* name) {
-    return status.contains("why") ? QString::fromStdString(status["why"][name].get<std::string>()) : QString();
+    return status.contains("why") ? InGuiTerms(QString::fromStdString(status["why"][name].get<std::string>()))
+                                  : QString();
   };
   // The Calibrate line between runs.
   const QString calibrate = LabelText(window->Calibrate(), "calibrate_status");

@@ -31,6 +31,7 @@
 #include "ui/tests/gui_test_support.h"
 #include "ui/validate_panel.h"
 #include "ui/verdict_view.h"
+#include "vision/camera.h"
 
 namespace hexcal::ui {
 namespace {
@@ -101,6 +102,18 @@ TEST(UiFit, EveryPanelFitsBeforeAndAfterEveryJob) {
   ASSERT_TRUE(WaitFor([&] { return !acquire->Job()->Running(); }, 180000));
   ExpectFits(&window, "acquire", "acquired");
   acquire->Disconnect();
+  ExpectFits(&window, "acquire", "disconnected");  // the buttons that need devices disabled
+  // A new plan over the recorded poses, the captures kept: its poses are
+  // recorded by the pose each capture was commanded to, not by the name.
+  const std::vector<Vector6d> acquired = window.Session()->Plan();
+  Vector6d moved = acquired[0];
+  moved[2] += 0.5;
+  SetChoiceAnswerer([](const QString&, const QString&, const QStringList&) { return 0; });  // Keep captures
+  ASSERT_TRUE(plan->ApplyPlan({moved, acquired[3], acquired[1], acquired[2]}));
+  window.Acquire()->SelectPose(0);
+  ExpectFits(&window, "acquire", "replanned");
+  ASSERT_TRUE(plan->ApplyPlan(acquired));  // the acquired plan again, nothing left to ask about
+  SetChoiceAnswerer({});
 
   MeasurePanel* measure = window.Measure();
   measure->MeasureAll();
@@ -161,6 +174,15 @@ TEST(UiFit, LongNamesStaleResultsAndAPoorVerdictFit) {
   ExpectFits(&window, "calibrate", "poor");
   window.Validate()->VerdictWidget()->Show(PoorVerdict(), window.Session()->ResultsNote());
   ExpectFits(&window, "validate", "poor");
+
+  // Another camera: no image is "ok" with measurements made with the old one.
+  StatusOr<Camera> camera = LoadCamera(window.Session()->Resolve(window.Session()->Config().camera));
+  ASSERT_TRUE(camera.ok());
+  camera->fx *= 1.01;
+  ASSERT_TRUE(SaveCamera(*camera, (dir + "/camera.yaml").toStdString()).ok());
+  ASSERT_TRUE(ApplySessionEdit(&window, "Intrinsics",
+                               [&](bool overwrite) { return window.Session()->SetCamera("camera.yaml", overwrite); }));
+  ExpectFits(&window, "measure", "new-camera");
 }
 
 }  // namespace

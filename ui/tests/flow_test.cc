@@ -6,15 +6,25 @@
 #include <gtest/gtest.h>
 
 #include <QApplication>
+#include <QComboBox>
 #include <QDir>
+#include <QDoubleSpinBox>
 #include <QElapsedTimer>
 #include <QFile>
 #include <QLabel>
 #include <QListWidget>
+#include <QMenuBar>
 #include <QPlainTextEdit>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QRegularExpression>
+#include <QScrollBar>
 #include <QSurfaceFormat>
 #include <QTableWidget>
 #include <QTemporaryDir>
+#include <QTextBrowser>
+#include <QTextCursor>
+#include <QTextDocument>
 #include <QThread>
 #include <algorithm>
 #include <functional>
@@ -28,6 +38,7 @@
 #include "ui/background_job.h"
 #include "ui/calibrate_panel.h"
 #include "ui/error_dialog.h"
+#include "ui/gui_terms.h"
 #include "ui/help_browser.h"
 #include "ui/image_overlay.h"
 #include "ui/image_view.h"
@@ -36,6 +47,7 @@
 #include "ui/plan_options.h"
 #include "ui/plan_panel.h"
 #include "ui/plan_visibility.h"
+#include "ui/quantity_format.h"
 #include "ui/readings_editor.h"
 #include "ui/robot_panel.h"
 #include "ui/robot_scene.h"
@@ -227,7 +239,15 @@ TEST(UiFlow, IntrinsicsFromTargetImages) {
   EXPECT_NEAR(window.Session()->SessionCamera()->width, 1024, 0);
   const auto* report = measure->findChild<QPlainTextEdit*>("intrinsics_report");
   ASSERT_NE(report, nullptr);
-  EXPECT_TRUE(report->toPlainText().contains("views used")) << report->toPlainText().toStdString();
+  // Each figure with its unit (issue 35): "of 16 views used", "fx 903.5 px".
+  const QString text = report->toPlainText();
+  EXPECT_TRUE(text.contains("of 16 views used")) << text.toStdString();
+  EXPECT_TRUE(text.contains(QRegularExpression("fx [0-9]+\\.[0-9] px, fy [0-9]+\\.[0-9] px"))) << text.toStdString();
+  // The "intrinsics…" line of the job's start does not outlive it.
+  auto* status = measure->findChild<QLabel*>("measure_status");
+  ASSERT_NE(status, nullptr);
+  EXPECT_FALSE(status->text().endsWith("…")) << status->text().toStdString();
+  EXPECT_TRUE(status->text().contains("camera.yaml written")) << status->text().toStdString();
 }
 
 // Another program writes the session while the window is open (issue 13): the
@@ -318,10 +338,21 @@ TEST(UiFlow, ASessionSwitchLeavesNothingOfThePreviousSession) {
   config.robot = "inria-left-hand";
   config.camera = kSimulatedCameraName;
   config.target = kDefaultTargetName;
+  config.robot = "deltalab-table";  // in mm: the Calibrate headers must say so
   ASSERT_TRUE(InitSession(second.toStdString(), config).ok());
   MainWindow window;
   window.show();
   ASSERT_TRUE(window.OpenSession(first));
+  // The Acquire step on pose 3 of the first session's plan, with another controller chosen.
+  AcquirePanel* acquire = window.Acquire();
+  acquire->SelectPose(2);
+  auto* pose = acquire->findChild<QLabel*>("acquire_pose");
+  ASSERT_NE(pose, nullptr);
+  EXPECT_TRUE(pose->text().startsWith("pose 3 of 12")) << pose->text().toStdString();
+  auto* controller = acquire->findChild<QComboBox*>("acquire_controller");
+  ASSERT_NE(controller, nullptr);
+  controller->setCurrentText("linuxcnc://localhost:5007");
+  EXPECT_TRUE(window.Calibrate()->ParameterTable()->horizontalHeaderItem(2)->text().endsWith("(cm)"));
   MeasurePanel* measure = window.Measure();
   measure->ImageList()->setCurrentRow(1);
   ASSERT_TRUE(WaitFor([&] { return !measure->PreviewJob()->Running(); }));
@@ -346,6 +377,15 @@ TEST(UiFlow, ASessionSwitchLeavesNothingOfThePreviousSession) {
   ASSERT_TRUE(visibility.ok());
   EXPECT_FALSE(visibility->has_value());
   EXPECT_EQ(window.Calibrate()->ParameterTable()->rowCount(), 0);
+  for (int column = 2; column <= 5; ++column)  // nominal, calibrated, change, σ: this session's unit
+    EXPECT_TRUE(window.Calibrate()->ParameterTable()->horizontalHeaderItem(column)->text().endsWith("(mm)"))
+        << window.Calibrate()->ParameterTable()->horizontalHeaderItem(column)->text().toStdString();
+  // The Acquire step: no pose or lengths of the last plan, the default devices again.
+  EXPECT_EQ(pose->text(), "no pose");
+  EXPECT_EQ(acquire->CurrentPose(), -1);
+  EXPECT_EQ(acquire->ControllerChoice(), "sim");
+  EXPECT_EQ(acquire->CameraChoice(), "sim");
+  EXPECT_EQ(acquire->Checklist()->rowCount(), 0);
   EXPECT_EQ(window.Session()->State(Step::kRobot), StepState::kDone);
   for (Step step : {Step::kPlan, Step::kMeasure, Step::kCalibrate, Step::kValidate})
     EXPECT_EQ(window.Session()->State(step), StepState::kTodo) << StepName(step);
@@ -380,6 +420,15 @@ TEST(UiFlow, NewIntrinsicsAreStaleAndTheCalibrationMeasuresAgain) {
   QListWidgetItem* measure_row = steps->item(static_cast<int>(Step::kMeasure));
   EXPECT_TRUE(measure_row->text().startsWith("⟳"));
   EXPECT_TRUE(measure_row->toolTip().contains("the camera changed")) << measure_row->toolTip().toStdString();
+  // The image list no longer says "ok" for measurements made with the old camera.
+  QListWidget* images = window.Measure()->ImageList();
+  ASSERT_GT(images->count(), 0);
+  for (int row = 0; row < images->count(); ++row) {
+    EXPECT_FALSE(images->item(row)->text().contains("—  ok")) << images->item(row)->text().toStdString();
+    EXPECT_TRUE(images->item(row)->text().endsWith("to measure again")) << images->item(row)->text().toStdString();
+    EXPECT_TRUE(images->item(row)->toolTip().contains("the camera changed"))
+        << images->item(row)->toolTip().toStdString();
+  }
 
   const std::string before = ReadTextFile((dir + "/camera_poses.csv").toStdString());
   window.Calibrate()->Run();
@@ -388,6 +437,17 @@ TEST(UiFlow, NewIntrinsicsAreStaleAndTheCalibrationMeasuresAgain) {
   EXPECT_NE(ReadTextFile((dir + "/camera_poses.csv").toStdString()), before);
   for (int k = 0; k < kNumSteps; ++k)
     EXPECT_EQ(session.State(static_cast<Step>(k)), StepState::kDone) << StepName(static_cast<Step>(k));
+  EXPECT_TRUE(images->item(0)->text().contains("—  ok")) << images->item(0)->text().toStdString();
+  // The progress bar and the run's line do not outlive the job: the bar goes
+  // with it, the line with the results it describes (a reading edited).
+  for (QProgressBar* bar : window.findChildren<QProgressBar*>()) EXPECT_TRUE(bar->isHidden());
+  const LegsRow& first = session.Legs().front();
+  ASSERT_TRUE(ApplySessionEdit(&window, "Leg readings", [&](bool overwrite) {
+    return session.EditLegs(workflow::LegsEdit::SetReading(first.image, 0, first.legs[0], first.legs[0] + 0.001),
+                            overwrite);
+  }));
+  EXPECT_TRUE(window.Calibrate()->LastOutcome().startsWith("Results stale: legs.csv changed"))
+      << window.Calibrate()->LastOutcome().toStdString();
 }
 
 // Loaded images without readings get rows to type or paste them into.
@@ -442,9 +502,41 @@ TEST(UiFlow, TheStrokeCheckHasTheFeasibilityTolerance) {
 // Help shows docs/ in the application; the detection overlay zooms.
 TEST(UiFlow, HelpPagesAndImageZoom) {
   HelpBrowser help;
+  help.show();
   ASSERT_TRUE(help.ShowPage("gui.md")) << DocsFolder().toStdString();
   EXPECT_TRUE(help.ShownText().contains("Measure")) << help.ShownText().left(200).toStdString();
+  // Its screenshots load (issue 35: every one was a broken image), no wider than the page.
+  EXPECT_GE(help.Images().size(), 8);
+  EXPECT_EQ(help.MissingImages(), QStringList{});
+  if (const QString shots = qEnvironmentVariable("HEXCAL_GUI_SHOTS"); !shots.isEmpty()) {
+    // docs/images/gui-help.png: the Robot section, its screenshot in the page.
+    auto* text = help.findChild<QTextBrowser*>("help_text");
+    ASSERT_NE(text, nullptr);
+    help.resize(900, 640);
+    QTextCursor at = text->document()->find("The nominal robot of the session");
+    ASSERT_FALSE(at.isNull());
+    Settle();
+    text->verticalScrollBar()->setValue(static_cast<int>(text->cursorRect(at).top()) +
+                                        text->verticalScrollBar()->value() - 560);
+    Settle();
+    EXPECT_TRUE(help.grab().save(shots + "/gui-help.png"));
+  }
+  // A link to another page, and Back.
+  EXPECT_FALSE(help.CanGoBack());
+  help.FollowLink("acquisition.md#readings-that-are-plausible-or-refused");
+  EXPECT_EQ(help.ShownPage(), "acquisition.md");
+  EXPECT_TRUE(help.ShownText().contains("controller")) << help.ShownText().left(200).toStdString();
+  ASSERT_TRUE(help.CanGoBack());
+  help.Back();
+  EXPECT_EQ(help.ShownPage(), "gui.md");
   EXPECT_FALSE(help.ShowPage("no-such-page.md"));
+  // The Help menu has the acquisition page.
+  MainWindow window;
+  QStringList entries;
+  for (QAction* menu : window.menuBar()->actions())
+    if (menu->menu() && menu->text() == "&Help")
+      for (QAction* entry : menu->menu()->actions()) entries << entry->text();
+  EXPECT_TRUE(entries.join("|").contains("&Acquisition")) << entries.join("|").toStdString();
   ImageView view;
   view.resize(400, 300);
   view.show();
@@ -480,6 +572,20 @@ TEST(UiFlow, AcquisitionWalksThePlanWithTheSimulatedCamera) {
   ASSERT_EQ(acquire->Checklist()->rowCount(), poses);
   EXPECT_EQ(acquire->CurrentPose(), 0);
   EXPECT_EQ(window.Session()->State(Step::kAcquire), StepState::kTodo);
+  // The default devices are a pair that connects; without devices, or
+  // without a controller, the buttons that need them are disabled.
+  EXPECT_EQ(acquire->ControllerChoice(), "sim");
+  EXPECT_EQ(acquire->CameraChoice(), "sim");
+  const auto button = [&](const char* name) { return acquire->findChild<QPushButton*>(name); };
+  for (const char* name : {"acquire_capture", "acquire_redo", "acquire_move", "acquire_run_the_rest"}) {
+    ASSERT_NE(button(name), nullptr) << name;
+    EXPECT_FALSE(button(name)->isEnabled()) << name;
+  }
+  // The sim camera without the sim controller: said in the panel's terms.
+  acquire->Connect("none", "sim");
+  EXPECT_FALSE(acquire->Connected());
+  EXPECT_TRUE(LastShownError().contains("choose 'sim' in the Controller list")) << LastShownError().toStdString();
+  EXPECT_FALSE(LastShownError().contains("--")) << LastShownError().toStdString();
 
   acquire->Connect("sim", "sim");
   ASSERT_TRUE(WaitFor([&] { return acquire->Connected(); }));
@@ -508,6 +614,9 @@ TEST(UiFlow, AcquisitionWalksThePlanWithTheSimulatedCamera) {
   acquire->Connect("none", "file:" + dir + "/images/pose_0003.png");
   ASSERT_TRUE(WaitFor([&] { return acquire->Connected(); }));
   ASSERT_TRUE(WaitFor([&] { return !acquire->Job()->Running(); }));
+  EXPECT_TRUE(button("acquire_capture")->isEnabled());
+  EXPECT_FALSE(button("acquire_move")->isEnabled());  // no controller
+  EXPECT_FALSE(button("acquire_run_the_rest")->isEnabled());
   acquire->SelectPose(0);
   acquire->RedoPose();
   ASSERT_TRUE(WaitFor([&] { return !acquire->Job()->Running(); }));
@@ -523,6 +632,200 @@ TEST(UiFlow, AcquisitionWalksThePlanWithTheSimulatedCamera) {
   window.Calibrate()->Run();
   ASSERT_TRUE(WaitFor([&] { return !window.Calibrate()->Job()->Running(); }, 120000));
   EXPECT_TRUE(window.Calibrate()->LastOutcome().startsWith("done")) << window.Calibrate()->LastOutcome().toStdString();
+}
+
+// Replanning over recorded poses (issue 35): the question keep / archive /
+// discard / cancel; a capture belongs to the pose it was commanded to, so
+// an old pose_0000.png is not "recorded" for a new plan's pose 1, whose
+// capture then gets a free name.
+TEST(UiFlow, ReplanningOverRecordedPosesKeepsArchivesOrDiscardsTheCaptures) {
+  QTemporaryDir temp;
+  const QString dir = temp.filePath("session");
+  ASSERT_TRUE(CopyFolder(sessions_dir + "/session", dir));
+  QFile::remove(dir + "/legs.csv");
+  StatusOr<std::vector<Vector6d>> planned = LoadPoses((sessions_dir + "/calibrated/plan.csv").toStdString());
+  ASSERT_TRUE(planned.ok());
+  const std::vector<Vector6d> old_plan(planned->begin(), planned->begin() + 3);
+  ASSERT_TRUE(workflow::WritePlanCsv((dir + "/plan.csv").toStdString(),
+                                     PlanningModel{*LoadRobot("inria-left-hand"), std::nullopt, std::nullopt}, old_plan)
+                  .ok());
+  MainWindow window;
+  window.show();
+  ASSERT_TRUE(window.OpenSession(dir));
+  AcquirePanel* acquire = window.Acquire();
+  const Robot& robot = window.Session()->NominalRobot();
+  const auto ik = [&](const Vector6d& pose) { return InverseKinematics(robot, robot.PoseFromVector(pose)); };
+  acquire->Connect("none", "file:" + sessions_dir + "/rendered/view_0000.png");
+  ASSERT_TRUE(WaitFor([&] { return acquire->Connected() && !acquire->Job()->Running(); }));
+  const auto capture = [&](int pose) {
+    acquire->SelectPose(pose);
+    acquire->CapturePose(ik(window.Session()->Plan()[pose]));
+    return WaitFor([&] { return !acquire->Job()->Running(); });
+  };
+  ASSERT_TRUE(capture(0));
+  ASSERT_TRUE(capture(1));
+  const auto state = [&](int pose) { return acquire->Checklist()->item(pose, 1)->text(); };
+  EXPECT_EQ(state(0), "✓ recorded");
+  EXPECT_EQ(state(1), "✓ recorded");
+  EXPECT_EQ(state(2), "to do");
+
+  QStringList asked;
+  int answer = 3;  // Cancel
+  SetChoiceAnswerer([&](const QString&, const QString& text, const QStringList& choices) {
+    asked << text;
+    EXPECT_EQ(choices, (QStringList{"Keep captures", "Archive captures", "Discard captures", "Cancel"}));
+    return answer;
+  });
+  PlanPanel* plan = window.Plan();
+  const QByteArray legs_before = ReadBytes(dir + "/legs.csv");
+  // Cancel: nothing changes.
+  EXPECT_FALSE(plan->ApplyPlan({old_plan[2], old_plan[1]}));
+  ASSERT_EQ(asked.size(), 1);
+  EXPECT_TRUE(asked.back().contains("leaves 1 recorded capture without its pose (pose_0000.png)"))
+      << asked.back().toStdString();
+  EXPECT_EQ(window.Session()->Plan(), old_plan);
+  EXPECT_EQ(ReadBytes(dir + "/legs.csv"), legs_before);
+
+  // Keep: the new pose 1 is to do although pose_0000.png is there; its
+  // capture becomes pose_0000_2.png. The new pose 2 is the old pose 2: recorded.
+  answer = 0;
+  ASSERT_TRUE(plan->ApplyPlan({old_plan[2], old_plan[1]}));
+  EXPECT_EQ(window.Session()->Plan().size(), 2u);
+  EXPECT_TRUE(QFile::exists(dir + "/images/pose_0000.png"));
+  EXPECT_EQ(state(0), "to do");
+  EXPECT_EQ(state(1), "✓ recorded");
+  EXPECT_EQ(acquire->ImageOfPose(0), "pose_0000_2.png");
+  EXPECT_TRUE(plan->LastOutcome().contains("Kept 1 capture of the earlier plan")) << plan->LastOutcome().toStdString();
+  ASSERT_TRUE(capture(0));
+  EXPECT_TRUE(acquire->LastOutcome().contains("recorded as pose_0000_2.png")) << acquire->LastOutcome().toStdString();
+  EXPECT_EQ(state(0), "✓ recorded");
+  EXPECT_EQ(CsvRows(dir + "/legs.csv"), 3);
+
+  // Archive: the captures at poses the plan [old pose 1] does not have move
+  // out; pose_0000.png, taken at old pose 1, is its pose 1's capture again.
+  answer = 1;
+  ASSERT_TRUE(plan->ApplyPlan({old_plan[0]}));
+  EXPECT_EQ(state(0), "✓ recorded");
+  EXPECT_EQ(acquire->ImageOfPose(0), "pose_0000.png");
+  EXPECT_FALSE(QFile::exists(dir + "/images/pose_0001.png"));
+  EXPECT_FALSE(QFile::exists(dir + "/images/pose_0000_2.png"));
+  const QStringList archives = QDir(dir + "/archive").entryList(QDir::Dirs | QDir::NoDotAndDotDot);
+  ASSERT_EQ(archives.size(), 1);
+  EXPECT_TRUE(QFile::exists(dir + "/archive/" + archives[0] + "/images/pose_0001.png"));
+  EXPECT_TRUE(QFile::exists(dir + "/archive/" + archives[0] + "/images/pose_0000_2.png"));
+  EXPECT_EQ(CsvRows(dir + "/archive/" + archives[0] + "/legs.csv"), 2);
+  EXPECT_EQ(CsvRows(dir + "/legs.csv"), 1);
+  EXPECT_TRUE(window.Session()->LegsError().isEmpty()) << window.Session()->LegsError().toStdString();
+
+  // Discard: deleted with their readings.
+  answer = 2;
+  ASSERT_TRUE(plan->ApplyPlan({old_plan[1]}));
+  EXPECT_FALSE(QFile::exists(dir + "/images/pose_0000.png"));
+  EXPECT_EQ(CsvRows(dir + "/legs.csv"), 0);
+  EXPECT_EQ(state(0), "to do");
+  EXPECT_EQ(asked.size(), 4);
+  SetChoiceAnswerer({});
+}
+
+// File > New session with a robot file that does not load (issue 35): an
+// error, and no folder or session.yaml left behind, as the CLI; a retry
+// with a robot that loads makes it.
+TEST(UiFlow, AFailedNewSessionLeavesNothingBehind) {
+  QTemporaryDir temp;
+  const QString garbage = temp.filePath("garbage.yaml");
+  WriteTextFile(garbage.toStdString(), "this is: [not a robot\n");
+  SessionConfig config;
+  config.robot = garbage.toStdString();
+  config.camera = kSimulatedCameraName;
+  config.target = kDefaultTargetName;
+  MainWindow window;
+  const QString dir = temp.filePath("new-session");
+  const Status made = window.Session()->Create(dir, config);
+  EXPECT_FALSE(made.ok());
+  EXPECT_NE(made.message().find("garbage.yaml"), std::string::npos) << made.message();
+  EXPECT_FALSE(QFileInfo::exists(dir));
+  EXPECT_FALSE(window.Session()->IsOpen());
+  config.camera = "no-such-camera.yaml";
+  config.robot = "inria-left-hand";
+  EXPECT_FALSE(window.Session()->Create(dir, config).ok());
+  EXPECT_FALSE(QFileInfo::exists(dir));
+  config.camera = kSimulatedCameraName;
+  ASSERT_TRUE(window.Session()->Create(dir, config).ok());
+  EXPECT_TRUE(QFileInfo::exists(dir + "/session.yaml"));
+  EXPECT_TRUE(window.Session()->IsOpen());
+}
+
+// One number format per quantity with its unit, and the GUI's controls where
+// the workflow's sentences name the CLI's flags (issue 35).
+TEST(UiFlow, OneFormatPerQuantityAndTheGuisOwnTerms) {
+  EXPECT_EQ(FormatCount(1, "pose"), "1 pose");
+  EXPECT_EQ(FormatCount(12, "pose"), "12 poses");
+  EXPECT_EQ(FormatPixelCoordinate(903.456), "903.5 px");
+  EXPECT_EQ(FormatPixels(0.21449), "0.214 px");
+  EXPECT_EQ(FormatSeconds(0.8234), "0.823 s");
+  EXPECT_EQ(FormatSeconds(1234.4), "1234 s");
+  EXPECT_EQ(FormatCoordinate(52.249612), "52.2496");
+  const QStringList cli = {
+      "camera 'sim' looks at the sim world: use it with --controller sim",
+      "camera 'sim' renders the sim world's platform: it needs --controller sim",
+      "no plan.csv: hexcal plan --out /s/plan.csv",
+      "no legs.csv: acquire the planned poses (hexcal acquire) or enter the readings of each image",
+      "3 images with readings, 0 held out; 3 of 8 planned poses recorded: acquire the rest (hexcal acquire resumes)",
+      "4 of 8 images not measured yet (calibrate --session measures them)",
+      "no results: hexcal calibrate --session /s",
+      "legs.csv changed since the results: run hexcal calibrate --session again",
+      "results/report.json: does not match results/manifest.json; run `hexcal calibrate --session /s/x y` again",
+      "recalibrate the camera (hexcal intrinsics) or make results/camera.yaml the session's camera",
+      "add poses (hexcal plan) and calibrate again",
+      "plan poses with hexcal plan (IOOPS) instead of random or repeated ones",
+      "see each image's status with hexcal measure --session; keep the whole board in view and sharp",
+      "1 reading beyond 5σ; without --keep-outliers it is left out",
+      "check that the robot file is the calibrated one and that --noise-* match the sensors; if so, calibrate",
+      "pose 3: unreachable; the run stops here: look at the machine, then run hexcal acquire again to go on",
+      "images/pose_0002.png exists without a row in legs.csv and hexcal acquire did not write it: move it away, "
+      "or record its readings (hexcal session record), then run again",
+  };
+  const QRegularExpression flag("(^|\\s|\\()--[a-z]|hexcal [a-z]");
+  for (const QString& message : cli) {
+    const QString said = InGuiTerms(message);
+    EXPECT_FALSE(said.contains(flag)) << message.toStdString() << " -> " << said.toStdString();
+  }
+  // The step list's sentence for a one-pose plan.
+  QTemporaryDir temp;
+  const QString dir = temp.filePath("session");
+  SessionConfig config;
+  config.robot = "inria-left-hand";
+  config.camera = kSimulatedCameraName;
+  config.target = kDefaultTargetName;
+  ASSERT_TRUE(InitSession(dir.toStdString(), config).ok());
+  MainWindow window;
+  ASSERT_TRUE(window.OpenSession(dir));
+  auto* steps = window.findChild<QListWidget*>("step_list");
+  ASSERT_NE(steps, nullptr);
+  EXPECT_TRUE(steps->item(static_cast<int>(Step::kPlan))->toolTip().contains("run the planner (Plan step)"))
+      << steps->item(static_cast<int>(Step::kPlan))->toolTip().toStdString();
+  window.Plan()->AddPose();  // the centre of the pose box
+  const QString plan_tip = steps->item(static_cast<int>(Step::kPlan))->toolTip();
+  EXPECT_TRUE(plan_tip.contains("1 pose,")) << plan_tip.toStdString();
+  EXPECT_FALSE(plan_tip.contains("1 poses")) << plan_tip.toStdString();
+  // The pose table's coordinates to 1e-4 ("53.5000", not "53.5" beside "-18.17").
+  for (int column = 1; column <= 12; ++column)
+    EXPECT_TRUE(window.Plan()->PoseTable()->item(0, column)->text().contains(QRegularExpression("^-?[0-9]+\\.[0-9]{4}$")))
+        << window.Plan()->PoseTable()->item(0, column)->text().toStdString();
+  // An option's count unit in the right number.
+  auto* removal = window.Plan()->Options()->findChild<QDoubleSpinBox*>("removal_choices");
+  ASSERT_NE(removal, nullptr);
+  removal->setValue(1);
+  EXPECT_EQ(removal->suffix(), " pose");
+  removal->setValue(2);
+  EXPECT_EQ(removal->suffix(), " poses");
+  // The robot's dimensions: the unit in the header, four decimals in the cells.
+  auto* legs = window.Robot()->findChild<QTableWidget*>("robot_legs");
+  ASSERT_NE(legs, nullptr);
+  EXPECT_EQ(legs->horizontalHeaderItem(2)->text(), "offset l (cm)");
+  EXPECT_TRUE(legs->item(0, 2)->text().contains(QRegularExpression("^-?[0-9]+\\.[0-9]{4}$")))
+      << legs->item(0, 2)->text().toStdString();
+  EXPECT_EQ(legs->item(0, 3)->text(), "0.0000 … 3.5000");
 }
 
 TEST(UiFlow, BadSessionIsAnErrorNotACrash) {

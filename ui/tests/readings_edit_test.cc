@@ -14,6 +14,7 @@
 #include <QLineEdit>
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
+#include <algorithm>
 #include <cmath>
 
 #include "core/csv.h"
@@ -153,7 +154,8 @@ TEST_F(ReadingsEditTest, AReadingBeyondTheStrokeIsRefusedByName) {
   EXPECT_TRUE(notes.front().contains("L3 = 999999 cm")) << notes.front().toStdString();
 
   EXPECT_EQ(table_->PasteReadings("1 1 1 1 1 999999\n1 1 1 1 1 1\n", 0), 0);  // nothing from the bad line on
-  EXPECT_TRUE(notes.back().contains("pasted line 1: L6 = 999999")) << notes.back().toStdString();
+  EXPECT_TRUE(notes.back().contains("pasted line 1 (" + table_->item(0, 0)->text() + "): L6 = 999999"))
+      << notes.back().toStdString();
   EXPECT_EQ(ReadBytes(dir_ + "/legs.csv"), before);
 
   // By hand: the readings typed for pose 1 (the dialog's values, in a test).
@@ -171,6 +173,80 @@ TEST_F(ReadingsEditTest, AReadingBeyondTheStrokeIsRefusedByName) {
       << acquire->LastOutcome().toStdString();
   EXPECT_EQ(ReadBytes(dir_ + "/legs.csv"), before);
   EXPECT_FALSE(QFile::exists(dir_ + "/images/pose_0000.png"));
+}
+
+// Against the commanded pose too (issue 35): within the stroke but far from
+// the IK length of the pose the image is captured at, a reading is refused
+// by name, typed for a capture by hand or later in the table; within the
+// tolerance (10 % of the stroke, reading_check.h) it is taken, and legs.csv
+// records the pose it was commanded to.
+TEST_F(ReadingsEditTest, AReadingFarFromTheCommandedPoseIsRefusedByName) {
+  AcquirePanel* acquire = window_.Acquire();
+  acquire->Connect("none", "file:" + dir_ + "/images/" + table_->item(0, 0)->text());
+  ASSERT_TRUE(WaitFor([&] { return acquire->Connected() && !acquire->Job()->Running(); }));
+  acquire->SelectPose(1);
+  const Robot& robot = window_.Session()->NominalRobot();
+  const Vector6d pose = window_.Session()->Plan()[1];
+  const LegReadings needed = InverseKinematics(robot, robot.PoseFromVector(pose));
+  const double tolerance = 0.1 * (robot.legs[2].stroke_max - robot.legs[2].stroke_min);  // 0.35 cm
+  LegReadings typed = needed;
+  // Leg 3 within its stroke, 1.5 tolerances from its length at pose 2.
+  typed[2] = needed[2] + (needed[2] < 1.75 ? 1.5 : -1.5) * tolerance;
+  const QByteArray before = ReadBytes(dir_ + "/legs.csv");
+  acquire->CapturePose(typed);
+  ASSERT_TRUE(WaitFor([&] { return !acquire->Job()->Running(); }));
+  EXPECT_TRUE(acquire->LastOutcome().contains("not recorded: pose_0001.png: L3 = "))
+      << acquire->LastOutcome().toStdString();
+  EXPECT_TRUE(acquire->LastOutcome().contains("the commanded pose needs, more than 0.35 cm (10 % of the stroke)"))
+      << acquire->LastOutcome().toStdString();
+  EXPECT_EQ(ReadBytes(dir_ + "/legs.csv"), before);
+
+  typed[2] = needed[2] + 0.5 * tolerance;  // an uncalibrated robot, or one moved by hand: taken
+  acquire->SelectPose(1);
+  acquire->CapturePose(typed);
+  ASSERT_TRUE(WaitFor([&] { return !acquire->Job()->Running(); }));
+  EXPECT_TRUE(acquire->LastOutcome().contains("pose 2 recorded as pose_0001.png"))
+      << acquire->LastOutcome().toStdString();
+  EXPECT_EQ(acquire->Checklist()->item(1, 1)->text(), "✓ recorded");
+  const auto row = std::find_if(window_.Session()->Legs().begin(), window_.Session()->Legs().end(),
+                                [](const LegsRow& r) { return r.image == "pose_0001.png"; });
+  ASSERT_NE(row, window_.Session()->Legs().end());
+  ASSERT_TRUE(row->commanded.has_value());
+  EXPECT_EQ(*row->commanded, pose);
+
+  // The same row in the Measure step's table: L1 far from the pose's length is refused.
+  int r = 0;
+  while (r < table_->rowCount() && table_->item(r, 0)->text() != "pose_0001.png") ++r;
+  ASSERT_LT(r, table_->rowCount());
+  const QByteArray captured = ReadBytes(dir_ + "/legs.csv");
+  table_->item(r, 1)->setText(QString::number(needed[0] + (needed[0] < 1.75 ? 1.5 : -1.5) * tolerance, 'g', 10));
+  EXPECT_EQ(ReadBytes(dir_ + "/legs.csv"), captured);
+  EXPECT_TRUE(LastShownError().contains("pose_0001.png: L1 = ")) << LastShownError().toStdString();
+  EXPECT_TRUE(LastShownError().contains("the commanded pose needs")) << LastShownError().toStdString();
+  table_->item(r, 1)->setText(QString::number(needed[0] + 0.25 * tolerance, 'g', 10));
+  EXPECT_NE(ReadBytes(dir_ + "/legs.csv"), captured);  // near it: written
+}
+
+// Import (issue 35): a file whose reading is beyond the stroke, or far from
+// the commanded pose of an image captured at one, is refused by its line,
+// image, leg and value; the session's legs.csv stays as it was.
+TEST_F(ReadingsEditTest, AnImportedReadingIsCheckedByLine) {
+  StatusOr<CsvTable> legs = ReadCsv((dir_ + "/legs.csv").toStdString());
+  ASSERT_TRUE(legs.ok());
+  CsvTable typo = *legs;
+  typo.rows[1][2] = "999999";  // line 3, L2
+  const QString file = temp_.filePath("typo.csv");
+  ASSERT_TRUE(WriteCsv(file.toStdString(), typo.header, typo.rows).ok());
+  const QByteArray before = ReadBytes(dir_ + "/legs.csv");
+  window_.Measure()->ImportLegs(file);
+  EXPECT_EQ(ReadBytes(dir_ + "/legs.csv"), before);
+  EXPECT_TRUE(LastShownError().contains("typo.csv:3: " + QString::fromStdString(typo.rows[1][0]) + ": L2 = 999999 cm"))
+      << LastShownError().toStdString();
+  EXPECT_TRUE(LastShownError().contains("The previous legs.csv is kept")) << LastShownError().toStdString();
+  const QString good = temp_.filePath("good.csv");
+  ASSERT_TRUE(WriteCsv(good.toStdString(), legs->header, legs->rows).ok());
+  window_.Measure()->ImportLegs(good);  // the same readings: plausible, imported
+  EXPECT_EQ(window_.Session()->Legs().size(), legs->rows.size());
 }
 
 }  // namespace
