@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <ctime>
 #include <filesystem>
 #include <set>
@@ -10,10 +11,16 @@
 #include "core/csv.h"
 #include "core/session.h"
 #include "core/session_lock.h"
-#include "workflow/acquire_step.h"
 #include "workflow/session_edits.h"
 
 namespace hexcal::workflow {
+
+std::string AcquiredImageName(int pose_index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "pose_%04d.png", pose_index);
+  return name;
+}
+
 namespace {
 
 namespace fs = std::filesystem;
