@@ -89,9 +89,9 @@ TEST(SubsetHistogramChart, OutlineCountsEveryValueAndMarksTheSelected) {
 
 TEST(StudyMetricChart, Fig18ForAnIndexFig19ForAHeldOutError) {
   const ChartSpec index = StudyMetricChart(SubsetMetric::kO1, {1, 2, 3}, 2.5, 13, "cm");
-  EXPECT_EQ(index.title, "Fig. 18: O1, N = 13");
+  EXPECT_EQ(index.title, "Fig. 18: O1 (cm), N = 13");  // O1 carries its unit (issue 39)
   EXPECT_EQ(index.series[0].name, "3 random subsets");
-  EXPECT_EQ(index.x.label, "O1");
+  EXPECT_EQ(index.x.label, "O1 (cm)");
   const ChartSpec error = StudyMetricChart(SubsetMetric::kHeldOutPosition, {0.1, 0.2}, NAN, 13, "cm");
   EXPECT_EQ(error.title, "Fig. 19: held-out position RMS (cm), N = 13");
   EXPECT_EQ(error.x.label, "held-out position RMS (cm)");
