@@ -32,7 +32,9 @@ struct CalibrationInputs {
 };
 
 // "2026-11-22T10:40:12Z"
-std::string CurrentUtcTimestamp();
+// The time now in UTC, ISO 8601 ("2026-12-06T05:20:00Z") or in `format`
+// (strftime's; "%Y%m%dT%H%M%SZ" for a folder name).
+std::string CurrentUtcTimestamp(const char* format = "%Y-%m-%dT%H:%M:%SZ");
 
 // RobotToYaml(result.robot) plus the calibration section.
 std::string CalibratedRobotToYaml(const CalibrationResult& result, const CalibrationInputs& inputs);

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "core/atomic_file.h"
+#include "core/calibration_file.h"
 #include "core/csv.h"
 #include "core/session.h"
 #include "core/session_lock.h"
@@ -35,14 +36,7 @@ bool LegacyCaptureOf(const ReadingCheck& check, int pose_index, const Vector6d& 
   return true;
 }
 
-std::string ArchiveStamp() {
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y%m%dT%H%M%SZ", &utc);
-  return text;
-}
+std::string ArchiveStamp() { return CurrentUtcTimestamp("%Y%m%dT%H%M%SZ"); }
 
 // A fresh folder SESSION/archive/captures-STAMP[-N].
 StatusOr<fs::path> NewArchiveFolder(const std::string& dir) {
