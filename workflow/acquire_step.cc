@@ -214,12 +214,6 @@ const char* PoseStateName(PoseState state) {
   return "?";
 }
 
-std::string AcquiredImageName(int pose_index) {
-  char name[32];
-  std::snprintf(name, sizeof name, "pose_%04d.png", pose_index);
-  return name;
-}
-
 int AcquireResult::Count(PoseState state) const {
   int count = 0;
   for (const PoseRecord& record : poses) count += record.state == state;

@@ -34,6 +34,7 @@
 #include "workflow/controller.h"
 #include "workflow/device_urls.h"
 #include "workflow/frame_source.h"
+#include "workflow/plan_captures.h"
 
 namespace hexcal::workflow {
 
@@ -67,8 +68,8 @@ struct PoseRecord {
   std::string error;   // kFailed: why
 };
 
-// "pose_0007.png": the image of plan row `pose_index`.
-std::string AcquiredImageName(int pose_index);
+// AcquiredImageName ("pose_0007.png") and the names of captures after a new
+// plan are in workflow/plan_captures.h.
 
 // One pose: move, settle, grab, read the legs, check them (reading_check.h),
 // record. Errors: the pose's own (unreachable: bad input; no frame, FK:

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <ctime>
 #include <filesystem>
 #include <set>
@@ -10,7 +11,6 @@
 #include "core/csv.h"
 #include "core/session.h"
 #include "core/session_lock.h"
-#include "workflow/acquire_step.h"
 #include "workflow/session_edits.h"
 
 namespace hexcal::workflow {
@@ -52,6 +52,12 @@ StatusOr<fs::path> NewArchiveFolder(const std::string& dir) {
 }
 
 }  // namespace
+
+std::string AcquiredImageName(int pose_index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "pose_%04d.png", pose_index);
+  return name;
+}
 
 bool SameCommandedPose(const Vector6d& a, const Vector6d& b) {
   for (int k = 0; k < 6; ++k)

@@ -29,6 +29,10 @@
 
 namespace hexcal::workflow {
 
+// "pose_0007.png": the image of plan row `pose_index` as the Acquire step
+// names it first (CaptureImageName when the name is taken).
+std::string AcquiredImageName(int pose_index);
+
 // Two commanded poses are the same pose: plan.csv and legs.csv hold the same
 // number text (an exact round trip); 1e-9 relative for other writers.
 bool SameCommandedPose(const Vector6d& a, const Vector6d& b);
