@@ -19,6 +19,7 @@
 #include "core/csv.h"
 #include "ui/background_job.h"
 #include "ui/error_dialog.h"
+#include "ui/gui_terms.h"
 #include "ui/image_overlay.h"
 #include "ui/image_view.h"
 #include "ui/quantity_format.h"
@@ -208,7 +209,7 @@ void MeasurePanel::Refresh() {
   if (images_->count() > 0) images_->setCurrentRow(current >= 0 && current < images_->count() ? current : 0);
   // legs.csv's error while, and only while, it holds (issue 40): fixed on
   // disk, its line goes; the line of a job or an edit since is left alone.
-  QString legs_error = session_->InSession(session_->LegsError());
+  QString legs_error = InGuiTerms(session_->InSession(session_->LegsError()));  // the GUI's controls
   if (!legs_error.isEmpty() && !legs_error.startsWith("legs.csv")) legs_error = "legs.csv: " + legs_error;
   if (!legs_error.isEmpty()) {
     status_->setText(Breakable(legs_error));

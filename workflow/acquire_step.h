@@ -68,8 +68,8 @@ struct PoseRecord {
   std::string error;   // kFailed: why
 };
 
-// AcquiredImageName ("pose_0007.png", the image of plan row `pose_index`) is
-// in workflow/plan_captures.h, with the rule that ties captures to plan rows.
+// AcquiredImageName ("pose_0007.png") and the names of captures after a new
+// plan are in workflow/plan_captures.h.
 
 // One pose: move, settle, grab, read the legs, check them (reading_check.h),
 // record. Errors: the pose's own (unreachable: bad input; no frame, FK:

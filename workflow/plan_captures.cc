@@ -16,12 +16,6 @@
 
 namespace hexcal::workflow {
 
-std::string AcquiredImageName(int pose_index) {
-  char name[32];
-  std::snprintf(name, sizeof name, "pose_%04d.png", pose_index);
-  return name;
-}
-
 namespace {
 
 namespace fs = std::filesystem;
@@ -53,6 +47,12 @@ StatusOr<fs::path> NewArchiveFolder(const std::string& dir) {
 }
 
 }  // namespace
+
+std::string AcquiredImageName(int pose_index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "pose_%04d.png", pose_index);
+  return name;
+}
 
 bool SameCommandedPose(const Vector6d& a, const Vector6d& b) {
   for (int k = 0; k < 6; ++k)

@@ -29,7 +29,8 @@
 
 namespace hexcal::workflow {
 
-// "pose_0007.png": the image the Acquire step records at plan row `pose_index`.
+// "pose_0007.png": the image of plan row `pose_index` as the Acquire step
+// names it first (CaptureImageName when the name is taken).
 std::string AcquiredImageName(int pose_index);
 
 // Two commanded poses are the same pose: plan.csv and legs.csv hold the same
