@@ -5,6 +5,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/atomic_file.h"
 #include "core/csv.h"
 
 namespace hexcal {
@@ -135,6 +136,18 @@ StatusOr<std::vector<NamedPoint>> ParseReflectorFile(const std::string& text, co
     reflectors.push_back(point);
   }
   return reflectors;
+}
+
+StatusOr<PointSets> LoadPointFile(const std::string& path, double default_sigma, const std::string& source) {
+  StatusOr<std::string> text = ReadFileToString(path, kMaxTableBytes);
+  if (!text.ok()) return text.status();
+  return ParsePointFile(*text, source.empty() ? path : source, default_sigma);
+}
+
+StatusOr<std::vector<NamedPoint>> LoadReflectorFile(const std::string& path, const std::string& source) {
+  StatusOr<std::string> text = ReadFileToString(path, kMaxTableBytes);
+  if (!text.ok()) return text.status();
+  return ParseReflectorFile(*text, source.empty() ? path : source);
 }
 
 }  // namespace hexcal

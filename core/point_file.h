@@ -40,4 +40,9 @@ StatusOr<PointSets> ParsePointFile(const std::string& text, const std::string& s
 // Errors as above, and a name given twice.
 StatusOr<std::vector<NamedPoint>> ParseReflectorFile(const std::string& text, const std::string& source);
 
+// The same read from `path` (a table's size limit, core/atomic_file.h), its
+// errors naming `source` (the path when empty).
+StatusOr<PointSets> LoadPointFile(const std::string& path, double default_sigma, const std::string& source = "");
+StatusOr<std::vector<NamedPoint>> LoadReflectorFile(const std::string& path, const std::string& source = "");
+
 }  // namespace hexcal

@@ -11,7 +11,6 @@
 #include <QLineEdit>
 #include <QPushButton>
 
-#include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/point_file.h"
 #include "core/robot_io.h"
@@ -178,9 +177,7 @@ Status NewSessionDialog::Check() const {
   if (config.reflectors.empty()) return Status::Ok();
   // The reflector file is checked now, as `hexcal session init` does.
   const QString path = QDir(QDir(Folder()).absolutePath()).filePath(QString::fromStdString(config.reflectors));
-  StatusOr<std::string> text = ReadFileToString(path.toStdString(), kMaxTableBytes);
-  if (!text.ok()) return text.status();
-  StatusOr<std::vector<NamedPoint>> parsed = ParseReflectorFile(*text, config.reflectors);
+  StatusOr<std::vector<NamedPoint>> parsed = LoadReflectorFile(path.toStdString(), config.reflectors);
   return parsed.ok() ? Status::Ok() : parsed.status();
 }
 

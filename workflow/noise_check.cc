@@ -18,9 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 
 StatusOr<Repeatability> PointRepeatability(const SessionConfig& config, const std::string& input) {
-  StatusOr<std::string> text = ReadFileToString(input, kMaxTableBytes);
-  if (!text.ok()) return text.status();
-  StatusOr<PointSets> sets = ParsePointFile(*text, input, config.point_sigma);
+  StatusOr<PointSets> sets = LoadPointFile(input, config.point_sigma);
   if (!sets.ok()) return sets.status();
   StatusOr<Repeatability> figures = MeasurePointRepeatability(*sets);
   if (!figures.ok()) return Status::Error(input + ": " + figures.status().message());

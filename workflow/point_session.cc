@@ -24,9 +24,7 @@ struct LoadedPoints {
 };
 
 StatusOr<LoadedPoints> LoadPoints(const PointFiles& files) {
-  StatusOr<std::string> text = ReadFileToString(files.points, kMaxTableBytes);
-  if (!text.ok()) return text.status();
-  StatusOr<PointSets> sets = ParsePointFile(*text, files.points, files.default_sigma);
+  StatusOr<PointSets> sets = LoadPointFile(files.points, files.default_sigma);
   if (!sets.ok()) return sets.status();
   LoadedPoints loaded{std::move(*sets), {}, files.reflectors.empty()};
   if (loaded.estimated) {
@@ -35,9 +33,7 @@ StatusOr<LoadedPoints> LoadPoints(const PointFiles& files) {
     loaded.reflectors = std::move(*estimate);
     return loaded;
   }
-  StatusOr<std::string> reflectors = ReadFileToString(files.reflectors, kMaxTableBytes);
-  if (!reflectors.ok()) return reflectors.status();
-  StatusOr<std::vector<NamedPoint>> parsed = ParseReflectorFile(*reflectors, files.reflectors);
+  StatusOr<std::vector<NamedPoint>> parsed = LoadReflectorFile(files.reflectors);
   if (!parsed.ok()) return parsed.status();
   loaded.reflectors = std::move(*parsed);
   return loaded;

@@ -5,7 +5,6 @@
 #include <set>
 #include <sstream>
 
-#include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/point_file.h"
 #include "core/session.h"
@@ -31,9 +30,7 @@ std::set<std::string> ImageNames(const std::string& folder) {
 // (yet: the tracker may write it later).
 std::set<std::string> PoseNames(const std::string& dir, const SessionConfig& config) {
   std::set<std::string> names;
-  StatusOr<std::string> text = ReadFileToString(ResolveSessionFile(dir, config.points), kMaxTableBytes);
-  if (!text.ok()) return names;
-  StatusOr<PointSets> sets = ParsePointFile(*text, config.points, config.point_sigma);
+  StatusOr<PointSets> sets = LoadPointFile(ResolveSessionFile(dir, config.points), config.point_sigma, config.points);
   if (sets.ok())
     for (const PointSet& set : *sets) names.insert(set.pose);
   return names;

@@ -48,16 +48,11 @@ using workflow::AsSessionPath;
 // noise the tracker's σ implies for these reflectors (√3 σ as the uniform
 // half-width, core/noise_model.h), which `hexcal plan` and the GUI's plan
 // weigh by; the calibration replaces it by the measured fits' own.
-Status PoseNoiseFromReflectors(SessionInitOptions* cli) {
+Status PoseNoiseFromReflectors(const std::vector<NamedPoint>& reflectors, SessionInitOptions* cli) {
   SessionConfig& config = cli->config;
-  if (config.reflectors.empty()) return Status::Ok();
   for (const auto& [key, value] : *cli->noise)
     if (key == "position" || key == "angle_deg" || key == "angle") return Status::Ok();
-  StatusOr<std::string> text = ReadFileToString(config.reflectors, kMaxTableBytes);
-  if (!text.ok()) return text.status();
-  StatusOr<std::vector<NamedPoint>> reflectors = ParseReflectorFile(*text, config.reflectors);
-  if (!reflectors.ok()) return reflectors.status();
-  StatusOr<std::pair<double, double>> sigma = PoseSigmaOfReflectors(*reflectors, config.point_sigma);
+  StatusOr<std::pair<double, double>> sigma = PoseSigmaOfReflectors(reflectors, config.point_sigma);
   if (!sigma.ok()) return Status::Error(config.reflectors + ": " + sigma.status().message());
   config.noise.position = std::sqrt(3.0) * sigma->first;
   config.noise.angle_deg = std::sqrt(3.0) * sigma->second;
@@ -71,15 +66,13 @@ Status PreparePointSession(const Robot& robot, SessionInitOptions* cli) {
   if (!config.camera.empty() || !config.target.empty())
     return Status::Error("--camera and --target are for camera sessions; a points session has --points");
   if (config.points.empty()) return Status::Error("--instrument points needs --points FILE (the tracker's export)");
-  if (!config.reflectors.empty()) {
-    StatusOr<std::string> text = ReadFileToString(config.reflectors, kMaxTableBytes);
-    if (!text.ok()) return text.status();
-    if (StatusOr<std::vector<NamedPoint>> parsed = ParseReflectorFile(*text, config.reflectors); !parsed.ok())
-      return parsed.status();
-  }
   config.instrument = Instrument::kPoints;
   if (!cli->point_sigma_given) config.point_sigma = cli->point_sigma_mm * 0.001 / MetresPerUnit(robot.length_unit);
-  if (Status s = PoseNoiseFromReflectors(cli); !s.ok()) return s;
+  if (!config.reflectors.empty()) {  // read once: checked now, and the pose noise it implies
+    StatusOr<std::vector<NamedPoint>> reflectors = LoadReflectorFile(config.reflectors);
+    if (!reflectors.ok()) return reflectors.status();
+    if (Status s = PoseNoiseFromReflectors(*reflectors, cli); !s.ok()) return s;
+  }
   for (std::string* name : {&config.robot, &config.points, &config.reflectors})
     if (!name->empty()) *name = AsSessionPath(cli->dir, *name);
   return Status::Ok();
