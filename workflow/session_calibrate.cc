@@ -348,9 +348,9 @@ std::optional<CameraFrameResiduals> CameraFrameDiagnosis(const SessionInputs& in
                                      SessionBiasModels(camera, in.target, robot_per_target_unit), hooks);
 }
 
+}  // namespace
 
-// The calibration of a session whose request fits its instrument.
-StatusOr<CalibrationReport> CalibrateChecked(const CalibrateSessionRequest& request, const JobHooks& hooks) {
+StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& request, const JobHooks& hooks) {
   const std::string& dir = request.session;
   StatusOr<OpenSession> open = OpenAndMeasure(dir, request.wait, hooks, request.from_pixels.enabled);
   if (!open.ok()) return open.status();
@@ -373,7 +373,8 @@ StatusOr<CalibrationReport> CalibrateChecked(const CalibrateSessionRequest& requ
   StatusOr<std::optional<ValidationSummary>> validation = ValidateHeldOut(*in, split.held_out, held_out, *result);
   if (!validation.ok()) return validation.status();
   std::optional<PixelOutcome> from_pixels;
-  if (request.from_pixels.enabled) {
+  // A points session has no pixels: the points' fits are its measurements.
+  if (request.from_pixels.enabled && in->config.instrument == Instrument::kCamera) {
     CameraCalibrationResult pixels = *result;
     std::vector<Measurement> pixels_held_out = held_out;
     std::optional<ValidationSummary> pixels_validation = *validation;
@@ -408,18 +409,6 @@ StatusOr<CalibrationReport> CalibrateChecked(const CalibrateSessionRequest& requ
       !s.ok())
     return s.AsFailure();
   return report;
-}
-
-}  // namespace
-
-StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& request, const JobHooks& hooks) {
-  const std::string& dir = request.session;
-  CalibrateSessionRequest effective = request;
-  if (StatusOr<SessionConfig> config = LoadSessionConfig(dir);
-      config.ok() && config->instrument == Instrument::kPoints && request.from_pixels.enabled) {
-    effective.from_pixels.enabled = false;  // no pixels: the points' fits are the measurements
-  }
-  return CalibrateChecked(effective, hooks);
 }
 
 StatusOr<MeasuredSession> LoadMeasuredSession(const std::string& dir, LockWait wait, const JobHooks& hooks) {
