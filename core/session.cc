@@ -21,6 +21,8 @@ const char* InstrumentName(Instrument instrument) {
   return instrument == Instrument::kPoints ? "points" : "camera";
 }
 
+const char* MeasurementNoun(Instrument instrument) { return instrument == Instrument::kPoints ? "pose" : "image"; }
+
 bool SessionConfig::IsValid(std::string* error) const {
   if (robot.empty()) {
     *error = "session: no robot";
@@ -244,7 +246,7 @@ StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir) {
   // rows are then read as a camera session's.
   const StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   const bool points = config.ok() && config->instrument == Instrument::kPoints;
-  const char* key = points ? "pose" : "image";
+  const char* key = MeasurementNoun(points ? Instrument::kPoints : Instrument::kCamera);
   StatusOr<int> image_column = ColumnIndex(*table, key);
   if (!image_column.ok()) return image_column.status();
   int leg_columns[kNumLegs];

@@ -37,6 +37,9 @@ namespace hexcal {
 // points on the platform (a laser tracker's reflectors, a CMM's probe points).
 enum class Instrument { kCamera, kPoints };
 const char* InstrumentName(Instrument instrument);  // "camera", "points"
+// What one measurement of the instrument is called: "image" or "pose", in
+// messages and as the key column of legs.csv.
+const char* MeasurementNoun(Instrument instrument);
 
 struct SessionConfig {
   std::string robot;   // robot file (relative to the session folder) or preset name

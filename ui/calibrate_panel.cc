@@ -234,10 +234,10 @@ void CalibratePanel::Refresh() {
   // The counts and the closure once; the rest of what the CLI prints (the
   // fit from pixels, the camera-frame residuals, outliers) in the run log.
   // A points session's report counts poses measured by the tracker.
-  const bool tracker = report.instrument == "points";
+  const bool tracker = report.instrument == Instrument::kPoints;
   summary_->setText(QString("%1: %2 for calibration, %3 held out, %4 without a usable %5. "
                             "Closure (%6 vs robot) RMS: nominal robot %7, %8; calibrated %9, %10.")
-                        .arg(FormatCount(report.images, tracker ? "pose" : "image"))
+                        .arg(FormatCount(report.images, MeasurementNoun(report.instrument)))
                         .arg(report.calibration_images)
                         .arg(report.held_out_images)
                         .arg(report.unusable_images)

@@ -106,7 +106,7 @@ void ValidatePanel::Refresh() {
   verdict_->Show(workflow::MakeVerdict(*report),
                  session_->State(Step::kCalibrate) == StepState::kStale ? session_->ResultsNote() : QString());
   // A points session's rows are poses, measured by the tracker.
-  const QString noun = report->instrument == "points" ? "pose" : "image";
+  const QString noun = MeasurementNoun(report->instrument);
   if (!report->validation) {
     status_->setText(QString("No %1 was held out (holdout column of legs.csv), so there is nothing to validate on. "
                              "Mark some %1s with holdout 1 in the Measure step and calibrate again.")

@@ -252,7 +252,8 @@ nlohmann::json ReportJson(const CalibrationReport& report) {
 
 nlohmann::json ToJson(const CalibrationReport& report) {
   nlohmann::json json = ReportJson(report);
-  if (report.instrument != "camera") json["instrument"] = report.instrument;  // a camera report as it always was
+  if (report.instrument != Instrument::kCamera)  // a camera report as it always was
+    json["instrument"] = InstrumentName(report.instrument);
   return json;
 }
 
@@ -260,7 +261,11 @@ StatusOr<CalibrationReport> CalibrationReportFromJson(const nlohmann::json& json
   JsonFields fields(json, source);
   CalibrationReport report;
   report.session = fields.String("session");
-  if (fields.Has("instrument")) report.instrument = fields.String("instrument");
+  if (fields.Has("instrument")) {
+    const std::string instrument = fields.String("instrument");
+    if (instrument == InstrumentName(Instrument::kPoints)) report.instrument = Instrument::kPoints;
+    else if (instrument != InstrumentName(Instrument::kCamera)) fields.Fail("instrument", "expected camera or points");
+  }
   report.images = fields.Int("images");
   report.unusable_images = fields.Int("unusable_images");
   report.calibration_images = fields.Int("calibration_images");

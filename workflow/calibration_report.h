@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/session.h"
 #include "core/camera_frame_residuals.h"
 #include "core/noise_model.h"
 #include "core/robot.h"
@@ -93,9 +94,9 @@ struct NoiseExpectation {
 
 struct CalibrationReport {
   std::string session;
-  // What measured the poses (core/session.h): "camera", or "points" (a laser
+  // What measured the poses (core/session.h): the camera, or points (a laser
   // tracker's; then "images" below count poses). In report.json only for points.
-  std::string instrument = "camera";
+  Instrument instrument = Instrument::kCamera;
   int images = 0, unusable_images = 0, calibration_images = 0, held_out_images = 0;
   std::string length_unit;
   RegistrationSummary registration;

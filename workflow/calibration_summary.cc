@@ -52,7 +52,7 @@ std::string FormatCalibrationSummary(const CalibrationReport& report) {
   const std::string& unit = report.length_unit;
   const RegistrationSummary& reg = report.registration;
   std::ostringstream out;
-  const bool points = report.instrument == "points";
+  const bool points = report.instrument == Instrument::kPoints;
   out << "session " << report.session << ": " << report.images << (points ? " poses, " : " images, ")
       << report.calibration_images << " for calibration, " << report.held_out_images << " held out, "
       << report.unusable_images << (points ? " whose points do not fit\n" : " without a usable target pose\n")

@@ -40,7 +40,7 @@ std::string Comparison(const PixelFitSummary& fit, const CalibrationReport& repo
 }  // namespace
 
 std::string CalibrationMethodSection(const CalibrationReport& report) {
-  if (report.instrument == "points") {
+  if (report.instrument == Instrument::kPoints) {
     return "<h2>Calibration</h2><p>Two-stage: each pose fitted to its points (weighted, with its covariance), "
            "the tracker and reflector frames registered, the legs fitted to the poses.</p>\n";
   }

@@ -87,7 +87,7 @@ StatusOr<std::vector<ReadingsRow>> ReadReadingsTable(const std::string& dir) {
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   const bool points = config.ok() && config->instrument == Instrument::kPoints;
   const std::set<std::string> images = points ? PoseNames(dir, *config) : ImageNames(paths.images);
-  StatusOr<std::vector<ReadingsRow>> rows = RecordedRows(paths.legs, points ? "pose" : "image", images);
+  StatusOr<std::vector<ReadingsRow>> rows = RecordedRows(paths.legs, MeasurementNoun(points ? Instrument::kPoints : Instrument::kCamera), images);
   if (!rows.ok()) return rows.status();
   std::set<std::string> recorded;
   for (const ReadingsRow& row : *rows) recorded.insert(row.image);

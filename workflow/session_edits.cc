@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 StatusOr<std::string> KeyColumn(const std::string& dir) {
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   if (!config.ok()) return config.status();
-  return std::string(config->instrument == Instrument::kPoints ? "pose" : "image");
+  return std::string(MeasurementNoun(config->instrument));
 }
 
 // What a points session cannot do: it has no images (docs/session.md).

@@ -252,7 +252,7 @@ StatusOr<std::string> SessionReportHtml(const std::string& dir) {
   html += "<h1>Session " + Escape(dir) + "</h1>\n";
   html += StaleWarning(*loaded);
   html += VerdictBox(MakeVerdict(report));
-  const bool points = report.instrument == "points";
+  const bool points = report.instrument == Instrument::kPoints;
   html += "<p>" + std::to_string(report.images) + (points ? " poses measured by points: " : " images: ") +
           std::to_string(report.calibration_images) + " for calibration, " +
           std::to_string(report.held_out_images) + " held out, " + std::to_string(report.unusable_images) +

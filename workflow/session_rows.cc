@@ -133,7 +133,7 @@ CalibrationReport MakeReport(const std::string& dir, const SessionInputs& in, co
                              const CameraCalibrationResult& result) {
   CalibrationReport report;
   report.session = dir;
-  report.instrument = InstrumentName(in.config.instrument);
+  report.instrument = in.config.instrument;
   report.images = static_cast<int>(in.legs.size());
   report.unusable_images = split.unusable;
   report.calibration_images = static_cast<int>(split.input.legs.size());

@@ -140,7 +140,7 @@ void ResultSteps(const std::string& dir, const ContentHashes* hashes, SessionSta
   status->steps.push_back(
       {"calibrate", stale ? StepStatus::kStale : StepStatus::kDone,
        stale ? ListNames(results->changed_inputs) + " changed since the results" + since + ": calibrate again"
-             : Count(report.calibration_images, report.instrument == "points" ? "pose" : "image") +
+             : Count(report.calibration_images, MeasurementNoun(report.instrument)) +
                    ", closure RMS " + Figure(report.closure_position_rms) + " " + report.length_unit + since});
   if (!report.validation) {
     status->steps.push_back({"validate", StepStatus::kTodo, "no image held out (holdout column of legs.csv)"});
@@ -193,7 +193,7 @@ StatusOr<SessionStatus> ReadSessionStatus(const std::string& dir, StatusOr<Sessi
   status.steps.push_back(PlanStep(dir, robot));
   std::vector<LegsRow> rows;
   status.steps.push_back(
-      ReadingsStep(dir, robot, *config, config->instrument == Instrument::kPoints ? "pose" : "image", &rows));
+      ReadingsStep(dir, robot, *config, MeasurementNoun(config->instrument), &rows));
   // Every input hashed once, for the measure record and the results manifest
   // both (images are most of it); on an error each hashes what it needs and
   // reports its own error.

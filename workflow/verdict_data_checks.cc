@@ -40,7 +40,7 @@ struct UnusableWords {
   const char *aspect, *noun, *why, *all_fine, *meaning, *advice;
 };
 
-const UnusableWords& WordsFor(const std::string& instrument) {
+const UnusableWords& WordsFor(Instrument instrument) {
   static const UnusableWords camera{
       "unusable images", "image", " without a usable board pose", "the board was found in every image.",
       "images where the board was not found or fitted badly are left out.",
@@ -49,7 +49,7 @@ const UnusableWords& WordsFor(const std::string& instrument) {
       "unusable poses", "pose", " whose points do not fit", "every pose's points fitted the reflectors.",
       "poses with fewer than 3 points, an outlier point or an unknown reflector are left out.",
       "see the warnings of calibrate --session, which name each pose and why; measure it again"};
-  return instrument == "points" ? points : camera;
+  return instrument == Instrument::kPoints ? points : camera;
 }
 
 }  // namespace
