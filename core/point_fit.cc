@@ -25,8 +25,9 @@ StatusOr<std::vector<PointPair>> PairPoints(const std::vector<NamedPoint>& refle
   std::set<std::string> names;
   for (const NamedPoint& m : measured) {
     if (!names.insert(m.name).second) return Status::Error("point '" + m.name + "' is measured twice");
-    if (!(m.sigma > 0) || !std::isfinite(m.sigma))
-      return Status::Error("point '" + m.name + "': its sigma must be a positive number");
+    // 1/σ² must be a finite, non-zero weight.
+    if (!(m.sigma > 1e-100 && m.sigma < 1e100))
+      return Status::Error("point '" + m.name + "': its sigma must be a positive number between 1e-100 and 1e100");
     if (!m.position.allFinite()) return Status::Error("point '" + m.name + "': a coordinate is not finite");
     auto known = std::find_if(reflectors.begin(), reflectors.end(), [&](const NamedPoint& r) { return r.name == m.name; });
     if (known == reflectors.end()) return Status::Error("point '" + m.name + "' is not one of the reflectors");
@@ -156,6 +157,12 @@ Status CheckOutlier(const std::vector<PointPair>& pairs) {
 StatusOr<PointFit> FitPointPose(const std::vector<NamedPoint>& reflectors, const std::vector<NamedPoint>& measured) {
   StatusOr<std::vector<PointPair>> pairs = PairPoints(reflectors, measured);
   if (!pairs.ok()) return pairs.status();
+  // Beyond 1e100 the squares in the scatter and cross-covariance overflow, and
+  // NaN makes every later test (flatness, scale) answer at random.
+  constexpr double kMaxCoordinate = 1e100;
+  for (const PointPair& p : *pairs)
+    if (p.known.cwiseAbs().maxCoeff() > kMaxCoordinate || p.seen.cwiseAbs().maxCoeff() > kMaxCoordinate)
+      return Status::Error("the points' coordinates are too large to fit");
   constexpr double kMinFlatness = 1e-6;  // collinear: the rotation about the line is free
   if (Flatness(*pairs) < kMinFlatness) return Status::Error("the measured reflectors lie on one line");
   if (Status s = CheckScale(*pairs); !s.ok()) return s;
