@@ -50,8 +50,8 @@ struct SessionConfig {
   // the reflectors' positions in a frame fixed to the platform (CSV
   // point,x,y,z; empty: estimated from the measured poses), and the σ of each
   // coordinate where the points file gives none (robot unit).
-  std::string points;
-  std::string reflectors;
+  std::string points{};
+  std::string reflectors{};
   double point_sigma = 0;
   // Set by the registration step (core/registration.h), robot unit; the robot's
   // Euler convention in the file.

@@ -2,8 +2,10 @@
 // videoio (image_codecs.h says why). Every OpenCV exception stays in here.
 #include "vision/opencv_io_plugin.h"
 
+#include <atomic>
 #include <cstdarg>
 #include <exception>
+#include <mutex>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
@@ -92,6 +94,24 @@ void DropFfmpegLine(void*, int, const char*, va_list) {}
 void DropGlibLine(const gchar* domain, GLogLevelFlags level, const gchar* message, gpointer data) {
   if ((level & G_LOG_LEVEL_ERROR) != 0) g_log_default_handler(domain, level, message, data);
 }
+
+std::atomic<bool> glib_lines_shown{true};
+
+// Structured messages (g_log_structured, and g_warning in code built with
+// G_LOG_USE_STRUCTURED) bypass the default handler and reach the writer.
+GLogWriterOutput WriteGlibLine(GLogLevelFlags level, const GLogField* fields, gsize n_fields, gpointer data) {
+  if (glib_lines_shown || (level & G_LOG_LEVEL_ERROR) != 0) return g_log_writer_default(level, fields, n_fields, data);
+  return G_LOG_WRITER_HANDLED;
+}
+
+// GLib allows one writer per process, set by the program: hexcal sets it
+// once, and it then follows glib_lines_shown.
+void ShowGlibLines(bool shown) {
+  glib_lines_shown = shown;
+  static std::once_flag writer_set;
+  std::call_once(writer_set, [] { g_log_set_writer_func(WriteGlibLine, nullptr, nullptr); });
+  g_log_set_default_handler(shown ? g_log_default_handler : DropGlibLine, nullptr);
+}
 #endif
 
 // FFmpeg's lines ("[mov,mp4,m4a,3gp,3g2,mj2 @ 0x...] moov atom not found" for
@@ -101,7 +121,7 @@ void ShowLibraryLogs(bool shown) {
   av_log_set_callback(shown ? av_log_default_callback : DropFfmpegLine);
 #endif
 #ifdef HEXCAL_HAVE_GLIB
-  g_log_set_default_handler(shown ? g_log_default_handler : DropGlibLine, nullptr);
+  ShowGlibLines(shown);
 #endif
   (void)shown;
 }
