@@ -157,18 +157,6 @@ Status Unidentifiable(const PointIdentifiability& identifiability) {
 
 }  // namespace
 
-bool PointCalibrationOptions::IsValid(std::string* error) const {
-  auto fail = [&](const char* message) {
-    if (error) *error = message;
-    return false;
-  };
-  if (!(leg_sigma > 0) || !std::isfinite(leg_sigma)) return fail("leg_sigma must be positive");
-  if (max_iterations < 1) return fail("max_iterations must be at least 1");
-  if (!(leg_cauchy_scale >= 0) || !std::isfinite(leg_cauchy_scale)) return fail("leg_cauchy_scale must be 0 or more");
-  if (num_threads < 0) return fail("num_threads must be 0 (every core) or more");
-  return true;
-}
-
 StatusOr<PointCalibrationResult> CalibrateFromPoints(const PointCalibrationInput& input,
                                                      const PointCalibrationOptions& options, const JobHooks& hooks) {
   if (Status s = CheckInput(input, options); !s.ok()) return s;

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/point_calibration.h"
+#include "core/point_calibration_types.h"
 
 namespace hexcal {
 

@@ -332,6 +332,7 @@ TEST(CalibrateFromPoints, RefusesWhatTheDataCannotDetermine) {
   EXPECT_NE(fit.status().message().find("the data do not determine every unknown"), std::string::npos)
       << fit.status().message();
   EXPECT_NE(fit.status().message().find("weakest direction moves leg"), std::string::npos) << fit.status().message();
+  std::printf("every pose the same: %s\n", fit.status().message().c_str());
 
   // A pose with 2 points, a point of no reflector, a bad σ: named.
   PointCalibrationInput two = input;
