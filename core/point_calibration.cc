@@ -110,9 +110,9 @@ void AddResiduals(const PointCalibrationInput& input, const PointCalibrationOpti
     const PointCalibrationPose& pose = input.poses[j];
     for (const NamedPoint& p : pose.points) {
       const int k = index.at(p.name);
-      fit->point_rows.push_back(fit->problem.AddResidualBlock(
-          new PointResidualCost(input.base_from_tracker, p.position, p.sigma, k, count), nullptr,
-          fit->poses[j].data(), fit->reflectors.data()));
+      fit->point_rows.push_back(
+          fit->problem.AddResidualBlock(new PointResidualCost(input.base_from_tracker, p.position, p.sigma, k, count),
+                                        nullptr, fit->poses[j].data(), fit->reflectors.data()));
       fit->point_of_row.push_back({j, k, p.sigma});
     }
     for (int i = 0; i < kNumLegs; ++i) {
@@ -146,13 +146,13 @@ ceres::Solver::Options SolverOptions(const PointCalibrationOptions& options, Poi
 }
 
 Status Unidentifiable(const PointIdentifiability& identifiability) {
-  return Status::Failed("calibration from points: the data do not determine every unknown (the information matrix has "
-                        "rank " + std::to_string(identifiability.rank) + " of " +
-                        std::to_string(identifiability.unknowns) + "; its weakest direction moves " +
-                        identifiability.weakest + "): add poses that move every leg over its stroke" +
-                        std::string(identifiability.weakest.find("reflector") != std::string::npos
-                                        ? ", or keep the reflectors as given"
-                                        : ""));
+  return Status::Failed(
+      "calibration from points: the data do not determine every unknown (the information matrix has "
+      "rank " +
+      std::to_string(identifiability.rank) + " of " + std::to_string(identifiability.unknowns) +
+      "; its weakest direction moves " + identifiability.weakest + "): add poses that move every leg over its stroke" +
+      std::string(identifiability.weakest.find("reflector") != std::string::npos ? ", or keep the reflectors as given"
+                                                                                 : ""));
 }
 
 }  // namespace

@@ -50,7 +50,7 @@ bool ReflectorGaugeManifold::Plus(const double* x, const double* delta, double* 
 
 bool ReflectorGaugeManifold::PlusJacobian(const double*, double* jacobian) const {
   Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(jacobian, AmbientSize(),
-                                                                                      TangentSize()) = basis_;
+                                                                                     TangentSize()) = basis_;
   return true;
 }
 
@@ -61,9 +61,8 @@ bool ReflectorGaugeManifold::Minus(const double* y, const double* x, double* y_m
 }
 
 bool ReflectorGaugeManifold::MinusJacobian(const double*, double* jacobian) const {
-  Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(jacobian, TangentSize(),
-                                                                                      AmbientSize()) =
-      basis_.transpose();
+  Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      jacobian, TangentSize(), AmbientSize()) = basis_.transpose();
   return true;
 }
 

@@ -1,3 +1,5 @@
+#include "core/point_calibration_fit.h"
+
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
@@ -7,7 +9,6 @@
 #include <numeric>
 
 #include "core/point_calibration_cost.h"
-#include "core/point_calibration_fit.h"
 
 namespace hexcal {
 namespace {
@@ -43,8 +44,8 @@ SparseRows JacobianAt(PointFitProblem& fit, const ColumnLayout& layout, double* 
   evaluate.num_threads = 1;
   ceres::CRSMatrix crs;
   fit.problem.Evaluate(evaluate, cost, nullptr, nullptr, &crs);
-  return Eigen::Map<const SparseRows>(crs.num_rows, crs.num_cols, static_cast<int>(crs.values.size()),
-                                      crs.rows.data(), crs.cols.data(), crs.values.data());
+  return Eigen::Map<const SparseRows>(crs.num_rows, crs.num_cols, static_cast<int>(crs.values.size()), crs.rows.data(),
+                                      crs.cols.data(), crs.values.data());
 }
 
 // H_gg − Σ_j H_gj H_jj⁻¹ H_jg, H = JᵀJ: the global unknowns' information
@@ -177,8 +178,8 @@ void FillReflectors(const PointCalibrationInput& input, const PointFitProblem& f
     for (int b = 0; b < kNumParams; ++b) {
       const double scale = std::sqrt(result->reflector_covariance(a, a) * covariance(b, b));
       if (scale > 0)
-        result->largest_reflector_correlation = std::max(result->largest_reflector_correlation,
-                                                         std::abs(cross(a, b)) / scale);
+        result->largest_reflector_correlation =
+            std::max(result->largest_reflector_correlation, std::abs(cross(a, b)) / scale);
     }
   }
   for (int k = 0; k < count; ++k)

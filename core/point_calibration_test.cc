@@ -15,9 +15,9 @@
 namespace hexcal {
 namespace {
 
+using testing::MatrixNear;
 using testing::PerturbedRobot;
 using testing::Preset;
-using testing::MatrixNear;
 using testing::SpreadFeasiblePoses;
 
 // A simulated tracker session, independent of the fit: the true robot at
@@ -113,8 +113,8 @@ CameraCalibrationResult TwoStage(const TrackerScene& scene) {
 // The joint fit's input as a session gives it: started from the two-stage
 // calibration, in its registered frames, the reflectors Y·p_k.
 PointCalibrationInput InputOf(const TrackerScene& scene, const CameraCalibrationResult& two_stage) {
-  PointCalibrationInput input{scene.nominal, two_stage.calibration.robot, two_stage.registration.base_from_camera,
-                              {}, {}};
+  PointCalibrationInput input{
+      scene.nominal, two_stage.calibration.robot, two_stage.registration.base_from_camera, {}, {}};
   for (const NamedPoint& r : scene.reflectors)
     input.reflectors.push_back({r.name, two_stage.registration.platform_from_target * r.position, 0});
   for (size_t j = 0; j < scene.poses.size(); ++j) {
@@ -142,9 +142,8 @@ struct Accuracy {
 // Errors against the truth in the registered frames (the gauge: X fixed, the
 // reflectors' placement Y·p_k, which the truth's reflectors have exactly).
 Accuracy AccuracyOf(const CalibrationResult& fit, const TrackerScene& scene, const Registration& frames) {
-  const Robot truth =
-      ExpressInFrames(scene.truth, Compose(frames.base_from_camera, Inverse(scene.base_from_tracker)),
-                      Compose(frames.platform_from_target, Inverse(scene.platform_from_reflectors)));
+  const Robot truth = ExpressInFrames(scene.truth, Compose(frames.base_from_camera, Inverse(scene.base_from_tracker)),
+                                      Compose(frames.platform_from_target, Inverse(scene.platform_from_reflectors)));
   const ParameterVector error = fit.Estimates() - ParametersOf(truth);
   const ParameterVector sigma = fit.StdDevs();
   int within = 0;
@@ -245,9 +244,9 @@ TEST(PointResidualCost, JacobianMatchesFiniteDifferences) {
   for (int k = 0; k < 3 * count; ++k) reflectors[k] = 8 * u(rng);
   auto residual = [&](const double* p, const Eigen::VectorXd& r) {
     const Eigen::Vector3d omega(p[0], p[1], p[2]);
-    const Eigen::Matrix3d rotation =
-        omega.norm() > 0 ? Eigen::AngleAxisd(omega.norm(), omega.normalized()).toRotationMatrix()
-                         : Eigen::Matrix3d::Identity();
+    const Eigen::Matrix3d rotation = omega.norm() > 0
+                                         ? Eigen::AngleAxisd(omega.norm(), omega.normalized()).toRotationMatrix()
+                                         : Eigen::Matrix3d::Identity();
     const Eigen::Vector3d in_base = rotation * r.segment<3>(3 * which) + Eigen::Vector3d(p[3], p[4], p[5]);
     return Eigen::Vector3d((Inverse(base_from_tracker) * in_base - measured) / sigma);
   };
@@ -285,8 +284,8 @@ TEST(ReflectorGaugeManifold, MovesOnlyWithinTheGaugeAndRefusesALine) {
   const ReflectorGaugeManifold gauge(start);
   ASSERT_TRUE(gauge.valid());
   EXPECT_EQ(gauge.TangentSize(), 6);
-  EXPECT_TRUE(MatrixNear(Eigen::MatrixXd(gauge.basis().transpose() * gauge.basis()), Eigen::MatrixXd::Identity(6, 6),
-                         1e-12));
+  EXPECT_TRUE(
+      MatrixNear(Eigen::MatrixXd(gauge.basis().transpose() * gauge.basis()), Eigen::MatrixXd::Identity(6, 6), 1e-12));
   Eigen::VectorXd delta(6), moved(12), back(6);
   delta << 0.1, -0.2, 0.3, 0.05, 0, -0.4;
   gauge.Plus(start.data(), delta.data(), moved.data());
@@ -309,8 +308,7 @@ TEST(CalibrateFromPoints, RefusesWhatTheDataCannotDetermine) {
   StatusOr<PointCalibrationResult> fit = CalibrateFromPoints(few, Options(scene));
   ASSERT_FALSE(fit.ok());
   EXPECT_EQ(fit.status().kind(), StatusKind::kBadInput);
-  EXPECT_NE(fit.status().message().find("6 poses; at least 7 are needed"), std::string::npos)
-      << fit.status().message();
+  EXPECT_NE(fit.status().message().find("6 poses; at least 7 are needed"), std::string::npos) << fit.status().message();
 
   // The reflectors on one line: the rotation about it is free.
   PointCalibrationInput line = input;

@@ -41,10 +41,10 @@ struct PointCalibrationOptions {
 
 // One pose: its points, its readings and where the platform starts.
 struct PointCalibrationPose {
-  std::string name;                 // for messages (legs.csv's pose)
-  std::vector<NamedPoint> points;   // tracker frame, robot unit; σ > 0 per coordinate
-  LegReadings legs;                 // robot unit
-  Pose base_from_platform;          // start value (X B_j Y⁻¹ of the two-stage calibration)
+  std::string name;                              // for messages (legs.csv's pose)
+  std::vector<NamedPoint> points;                // tracker frame, robot unit; σ > 0 per coordinate
+  LegReadings legs;                              // robot unit
+  Pose base_from_platform;                       // start value (X B_j Y⁻¹ of the two-stage calibration)
   std::array<bool, kNumLegs> leg_excluded = {};  // readings left out, by leg
 };
 
@@ -65,8 +65,8 @@ struct PointResidual {
 };
 
 struct PointIdentifiability {
-  int unknowns = 0;  // global unknowns: 42, + 3K − 6 with the reflectors estimated
-  int rank = 0;      // of the scaled reduced information (eigenvalues above 1e-12 of the largest)
+  int unknowns = 0;             // global unknowns: 42, + 3K − 6 with the reflectors estimated
+  int rank = 0;                 // of the scaled reduced information (eigenvalues above 1e-12 of the largest)
   double eigenvalue_ratio = 0;  // its smallest / largest eigenvalue (1/condition number)
   // The unknowns the weakest direction moves most, e.g. "leg 2 bz, reflector R3 x".
   std::string weakest;

@@ -39,8 +39,7 @@ std::string FormatPointFitSummary(const PointFitSummary& s, const std::string& u
       out += "    " + r.name + Printf(" moved %.3g (x %+.3g ± %.2g, ", change.norm(), change.x(), r.sigma.x()) +
              Printf("y %+.3g ± %.2g, z %+.3g ± %.2g)\n", change.y(), r.sigma.y(), change.z(), r.sigma.z());
     }
-    out += Printf("  reflector shape scale %.6f ± %.2g of the given one\n", s.reflector_scale,
-                  s.reflector_scale_sigma);
+    out += Printf("  reflector shape scale %.6f ± %.2g of the given one\n", s.reflector_scale, s.reflector_scale_sigma);
   } else {
     out += "  reflectors kept as given\n";
   }
@@ -94,7 +93,8 @@ PointFitSummary PointFitSummaryFromJson(JsonFields fields) {
   summary.reflectors_estimated = fields.Bool("reflectors_estimated");
   summary.reflectors_from_file = fields.Bool("reflectors_from_file");
   for (JsonFields r : fields.Array("reflectors"))
-    summary.reflectors.push_back({r.String("name"), TripleOf(r, "given"), TripleOf(r, "estimate"), TripleOf(r, "sigma")});
+    summary.reflectors.push_back(
+        {r.String("name"), TripleOf(r, "given"), TripleOf(r, "estimate"), TripleOf(r, "sigma")});
   summary.reflector_scale = fields.Number("reflector_scale");
   summary.reflector_scale_sigma = fields.Number("reflector_scale_sigma");
   summary.largest_reflector_correlation = fields.Number("largest_reflector_correlation");

@@ -28,8 +28,8 @@ StatusOr<std::vector<std::vector<NamedPoint>>> PointsOf(const LoadedPoints& load
 
 PointCalibrationInput FitInput(const SessionPointSetup& setup, const CameraCalibrationResult& two_stage,
                                const LoadedPoints& loaded, const std::vector<std::vector<NamedPoint>>& points) {
-  PointCalibrationInput input{setup.nominal, two_stage.calibration.robot, two_stage.registration.base_from_camera,
-                              {}, {}};
+  PointCalibrationInput input{
+      setup.nominal, two_stage.calibration.robot, two_stage.registration.base_from_camera, {}, {}};
   for (const NamedPoint& r : loaded.reflectors)
     input.reflectors.push_back({r.name, two_stage.registration.platform_from_target * r.position, 0});
   for (size_t j = 0; j < points.size(); ++j) {
@@ -93,7 +93,8 @@ void ReflectorsInTheirFrame(const LoadedPoints& loaded, const Pose& platform_fro
     out->fitted.push_back({fit.reflectors[k].name, reflectors_from_platform * fit.reflectors[k].position, 0});
     const Eigen::Matrix3d covariance = r * fit.reflector_covariance.block<3, 3>(3 * k, 3 * k) * r.transpose();
     out->fitted_sigma.push_back(covariance.diagonal().cwiseMax(0).cwiseSqrt());
-    given_in_platform.push_back({loaded.reflectors[k].name, platform_from_reflectors * loaded.reflectors[k].position, 0});
+    given_in_platform.push_back(
+        {loaded.reflectors[k].name, platform_from_reflectors * loaded.reflectors[k].position, 0});
   }
   ShapeScale(given_in_platform, fit, out);
 }
@@ -111,8 +112,7 @@ std::vector<std::optional<Pose>> PosesWith(const std::vector<NamedPoint>& reflec
 
 }  // namespace
 
-StatusOr<SessionPointFit> FitSessionFromPoints(const SessionPointSetup& setup,
-                                               const CameraCalibrationResult& two_stage,
+StatusOr<SessionPointFit> FitSessionFromPoints(const SessionPointSetup& setup, const CameraCalibrationResult& two_stage,
                                                const FromPointsRequest& request, const OutlierScreening& screening,
                                                const JobHooks& hooks) {
   hooks.Stage("calibrate from points");

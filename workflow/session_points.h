@@ -42,8 +42,8 @@ struct FromPointsRequest {
 // calibration's measurements, and the held-out ones.
 struct SessionPointSetup {
   Robot nominal;
-  PointFiles files;  // with check-noise's factor
-  NoiseModel noise;  // session.yaml's: the readings' σ
+  PointFiles files;                                            // with check-noise's factor
+  NoiseModel noise;                                            // session.yaml's: the readings' σ
   std::vector<std::string> calibration_poses, held_out_poses;  // legs.csv's pose names
   std::vector<LegReadings> calibration_legs;
 };
@@ -66,8 +66,7 @@ struct SessionPointFit {
 // the calibration from pixels screens them (core/outlier_screening.h,
 // ScreenJointFitReadings): a robust fit first, then least squares without the
 // outliers (or with them, `keep`), which are named in its legs.
-StatusOr<SessionPointFit> FitSessionFromPoints(const SessionPointSetup& setup,
-                                               const CameraCalibrationResult& two_stage,
+StatusOr<SessionPointFit> FitSessionFromPoints(const SessionPointSetup& setup, const CameraCalibrationResult& two_stage,
                                                const FromPointsRequest& request, const OutlierScreening& screening,
                                                const JobHooks& hooks = {});
 

@@ -18,8 +18,8 @@
 namespace hexcal::workflow {
 namespace {
 
-using ::testing::HasSubstr;
 using hexcal::testing::TempDir;
+using ::testing::HasSubstr;
 
 DemoResult Demo(const TempDir& dir, const std::string& robot, bool joint, Instrument instrument = Instrument::kPoints) {
   DemoRequest request;
