@@ -24,6 +24,7 @@
 #include <ceres/rotation.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <vector>
 
 #include "core/pose.h"
