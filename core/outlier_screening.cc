@@ -157,4 +157,19 @@ StatusOr<LegCalibration> CalibrateLegScreened(int leg, const LegData& data, cons
   return fit;
 }
 
+std::array<std::vector<RowOutlier>, kNumLegs> ScreenJointFitReadings(const std::vector<LegReadings>& leg_z,
+                                                                     const OutlierScreening& screening, double sigma) {
+  std::array<std::vector<RowOutlier>, kNumLegs> outliers;
+  for (int i = 0; i < kNumLegs; ++i) {
+    std::vector<double> z;
+    for (const LegReadings& row : leg_z) z.push_back(row[i]);
+    if (static_cast<int>(z.size()) < kMinRowsToScreen) continue;
+    const double bar = screening.threshold * std::max(1.0, RobustScatter(z, kParamsPerLeg));
+    for (size_t j = 0; j < z.size(); ++j) {
+      if (std::abs(z[j]) > bar) outliers[i].push_back({static_cast<int>(j), z[j] * sigma, z[j], !screening.keep});
+    }
+  }
+  return outliers;
+}
+
 }  // namespace hexcal

@@ -34,9 +34,11 @@
 //   for (const RowOutlier& o : r->legs[2].outliers) Print(o.measurement, o.residual, o.z);
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
+#include "core/inverse_kinematics.h"
 #include "core/option_spec.h"
 
 namespace hexcal {
@@ -69,5 +71,13 @@ double RobustScatter(const std::vector<double>& z, int parameters);
 
 // The rows j with |z_j| > threshold · max(1, RobustScatter(z)), ascending.
 std::vector<int> FlagOutliers(const std::vector<double>& z, int parameters, double threshold);
+
+// The screening of a joint fit's readings (the calibrations from pixels and
+// from points): `leg_z` the z = −r of every measurement's readings at the
+// robust fit (a Cauchy loss of kScreeningCauchyScale σ_L), σ_L = `sigma`; per
+// leg with kMinRowsToScreen rows or more, the readings with
+// |z| > threshold · max(1, ŝ_i), excluded unless `keep`.
+std::array<std::vector<RowOutlier>, kNumLegs> ScreenJointFitReadings(const std::vector<LegReadings>& leg_z,
+                                                                     const OutlierScreening& screening, double sigma);
 
 }  // namespace hexcal

@@ -1,6 +1,8 @@
 // The two residuals of the calibration from pixels (pixel_calibration.h), as
-// Ceres functors for automatic differentiation. A platform pose block is
-// [ω (angle-axis of R, radians), t (robot unit)] of base_from_platform.
+// Ceres functors for automatic differentiation: the leg reading's
+// (core/leg_reading_residual.h, shared with the calibration from points) and
+// the tag corners'. A platform pose block is [ω (angle-axis of R, radians),
+// t (robot unit)] of base_from_platform.
 #pragma once
 
 #include <ceres/rotation.h>
@@ -9,31 +11,12 @@
 #include <Eigen/Geometry>
 #include <array>
 
+#include "core/leg_reading_residual.h"
 #include "core/pose.h"
 #include "vision/camera.h"
 #include "vision/pixel_projection.h"
 
 namespace hexcal {
-
-// (|A b − a| − (l + L)) / σ_L for one leg reading; blocks: leg [a, b, l] (7), pose (6).
-struct LegReadingResidual {
-  double reading = 0;  // L_ij, robot unit
-  double sigma = 1;    // σ_L, robot unit
-
-  template <typename T>
-  bool operator()(const T* leg, const T* pose, T* residual) const {
-    T b_in_base[3];
-    ceres::AngleAxisRotatePoint(pose, leg + 3, b_in_base);
-    T d2 = T(0);
-    for (int k = 0; k < 3; ++k) {
-      const T d = b_in_base[k] + pose[3 + k] - leg[k];
-      d2 += d * d;
-    }
-    using std::sqrt;
-    residual[0] = (sqrt(d2) - (leg[6] + T(reading))) / T(sigma);
-    return true;
-  }
-};
 
 // The whitened reprojection error of one tag's 4 corners; blocks: pose (6),
 // focal scale φ (1), principal point (2), target scale s (1).

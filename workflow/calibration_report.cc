@@ -243,7 +243,7 @@ nlohmann::json ReportJson(const CalibrationReport& report) {
                                                  : nlohmann::json(nullptr)},
           {"outliers", OutliersJson(report.outliers)},
           {"noise_model", NoiseJson(report.noise)},
-          {"method", report.from_pixels ? "from-pixels" : "two-stage"},
+          {"method", report.from_pixels ? "from-pixels" : report.from_points ? "from-points" : "two-stage"},
           {"from_pixels", report.from_pixels ? ToJson(*report.from_pixels) : nlohmann::json(nullptr)},
           {"camera_frame_residuals", CameraFrameJson(report.camera_frame_residuals)}};
 }
@@ -252,8 +252,10 @@ nlohmann::json ReportJson(const CalibrationReport& report) {
 
 nlohmann::json ToJson(const CalibrationReport& report) {
   nlohmann::json json = ReportJson(report);
-  if (report.instrument != Instrument::kCamera)  // a camera report as it always was
+  if (report.instrument != Instrument::kCamera) {  // a camera report as it always was
     json["instrument"] = InstrumentName(report.instrument);
+    json["from_points"] = report.from_points ? ToJson(*report.from_points) : nlohmann::json(nullptr);
+  }
   return json;
 }
 
@@ -293,6 +295,8 @@ StatusOr<CalibrationReport> CalibrationReportFromJson(const nlohmann::json& json
   report.noise = NoiseFromJson(fields);
   // Reports written before the calibration from pixels have no "from_pixels": two-stage.
   if (fields.Has("from_pixels")) report.from_pixels = PixelFitSummaryFromJson(fields.Object("from_pixels"));
+  // Points reports written before the calibration from points have none: two-stage.
+  if (fields.Has("from_points")) report.from_points = PointFitSummaryFromJson(fields.Object("from_points"));
   report.camera_frame_residuals = CameraFrameFromJson(fields);
   if (!fields.status().ok()) return fields.status();
   return report;

@@ -20,6 +20,7 @@
 #include "core/status.h"
 #include "workflow/image_closure.h"
 #include "workflow/pixel_fit_summary.h"
+#include "workflow/point_fit_summary.h"
 
 namespace hexcal::workflow {
 
@@ -113,6 +114,8 @@ struct CalibrationReport {
   std::optional<NoiseExpectation> noise;                       // none in reports that predate it
   // The calibration from pixels (pixel_fit_summary.h); none for the two-stage one.
   std::optional<PixelFitSummary> from_pixels;
+  // The calibration from points (point_fit_summary.h); none for the two-stage one.
+  std::optional<PointFitSummary> from_points;
   // FK of the calibrated robot against the camera, in the camera frame, over
   // the calibration images (docs/calibration.md, "Bias along the optical
   // axis"); none in reports that predate it or when it could not be computed.

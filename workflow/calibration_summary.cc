@@ -67,6 +67,7 @@ std::string FormatCalibrationSummary(const CalibrationReport& report) {
         << "\n";
   }
   if (report.from_pixels) out << FormatPixelFitSummary(*report.from_pixels, unit);
+  if (report.from_points) out << FormatPointFitSummary(*report.from_points, unit);
   if (report.camera_frame_residuals) out << FormatCameraFrameLine(*report.camera_frame_residuals, unit) << "\n";
   out << OutlierLines(report);
   out << ImageClosureLines(report.closure_by_image, report.closure_position_rms, unit);

@@ -62,6 +62,7 @@ Verdict MakeVerdict(const CalibrationReport& report, const std::optional<Verdict
   if (report.noise) verdict.Add(CheckParameterSigmas(report));
   if (!report.parameters.empty()) verdict.Add(CheckParameterChanges(report));
   if (std::optional<Finding> camera = CheckCameraScale(report)) verdict.Add(*camera);
+  if (std::optional<Finding> reflectors = CheckReflectorScale(report)) verdict.Add(*reflectors);
   if (truth) verdict.Add(CheckTruth(*truth));
   if (std::optional<Finding> conditioning = CheckConditioning(report)) verdict.Add(*conditioning);
   verdict.Add(CheckPoses(report));

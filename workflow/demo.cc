@@ -194,13 +194,16 @@ std::string FormatPlanLine(int candidates, const PlanResult& plan, const std::st
 Status CalibrateAndCompare(const DemoRequest& request, const DemoScene& scene, StepLog* steps, const JobHooks& hooks,
                            DemoResult* result) {
   const bool from_pixels = request.from_pixels && request.instrument == Instrument::kCamera;
+  const bool from_points = request.from_pixels && request.instrument == Instrument::kPoints;
   steps->Step(request.instrument == Instrument::kPoints
                   ? std::string("fit each pose to its points, register the tracker and reflector frames, calibrate, "
-                                "validate (calibrate --session)")
+                                "validate ") +
+                        (from_points ? "(calibrate --session: from the points)" : "(calibrate --session --two-stage)")
                   : std::string("measure the images, register the camera and target frames, calibrate, validate ") +
                         (from_pixels ? "(calibrate --session)" : "(calibrate --session --two-stage)"));
   CalibrateSessionRequest calibrate{request.out};
   calibrate.from_pixels.enabled = from_pixels;
+  calibrate.from_points.enabled = from_points;
   StatusOr<CalibrationReport> calibration = CalibrateSession(calibrate, hooks);
   if (!calibration.ok()) return calibration.status();
   std::istringstream lines(FormatCalibrationSummary(*calibration));
@@ -272,6 +275,7 @@ StatusOr<DemoResult> RunDemo(const DemoRequest& request, const JobHooks& hooks) 
   if (!request.random_poses) hooks.Note(FormatPlanLine(result.plan_candidates, *plan, result.length_unit));
   result.random_poses = request.random_poses;
   result.from_pixels = request.from_pixels && request.instrument == Instrument::kCamera;
+  result.from_points = request.from_pixels && request.instrument == Instrument::kPoints;
   result.instrument = request.instrument;
   result.focal_error_percent = request.focal_error_percent;
   result.random_indices = plan->initial;
@@ -315,6 +319,7 @@ nlohmann::json ToJson(const DemoResult& r) {
           {"usable_images", r.usable_images},
           {"random_poses", r.random_poses},
           {"from_pixels", r.from_pixels},
+          {"from_points", r.from_points},
           {"instrument", InstrumentName(r.instrument)},
           {"focal_error_percent", r.focal_error_percent},
           {"plan", {{"random", IndicesJson(r.random_indices)}, {"selected", IndicesJson(r.plan_indices)}}},

@@ -56,7 +56,8 @@ struct DemoRequest {
   // them (`hexcal study`).
   bool random_poses = false;
   // false: calibrate with `calibrate --session --two-stage`; true, the
-  // default: from pixels, the focal length estimated.
+  // default: from pixels, the focal length estimated (with kPoints: from the
+  // points, the reflectors estimated).
   bool from_pixels = true;
   // The camera file given to the calibration has fx and fy off by this many
   // percent (the renderer keeps the true ones): a focal error for the
@@ -64,7 +65,7 @@ struct DemoRequest {
   double focal_error_percent = 0;
   // kPoints: a laser tracker measures 4 reflectors on the platform instead of
   // the camera seeing the board (point_demo_scene.h), with this σ on each
-  // coordinate, metres; the calibration is then two-stage.
+  // coordinate, metres.
   Instrument instrument = Instrument::kCamera;
   double point_sigma_m = 0.00002;
 
@@ -85,6 +86,7 @@ struct DemoResult {
   int plan_candidates = 0, plan_iterations = 0;       // 0 with random_poses
   bool random_poses = false;                          // the poses are random, not planned
   bool from_pixels = false;                           // calibrated from pixels
+  bool from_points = false;                           // calibrated from the points (points sessions)
   double focal_error_percent = 0;                     // of the calibration's camera file
   Instrument instrument = Instrument::kCamera;        // what measured the poses
   double error_mean = 0, error_max = 0;                  // calibrated − truth

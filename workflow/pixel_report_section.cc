@@ -37,13 +37,55 @@ std::string Comparison(const PixelFitSummary& fit, const CalibrationReport& repo
   return html + "</p>\n";
 }
 
+std::string ReflectorTable(const PointFitSummary& fit, const std::string& unit) {
+  if (!fit.reflectors_estimated)
+    return "<p>The reflectors were kept as " + std::string(fit.reflectors_from_file ? "the reflector file gives them" : "estimated from the poses") + ".</p>\n";
+  std::string html = "<table><tr><th>reflector</th><th>moved (" + unit + ")</th><th>x &plusmn; &sigma;</th>"
+                     "<th>y &plusmn; &sigma;</th><th>z &plusmn; &sigma;</th></tr>\n";
+  for (const ReflectorSummary& r : fit.reflectors) {
+    const Eigen::Vector3d change = r.estimate - r.given;
+    char cells[300];
+    std::snprintf(cells, sizeof cells, "<td>%.3g</td><td>%+.3g &plusmn; %.2g</td><td>%+.3g &plusmn; %.2g</td>"
+                  "<td>%+.3g &plusmn; %.2g</td>", change.norm(), change.x(), r.sigma.x(), change.y(), r.sigma.y(),
+                  change.z(), r.sigma.z());
+    html += "<tr><td>" + r.name + "</td>" + cells + "</tr>\n";
+  }
+  return html + "</table><p>Changes from the " + (fit.reflectors_from_file ? "reflector file" : "estimate from the poses") +
+         " in its frame (results/reflectors.csv); the shape's size is " + G4(fit.reflector_scale) + " &plusmn; " +
+         G4(fit.reflector_scale_sigma) + " of the given one.</p>\n";
+}
+
+std::string PointsMethodSection(const CalibrationReport& report) {
+  if (!report.from_points) {
+    return "<h2>Calibration</h2><p>Two-stage: each pose fitted to its points (weighted, with its covariance), "
+           "the tracker and reflector frames registered, the legs fitted to the poses (calibrate --session "
+           "--two-stage, or the calibration from points failed: see the run's warning).</p>\n";
+  }
+  const PointFitSummary& fit = *report.from_points;
+  std::string html = "<h2>Calibration from points</h2><p>The 42 parameters" +
+                     std::string(fit.reflectors_estimated ? " and the reflectors' positions" : "") + " fitted to " +
+                     std::to_string(fit.points) + " points of " + std::to_string(fit.poses) + " poses and " +
+                     std::to_string(fit.leg_rows) + " leg readings: point residual RMS " + G4(fit.point_rms) + " " +
+                     report.length_unit + ", leg residual RMS " + G4(fit.leg_residual_rms) + " " +
+                     report.length_unit + ", variance factor " + G4(fit.variance_factor) + ", " +
+                     std::to_string(fit.iterations) + " iterations. Identifiable: rank " + std::to_string(fit.rank) +
+                     " of " + std::to_string(fit.unknowns) + " unknowns, smallest/largest eigenvalue of the scaled "
+                     "information " + G4(fit.eigenvalue_ratio) + ".</p>\n";
+  html += ReflectorTable(fit, report.length_unit);
+  const std::string unit = report.length_unit;
+  html += "<p>Mean parameter &sigma;: " + G4(fit.mean_parameter_sigma) + " " + unit + " (two-stage: " +
+          G4(fit.two_stage.mean_parameter_sigma) + " " + unit + ").";
+  if (fit.two_stage.held_out_position_rms && report.validation) {
+    html += " Held-out position RMS: " + G4(report.validation->after.position_rms) + " " + unit +
+            " (two-stage: " + G4(*fit.two_stage.held_out_position_rms) + " " + unit + ").";
+  }
+  return html + "</p>\n";
+}
+
 }  // namespace
 
 std::string CalibrationMethodSection(const CalibrationReport& report) {
-  if (report.instrument == Instrument::kPoints) {
-    return "<h2>Calibration</h2><p>Two-stage: each pose fitted to its points (weighted, with its covariance), "
-           "the tracker and reflector frames registered, the legs fitted to the poses.</p>\n";
-  }
+  if (report.instrument == Instrument::kPoints) return PointsMethodSection(report);
   if (!report.from_pixels) {
     return "<h2>Calibration</h2><p>Two-stage: the legs fitted to the board poses (calibrate --session "
            "--two-stage, or the calibration from pixels failed: see the run's warning).</p>\n";

@@ -17,11 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct LoadedPoints {
-  PointSets sets;
-  std::vector<NamedPoint> reflectors;
-  bool estimated = false;
-};
+}  // namespace
 
 StatusOr<LoadedPoints> LoadPoints(const PointFiles& files) {
   StatusOr<PointSets> sets = LoadPointFile(files.points, files.default_sigma);
@@ -38,6 +34,8 @@ StatusOr<LoadedPoints> LoadPoints(const PointFiles& files) {
   loaded.reflectors = std::move(*parsed);
   return loaded;
 }
+
+namespace {
 
 // The point set of every row, by its pose name; a row without one is an error.
 StatusOr<std::map<std::string, const PointSet*>> SetsOfRows(const LoadedPoints& loaded, const std::string& source,

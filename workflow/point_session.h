@@ -32,6 +32,16 @@ struct PointFiles {
   double noise_factor = 1;   // every fit's σ times this (SessionNoiseFactor)
 };
 
+// The points file's sets and the reflectors (as given, or estimated from the
+// sets when `files.reflectors` is empty), each point's σ the file's or
+// `files.default_sigma` (not yet scaled by `noise_factor`).
+struct LoadedPoints {
+  PointSets sets;
+  std::vector<NamedPoint> reflectors;
+  bool estimated = false;
+};
+StatusOr<LoadedPoints> LoadPoints(const PointFiles& files);
+
 struct PointPoses {
   std::map<std::string, SessionImagePose> poses;  // by legs.csv's pose name
   std::vector<NamedPoint> reflectors;             // as given or estimated

@@ -38,6 +38,8 @@ constexpr const char* kUsedMeasurements = "calibration_measurements.csv";
 constexpr const char* kReportJson = "report.json";
 constexpr const char* kFittedCamera = "camera.yaml";
 constexpr const char* kCornerResiduals = "corner_residuals.csv";
+constexpr const char* kFittedReflectors = "reflectors.csv";
+constexpr const char* kPointResiduals = "point_residuals.csv";
 
 StatusOr<SessionInputs> LoadSessionInputs(const std::string& dir) {
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
@@ -143,13 +145,20 @@ SplitRows SplitSessionRows(const SessionInputs& in, const CameraPoses& poses, do
   return split;
 }
 
+// What the calibration from points writes to results/: the fitted
+// reflectors and every point's residual, named by legs.csv's poses.
+struct PointsResults {
+  SessionPointFit fit;
+  std::vector<std::string> poses;  // the fit's pose order
+};
+
 // results/ as one unit (session_results.h): the calibrated robot, the rows it
 // was fitted to, report.json and manifest.json go into a fresh folder that is
 // swapped in whole; then the registered frames into session.yaml.
 Status WriteCalibrationResults(const std::string& dir, const SessionInputs* in, const CameraCalibrationResult& result,
                                const CalibrationOptions& calibration, const CalibrationReport& report,
                                const std::optional<Camera>& fitted_camera, const CornerResidualTable* corners,
-                               const ContentHashes& inputs) {
+                               const PointsResults* points, const ContentHashes& inputs) {
   const SessionPaths paths(dir);
   StatusOr<StagedFolder> staged = StagedFolder::Begin(paths.results);
   if (!staged.ok()) return staged.status();
@@ -169,6 +178,11 @@ Status WriteCalibrationResults(const std::string& dir, const SessionInputs* in, 
   if (corners != nullptr) {
     if (Status s = SaveCornerResiduals(staged->File(kCornerResiduals), *corners); !s.ok()) return s;
     outputs.push_back(kCornerResiduals);
+  }
+  if (points != nullptr) {
+    if (Status s = SaveFittedReflectors(staged->File(kFittedReflectors), points->fit); !s.ok()) return s;
+    if (Status s = SavePointResiduals(staged->File(kPointResiduals), points->fit, points->poses); !s.ok()) return s;
+    outputs.insert(outputs.end(), {kFittedReflectors, kPointResiduals});
   }
   ResultsManifest manifest{calibration_inputs.date, "calibrate --session", inputs, {}};
   for (const char* name : outputs) {
@@ -291,6 +305,51 @@ StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const OpenSession
                       std::move(corners)};
 }
 
+// What the calibration from points adds to the report and to results/.
+struct PointOutcome {
+  PointFitSummary summary;
+  PointsResults results;
+};
+
+// The two-stage result replaced by the calibration from points: its
+// parameters, and the closure, held-out validation and the rows of
+// calibration_measurements.csv with every pose fitted again to the fitted
+// reflectors (X·B'·Y⁻¹).
+StatusOr<PointOutcome> ApplyFromPoints(const std::string& dir, const OpenSession& open, const SplitRows& split,
+                                       const CalibrateSessionRequest& request, const JobHooks& hooks,
+                                       CameraCalibrationResult* result, std::vector<Measurement>* held_out,
+                                       std::optional<ValidationSummary>* validation) {
+  const SessionInputs& in = open.in;
+  StatusOr<PointFiles> files = SessionPointFiles(dir, in.config);
+  if (!files.ok()) return files.status();
+  SessionPointSetup setup{in.nominal, *files, in.config.noise, {}, {}, split.input.legs};
+  for (const LegsRow* row : split.calibration_rows) setup.calibration_poses.push_back(row->image);
+  for (const LegsRow* row : split.held_out) setup.held_out_poses.push_back(row->image);
+  StatusOr<SessionPointFit> fit = FitSessionFromPoints(setup, *result, request.from_points, request.outliers, hooks);
+  if (!fit.ok()) return fit.status().cancelled() ? fit.status() : fit.status().AsFailure();
+  const TwoStageComparison two_stage = TwoStageFigures(*result, *validation);
+  result->calibration = fit->fit.calibration;  // with its own screening's outliers
+  MapFittedPoses(in.nominal, result->registration, fit->calibration_poses, &result->measurements);
+  if (Status s = ComputeCalibratedClosure(result); !s.ok()) return s.AsFailure();
+  MapFittedPoses(in.nominal, result->registration, fit->held_out_poses, held_out);
+  StatusOr<std::optional<ValidationSummary>> again = ValidateHeldOut(in, split.held_out, *held_out, *result);
+  if (!again.ok()) return again.status();
+  *validation = *again;
+  PointFitSummary summary = SummarizeSessionPointFit(*fit, two_stage);
+  return PointOutcome{std::move(summary), PointsResults{std::move(*fit), std::move(setup.calibration_poses)}};
+}
+
+// Asking for the other instrument's joint fit by name is bad input.
+Status CheckJointFitRequest(const std::string& dir, const CalibrateSessionRequest& request, Instrument instrument) {
+  if (instrument == Instrument::kPoints && request.from_pixels.enabled && !request.from_pixels.fall_back)
+    return Status::Error(dir + ": a points session has no pixels; --from-points fits the measured points themselves");
+  if (instrument == Instrument::kCamera && request.from_points.enabled && !request.from_points.fall_back)
+    return Status::Error(dir + ": a camera session has no points; --from-pixels fits the tag corners themselves");
+  if (instrument == Instrument::kCamera && !request.from_points.estimate_reflectors)
+    return Status::Error(dir + ": --keep-reflectors is for a points session (a camera session has no reflectors)");
+  return Status::Ok();
+}
+
 }  // namespace
 
 CalibrationOptions SessionCalibrationOptions(const NoiseModel& noise, const OutlierScreening& outliers) {
@@ -360,6 +419,7 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   const double scale = open->scale;
   const SplitRows split = SplitSessionRows(*in, *poses, scale);
   if (Status s = CheckNominalFk(in->nominal, in->fk_start, split.calibration_rows); !s.ok()) return s;
+  if (Status s = CheckJointFitRequest(dir, request, in->config.instrument); !s.ok()) return s;
 
   const RegistrationOptions registration = SessionRegistrationOptions(in->config.noise);
   const CalibrationOptions calibration = SessionCalibrationOptions(in->config.noise, request.outliers);
@@ -392,9 +452,29 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
     }
   }
 
+  std::optional<PointOutcome> from_points;
+  if (request.from_points.enabled && in->config.instrument == Instrument::kPoints) {
+    CameraCalibrationResult points = *result;
+    std::vector<Measurement> points_held_out = held_out;
+    std::optional<ValidationSummary> points_validation = *validation;
+    StatusOr<PointOutcome> fit =
+        ApplyFromPoints(dir, *open, split, request, hooks, &points, &points_held_out, &points_validation);
+    if (fit.ok()) {
+      *result = std::move(points);
+      held_out = std::move(points_held_out);
+      *validation = std::move(points_validation);
+      from_points = std::move(*fit);
+    } else if (fit.status().cancelled() || !request.from_points.fall_back) {
+      return fit.status();
+    } else {
+      hooks.Note("warning: " + fit.status().message() + "; kept the two-stage calibration (--two-stage skips it)");
+    }
+  }
+
   CalibrationReport report = MakeReport(dir, *in, split, *result);
   report.validation = *validation;
   if (from_pixels) report.from_pixels = from_pixels->summary;
+  if (from_points) report.from_points = from_points->summary;
   report.noise = ExpectedNoise(*in, held_out, result->calibration.robot);
   if (in->config.instrument == Instrument::kCamera)  // the bias along a camera's optical axis
     report.camera_frame_residuals = CameraFrameDiagnosis(*in, split, scale, *result, from_pixels, calibration, hooks);
@@ -405,7 +485,9 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   if (Status s = CheckInputsUnchanged(dir, *inputs); !s.ok()) return s;
   const std::optional<Camera> fitted_camera = from_pixels ? from_pixels->camera : std::nullopt;
   const CornerResidualTable* corners = from_pixels ? &from_pixels->corners : nullptr;
-  if (Status s = WriteCalibrationResults(dir, &*in, *result, calibration, report, fitted_camera, corners, *inputs);
+  const PointsResults* points = from_points ? &from_points->results : nullptr;
+  if (Status s =
+          WriteCalibrationResults(dir, &*in, *result, calibration, report, fitted_camera, corners, points, *inputs);
       !s.ok())
     return s.AsFailure();
   return report;

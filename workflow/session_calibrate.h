@@ -25,6 +25,7 @@
 #include "workflow/calibration_summary.h"
 #include "workflow/session_models.h"
 #include "workflow/session_pixels.h"
+#include "workflow/session_points.h"
 #include "workflow/session_results.h"
 
 namespace hexcal::workflow {
@@ -40,6 +41,9 @@ struct CalibrateSessionRequest {
   // Then the calibration from pixels, started from the two-stage one
   // (session_pixels.h); its figures replace the two-stage ones.
   FromPixelsRequest from_pixels = {};
+  // A points session's: the calibration from points (session_points.h).
+  // Asking explicitly (fall_back false) for the other instrument's fit is bad input.
+  FromPointsRequest from_points = {};
 };
 
 // Stages reported through hooks.stage: "measure (images)", then "register and

@@ -70,23 +70,6 @@ PixelCalibrationInput FitInput(const SessionPixelSetup& setup, const CameraCalib
   return input;
 }
 
-// The readings of a robust fit beyond the screening threshold, per leg
-// (core/outlier_screening.h's rule on the z of the fit from pixels).
-std::array<std::vector<RowOutlier>, kNumLegs> ScreenReadings(const PixelCalibrationResult& robust,
-                                                             const OutlierScreening& screening, double sigma) {
-  std::array<std::vector<RowOutlier>, kNumLegs> outliers;
-  for (int i = 0; i < kNumLegs; ++i) {
-    std::vector<double> z;
-    for (const LegReadings& row : robust.leg_z) z.push_back(row[i]);
-    if (static_cast<int>(z.size()) < kMinRowsToScreen) continue;
-    const double bar = screening.threshold * std::max(1.0, RobustScatter(z, kParamsPerLeg));
-    for (size_t j = 0; j < z.size(); ++j) {
-      if (std::abs(z[j]) > bar) outliers[i].push_back({static_cast<int>(j), z[j] * sigma, z[j], !screening.keep});
-    }
-  }
-  return outliers;
-}
-
 // The fit with the readings screened: robust first, then least squares
 // without the outliers (or with them, `keep`), which are named in its legs.
 StatusOr<PixelCalibrationResult> ScreenedFit(PixelCalibrationInput input, PixelCalibrationOptions options,
@@ -95,7 +78,7 @@ StatusOr<PixelCalibrationResult> ScreenedFit(PixelCalibrationInput input, PixelC
   options.leg_cauchy_scale = kScreeningCauchyScale;
   StatusOr<PixelCalibrationResult> robust = CalibrateFromPixels(input, options, hooks);
   if (!robust.ok()) return robust.status();
-  const auto outliers = ScreenReadings(*robust, screening, options.leg_sigma);
+  const auto outliers = ScreenJointFitReadings(robust->leg_z, screening, options.leg_sigma);
   for (int i = 0; i < kNumLegs; ++i)
     for (const RowOutlier& o : outliers[i]) input.images[o.measurement].leg_excluded[i] = o.excluded;
   options.leg_cauchy_scale = 0;

@@ -64,9 +64,12 @@ Status CheckOutputs(const std::string& dir, const ResultsManifest& manifest) {
   for (const char* name : {"report.json", "calibrated.yaml", "calibration_measurements.csv"})
     if (manifest.outputs.count(name) == 0) return Status::Error(ResultsManifestPath(dir) + ": lists no " + name);
   // camera.yaml and corner_residuals.csv: the intrinsics a calibration from
-  // pixels estimated and its corners' residuals (docs/session.md).
-  if (manifest.outputs.size() !=
-      3 + manifest.outputs.count("camera.yaml") + manifest.outputs.count("corner_residuals.csv"))
+  // pixels estimated and its corners' residuals; reflectors.csv and
+  // point_residuals.csv: the calibration from points' (docs/session.md).
+  size_t optional = 0;
+  for (const char* name : {"camera.yaml", "corner_residuals.csv", "reflectors.csv", "point_residuals.csv"})
+    optional += manifest.outputs.count(name);
+  if (manifest.outputs.size() != 3 + optional)
     return Status::Error(ResultsManifestPath(dir) + ": lists other outputs");
   for (const auto& [name, expected] : manifest.outputs) {
     const std::string path = (fs::path(results) / name).string();

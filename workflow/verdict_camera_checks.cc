@@ -1,6 +1,7 @@
 // The camera finding of the verdict (calibration_verdict.h): how far the
 // calibration from pixels moved the camera file's focal lengths and the
-// target's scale. The fit corrects them, but the registration and the
+// target's scale; and a points session's counterpart, how far the
+// calibration from points moved the reflectors' size from the file's. The fit corrects them, but the registration and the
 // two-stage start used the file's: a focal or scale error is named as such,
 // not blamed on the robot file.
 #include <cmath>
@@ -47,6 +48,29 @@ std::optional<Finding> CheckCameraScale(const CalibrationReport& report) {
                        ? "check the target file's tag size against the printed board, then calibrate again"
                        : "recalibrate the camera (hexcal intrinsics) or make results/camera.yaml the session's "
                          "camera, then calibrate again";
+  return finding;
+}
+
+std::optional<Finding> CheckReflectorScale(const CalibrationReport& report) {
+  if (!report.from_points || !report.from_points->reflectors_estimated || !report.from_points->reflectors_from_file)
+    return std::nullopt;
+  const PointFitSummary& fit = *report.from_points;
+  const double change = std::abs(fit.reflector_scale - 1);
+  Finding finding{"reflectors (scale)",
+                  LevelAtMost(change, kScaleChangeGood, kScaleChangeAcceptable),
+                  "the fitted reflectors' size is " + Figure(fit.reflector_scale) + " ± " +
+                      Figure(fit.reflector_scale_sigma) + " of the reflector file's (" +
+                      Figure(100 * change) + " % change)",
+                  "good ≤ " + Figure(100 * kScaleChangeGood) + " %, acceptable ≤ " +
+                      Figure(100 * kScaleChangeAcceptable) + " % of the file's",
+                  "the reflector file and the tracker agree on the reflectors' distances.",
+                  ""};
+  if (finding.level == VerdictLevel::kGood) return finding;
+  finding.meaning = "the reflector file's distances are " + Figure(100 * (1 / fit.reflector_scale - 1)) +
+                    " % off what the tracker measured: the fit corrected them, but the registered frames and the "
+                    "two-stage start carry it.";
+  finding.advice = "check the reflector file's unit and the tracker's scale (temperature compensation), or make "
+                   "results/reflectors.csv the session's reflector file, then calibrate again";
   return finding;
 }
 

@@ -25,6 +25,8 @@ Finding CheckUnusableImages(const CalibrationReport& report);
 Finding CheckOutliers(const CalibrationReport& report);
 // None without a calibration from pixels that estimated fx, fy or the target's scale.
 std::optional<Finding> CheckCameraScale(const CalibrationReport& report);
+// None without a calibration from points that estimated reflectors given by a file.
+std::optional<Finding> CheckReflectorScale(const CalibrationReport& report);
 // The estimate among fx, fy and target_scale that moved most from its file value, relatively.
 std::optional<PixelEstimateSummary> LargestScaleChange(const CalibrationReport& report);
 // "the camera file's fx is 5 % off (the fit's 903 ± 0.04 against the file's 948)".

@@ -1,8 +1,8 @@
 // hexcal calibrate --robot R --measurements M.csv --out calibrated.yaml [--force]
 //   [--loss none|huber|cauchy] [--loss-scale s]
 //   [--weighted [--noise-position p] [--noise-angle a] [--noise-leg l]] [--json]
-// hexcal calibrate --session DIR [--two-stage | --from-pixels] [--estimate focal,principal,scale|none]
-//   [--keep-outliers] [--outlier-threshold Z] [--json]
+// hexcal calibrate --session DIR [--two-stage | --from-pixels | --from-points] [--estimate focal,principal,scale|none]
+//   [--keep-reflectors] [--keep-outliers] [--outlier-threshold Z] [--json]
 //   (workflow/session_calibrate.h)
 #include <cmath>
 #include <cstdio>
@@ -25,7 +25,7 @@ namespace {
 struct CalibrateCliOptions {
   std::string robot, measurements, out, session, loss = "none";
   std::string estimate = OptionText(workflow::PixelEstimatesOption(), workflow::FromPixelsRequest{});
-  bool from_pixels = false, two_stage = false;
+  bool from_pixels = false, from_points = false, two_stage = false, keep_reflectors = false;
   double loss_scale = 1.0;
   bool weighted = false, force = false, json = false, wait = false;
   std::shared_ptr<OptionEntries> noise = std::make_shared<OptionEntries>();  // --noise-* over the defaults
@@ -43,6 +43,9 @@ int RunCalibrateSession(const CalibrateCliOptions& cli, std::ostream& out, std::
   request.from_pixels = *estimates;
   request.from_pixels.enabled = !cli.two_stage;
   request.from_pixels.fall_back = !cli.from_pixels;
+  request.from_points.enabled = !cli.two_stage;
+  request.from_points.fall_back = !cli.from_points;
+  request.from_points.estimate_reflectors = !cli.keep_reflectors;
   TerminalJob job("", &err);  // notes ("measuring 32 images: the camera changed ...") on stderr
   StatusOr<workflow::CalibrationReport> report = workflow::CalibrateSession(request, job.hooks());
   if (!report.ok()) return ReportError(err, "calibrate", report.status());
@@ -229,10 +232,24 @@ void AddCalibrateCommand(CLI::App& app, int* exit_code) {
                     "fit the parameters to the tag corners (the default) and fail if that fails, instead of keeping "
                     "the two-stage calibration")
           ->needs(session);
-  CLI::Option* two_stage = sub->add_flag("--two-stage", options->two_stage,
-                                         "only fit the legs to the board poses (no calibration from pixels)")
-                               ->needs(session)
-                               ->excludes(from_pixels);
+  // A points session's counterpart: the calibration from points, its default.
+  CLI::Option* from_points =
+      sub->add_flag("--from-points", options->from_points,
+                    "a points session: fit the parameters and the reflectors to the measured points (the default) and "
+                    "fail if that fails, instead of keeping the two-stage calibration")
+          ->needs(session)
+          ->excludes(from_pixels);
+  CLI::Option* two_stage =
+      sub->add_flag("--two-stage", options->two_stage,
+                    "only fit the legs to the measured poses (no calibration from pixels or from points)")
+          ->needs(session)
+          ->excludes(from_pixels)
+          ->excludes(from_points);
+  sub->add_flag("--keep-reflectors", options->keep_reflectors,
+                "a points session: keep the reflectors as given (or as estimated from the poses) in the calibration "
+                "from points instead of estimating them")
+      ->needs(session)
+      ->excludes(two_stage);
   sub->add_option(workflow::PixelEstimatesOption().Flag(), options->estimate, workflow::PixelEstimatesOption().help)
       ->capture_default_str()
       ->needs(session)

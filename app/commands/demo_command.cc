@@ -44,8 +44,8 @@ void AddDemoCommand(CLI::App& app, int* exit_code) {
   sub->add_flag("--random-poses", request->random_poses,
                 "record --poses random feasible poses the camera sees instead of an IOOPS plan (for hexcal study)");
   sub->add_flag("--from-pixels,!--two-stage", request->from_pixels,
-                "calibrate from the tag corners, estimating the focal length (the default), or --two-stage: fit the "
-                "legs to the board poses only");
+                "calibrate from the tag corners, estimating the focal length (the default; with --instrument points: "
+                "from the points, estimating the reflectors), or --two-stage: fit the legs to the measured poses only");
   sub->add_option("--focal-error", request->focal_error_percent,
                   "give the calibration a camera file whose focal length is off by this many percent (-20..20); "
                   "the images keep the true one")
@@ -54,7 +54,7 @@ void AddDemoCommand(CLI::App& app, int* exit_code) {
   auto point_sigma_mm = std::make_shared<double>(request->point_sigma_m * 1000);
   sub->add_option("--instrument", *instrument,
                   "what measures the poses: camera (rendered images of the board) or points (a laser tracker's "
-                  "4 reflectors; calibrated in two stages)")
+                  "4 reflectors)")
       ->check(CLI::IsMember({"camera", "points"}))
       ->capture_default_str();
   sub->add_option("--point-sigma", *point_sigma_mm,

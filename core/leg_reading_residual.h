@@ -1,0 +1,34 @@
+// The leg reading's residual of the joint fits — the calibration from pixels
+// (vision/pixel_calibration.h) and from points (core/point_calibration.h) —
+// as a Ceres functor for automatic differentiation. A platform pose block is
+// [ω (angle-axis of R, radians), t (robot unit)] of base_from_platform.
+// Internal: includes Ceres, which hexcal_core and hexcal_vision link privately.
+#pragma once
+
+#include <ceres/rotation.h>
+
+#include <cmath>
+
+namespace hexcal {
+
+// (|A b − a| − (l + L)) / σ_L for one leg reading; blocks: leg [a, b, l] (7), pose (6).
+struct LegReadingResidual {
+  double reading = 0;  // L_ij, robot unit
+  double sigma = 1;    // σ_L, robot unit
+
+  template <typename T>
+  bool operator()(const T* leg, const T* pose, T* residual) const {
+    T b_in_base[3];
+    ceres::AngleAxisRotatePoint(pose, leg + 3, b_in_base);
+    T d2 = T(0);
+    for (int k = 0; k < 3; ++k) {
+      const T d = b_in_base[k] + pose[3 + k] - leg[k];
+      d2 += d * d;
+    }
+    using std::sqrt;
+    residual[0] = (sqrt(d2) - (leg[6] + T(reading))) / T(sigma);
+    return true;
+  }
+};
+
+}  // namespace hexcal

@@ -1,0 +1,44 @@
+// Inside the calibration from points (point_calibration.h): the problem as
+// built, and from it the identifiability figures and the result — residuals,
+// the covariance of the 42 parameters and the reflectors with the poses
+// eliminated (Schur complement of JᵀJ), σ. Internal: includes Ceres.
+#pragma once
+
+#include <ceres/ceres.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "core/point_calibration_types.h"
+
+namespace hexcal {
+
+struct PointRow {
+  int pose = 0, reflector = 0;
+  double sigma = 0;
+};
+
+struct PointFitProblem {
+  ceres::Problem problem;
+  std::array<LegParameters, kNumLegs> legs;
+  std::vector<Vector6d> poses;  // [ω, t] of base_from_platform; never resized once the residuals are added
+  Eigen::VectorXd reflectors;   // [r_1 … r_K], platform frame
+  std::vector<std::string> reflector_names;
+  bool estimate_reflectors = false;
+  std::vector<ceres::ResidualBlockId> point_rows;
+  std::vector<PointRow> point_of_row;
+  std::array<std::vector<ceres::ResidualBlockId>, kNumLegs> leg_rows;
+  std::array<std::vector<int>, kNumLegs> leg_poses;  // the pose of each of leg_rows
+};
+
+// The rank and eigenvalue ratio of the reduced information at the problem's
+// current values, and the unknowns of its weakest direction.
+PointIdentifiability Identifiability(PointFitProblem& fit);
+
+// The result without the poses, iterations and termination.
+PointCalibrationResult SummarizePointFit(const PointCalibrationInput& input, PointFitProblem& fit,
+                                         const PointCalibrationOptions& options,
+                                         const PointIdentifiability& identifiability);
+
+}  // namespace hexcal
