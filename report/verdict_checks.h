@@ -1,12 +1,19 @@
 // The checks behind MakeVerdict (calibration_verdict.h), one finding each;
-// thresholds and their reasons are in calibration_verdict.h and
-// docs/calibration.md, "Verdict".
+// thresholds are in verdict_findings.h, their reasons in docs/calibration.md,
+// "Verdict".
+//
+//   Verdict verdict;
+//   verdict.Add(CheckHeldOut(report));  // report: results/report.json's CalibrationReport
+//   if (std::optional<Finding> scale = CheckCameraScale(report)) verdict.Add(*scale);
 #pragma once
 
 #include <optional>
 #include <string>
 
-#include "report/calibration_verdict.h"
+#include "core/validation.h"
+#include "report/expected_error.h"
+#include "report/verdict_findings.h"
+#include "session/calibration_report.h"
 
 namespace hexcal::workflow {
 

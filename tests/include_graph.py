@@ -30,7 +30,6 @@ KNOWN_CYCLES = [
     {"vision/image_codecs", "vision/opencv_io_plugin"},
     {"vision/intrinsics", "vision/intrinsics_diagnosis"},
     {"vision/pixel_calibration", "vision/pixel_calibration_covariance"},
-    {"report/calibration_verdict", "report/verdict_checks"},
 ]
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 SOURCE_SUFFIXES = (".h", ".cc", ".inc", ".c")
