@@ -28,7 +28,7 @@ demo: build
 test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j$(JOBS)
 
-# Unit tests only (core/, vision/, charts/, workflow/ in CTest; the cli/ cases are left out to
+# Unit tests only (core/, vision/, charts/, devices/, session/, sim/, report/, workflow/ in CTest; the cli/ cases are left out to
 # keep CI short, and so is building the CLI: target hexcal_unit_tests). Any sanitizer report
 # fails the test.
 ASAN_BUILD_DIR ?= build-asan

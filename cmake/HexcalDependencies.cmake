@@ -25,7 +25,7 @@ pkg_check_modules(APRILTAG REQUIRED IMPORTED_TARGET apriltag)
 # without their headers those lines come through as they did.
 pkg_check_modules(AVUTIL IMPORTED_TARGET libavutil)
 pkg_check_modules(GLIB IMPORTED_TARGET glib-2.0)
-# GenICam cameras (the aravis: camera, workflow/aravis_frame_source.h) and the
+# GenICam cameras (the aravis: camera, devices/aravis_frame_source.h) and the
 # fake GigE Vision camera of the tests: optional. Without it hexcal builds and
 # refuses aravis: URLs, saying what to install.
 set(HEXCAL_HAVE_ARAVIS OFF)

@@ -110,7 +110,7 @@ struct BiasCauseModels {
 };
 // Depths scaled by 1 + error (a focal length error: exact for a pinhole
 // camera and a point target; a lens's distortion and a board's extent add
-// lateral and rotation errors, workflow/camera_frame_diagnosis.h models
+// lateral and rotation errors, session/camera_frame_diagnosis.h models
 // those), and whole positions (a target scale error: exact).
 BiasCauseModels ScalingBiasModels();
 

@@ -1,4 +1,4 @@
-// A fake line-protocol server for client tests (workflow/line_client.h):
+// A fake line-protocol server for client tests (devices/line_client.h):
 // a thread serving canned replies on a loopback port.
 //
 //   FakeLineServer server([](const std::string& line) { return "HELLO ACK\r\n"; });

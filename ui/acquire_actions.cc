@@ -15,6 +15,7 @@
 #include <array>
 
 #include "core/inverse_kinematics.h"
+#include "session/readings_table.h"
 #include "ui/acquire_panel.h"
 #include "ui/background_job.h"
 #include "ui/error_dialog.h"
@@ -24,7 +25,6 @@
 #include "vision/image_codecs.h"
 #include "workflow/acquire_step.h"
 #include "workflow/reading_check.h"
-#include "workflow/readings_table.h"
 #include "workflow/session_edits.h"
 
 namespace hexcal::ui {

@@ -19,6 +19,7 @@
 #include <set>
 
 #include "core/inverse_kinematics.h"
+#include "session/readings_table.h"
 #include "ui/background_job.h"
 #include "ui/error_dialog.h"
 #include "ui/gui_terms.h"
@@ -28,7 +29,6 @@
 #include "workflow/acquire_step.h"
 #include "workflow/plan_captures.h"
 #include "workflow/reading_check.h"
-#include "workflow/readings_table.h"
 
 namespace hexcal::ui {
 namespace {

@@ -16,6 +16,8 @@
 #include "core/inverse_kinematics.h"
 #include "core/measurements.h"
 #include "core/robot_io.h"
+#include "report/calibration_verdict.h"
+#include "session/session_results.h"
 #include "ui/background_job.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
@@ -24,9 +26,7 @@
 #include "ui/run_log.h"
 #include "ui/text_wrap.h"
 #include "ui/verdict_view.h"
-#include "workflow/calibration_verdict.h"
 #include "workflow/session_calibrate.h"
-#include "workflow/session_results.h"
 
 namespace hexcal::ui {
 namespace {

@@ -16,8 +16,8 @@
 
 #include <vector>
 
+#include "session/calibration_report.h"
 #include "ui/session_state.h"
-#include "workflow/calibration_report.h"
 
 class QLabel;
 class QProgressBar;

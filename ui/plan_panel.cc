@@ -23,6 +23,7 @@
 #include "core/csv.h"
 #include "core/inverse_kinematics.h"
 #include "core/session_lock.h"
+#include "session/readings_table.h"
 #include "ui/background_job.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
@@ -33,7 +34,6 @@
 #include "ui/text_wrap.h"
 #include "workflow/plan_captures.h"
 #include "workflow/plan_step.h"
-#include "workflow/readings_table.h"
 
 namespace hexcal::ui {
 namespace {

@@ -23,9 +23,9 @@
 #include <optional>
 #include <vector>
 
+#include "session/readings_table.h"
 #include "ui/session_state.h"
 #include "workflow/reading_check.h"
-#include "workflow/readings_table.h"
 
 namespace hexcal::ui {
 

@@ -8,15 +8,15 @@
 #include <QSet>
 #include <QStringList>
 
+#include "core/csv.h"
+#include "core/robot_io.h"
+#include "session/session_results.h"
+#include "session/session_study.h"
+#include "vision/measure.h"
 #include "workflow/plan_step.h"
 #include "workflow/point_session.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_init.h"
-#include "workflow/session_results.h"
-#include "workflow/session_study.h"
-#include "core/csv.h"
-#include "core/robot_io.h"
-#include "vision/measure.h"
 
 namespace hexcal::ui {
 namespace {

@@ -28,12 +28,12 @@
 
 #include "core/robot.h"
 #include "core/session.h"
+#include "session/session_results.h"
+#include "session/session_study.h"
 #include "vision/camera.h"
 #include "vision/target.h"
 #include "workflow/session_edits.h"
-#include "workflow/session_results.h"
 #include "workflow/session_status.h"
-#include "workflow/session_study.h"
 
 namespace hexcal::ui {
 
@@ -116,10 +116,10 @@ class SessionState : public QObject {
   QString Why(Step step) const;
   // Why the Calibrate step is stale or broken ("" when done or to do).
   QString ResultsNote() const;
-  // results/ as loaded at the last reload (workflow/session_results.h), read
+  // results/ as loaded at the last reload (session/session_results.h), read
   // once per reload for every panel: hashing the images is not free.
   const StatusOr<workflow::SessionResults>& Results() const { return results_; }
-  // study/ as loaded at the last reload (workflow/session_study.h), stale or
+  // study/ as loaded at the last reload (session/session_study.h), stale or
   // not by the same input hashes; an error says there is none yet, or why it
   // does not load.
   const StatusOr<workflow::SessionStudy>& Study() const { return study_; }

@@ -13,12 +13,12 @@
 #include <cmath>
 
 #include "charts/figures.h"
+#include "session/session_study.h"
 #include "ui/background_job.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
 #include "ui/quantity_format.h"
 #include "ui/text_wrap.h"
-#include "workflow/session_study.h"
 #include "workflow/study_options.h"
 
 namespace hexcal::ui {

@@ -2,7 +2,7 @@
 // a form of the study's options (the table of workflow/study_options.h, as
 // `hexcal study` has them; ui/option_form.h), *Run study* and *Cancel* with
 // a progress bar, and the study the session keeps (SessionState::Study,
-// workflow/session_study.h): where the selected subset ranks, a red line when
+// session/session_study.h): where the selected subset ranks, a red line when
 // the session changed since, the Table 5 figures and Figs. 19 and 18 (the
 // charts of charts/figures.h, StudyMetricChart).
 //

@@ -16,15 +16,15 @@
 #include <filesystem>
 
 #include "charts/figures.h"
+#include "report/calibration_verdict.h"
+#include "report/session_report.h"
+#include "session/session_results.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
 #include "ui/quantity_format.h"
 #include "ui/study_view.h"
 #include "ui/text_wrap.h"
 #include "ui/verdict_view.h"
-#include "workflow/calibration_verdict.h"
-#include "workflow/session_report.h"
-#include "workflow/session_results.h"
 
 namespace hexcal::ui {
 namespace {

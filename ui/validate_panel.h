@@ -11,8 +11,8 @@
 
 #include <QWidget>
 
+#include "session/calibration_report.h"
 #include "ui/session_state.h"
-#include "workflow/calibration_report.h"
 
 class QLabel;
 class QTabWidget;

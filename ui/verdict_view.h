@@ -1,4 +1,4 @@
-// The verdict on a calibration (workflow/calibration_verdict.h) in a panel:
+// The verdict on a calibration (report/calibration_verdict.h) in a panel:
 // the level in its colour, then the findings that are not good with their
 // advice, and the good ones on one line; every figure, threshold and meaning
 // in the tooltip. Compact enough to sit above a table in a 1024×600 window:
@@ -12,7 +12,7 @@
 
 #include <QWidget>
 
-#include "workflow/calibration_verdict.h"
+#include "report/calibration_verdict.h"
 
 class QLabel;
 class QScrollArea;

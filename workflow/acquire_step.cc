@@ -12,14 +12,14 @@
 #include "core/csv.h"
 #include "core/robot_io.h"
 #include "core/session.h"
+#include "session/readings_table.h"
+#include "sim/sim_world.h"
 #include "vision/image_codecs.h"
 #include "workflow/acquire_files.h"
 #include "workflow/plan_captures.h"
 #include "workflow/reading_check.h"
-#include "workflow/readings_table.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_edits.h"
-#include "workflow/sim_world.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -238,9 +238,9 @@ StatusOr<AcquisitionRig> OpenAcquisitionRig(const std::string& dir, const std::s
   }
   // The camera first: a bad camera URL is refused before a real machine is
   // powered on and homed.
-  StatusOr<std::unique_ptr<FrameSource>> camera = OpenFrameSource(camera_url, {rig.sim});
+  StatusOr<std::unique_ptr<FrameSource>> camera = OpenFrameSource(camera_url, SimFrameSourceOptions(rig.sim));
   if (!camera.ok()) return camera.status();
-  ControllerOptions controller_options{rig.sim, nullptr};
+  ControllerOptions controller_options = SimControllerOptions(rig.sim);
   if (controller_url != "sim") {  // a real machine converts poses and joints with the session's robot
     StatusOr<Robot> robot = LoadSessionRobot(dir);
     if (!robot.ok()) return robot.status();

@@ -31,9 +31,9 @@
 #include "core/pose.h"
 #include "core/session_lock.h"
 #include "core/status.h"
-#include "workflow/controller.h"
-#include "workflow/device_urls.h"
-#include "workflow/frame_source.h"
+#include "devices/controller.h"
+#include "devices/device_urls.h"
+#include "devices/frame_source.h"
 #include "workflow/plan_captures.h"
 
 namespace hexcal::workflow {
@@ -98,8 +98,8 @@ StatusOr<AcquisitionRig> OpenAcquisitionRig(const std::string& session_dir, cons
 
 struct AcquireRequest {
   std::string session;
-  std::string controller = "sim";  // URL, workflow/controller.h
-  std::string camera = "sim";      // URL, workflow/frame_source.h
+  std::string controller = "sim";  // URL, devices/controller.h
+  std::string camera = "sim";      // URL, devices/frame_source.h
   std::string poses{};             // pose CSV; empty: SESSION/plan.csv
   uint64_t seed = 1;               // of the sim world's truth and noise
   AcquireOptions options{};

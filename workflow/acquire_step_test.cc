@@ -17,10 +17,10 @@
 #include "core/inverse_kinematics.h"
 #include "core/robot_io.h"
 #include "core/session.h"
+#include "sim/sim_world.h"
 #include "tests/test_support.h"
 #include "vision/camera.h"
 #include "vision/target.h"
-#include "workflow/sim_world.h"
 
 namespace hexcal::workflow {
 namespace {

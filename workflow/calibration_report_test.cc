@@ -1,4 +1,4 @@
-#include "workflow/calibration_report.h"
+#include "session/calibration_report.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -6,8 +6,8 @@
 #include "core/calibration.h"
 #include "core/presets.h"
 #include "core/robot_io.h"
+#include "session/json_fields.h"
 #include "tests/test_support.h"
-#include "workflow/json_fields.h"
 #include "workflow/session_calibrate.h"
 
 namespace hexcal::workflow {

@@ -1,7 +1,7 @@
 // The verdict (calibration_verdict.h): one test per level of each finding,
 // from reports built here, and from demo sessions: a clean demo is good, a
 // wrong reading and a noise model ten times too optimistic are not.
-#include "workflow/calibration_verdict.h"
+#include "report/calibration_verdict.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -13,9 +13,9 @@
 #include "core/presets.h"
 #include "core/robot_io.h"
 #include "core/session.h"
+#include "report/expected_error.h"
 #include "tests/test_support.h"
 #include "workflow/demo.h"
-#include "workflow/expected_error.h"
 #include "workflow/session_calibrate.h"
 
 namespace hexcal::workflow {

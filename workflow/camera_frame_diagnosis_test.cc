@@ -2,15 +2,15 @@
 // (demo_scene.h: true robot and frames, camera poses without rendering), the
 // causes simulated only when the residual grows with depth, and the line the
 // summary prints.
-#include "workflow/camera_frame_diagnosis.h"
+#include "session/camera_frame_diagnosis.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "core/inverse_kinematics.h"
+#include "sim/demo_scene.h"
 #include "tests/robot_presets.h"
 #include "tests/test_support.h"
-#include "workflow/demo_scene.h"
 #include "workflow/session_calibrate.h"
 
 namespace hexcal::workflow {

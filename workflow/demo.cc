@@ -10,12 +10,12 @@
 #include "core/registration.h"
 #include "core/robot_io.h"
 #include "core/session.h"
-#include "workflow/demo_scene.h"
-#include "workflow/json_forms.h"
-#include "workflow/point_demo_scene.h"
+#include "report/session_report.h"
+#include "session/json_forms.h"
+#include "sim/demo_scene.h"
+#include "sim/point_demo_scene.h"
 #include "workflow/plan_step.h"
 #include "workflow/session_calibrate.h"
-#include "workflow/session_report.h"
 
 namespace hexcal::workflow {
 namespace {

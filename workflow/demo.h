@@ -28,8 +28,8 @@
 #include "core/observability.h"
 #include "core/session.h"
 #include "core/status.h"
-#include "workflow/calibration_report.h"
-#include "workflow/calibration_verdict.h"
+#include "report/calibration_verdict.h"
+#include "session/calibration_report.h"
 
 namespace hexcal::workflow {
 

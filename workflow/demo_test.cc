@@ -8,10 +8,10 @@
 #include <filesystem>
 
 #include "core/atomic_file.h"
+#include "report/session_report.h"
+#include "session/corner_residuals_file.h"
 #include "tests/test_support.h"
-#include "workflow/corner_residuals_file.h"
 #include "workflow/session_calibrate.h"
-#include "workflow/session_report.h"
 
 namespace hexcal::workflow {
 namespace {

@@ -6,11 +6,11 @@
 
 #include "charts/chart_render.h"
 #include "core/atomic_file.h"
+#include "report/corner_charts.h"
+#include "report/corner_report_section.h"
 #include "vision/image_codecs.h"
 #include "vision/intrinsics_diagnosis.h"
 #include "vision/measure.h"
-#include "workflow/corner_charts.h"
-#include "workflow/corner_report_section.h"
 
 namespace hexcal::workflow {
 namespace {

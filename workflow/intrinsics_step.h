@@ -13,8 +13,8 @@
 
 #include "core/job_hooks.h"
 #include "core/status.h"
+#include "session/corner_residuals_file.h"
 #include "vision/intrinsics.h"
-#include "workflow/corner_residuals_file.h"
 
 namespace hexcal::workflow {
 

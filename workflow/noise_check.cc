@@ -8,9 +8,9 @@
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/robot_io.h"
+#include "session/session_models.h"
 #include "vision/measure.h"
 #include "workflow/point_session.h"
-#include "workflow/session_models.h"
 
 namespace hexcal::workflow {
 namespace {

@@ -24,8 +24,8 @@
 
 #include "core/pose.h"
 #include "core/status.h"
+#include "session/readings_table.h"
 #include "workflow/reading_check.h"
-#include "workflow/readings_table.h"
 
 namespace hexcal::workflow {
 

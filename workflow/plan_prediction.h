@@ -21,7 +21,7 @@
 
 #include "core/noise_model.h"
 #include "core/robot.h"
-#include "workflow/expected_error.h"
+#include "report/expected_error.h"
 
 namespace hexcal::workflow {
 

@@ -10,7 +10,7 @@
 #include "core/inverse_kinematics.h"
 #include "core/robot_io.h"
 #include "core/straight_moves.h"
-#include "workflow/controller.h"
+#include "devices/controller.h"
 
 namespace hexcal::workflow {
 namespace {

@@ -9,8 +9,8 @@
 #include "core/csv.h"
 #include "core/point_fit.h"
 #include "core/reflector_estimate.h"
-#include "workflow/session_models.h"
-#include "workflow/json_fields.h"
+#include "session/json_fields.h"
+#include "session/session_models.h"
 
 namespace hexcal::workflow {
 namespace {

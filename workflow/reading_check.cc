@@ -6,7 +6,7 @@
 #include "core/csv.h"
 #include "core/robot_io.h"
 #include "core/session.h"
-#include "workflow/controller.h"
+#include "devices/controller.h"
 #include "workflow/session_calibrate.h"
 
 namespace hexcal::workflow {

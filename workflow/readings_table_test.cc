@@ -1,6 +1,6 @@
 // The readings table the GUI edits: legs.csv's rows and a blank row for each
-// image without readings (workflow/readings_table.h).
-#include "workflow/readings_table.h"
+// image without readings (session/readings_table.h).
+#include "session/readings_table.h"
 
 #include <gtest/gtest.h>
 

@@ -19,14 +19,14 @@
 #include "core/session.h"
 #include "core/session_lock.h"
 #include "core/status.h"
+#include "report/calibration_summary.h"
+#include "session/calibration_report.h"
+#include "session/session_models.h"
+#include "session/session_results.h"
 #include "vision/camera.h"
 #include "vision/target.h"
-#include "workflow/calibration_report.h"
-#include "workflow/calibration_summary.h"
-#include "workflow/session_models.h"
 #include "workflow/session_pixels.h"
 #include "workflow/session_points.h"
-#include "workflow/session_results.h"
 
 namespace hexcal::workflow {
 

@@ -1,5 +1,5 @@
 // The operator's edits applied to the files as they are on disk, and results/
-// as one unit (workflow/session_edits.h, workflow/session_results.h).
+// as one unit (workflow/session_edits.h, session/session_results.h).
 #include "workflow/session_edits.h"
 
 #include <gtest/gtest.h>
@@ -11,13 +11,13 @@
 #include "core/inverse_kinematics.h"
 #include "core/robot_io.h"
 #include "core/session.h"
+#include "session/readings_table.h"
+#include "session/session_results.h"
 #include "tests/test_support.h"
 #include "vision/camera.h"
 #include "vision/target.h"
 #include "workflow/demo.h"
-#include "workflow/readings_table.h"
 #include "workflow/session_calibrate.h"
-#include "workflow/session_results.h"
 
 namespace hexcal::workflow {
 namespace {

@@ -10,10 +10,10 @@
 #include "core/csv.h"
 #include "core/session.h"
 #include "core/sha256.h"
+#include "session/json_fields.h"
+#include "session/session_models.h"
+#include "session/session_results.h"
 #include "vision/measure.h"
-#include "workflow/json_fields.h"
-#include "workflow/session_models.h"
-#include "workflow/session_results.h"
 
 namespace hexcal::workflow {
 namespace {

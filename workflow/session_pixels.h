@@ -23,10 +23,10 @@
 #include "core/outlier_screening.h"
 #include "core/registration.h"
 #include "core/status.h"
+#include "session/pixel_fit_summary.h"
 #include "vision/camera.h"
 #include "vision/pixel_calibration.h"
 #include "vision/target.h"
-#include "workflow/pixel_fit_summary.h"
 
 namespace hexcal::workflow {
 

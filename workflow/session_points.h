@@ -23,7 +23,7 @@
 #include "core/point_calibration.h"
 #include "core/registration.h"
 #include "core/status.h"
-#include "workflow/point_fit_summary.h"
+#include "session/point_fit_summary.h"
 #include "workflow/point_session.h"
 
 namespace hexcal::workflow {

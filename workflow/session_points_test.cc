@@ -11,7 +11,7 @@
 
 #include "core/point_file.h"
 #include "tests/test_support.h"
-#include "workflow/calibration_verdict.h"
+#include "report/calibration_verdict.h"
 #include "workflow/demo.h"
 #include "workflow/session_calibrate.h"
 

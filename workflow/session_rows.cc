@@ -6,7 +6,7 @@
 #include "core/calibration.h"
 #include "core/csv.h"
 #include "core/forward_kinematics.h"
-#include "workflow/expected_error.h"
+#include "report/expected_error.h"
 
 namespace hexcal::workflow {
 namespace {

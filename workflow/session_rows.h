@@ -16,9 +16,9 @@
 #include "core/registration.h"
 #include "core/session.h"
 #include "core/validation.h"
+#include "session/calibration_report.h"
 #include "vision/camera.h"
 #include "vision/target.h"
-#include "workflow/calibration_report.h"
 #include "workflow/session_measure.h"
 
 namespace hexcal::workflow {

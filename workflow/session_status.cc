@@ -9,14 +9,14 @@
 #include "core/csv.h"
 #include "core/robot_io.h"
 #include "core/session.h"
+#include "session/readings_table.h"
+#include "session/session_results.h"
 #include "workflow/acquire_step.h"
 #include "workflow/plan_captures.h"
 #include "workflow/point_session.h"
 #include "workflow/reading_check.h"
-#include "workflow/readings_table.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_measure.h"
-#include "workflow/session_results.h"
 
 namespace hexcal::workflow {
 namespace {

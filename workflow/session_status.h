@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/status.h"
-#include "workflow/session_results.h"
+#include "session/session_results.h"
 
 namespace hexcal::workflow {
 

@@ -4,7 +4,7 @@
 // record, every subset's values); --no-save leaves it alone; an input changed
 // since marks it stale, in the reader and in red in the report; a study.json
 // that does not match its subsets.csv is refused by name.
-#include "workflow/session_study.h"
+#include "session/session_study.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -14,11 +14,11 @@
 #include <thread>
 
 #include "core/session.h"
+#include "report/session_report.h"
+#include "report/study_report_section.h"
 #include "tests/test_support.h"
 #include "workflow/demo.h"
 #include "workflow/session_edits.h"
-#include "workflow/session_report.h"
-#include "workflow/study_report_section.h"
 #include "workflow/study_step.h"
 
 namespace hexcal::workflow {

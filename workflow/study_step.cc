@@ -5,8 +5,8 @@
 #include "charts/chart_render.h"
 #include "core/calibration_file.h"
 #include "core/parallel.h"
+#include "session/session_study.h"
 #include "workflow/session_calibrate.h"
-#include "workflow/session_study.h"
 
 namespace hexcal::workflow {
 namespace {

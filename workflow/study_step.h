@@ -15,7 +15,7 @@
 #pragma once
 
 #include "core/job_hooks.h"
-#include "workflow/study_outcome.h"
+#include "session/study_outcome.h"
 
 namespace hexcal::workflow {
 

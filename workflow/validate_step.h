@@ -10,8 +10,8 @@
 #include "core/noise_model.h"
 #include "core/status.h"
 #include "core/validation.h"
-#include "workflow/calibration_verdict.h"
-#include "workflow/expected_error.h"
+#include "report/calibration_verdict.h"
+#include "report/expected_error.h"
 
 namespace hexcal::workflow {
 

@@ -29,8 +29,8 @@ namespace hexcal::workflow {
 
 struct VerifyRequest {
   std::string session;
-  std::string controller = "sim";  // URL, workflow/controller.h
-  std::string camera = "sim";      // URL, workflow/frame_source.h
+  std::string controller = "sim";  // URL, devices/controller.h
+  std::string camera = "sim";      // URL, devices/frame_source.h
   std::string poses{};             // pose CSV (x,y,z,q1,q2,q3); empty: SESSION/plan.csv
   double settle_seconds = 0.5;     // after each move, before the frame
   int grab_timeout_ms = 5000;

@@ -16,7 +16,7 @@
 #include "core/calibration.h"
 #include "core/calibration_file.h"
 #include "core/robot_io.h"
-#include "workflow/calibration_verdict.h"
+#include "report/calibration_verdict.h"
 #include "workflow/session_calibrate.h"
 
 namespace hexcal::cli {

@@ -8,13 +8,13 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/constraints.h"
 #include "core/atomic_file.h"
+#include "core/constraints.h"
 #include "core/job_hooks.h"
 #include "core/observability.h"
 #include "core/robot.h"
 #include "core/status.h"
-#include "workflow/json_forms.h"
+#include "session/json_forms.h"
 
 namespace hexcal::cli {
 

@@ -3,10 +3,10 @@
 //
 // Writes a robot's geometry for a controller: `linuxcnc-hal` is the
 // `setp genhexkins.base.N.*` / `platform.N.*` lines of LinuxCNC's hexapod
-// kinematics, in the machine's linear unit (workflow/linuxcnc_geometry.h,
+// kinematics, in the machine's linear unit (devices/linuxcnc_geometry.h,
 // docs/acquisition.md). Written atomically. --push then loads the whole
 // robot into the running machine once the operator confirms: the pins, the
-// joints' homes in the INI, homing again (workflow/linuxcnc_push.h). A push
+// joints' homes in the INI, homing again (devices/linuxcnc_push.h). A push
 // that is refused writes nothing.
 #include <unistd.h>
 
@@ -18,9 +18,9 @@
 #include "app/commands/command_table.h"
 #include "core/atomic_file.h"
 #include "core/robot_io.h"
-#include "workflow/hal_push.h"
-#include "workflow/linuxcnc_geometry.h"
-#include "workflow/linuxcnc_push.h"
+#include "devices/hal_push.h"
+#include "devices/linuxcnc_geometry.h"
+#include "devices/linuxcnc_push.h"
 
 namespace hexcal::cli {
 namespace {
@@ -60,7 +60,7 @@ Status CheckPushFlags(const ExportOptions& options) {
   return Status::Ok();
 }
 
-// --push's plan (workflow/linuxcnc_push.h): every check before anything is written.
+// --push's plan (devices/linuxcnc_push.h): every check before anything is written.
 StatusOr<workflow::PushPlan> PlanMachinePush(const ExportOptions& options, const Robot& robot,
                                              workflow::PushRequest* request) {
   StatusOr<Robot> running = LoadRobot(options.running_robot);

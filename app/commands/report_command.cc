@@ -1,13 +1,13 @@
 // hexcal report --session DIR --out report.html [--force] [--json]
 //
-// One self-contained HTML page from a calibrated session (workflow/session_report.h).
+// One self-contained HTML page from a calibrated session (report/session_report.h).
 #include <iostream>
 #include <memory>
 
 #include "app/commands/cli_common.h"
 #include "app/commands/command_table.h"
-#include "workflow/calibration_verdict.h"
-#include "workflow/session_report.h"
+#include "report/calibration_verdict.h"
+#include "report/session_report.h"
 
 namespace hexcal::cli {
 namespace {

@@ -6,7 +6,7 @@
 // hidden true robot, camera and target are drawn from --seed as `acquire
 // --controller sim` draws them and written to DIR/truth/; the platform sits
 // where the true robot puts the joints of the LinuxCNC machine running on this
-// host (workflow/machine_follower.h);
+// host (sim/machine_follower.h);
 // the camera serves the rendered board through libaravis' fake GigE Vision
 // camera on --interface, for `hexcal acquire --camera aravis:NAME`. Runs until
 // Ctrl-C or SIGTERM.
@@ -19,10 +19,10 @@
 
 #include "app/commands/cli_common.h"
 #include "app/commands/command_table.h"
-#include "workflow/machine_follower.h"
-#include "workflow/sim_world.h"
+#include "sim/machine_follower.h"
+#include "sim/sim_world.h"
 #ifdef HEXCAL_HAVE_ARAVIS
-#include "workflow/fake_genicam_camera.h"
+#include "devices/fake_genicam_camera.h"
 #endif
 
 namespace hexcal::cli {

@@ -2,7 +2,7 @@
 //   [--unweighted-selection] [--seed 1] [--threads T] [--plots DIR] [--force] [--wait] [--no-save] [--json]
 //
 // The section 8 study on a recorded session (workflow/study_step.h,
-// docs/calibration.md), kept in DIR/study (workflow/session_study.h). The
+// docs/calibration.md), kept in DIR/study (session/session_study.h). The
 // options are the table of workflow/study_options.h (docs/cli.md lists it).
 #include <iostream>
 #include <memory>

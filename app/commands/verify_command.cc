@@ -13,8 +13,8 @@
 
 #include "app/commands/cli_common.h"
 #include "app/commands/command_table.h"
-#include "workflow/controller.h"
-#include "workflow/frame_source.h"
+#include "devices/controller.h"
+#include "devices/frame_source.h"
 #include "workflow/verify_step.h"
 
 namespace hexcal::cli {

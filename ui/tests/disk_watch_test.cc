@@ -28,6 +28,7 @@
 
 #include "core/robot_io.h"
 #include "core/session.h"
+#include "session/session_study.h"
 #include "ui/acquire_panel.h"
 #include "ui/calibrate_panel.h"
 #include "ui/error_dialog.h"
@@ -42,7 +43,6 @@
 #include "vision/target.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/session_status.h"
-#include "workflow/session_study.h"
 #include "workflow/study_step.h"
 
 namespace hexcal::ui {

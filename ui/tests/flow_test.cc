@@ -34,6 +34,7 @@
 #include "core/inverse_kinematics.h"
 #include "core/robot_io.h"
 #include "core/session.h"
+#include "report/calibration_verdict.h"
 #include "ui/acquire_panel.h"
 #include "ui/background_job.h"
 #include "ui/calibrate_panel.h"
@@ -58,7 +59,6 @@
 #include "ui/verdict_view.h"
 #include "vision/camera.h"
 #include "vision/target.h"
-#include "workflow/calibration_verdict.h"
 #include "workflow/plan_step.h"
 
 namespace hexcal::ui {
@@ -174,7 +174,7 @@ TEST(UiFlow, PlanMeasureCalibrateValidate) {
   EXPECT_EQ(calibrate->ParameterTable()->rowCount(), 42);
   EXPECT_EQ(session.State(Step::kCalibrate), StepState::kDone);
   EXPECT_EQ(session.State(Step::kValidate), StepState::kDone);
-  // The verdict the CLI prints, on both panels (workflow/calibration_verdict.h).
+  // The verdict the CLI prints, on both panels (report/calibration_verdict.h).
   ASSERT_TRUE(session.Results().ok());
   const QString level = workflow::VerdictLevelName(workflow::MakeVerdict(session.Results()->report).level);
   EXPECT_EQ(calibrate->VerdictWidget()->LevelText(), level);

@@ -18,6 +18,7 @@
 #include <QThread>
 #include <functional>
 
+#include "session/session_study.h"
 #include "ui/background_job.h"
 #include "ui/error_dialog.h"
 #include "ui/main_window.h"
@@ -25,7 +26,6 @@
 #include "ui/study_view.h"
 #include "ui/tests/gui_test_support.h"
 #include "ui/validate_panel.h"
-#include "workflow/session_study.h"
 
 namespace hexcal::ui {
 namespace {
