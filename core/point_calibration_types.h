@@ -24,7 +24,10 @@ struct PointCalibrationOptions {
   // pass of the session, as the calibration from pixels'); 0: least squares.
   double leg_cauchy_scale = 0;
   int max_iterations = 100;  // Levenberg–Marquardt iterations
-  int num_threads = 0;       // 0: every core
+  // 1: Ceres sums the cost and gradient of a multi-threaded evaluation in the
+  // order its threads finish, so the result would differ in the 8th digit from
+  // run to run; one thread keeps every calibration and report reproducible.
+  int num_threads = 1;  // 0: every core
 
   bool IsValid(std::string* error) const {
     auto fail = [&](const char* message) {
