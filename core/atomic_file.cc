@@ -16,7 +16,7 @@ namespace hexcal {
 namespace {
 
 Status ErrnoError(const std::string& path, const std::string& what, int error_number) {
-  return Status::Error(path + ": " + what + ": " + std::strerror(error_number));
+  return Status::BadInput(path + ": " + what + ": " + std::strerror(error_number));
 }
 
 // A write that the disk refused: an I/O error, not bad input.
@@ -109,14 +109,14 @@ std::string MiBText(size_t bytes) {
 }
 
 Status TooLarge(const std::string& path, size_t bytes, size_t max_bytes) {
-  return Status::Error(path + ": " + MiBText(bytes) + " is over the " + MiBText(max_bytes) +
+  return Status::BadInput(path + ": " + MiBText(bytes) + " is over the " + MiBText(max_bytes) +
                        " limit for this kind of file");
 }
 
 Status CheckReadableFile(const std::string& path, const struct stat& info, size_t max_bytes) {
-  if (S_ISDIR(info.st_mode)) return Status::Error(path + ": is a directory, not a file");
+  if (S_ISDIR(info.st_mode)) return Status::BadInput(path + ": is a directory, not a file");
   if (!S_ISREG(info.st_mode)) {
-    return Status::Error(path + ": not a regular file (" + FileTypeName(info.st_mode) + ")");
+    return Status::BadInput(path + ": not a regular file (" + FileTypeName(info.st_mode) + ")");
   }
   if (static_cast<uint64_t>(info.st_size) > max_bytes) {
     return TooLarge(path, static_cast<size_t>(info.st_size), max_bytes);
@@ -129,9 +129,9 @@ Status CheckReadableFile(const std::string& path, const struct stat& info, size_
 Status OpenError(const std::string& path, int error_number) {
   struct stat link;
   if (error_number == ENOENT && ::lstat(path.c_str(), &link) == 0 && S_ISLNK(link.st_mode))
-    return Status::Error(path + ": a symbolic link to a missing file");
-  if (error_number == ENOENT) return Status::Error(path + ": no such file");
-  if (error_number == ELOOP) return Status::Error(path + ": a loop of symbolic links");
+    return Status::BadInput(path + ": a symbolic link to a missing file");
+  if (error_number == ENOENT) return Status::BadInput(path + ": no such file");
+  if (error_number == ELOOP) return Status::BadInput(path + ": a loop of symbolic links");
   return ErrnoError(path, "cannot open", error_number);
 }
 
@@ -157,7 +157,7 @@ Status WriteFileAtomically(const std::string& path, const std::string& contents)
   const std::filesystem::path target(path);
   const std::string basename = target.filename().string();
   if (basename.empty() || basename == "." || basename == "..") {
-    return Status::Error(path + ": not a file name");
+    return Status::BadInput(path + ": not a file name");
   }
   const std::string dir = target.has_parent_path() ? target.parent_path().string() : ".";
   std::string temp_path = dir + "/." + basename + ".tmp.XXXXXX";
@@ -194,7 +194,7 @@ Status CreateFolders(const std::string& path) {
   const int code = error ? error.value() : 0;
   const std::string message = path + ": cannot create the folder: " + reason;
   const bool disk_refused = code == ENOSPC || code == EDQUOT || code == EIO || code == EROFS;
-  return disk_refused ? Status::IoError(message) : Status::Error(message);
+  return disk_refused ? Status::IoError(message) : Status::BadInput(message);
 }
 
 Status CheckOutputFree(const std::string& path, bool force) {
@@ -202,15 +202,15 @@ Status CheckOutputFree(const std::string& path, bool force) {
   // stat follows links: the rename would replace a link to /dev/sda or to a
   // pipe (/dev/stdout) with a file, which is no more what was meant.
   if (path.empty() || ::stat(path.c_str(), &info) != 0) return Status::Ok();
-  if (S_ISDIR(info.st_mode)) return Status::Error(path + ": is a directory, not a file");
+  if (S_ISDIR(info.st_mode)) return Status::BadInput(path + ": is a directory, not a file");
   // --force or not: the rename would put a file where a device node, a FIFO
   // or a socket was (as root, over /dev/null too).
   if (!S_ISREG(info.st_mode)) {
-    return Status::Error(path + ": not a regular file (" + FileTypeName(info.st_mode) +
+    return Status::BadInput(path + ": not a regular file (" + FileTypeName(info.st_mode) +
                          "); hexcal replaces only files");
   }
   if (force) return Status::Ok();
-  return Status::Error(path + ": exists; use --force to overwrite it");
+  return Status::BadInput(path + ": exists; use --force to overwrite it");
 }
 
 StatusOr<int> OpenFileForReading(const std::string& path, size_t max_bytes) {

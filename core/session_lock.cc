@@ -74,7 +74,7 @@ StatusOr<int> OpenLockFile(const std::string& path) {
   struct stat info;
   if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
     ::close(fd);
-    return Status::Error(path + ": not a regular file");
+    return Status::BadInput(path + ": not a regular file");
   }
   return fd;
 }
@@ -144,7 +144,7 @@ StatusOr<std::shared_ptr<SessionLock::Held>> TryLock(const std::string& dir, con
 
 StatusOr<SessionLock> SessionLock::Acquire(const std::string& session_dir, LockWait wait) {
   std::error_code error;
-  if (!fs::is_directory(session_dir, error)) return Status::Error(session_dir + ": not a session folder");
+  if (!fs::is_directory(session_dir, error)) return Status::BadInput(session_dir + ": not a session folder");
   const std::string key = fs::weakly_canonical(session_dir, error).string();
   const auto deadline = std::chrono::steady_clock::now() + kBriefLockWait;
   for (;;) {

@@ -34,7 +34,7 @@ StatusOr<ChildProcess> SpawnWithOutputSocket(const std::vector<std::string>& arg
   close(fds[1]);
   if (spawned != 0) {
     close(fds[0]);
-    return Status::Error(argv[0] + ": cannot run it: " + std::strerror(spawned));
+    return Status::BadInput(argv[0] + ": cannot run it: " + std::strerror(spawned));
   }
   child.fd = fds[0];
   return child;

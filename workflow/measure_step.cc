@@ -75,7 +75,7 @@ StatusOr<MeasureResult> MeasureFolder(const MeasureRequest& request, const JobHo
   StatusOr<Target> target = LoadTarget(request.target);
   if (!target.ok()) return target.status();
   std::string error;
-  if (!request.options.IsValid(&error)) return Status::Error(error);
+  if (!request.options.IsValid(&error)) return Status::BadInput(error);
   StatusOr<std::vector<std::string>> files = ListImages(request.images);
   if (!files.ok()) return files.status();
   if (Status s = CheckOutputFree(request.out, request.force); !s.ok()) return s;

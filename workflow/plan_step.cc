@@ -46,7 +46,7 @@ StatusOr<CandidatePool> BuildCandidatePool(const PlanningModel& model, const std
     const int per_set = count > 0 ? count : (continuous ? 2000 : 10000);
     for (size_t k = 0; k < names.size(); ++k) {
       const std::optional<CandidateKind> kind = ParseCandidateKind(names[k]);
-      if (!kind) return Status::Error("--candidate-kind: '" + names[k] + "' is not random, uniform or boundary");
+      if (!kind) return Status::BadInput("--candidate-kind: '" + names[k] + "' is not random, uniform or boundary");
       StatusOr<CandidateSet> set = Generate(model.robot, *kind, per_set, seed + 7919 * k, hooks);
       if (!set.ok()) return set.status();
       raw.insert(raw.end(), set->poses.begin(), set->poses.end());
@@ -58,7 +58,7 @@ StatusOr<CandidatePool> BuildCandidatePool(const PlanningModel& model, const std
     if (feasible[j]) pool.poses.push_back(raw[j]);
   }
   if (pool.poses.empty() && !file.empty()) {
-    return Status::Error(file + ": none of its " + std::to_string(raw.size()) +
+    return Status::BadInput(file + ": none of its " + std::to_string(raw.size()) +
                          " poses satisfies the robot and measurement constraints (all unreachable)");
   }
   if (pool.poses.empty()) return Status::Failed("no candidate pose satisfies the robot and measurement constraints");
@@ -71,10 +71,10 @@ StatusOr<std::vector<Vector6d>> InitialPoses(const PlanningModel& model, const s
   std::vector<Vector6d> poses;
   if (!kind) {
     StatusOr<std::vector<Vector6d>> file = LoadPoses(init);
-    if (!file.ok()) return Status::Error("--init: " + file.status().message());
+    if (!file.ok()) return Status::BadInput("--init: " + file.status().message());
     poses = *file;
     if (static_cast<int>(poses.size()) != count) {
-      return Status::Error("--init: '" + init + "' has " + std::to_string(poses.size()) + " poses, --poses is " +
+      return Status::BadInput("--init: '" + init + "' has " + std::to_string(poses.size()) + " poses, --poses is " +
                            std::to_string(count));
     }
     return poses;

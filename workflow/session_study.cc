@@ -52,7 +52,7 @@ StatusOr<std::vector<std::vector<double>>> ReadRandomValues(const std::string& p
   StatusOr<CsvTable> table = ReadCsv(path);
   if (!table.ok()) return table.status();
   if (table->rows.size() != static_cast<size_t>(record.random_count) + 1)
-    return Status::Error(path + ": " + std::to_string(table->rows.size()) + " rows, study.json has " +
+    return Status::BadInput(path + ": " + std::to_string(table->rows.size()) + " rows, study.json has " +
                          std::to_string(record.random_count) + " random subsets and the selected one");
   StatusOr<int> ok_column = ColumnIndex(*table, "ok");
   if (!ok_column.ok()) return ok_column.status();
@@ -68,7 +68,7 @@ StatusOr<std::vector<std::vector<double>>> ReadRandomValues(const std::string& p
       values[m].push_back(*value);
     }
     if (static_cast<int>(values[m].size()) != record.Metric(metric).random.count)
-      return Status::Error(path + ": does not match study.json (" + SubsetMetricName(metric) +
+      return Status::BadInput(path + ": does not match study.json (" + SubsetMetricName(metric) +
                            "): run hexcal study again");
   }
   return values;

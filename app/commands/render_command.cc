@@ -41,11 +41,11 @@ int RunRender(const RenderCliOptions& cli, std::ostream& out, std::ostream& err)
   if (!vectors.ok()) return ReportError(err, "render", vectors.status());
   if (vectors->size() > kMaxRenderImages) {
     return ReportError(err, "render",
-                       Status::Error(cli.poses + ": " + std::to_string(vectors->size()) + " poses, more than the " +
+                       Status::BadInput(cli.poses + ": " + std::to_string(vectors->size()) + " poses, more than the " +
                                      std::to_string(kMaxRenderImages) + " images render writes at once"));
   }
   std::string error;
-  if (!cli.render.IsValid(&error)) return ReportError(err, "render", Status::Error(error));
+  if (!cli.render.IsValid(&error)) return ReportError(err, "render", Status::BadInput(error));
   namespace fs = std::filesystem;
   const fs::path folder(cli.out);
   const std::string truth_path = (folder / "ground_truth.csv").string();
