@@ -95,9 +95,9 @@ Status CheckReadingsInStroke(const Robot& nominal, const std::vector<Measurement
       if (reading >= leg.stroke_min - span && reading <= leg.stroke_max + span) continue;
       const char* unit = LengthUnitName(nominal.length_unit);
       return Status::BadInput("measurement " + std::to_string(j + 1) + ": L" + std::to_string(i + 1) + " = " +
-                           FormatNumber(reading) + " is far outside the stroke [" + FormatNumber(leg.stroke_min) +
-                           ", " + FormatNumber(leg.stroke_max) + "] " + unit + " of robot '" + nominal.name +
-                           "'; are the readings in " + unit + "?");
+                              FormatNumber(reading) + " is far outside the stroke [" + FormatNumber(leg.stroke_min) +
+                              ", " + FormatNumber(leg.stroke_max) + "] " + unit + " of robot '" + nominal.name +
+                              "'; are the readings in " + unit + "?");
     }
   }
   return Status::Ok();
@@ -114,7 +114,7 @@ Status CheckCalibrationInput(const Robot& nominal, const std::vector<Measurement
   }
   if (measurements.size() < static_cast<size_t>(kParamsPerLeg)) {
     return Status::BadInput("calibration needs at least 7 measurements (7 parameters per leg), got " +
-                         std::to_string(measurements.size()));
+                            std::to_string(measurements.size()));
   }
   for (size_t j = 0; j < measurements.size(); ++j) {
     if (!measurements[j].pose.allFinite() || !measurements[j].legs.allFinite()) {

@@ -24,8 +24,8 @@ StatusOr<LegData> MakeLegData(const Robot& nominal, int leg, const std::vector<M
                                  : ResidualStdDev(nominal, leg, m.pose, m.legs[leg], options.noise);
       if (!(weight > 0) || !std::isfinite(weight)) {
         return Status::BadInput("measurement " + std::to_string(j + 1) + ", " + LegLabel(leg) +
-                             ": the noise model gives this residual no spread (standard deviation " +
-                             std::to_string(weight) + "); weighting needs non-zero noise levels");
+                                ": the noise model gives this residual no spread (standard deviation " +
+                                std::to_string(weight) + "); weighting needs non-zero noise levels");
       }
     }
     data.weights.push_back(weight);
@@ -154,8 +154,8 @@ Status FillUncertainty(int leg, const LegData& data, const CalibrationOptions& o
   ceres::Covariance covariance(covariance_options);
   const std::vector<std::pair<const double*, const double*>> blocks = {{parameters, parameters}};
   if (!covariance.Compute(blocks, problem)) {
-    return Status::BadInput("degenerate pose set: " + LegLabel(leg) +
-                         "'s parameters have no finite covariance at the solution (rank-deficient Jacobian)");
+    return Status::Failed("degenerate pose set: " + LegLabel(leg) +
+                          "'s parameters have no finite covariance at the solution (rank-deficient Jacobian)");
   }
   Eigen::Matrix<double, kParamsPerLeg, kParamsPerLeg, Eigen::RowMajor> block;
   covariance.GetCovarianceBlock(parameters, parameters, block.data());
@@ -181,7 +181,7 @@ Status NotConverged(int leg, const LegCalibration& result) {
   std::ostringstream message;
   message << LegLabel(leg) << ": the calibration did not converge (" << result.termination << " after "
           << result.iterations << " iterations: " << result.solver_message << ")";
-  return Status::BadInput(message.str());
+  return Status::Failed(message.str());
 }
 
 bool Converged(const LegCalibration& result) { return result.termination == "CONVERGENCE"; }

@@ -25,7 +25,7 @@ Status RequireCompleteBox(const Robot& robot, CandidateKind kind) {
   const std::optional<PoseBox> box = robot.limits.SamplingBox();
   if (box && box->IsComplete()) return Status::Ok();
   return Status::BadInput(std::string(CandidateKindName(kind)) + " candidates of robot '" + robot.name +
-                       "' need limits.pose_box (or sampling_box) with all of x, y, z, q1, q2, q3");
+                          "' need limits.pose_box (or sampling_box) with all of x, y, z, q1, q2, q3");
 }
 
 // Draws points in the unit cube from `next_unit` and keeps the feasible ones.

@@ -69,7 +69,7 @@ Status SplitFields(const std::string& line, std::vector<std::string>* fields) {
       field = Trim(line.substr(pos, end - pos));
       if (field.find('"') != std::string::npos) {
         return Status::BadInput("field " + std::to_string(field_number) +
-                             ": quote inside an unquoted field (quote the whole field)");
+                                ": quote inside an unquoted field (quote the whole field)");
       }
       pos = end;
     }
@@ -92,13 +92,14 @@ Status CheckHeader(const CsvTable& table, int line) {
   for (size_t i = 0; i < table.header.size(); ++i) {
     const std::string& name = table.header[i];
     if (name.empty()) {
-      return Status::BadInput(LinePrefix(table.source, line) + "header column " + std::to_string(i + 1) + " has no name");
+      return Status::BadInput(LinePrefix(table.source, line) + "header column " + std::to_string(i + 1) +
+                              " has no name");
     }
     // A file without its header line starts with data, which would otherwise
     // be reported as a duplicate or a missing column.
     if (ParseNumber(name).ok()) {
       return Status::BadInput(LinePrefix(table.source, line) + "no header: column " + std::to_string(i + 1) +
-                           " is the number " + Excerpt(name) + ", and the first line must name the columns");
+                              " is the number " + Excerpt(name) + ", and the first line must name the columns");
     }
     if (!seen.insert(name).second) {
       return Status::BadInput(LinePrefix(table.source, line) + "duplicate column " + Excerpt(name) + " in header");
@@ -246,8 +247,8 @@ StatusOr<CsvTable> ParseCsv(const std::string& text, const std::string& source) 
       continue;
     }
     if (fields.size() != table.header.size()) {
-      return Status::BadInput(LinePrefix(source, line_number) + std::to_string(fields.size()) + " columns, header has " +
-                           std::to_string(table.header.size()));
+      return Status::BadInput(LinePrefix(source, line_number) + std::to_string(fields.size()) +
+                              " columns, header has " + std::to_string(table.header.size()));
     }
     table.rows.push_back(fields);
     table.line_numbers.push_back(line_number);
@@ -285,7 +286,7 @@ StatusOr<int> ColumnIndex(const CsvTable& table, const std::string& name) {
   // The header is the file's first line, which may be anything: quote its start only.
   const std::string header = Excerpt(Join(table.header, ","));
   return Status::BadInput(table.source + ": missing column '" + name +
-                       "' (header: " + header.substr(1, header.size() - 2) + ")");
+                          "' (header: " + header.substr(1, header.size() - 2) + ")");
 }
 
 StatusOr<double> NumberAt(const CsvTable& table, size_t row, int col) {
@@ -293,7 +294,7 @@ StatusOr<double> NumberAt(const CsvTable& table, size_t row, int col) {
   StatusOr<double> value = ParseNumber(table.rows[row][col]);
   if (value.ok()) return value;
   return Status::BadInput(LinePrefix(table.source, table.line_numbers[row]) + "column '" + table.header[col] +
-                       "': " + value.status().message());
+                          "': " + value.status().message());
 }
 
 StatusOr<std::vector<Vector6d>> LoadPoses(const std::string& path) {

@@ -309,7 +309,7 @@ StatusOr<double> LongestLeg(const Robot& robot, const LegReadings& readings) {
     const double length = readings[i] + robot.legs[i].offset;
     if (!std::isfinite(length) || length <= 0) {
       return Status::BadInput("forward kinematics: leg " + std::to_string(i + 1) +
-                           " has a non-positive or non-finite total length");
+                              " has a non-positive or non-finite total length");
     }
     scale = std::max(scale, length);
   }

@@ -45,7 +45,7 @@ Status CheckPlanInput(const std::vector<Vector6d>& candidates, const std::vector
   if (!options.IsValid(&error)) return Status::BadInput(error);
   if (static_cast<int>(initial.size()) != options.num_poses) {
     return Status::BadInput("the initial set has " + std::to_string(initial.size()) + " poses, the plan " +
-                         std::to_string(options.num_poses));
+                            std::to_string(options.num_poses));
   }
   if (candidates.empty()) return Status::BadInput("the candidate set is empty");
   return Status::Ok();
@@ -227,7 +227,7 @@ StatusOr<PlanEntry> AddFindContinuous(Search& s, const AddCriteria& criteria) {
     }
   }
   const int pick = SelectBest(s.primary_scores, criteria.secondary ? &s.secondary_scores : nullptr, s.options.keep);
-  if (pick < 0) return Status::BadInput("continuous AddFind found no pose with a finite criterion");
+  if (pick < 0) return Status::Failed("continuous AddFind found no pose with a finite criterion");
   return PlanEntry{found[pick].pose, s.model.Rows(found[pick].pose), s.next_new_id--};
 }
 

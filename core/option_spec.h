@@ -129,8 +129,8 @@ Status CheckChoices(const OptionSpec<T>& spec, const std::vector<std::string>& i
     if (known) continue;
     std::string names;
     for (const std::string& choice : spec.choices) names += (names.empty() ? "" : ", ") + choice;
-    return Status::BadInput(where + ": expected " + (spec.type == OptionType::kChoiceList ? "one or more of " : "one of ") +
-                         names);
+    return Status::BadInput(where + ": expected " +
+                            (spec.type == OptionType::kChoiceList ? "one or more of " : "one of ") + names);
   }
   return Status::Ok();
 }
@@ -158,9 +158,11 @@ template <typename T>
 Status CheckOptionRange(const OptionSpec<T>& spec, double value, const std::string& where) {
   const std::string unit = spec.unit.empty() ? "" : " " + spec.unit;
   if (!(value >= spec.min))
-    return Status::BadInput(where + ": must be at least " + FormatNumber(spec.min) + unit + ", got " + FormatNumber(value));
+    return Status::BadInput(where + ": must be at least " + FormatNumber(spec.min) + unit + ", got " +
+                            FormatNumber(value));
   if (!(value <= spec.max))
-    return Status::BadInput(where + ": must be at most " + FormatNumber(spec.max) + unit + ", got " + FormatNumber(value));
+    return Status::BadInput(where + ": must be at most " + FormatNumber(spec.max) + unit + ", got " +
+                            FormatNumber(value));
   return Status::Ok();
 }
 
@@ -176,7 +178,8 @@ Status ApplyOptionText(const OptionSpec<T>& spec, const std::string& text, T* va
   if (spec.type == OptionType::kFlag) {
     if (text == "true" || text == "1") spec.set_number(*values, 1);
     else if (text == "false" || text == "0") spec.set_number(*values, 0);
-    else return Status::BadInput(where + ": expected true or false");
+    else
+      return Status::BadInput(where + ": expected true or false");
     return Status::Ok();
   }
   StatusOr<double> value = ParseNumber(text);

@@ -19,7 +19,8 @@ Status AddPoint(const std::string& pose, NamedPoint point, const std::string& wh
   if (added) sets->push_back({pose, {}});
   std::vector<NamedPoint>& points = (*sets)[it->second].points;
   for (const NamedPoint& other : points)
-    if (other.name == point.name) return Status::BadInput(where + ": point '" + point.name + "' of pose '" + pose + "' is given twice");
+    if (other.name == point.name)
+      return Status::BadInput(where + ": point '" + point.name + "' of pose '" + pose + "' is given twice");
   points.push_back(std::move(point));
   return Status::Ok();
 }
@@ -83,7 +84,7 @@ StatusOr<PointSets> ParseSpatialAnalyzer(const std::string& text, const std::str
     const std::string where = source + ":" + std::to_string(number);
     if (fields.size() != 6 && fields.size() != 7)
       return Status::BadInput(where + ": expected collection, group, target, x, y, z and an optional sigma, got " +
-                           std::to_string(fields.size()) + " fields");
+                              std::to_string(fields.size()) + " fields");
     NamedPoint point{fields[2], {}, default_sigma};
     for (size_t k = 3; k < fields.size(); ++k) {
       StatusOr<double> value = ParseNumber(fields[k]);
@@ -127,7 +128,7 @@ StatusOr<std::vector<NamedPoint>> ParseReflectorFile(const std::string& text, co
     NamedPoint point{table->rows[row][static_cast<size_t>(columns[0])], {}, 0};
     if (!seen.insert(point.name).second)
       return Status::BadInput(source + ":" + std::to_string(table->line_numbers[row]) + ": reflector '" + point.name +
-                           "' is given twice");
+                              "' is given twice");
     for (int k = 0; k < 3; ++k) {
       StatusOr<double> value = NumberAt(*table, row, columns[1 + k]);
       if (!value.ok()) return value.status();

@@ -125,7 +125,7 @@ Status CheckScale(const std::vector<PointPair>& pairs) {
   // Distances that overflow (coordinates near 1e300) give no ratio.
   if (!std::isfinite(closest)) return Status::BadInput("the points' coordinates are too large to fit");
   return Status::BadInput("the measured points are " + FormatSignificant(closest) +
-                       " times as far apart as their reflectors: are they in another length unit?");
+                          " times as far apart as their reflectors: are they in another length unit?");
 }
 
 // With 4 or more points: the point farthest from where the others put it,
@@ -148,8 +148,8 @@ Status CheckOutlier(const std::vector<PointPair>& pairs) {
   }
   if (worst_sigmas <= kPointOutlierSigmas) return Status::Ok();
   return Status::BadInput("point '" + worst->name + "' lies " + FormatSignificant(worst_distance) + " (" +
-                       FormatSignificant(worst_sigmas) + " sigma) from where the other " +
-                       std::to_string(pairs.size() - 1) + " points put it: a wrong reflector or reading");
+                          FormatSignificant(worst_sigmas) + " sigma) from where the other " +
+                          std::to_string(pairs.size() - 1) + " points put it: a wrong reflector or reading");
 }
 
 }  // namespace

@@ -68,12 +68,12 @@ Status LinearRegistration(const std::vector<Pose>& a, const std::vector<Pose>& b
   // The solution is the null space; it must be one-dimensional, so the second
   // smallest singular value must stand clear of zero relative to the largest.
   if (sv(16) < 1e-6 * sv(0))
-    return Status::BadInput("registration: the poses do not determine the frames (too few distinct orientations)");
+    return Status::Failed("registration: the poses do not determine the frames (too few distinct orientations)");
   const Eigen::VectorXd v = svd.matrixV().col(17);
   Eigen::Matrix3d ry_raw = Eigen::Map<const Eigen::Matrix3d>(v.data());
   Eigen::Matrix3d rx_raw = Eigen::Map<const Eigen::Matrix3d>(v.data() + 9);
   const double scale = std::cbrt(ry_raw.determinant());
-  if (!(std::abs(scale) > 0)) return Status::BadInput("registration: degenerate rotation estimate");
+  if (!(std::abs(scale) > 0)) return Status::Failed("registration: degenerate rotation estimate");
   y->rotation = NearestRotation(ry_raw / scale);
   x->rotation = NearestRotation(rx_raw / scale);
 
@@ -152,7 +152,7 @@ StatusOr<int> Refine(const std::vector<Pose>& a, const std::vector<Pose>& b, con
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
   if (summary.termination_type != ceres::CONVERGENCE)
-    return Status::BadInput("registration: the refinement did not converge (" + summary.BriefReport() + ")");
+    return Status::Failed("registration: the refinement did not converge (" + summary.BriefReport() + ")");
   x->rotation = ExpRotation(dx) * x->rotation;
   y->rotation = ExpRotation(dy) * y->rotation;
   x->position = Eigen::Vector3d(tx[0], tx[1], tx[2]);
@@ -186,7 +186,7 @@ StatusOr<Registration> EstimateRegistration(const std::vector<Pose>& base_from_p
   if (!options.IsValid(&error)) return Status::BadInput(error);
   if (base_from_platform.size() != camera_from_target.size())
     return Status::BadInput("registration: " + std::to_string(base_from_platform.size()) + " robot poses but " +
-                         std::to_string(camera_from_target.size()) + " camera poses");
+                            std::to_string(camera_from_target.size()) + " camera poses");
   if (base_from_platform.size() < 3)
     return Status::BadInput("registration needs at least 3 poses, got " + std::to_string(base_from_platform.size()));
   for (size_t j = 0; j < base_from_platform.size(); ++j)

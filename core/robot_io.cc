@@ -369,7 +369,7 @@ StatusOr<Robot> LoadRobot(const std::string& path_or_preset) {
     return RobotYamlReader("robot preset '" + preset->first + "'").Read(preset->second);
   }
   return Status::BadInput("robot '" + path_or_preset +
-                       "': no such file and no preset of that name (presets: " + Join(PresetNames(), ", ") + ")");
+                          "': no such file and no preset of that name (presets: " + Join(PresetNames(), ", ") + ")");
 }
 
 std::string RobotToYaml(const Robot& robot) {

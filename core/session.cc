@@ -146,7 +146,8 @@ Status ReadInstrument(const YAML::Node& root, const std::string& source, Session
     if (Status s = text("camera", &config->camera); !s.ok()) return s;
     return text("target", &config->target);
   }
-  if (instrument != "points") return Status::BadInput(source + ": instrument: '" + instrument + "' is not camera or points");
+  if (instrument != "points")
+    return Status::BadInput(source + ": instrument: '" + instrument + "' is not camera or points");
   config->instrument = Instrument::kPoints;
   if (Status s = text("points", &config->points); !s.ok()) return s;
   if (root["reflectors"] && !text("reflectors", &config->reflectors).ok())
@@ -169,7 +170,7 @@ StatusOr<std::optional<Vector6d>> CommandedPoseAt(const CsvTable& table, size_t 
   if (empty == 6) return std::optional<Vector6d>();
   if (empty != 0)
     return Status::BadInput(where + "the commanded pose has " + std::to_string(6 - empty) +
-                         " of its six cells; fill all six or none");
+                            " of its six cells; fill all six or none");
   Vector6d pose;
   for (int k = 0; k < 6; ++k) {
     StatusOr<double> value = NumberAt(table, row, columns[k]);
@@ -217,7 +218,8 @@ StatusOr<SessionConfig> LoadSessionConfig(const std::string& dir) {
     return Status::BadInput(paths.config + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
   }
   if (const YAML::Node frames = root["frames"]) {
-    if (!frames.IsMap()) return Status::BadInput(paths.config + ": frames: expected base_from_camera and platform_from_target");
+    if (!frames.IsMap())
+      return Status::BadInput(paths.config + ": frames: expected base_from_camera and platform_from_target");
     StatusOr<Pose> x = ParseFrame(frames, paths.config, "base_from_camera");
     if (!x.ok()) return x.status();
     StatusOr<Pose> y = ParseFrame(frames, paths.config, "platform_from_target");
@@ -266,7 +268,7 @@ StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir) {
   }
   if (commanded_found != 0 && commanded_found != 6)
     return Status::BadInput(paths.legs + ": has " + std::to_string(commanded_found) +
-                         " of the six commanded_x..commanded_q3 columns; it needs all six or none");
+                            " of the six commanded_x..commanded_q3 columns; it needs all six or none");
 
   const std::set<std::string> images = ImageFiles(paths.images);
   std::set<std::string> seen;
@@ -279,8 +281,7 @@ StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir) {
     if (!points && images.count(row.image) == 0)
       return Status::BadInput(where + "image '" + row.image + "' is not in images/");
     if (row.image.empty()) return Status::BadInput(where + "column '" + key + "' is empty");
-    if (!seen.insert(row.image).second)
-      return Status::BadInput(where + key + " '" + row.image + "' has a second row");
+    if (!seen.insert(row.image).second) return Status::BadInput(where + key + " '" + row.image + "' has a second row");
     for (int i = 0; i < kNumLegs; ++i) {
       StatusOr<double> value = NumberAt(*table, r, leg_columns[i]);
       if (!value.ok()) return value.status();
@@ -301,7 +302,7 @@ StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir) {
   for (const std::string& image : images) {
     if (!points && seen.count(image) == 0)
       return Status::BadInput((fs::path(paths.images) / image).string() + ": no row in " + paths.legs + ": " +
-                           kEnterReadings);
+                              kEnterReadings);
   }
   return rows;
 }

@@ -13,6 +13,8 @@
 #include <mutex>
 #include <thread>
 
+#include "core/atomic_file.h"
+
 namespace hexcal {
 namespace {
 
@@ -70,7 +72,7 @@ StatusOr<int> OpenLockFile(const std::string& path) {
   // A lock file someone else made, or a read-only folder: flock works on a
   // read-only descriptor too (the PID line is then not written).
   if (fd < 0 && (errno == EACCES || errno == EROFS)) fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
-  if (fd < 0) return Status::IoError(path + ": cannot open the session lock: " + std::strerror(errno));
+  if (fd < 0) return FileSystemError(path, "cannot open the session lock", errno);
   struct stat info;
   if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
     ::close(fd);

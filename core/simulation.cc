@@ -130,7 +130,7 @@ Status CheckSets(const std::vector<SimulationPoseSet>& sets) {
   for (size_t s = 0; s < sets.size(); ++s) {
     if (sets[s].Size() < kParamsPerLeg) {
       return Status::BadInput("pose set '" + sets[s].name + "' has " + std::to_string(sets[s].Size()) +
-                           " poses; a calibration needs at least 7");
+                              " poses; a calibration needs at least 7");
     }
     for (size_t t = 0; t < s; ++t) {
       if (sets[t].name == sets[s].name) return Status::BadInput("pose set '" + sets[s].name + "' is listed twice");
@@ -267,7 +267,7 @@ StatusOr<SweepResult> SimulateSweep(const Robot& nominal, const std::vector<Simu
   if (Status s = CheckSets(sets); !s.ok()) return s;
   if (min_poses < kParamsPerLeg || max_poses < min_poses || max_poses > 10000) {
     return Status::BadInput("sweep " + std::to_string(min_poses) + ":" + std::to_string(max_poses) +
-                         ": the numbers of poses must satisfy 7 <= min <= max <= 10000");
+                            ": the numbers of poses must satisfy 7 <= min <= max <= 10000");
   }
   StudySizes sizes;
   for (int n = min_poses; n <= max_poses; ++n) {

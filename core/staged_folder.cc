@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <vector>
 
+#include "core/atomic_file.h"
+
 namespace hexcal {
 namespace {
 
@@ -48,7 +50,7 @@ StatusOr<StagedFolder> StagedFolder::Begin(const std::string& final_path) {
   RemoveStaleStaging(fs::path(parent) / target.filename());
   std::string pattern = (parent / (StagingPrefix(target) + "XXXXXX")).string();
   if (::mkdtemp(pattern.data()) == nullptr) {
-    return Status::IoError(parent.string() + ": cannot create a folder: " + std::strerror(errno));
+    return FileSystemError(parent.string(), "cannot create a folder", errno);
   }
   // mkdtemp makes 0700; results are readable by all, as a folder made under
   // the usual umask 022 would be.

@@ -27,9 +27,10 @@ namespace hexcal {
 //   a file in the way of a folder, an output that exists without --force.
 // - kIo: the path is right but the system refused or failed the operation:
 //   permission denied, a read-only or full disk, a failed read, write, fsync,
-//   rename, remove or lock, a camera, a controller or a socket that cannot be
-//   opened or stops answering. FileSystemError (core/atomic_file.h) sorts an
-//   errno into these two.
+//   rename, remove or lock, a camera or a controller that cannot be opened or
+//   connected to. FileSystemError (core/atomic_file.h) sorts an errno into
+//   these two. A device that drops a frame or a reply during a run fails that
+//   pose (kFailed), and the run goes on.
 // - kFailed: the input was accepted but the computation did not succeed (no
 //   convergence, too few usable poses or views).
 // - kBusy: another writer holds the session; try again or wait.

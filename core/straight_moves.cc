@@ -126,7 +126,7 @@ StatusOr<std::vector<PathPoint>> FollowLegPath(const Robot& robot, const LegPath
       h = step;
     } else if ((h /= 2) < min_step) {
       return Status::BadInput("forward kinematics does not follow the legs' path at " + Rounded(points.back().s) +
-                           " of the way: " + next.status().message());
+                              " of the way: " + next.status().message());
     }
   }
   const Pose target = PoseFromMotionVector(to);
@@ -202,7 +202,7 @@ StatusOr<std::vector<Vector6d>> PlanStraightMoves(const Robot& robot, const Vect
     return first;
   }
   return Status::BadInput("no straight moves from " + MotionText(from) + " to " + MotionText(to) +
-                       " keep within the robot's limits: " + direct.status().message());
+                          " keep within the robot's limits: " + direct.status().message());
 }
 
 }  // namespace hexcal

@@ -110,8 +110,9 @@ Status CheckStudyInput(const std::vector<Measurement>& measurements, const Subse
   if (!options.IsValid(&error)) return Status::BadInput(error);
   const int total = static_cast<int>(measurements.size());
   if (options.select >= total) {
-    return Status::BadInput("--select " + std::to_string(options.select) + " needs more than that many measured poses " +
-                         "(some must be left out to validate); the session has " + std::to_string(total));
+    return Status::BadInput("--select " + std::to_string(options.select) +
+                            " needs more than that many measured poses " +
+                            "(some must be left out to validate); the session has " + std::to_string(total));
   }
   return Status::Ok();
 }

@@ -35,7 +35,7 @@ Status CheckUniqueKeys(const YAML::Node& node, const std::string& label, const s
       const auto [first, inserted] = lines.emplace(entry.first.Scalar(), line);
       if (!inserted)
         return Status::BadInput(label + ": " + key_path + ": duplicate key (lines " + std::to_string(first->second) +
-                             " and " + std::to_string(line) + ")");
+                                " and " + std::to_string(line) + ")");
     }
     if (Status s = CheckUniqueKeys(entry.second, label, key_path, budget); !s.ok()) return s;
   }
@@ -57,7 +57,7 @@ StatusOr<YAML::Node> LoadYamlDocument(const std::string& text, const std::string
     return root;
   } catch (const YAML::ParserException& e) {
     return Status::BadInput(label + ": YAML syntax error at line " + std::to_string(e.mark.line + 1) + ", column " +
-                         std::to_string(e.mark.column + 1) + ": " + e.msg);
+                            std::to_string(e.mark.column + 1) + ": " + e.msg);
   } catch (const YAML::Exception& e) {  // not a syntax error, e.g. nesting too deep
     return Status::BadInput(label + ": cannot read as YAML: " + e.what());
   }

@@ -23,8 +23,9 @@ enum Source { kOff = 0, kSession = 1, kFile = 2 };
 StatusOr<MeasurementConstraints> FromSession(const SessionState& session) {
   const SessionConfig& config = session.Config();
   if (!config.base_from_camera || !config.platform_from_target)
-    return Status::BadInput("the session has no registered camera and target yet (they are found by the first "
-                         "calibration); choose a settings file instead");
+    return Status::BadInput(
+        "the session has no registered camera and target yet (they are found by the first "
+        "calibration); choose a settings file instead");
   if (!session.SessionCamera()) return Status::BadInput("the session's camera does not load");
   const Camera& camera = *session.SessionCamera();
   MeasurementConstraints constraints;

@@ -264,20 +264,21 @@ FieldOfView CameraFieldOfView(const Camera& camera) {
 
 Status Camera::Validate() const {
   if (width <= 0 || height <= 0) {
-    return Status::BadInput("image size " + std::to_string(width) + " x " + std::to_string(height) + ": must be positive");
+    return Status::BadInput("image size " + std::to_string(width) + " x " + std::to_string(height) +
+                            ": must be positive");
   }
   // No image hexcal reads is larger (image_header.h): a camera of 10^6 x 10^6
   // pixels made acquire allocate 4 TB and abort with std::bad_alloc (issue 36).
   if (static_cast<uint64_t>(width) * static_cast<uint64_t>(height) > kMaxImagePixels) {
     return Status::BadInput("image size " + std::to_string(width) + " x " + std::to_string(height) + ": over the " +
-                         std::to_string(kMaxImagePixels / 1'000'000) + "-megapixel limit of an image hexcal reads");
+                            std::to_string(kMaxImagePixels / 1'000'000) + "-megapixel limit of an image hexcal reads");
   }
   for (const auto& [name, f] : {std::pair{"fx", fx}, std::pair{"fy", fy}}) {
     if (!std::isfinite(f)) return Status::BadInput(std::string("focal length ") + name + ": not a finite number");
   }
   if (!(fx > 0) || !(fy > 0)) {
     return Status::BadInput("focal lengths fx = " + FormatNumber(fx) + ", fy = " + FormatNumber(fy) +
-                         ": must be positive");
+                            ": must be positive");
   }
   if (!std::isfinite(cx) || !std::isfinite(cy)) return Status::BadInput("principal point: not finite");
   for (double k : distortion) {
@@ -286,7 +287,7 @@ Status Camera::Validate() const {
   for (size_t i = static_cast<size_t>(NumCoefficients()); i < distortion.size(); ++i) {
     if (distortion[i] != 0) {
       return Status::BadInput("distortion_coefficients: coefficient " + std::to_string(i + 1) + " is not 0; the " +
-                           CameraModelName(model) + " model has " + std::to_string(NumCoefficients()));
+                              CameraModelName(model) + " model has " + std::to_string(NumCoefficients()));
     }
   }
   return ValidateRanges();
@@ -297,7 +298,7 @@ Status Camera::Validate() const {
 Status Camera::ValidateRanges() const {
   const auto outside = [](const std::string& key, double value, double min, double max, const std::string& unit) {
     return Status::BadInput(key + " = " + FormatNumber(value) + unit + " is outside [" + FormatNumber(min) + ", " +
-                         FormatNumber(max) + "]" + unit);
+                            FormatNumber(max) + "]" + unit);
   };
   for (const auto& [name, f] : {std::pair{"fx", fx}, std::pair{"fy", fy}})
     if (f < kMinFocalPixels || f > kMaxFocalPixels) return outside(name, f, kMinFocalPixels, kMaxFocalPixels, " px");

@@ -313,7 +313,7 @@ StatusOr<Camera> LoadCamera(const std::string& path_or_name) {
   StatusOr<std::string> text = ReadFileToString(path_or_name);
   if (!text.ok()) {
     return Status::BadInput(text.status().message() + " (a camera file, or the built-in name " +
-                         std::string(kSimulatedCameraName) + ")");
+                            std::string(kSimulatedCameraName) + ")");
   }
   return ParseCameraFile(*text, path_or_name);
 }

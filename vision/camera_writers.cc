@@ -151,16 +151,16 @@ StatusOr<std::string> CameraToKalibrYaml(const Camera& camera) {
   const std::string refused = "a Kalibr camchain cannot hold this camera: ";
   if (camera.model == CameraModel::kRational) {
     return Status::BadInput(refused + "Kalibr has no rational model (k1 k2 p1 p2 k3 k4 k5 k6); its pinhole camera " +
-                         "takes radtan (k1 k2 p1 p2) or equidistant; write it --to ros or opencv");
+                            "takes radtan (k1 k2 p1 p2) or equidistant; write it --to ros or opencv");
   }
   if (camera.model == CameraModel::kRadTan && camera.distortion[4] != 0) {
     return Status::BadInput(refused + "k3 = " + FormatNumber(camera.distortion[4]) +
-                         ", and Kalibr's radtan has k1 k2 p1 p2 only (k3 = 0); write it --to ros or opencv");
+                            ", and Kalibr's radtan has k1 k2 p1 p2 only (k3 = 0); write it --to ros or opencv");
   }
   // Kalibr's CameraParameters.checkIntrinsics refuses these.
   if (camera.cx < 0 || camera.cy < 0) {
     return Status::BadInput(refused + "principal point (" + FormatNumber(camera.cx) + ", " + FormatNumber(camera.cy) +
-                         ") is negative, which Kalibr's reader refuses");
+                            ") is negative, which Kalibr's reader refuses");
   }
   const bool fisheye = camera.model == CameraModel::kPinholeEqui;
   const std::vector<double> coefficients(camera.distortion.begin(), camera.distortion.begin() + 4);
@@ -180,7 +180,7 @@ StatusOr<std::string> CameraToText(const Camera& camera, CameraFileFormat format
     case CameraFileFormat::kRos:
       if (!IsRosCameraName(ros_camera_name)) {
         return Status::BadInput("camera name " + Excerpt(ros_camera_name) +
-                             ": ROS takes letters, digits and '_' only (camera_info_manager)");
+                                ": ROS takes letters, digits and '_' only (camera_info_manager)");
       }
       return CameraToRosYaml(camera, ros_camera_name);
     case CameraFileFormat::kKalibr:

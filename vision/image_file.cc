@@ -27,12 +27,13 @@ Status CheckImageHeader(const ImageHeader& header, const std::string& source) {
     return Status::BadInput(source + ": truncated PNG (no IEND chunk)");
   }
   if (header.truncated) return Status::BadInput(source + ": truncated JPEG (no end-of-image marker)");
-  if (!header.corrupt.empty()) return Status::BadInput(source + ": cannot decode: corrupt JPEG (" + header.corrupt + ")");
+  if (!header.corrupt.empty())
+    return Status::BadInput(source + ": cannot decode: corrupt JPEG (" + header.corrupt + ")");
   // The decoder allocates what the header claims, however small the file.
   if (header.size && header.size->Pixels() > kMaxImagePixels) {
     return Status::BadInput(source + ": " + std::to_string(header.size->width) + " x " +
-                         std::to_string(header.size->height) + " pixels is over the " +
-                         std::to_string(kMaxImagePixels / 1'000'000) + "-megapixel limit");
+                            std::to_string(header.size->height) + " pixels is over the " +
+                            std::to_string(kMaxImagePixels / 1'000'000) + "-megapixel limit");
   }
   return Status::Ok();
 }
@@ -102,7 +103,7 @@ StatusOr<cv::Mat> DecodeGrayImage(const std::string& bytes, const std::string& s
   const cv::Mat& decoded = *image;
   if (decoded.channels() > 4 || (decoded.depth() != CV_8U && decoded.depth() != CV_16U && decoded.depth() != CV_32F)) {
     return Status::BadInput(source + ": cannot decode: " + std::to_string(decoded.channels()) +
-                         " channels of an unsupported sample type (8-bit, 16-bit or float grey or colour are read)");
+                            " channels of an unsupported sample type (8-bit, 16-bit or float grey or colour are read)");
   }
   ImageNotes local;
   ImageNotes* out = notes ? notes : &local;

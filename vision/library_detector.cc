@@ -33,7 +33,8 @@ struct LibraryDetector::Impl {
 StatusOr<std::unique_ptr<LibraryDetector>> LibraryDetector::Create(const std::string& family,
                                                                    const LibraryDetectorSettings& settings) {
   if (!FindTagFamily(family)) return Status::BadInput("library detector: family '" + family + "' is not supported");
-  if (settings.threads < 1 || settings.threads > 64) return Status::BadInput("library detector: threads must be in 1..64");
+  if (settings.threads < 1 || settings.threads > 64)
+    return Status::BadInput("library detector: threads must be in 1..64");
   if (!(settings.quad_decimate >= 1 && settings.quad_decimate <= 8))
     return Status::BadInput("library detector: quad_decimate must be in [1, 8]");
   if (!(settings.quad_sigma >= 0 && settings.quad_sigma <= 10))

@@ -48,7 +48,7 @@ StatusOr<std::vector<std::string>> ListImages(const std::string& folder_or_file)
   for (fs::directory_iterator it(folder_or_file, error), end; !error && it != end; it.increment(error)) {
     if (!it->is_directory(error) && HasImageExtension(it->path())) files.push_back(it->path().string());
   }
-  if (error) return Status::BadInput(folder_or_file + ": cannot list the folder: " + error.message());
+  if (error) return FileSystemError(folder_or_file, "cannot list the folder", error.value());
   if (files.empty()) return Status::BadInput(folder_or_file + ": no PNG, JPEG or TIFF images in the folder");
   std::sort(files.begin(), files.end());
   return files;
@@ -182,7 +182,7 @@ StatusOr<std::vector<ImageMeasurementRecord>> ParseImageMeasurementsCsv(const st
       std::optional<Matrix6d> covariance = CovarianceFromSigmasAndCorrelations(sigma, correlation);
       if (!covariance)
         return Status::BadInput(source + ":" + std::to_string(r + 2) +
-                             ": a sigma is negative or a correlation is outside [-1, 1]");
+                                ": a sigma is negative or a correlation is outside [-1, 1]");
       record.covariance = *covariance;
     }
     records.push_back(std::move(record));

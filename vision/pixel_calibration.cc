@@ -24,7 +24,7 @@ Status CheckInput(const PixelCalibrationInput& input, const PixelCalibrationOpti
   if (!options.IsValid(&error)) return Status::BadInput("calibration from pixels: " + error);
   if (static_cast<int>(input.images.size()) < kMinImages) {
     return Status::BadInput("calibration from pixels: " + std::to_string(input.images.size()) +
-                         " images with corners; at least 7 are needed");
+                            " images with corners; at least 7 are needed");
   }
   if (!(input.target_to_robot > 0) || !std::isfinite(input.target_to_robot)) {
     return Status::BadInput("calibration from pixels: the target-to-robot unit factor must be positive");

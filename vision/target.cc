@@ -142,7 +142,7 @@ Status Target::Validate() const {
     const long long last = static_cast<long long>(first_id) + static_cast<long long>(rows) * cols - 1;
     if (last >= info->num_codes) {
       return Status::BadInput("first_id: ids " + Int(first_id) + " to " + Int(last) + " exceed the " +
-                           Int(info->num_codes) + " tags of " + family);
+                              Int(info->num_codes) + " tags of " + family);
     }
   } else if (layout_ == TargetLayout::kIdMatrix) {
     if (Status s = ValidateIdMatrix(info->num_codes); !s.ok()) return s;
@@ -156,14 +156,14 @@ Status Target::Validate() const {
   if (tag_size * unit < kMinTagSizeMetres || tag_size * unit > kMaxTagSizeMetres) {
     const std::string name = LengthUnitName(length_unit);
     return Status::BadInput("tag_size: " + FormatNumber(tag_size) + " " + name + " is outside [" +
-                         FormatNumber(kMinTagSizeMetres / unit) + ", " + FormatNumber(kMaxTagSizeMetres / unit) + "] " +
-                         name);
+                            FormatNumber(kMinTagSizeMetres / unit) + ", " + FormatNumber(kMaxTagSizeMetres / unit) +
+                            "] " + name);
   }
   // AprilTag needs white around each black square to find it: at least one
   // bit cell between neighbours and at the edge of the sheet.
   if (border_bits != 1 && border_bits != 2) {
     return Status::BadInput("border_bits: must be 1 (AprilTag's tags) or 2 (Kalibr's aprilgrid), found " +
-                         Int(border_bits));
+                            Int(border_bits));
   }
   // With a two-cell border the edge fit reaches two cells out: keep that white.
   const double cell_ratio = static_cast<double>(border_bits) / WidthAtBorder();
@@ -172,12 +172,12 @@ Status Target::Validate() const {
     if (Status s = ValidateTagList(info->num_codes); !s.ok()) return s;
   } else if (!(tag_spacing >= cell_ratio) || !std::isfinite(tag_spacing)) {
     return Status::BadInput("tag_spacing: " + FormatNumber(tag_spacing) + " leaves less than " + cells + " (tag_size/" +
-                         Int(WidthAtBorder()) + " each) of white between tags; use at least " +
-                         FormatNumber(cell_ratio) + " (Kalibr's default is 0.3)");
+                            Int(WidthAtBorder()) + " each) of white between tags; use at least " +
+                            FormatNumber(cell_ratio) + " (Kalibr's default is 0.3)");
   }
   if (!(margin >= tag_size * cell_ratio) || !std::isfinite(margin)) {
     return Status::BadInput("margin: " + FormatNumber(margin) + " is less than " + cells + " (" +
-                         FormatNumber(tag_size * cell_ratio) + ") of white around the outer tags");
+                            FormatNumber(tag_size * cell_ratio) + ") of white around the outer tags");
   }
   return Status::Ok();
 }
@@ -185,19 +185,19 @@ Status Target::Validate() const {
 Status Target::ValidateIdMatrix(int num_codes) const {
   if (rows != static_cast<int>(id_matrix_.size())) {
     return Status::BadInput("rows: " + Int(rows) + ", but ids has " + Int(static_cast<long long>(id_matrix_.size())) +
-                         " rows");
+                            " rows");
   }
   if (rows < 1 || cols < 1) return Status::BadInput("ids: expected at least one row of at least one entry");
   if (cols != static_cast<int>(id_matrix_[0].size())) {
     return Status::BadInput("cols: " + Int(cols) + ", but the rows of ids have " +
-                         Int(static_cast<long long>(id_matrix_[0].size())) + " entries");
+                            Int(static_cast<long long>(id_matrix_[0].size())) + " entries");
   }
   if (ids_.empty()) return Status::BadInput("ids: no tag on the board (every entry is -1)");
   for (size_t index = 0; index < ids_.size(); ++index) {
     const int id = ids_[index], cell = cells_[index];
     if (id < 0 || id >= num_codes) {
-      return Status::BadInput("ids: " + CellName(cell / cols, cell % cols, rows) + ": " + Int(id) + " is not a tag of " +
-                           family + " (0 to " + Int(num_codes - 1) + ", or -1 for no tag)");
+      return Status::BadInput("ids: " + CellName(cell / cols, cell % cols, rows) + ": " + Int(id) +
+                              " is not a tag of " + family + " (0 to " + Int(num_codes - 1) + ", or -1 for no tag)");
     }
   }
   for (size_t k = 1; k < index_of_id_.size(); ++k) {
@@ -206,7 +206,7 @@ Status Target::ValidateIdMatrix(int num_codes) const {
     int b = cells_[static_cast<size_t>(index_of_id_[k].second)];
     if (a / cols < b / cols) std::swap(a, b);  // as printed: the upper row first
     return Status::BadInput("ids: id " + Int(index_of_id_[k].first) + " appears twice (" +
-                         CellName(a / cols, a % cols, rows) + " and " + CellName(b / cols, b % cols, rows) + ")");
+                            CellName(a / cols, a % cols, rows) + " and " + CellName(b / cols, b % cols, rows) + ")");
   }
   return Status::Ok();
 }
@@ -217,8 +217,8 @@ Status Target::ValidateTagList(int num_codes) const {
   if (tag_list_.empty()) return Status::BadInput("tags: expected at least one tag");
   for (const TargetTag& tag : tag_list_) {
     if (tag.id < 0 || tag.id >= num_codes) {
-      return Status::BadInput("tags: id " + Int(tag.id) + " is not a tag of " + family + " (0 to " + Int(num_codes - 1) +
-                           ")");
+      return Status::BadInput("tags: id " + Int(tag.id) + " is not a tag of " + family + " (0 to " +
+                              Int(num_codes - 1) + ")");
     }
     if (!std::isfinite(tag.x) || !std::isfinite(tag.y)) {
       return Status::BadInput("tags: id " + Int(tag.id) + ": x and y must be finite");
@@ -227,7 +227,7 @@ Status Target::ValidateTagList(int num_codes) const {
   for (size_t k = 1; k < index_of_id_.size(); ++k) {
     if (index_of_id_[k].first == index_of_id_[k - 1].first) {
       return Status::BadInput("tags: id " + Int(index_of_id_[k].first) + " appears twice (entries " +
-                           Int(index_of_id_[k - 1].second + 1) + " and " + Int(index_of_id_[k].second + 1) + ")");
+                              Int(index_of_id_[k - 1].second + 1) + " and " + Int(index_of_id_[k].second + 1) + ")");
     }
   }
   const double white = tag_size * border_bits / WidthAtBorder();
@@ -240,7 +240,7 @@ Status Target::ValidateTagList(int num_codes) const {
       const std::string pair = "tags " + Int(tag_list_[a].id) + " and " + Int(tag_list_[b].id);
       if (gap < 0) return Status::BadInput("tags: " + pair + " overlap");
       return Status::BadInput("tags: " + pair + " are " + FormatNumber(gap) + " apart, less than " + cells + " (" +
-                           FormatNumber(white) + ") of white");
+                              FormatNumber(white) + ") of white");
     }
   }
   return Status::Ok();

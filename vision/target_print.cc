@@ -297,12 +297,12 @@ std::string TargetPdf(const Target& target) {
 StatusOr<std::string> TargetPng(const Target& target, double dpi) {
   if (!(dpi >= kMinPrintDpi && dpi <= kMaxPrintDpi))
     return Status::BadInput("--dpi: " + Fixed(dpi, 1) + " is outside [" + Fixed(kMinPrintDpi, 0) + ", " +
-                         Fixed(kMaxPrintDpi, 0) + "]");
+                            Fixed(kMaxPrintDpi, 0) + "]");
   const auto [content_w, content_h] = ContentSize(target);
   const double page_w = content_w + 2 * kPageMarginMm, page_h = content_h + 2 * kPageMarginMm;
   if (std::max(page_w, page_h) * dpi / 25.4 > 30000) {
     return Status::BadInput("the PNG would be over 30000 pixels on a side at " + Fixed(dpi, 0) +
-                         " dpi; use a lower --dpi");
+                            " dpi; use a lower --dpi");
   }
   PngCanvas canvas(page_w, page_h, dpi);
   DrawTarget(target, kPageMarginMm, kPageMarginMm, canvas);

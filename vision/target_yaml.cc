@@ -293,7 +293,7 @@ StatusOr<Target> LoadTarget(const std::string& path_or_name) {
   StatusOr<std::string> text = ReadFileToString(path_or_name);
   if (!text.ok()) {
     return Status::BadInput(text.status().message() + " (a target file, or the built-in name " +
-                         std::string(kDefaultTargetName) + ")");
+                            std::string(kDefaultTargetName) + ")");
   }
   return ParseTargetYaml(*text, path_or_name);
 }

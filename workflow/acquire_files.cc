@@ -58,7 +58,7 @@ Status ClearImageSlot(const std::string& dir, const std::string& image, bool rem
   if (!fs::exists(fs::symlink_status(path, error))) return Status::Ok();
   if (PendingCapture(dir) != image)
     return Status::BadInput("images/" + image + " exists without a row in legs.csv and hexcal acquire did not " +
-                         "write it: move it away, or record its readings (hexcal session record), then run again");
+                            "write it: move it away, or record its readings (hexcal session record), then run again");
   if (!remove) return Status::Ok();
   fs::remove(path, error);
   if (error)

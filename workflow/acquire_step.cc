@@ -180,7 +180,7 @@ Status WriteOrCheckTruth(const SimWorld& world, const std::string& dir, uint64_t
   if (!on_disk.ok()) return on_disk.status();
   if (*on_disk != RobotToYaml(world.scene().truth))
     return Status::BadInput(robot_file + ": the session's sim truth was drawn with another --seed than " +
-                         std::to_string(seed) + "; resume with the seed of the first run");
+                            std::to_string(seed) + "; resume with the seed of the first run");
   return Status::Ok();
 }
 

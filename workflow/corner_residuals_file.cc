@@ -15,7 +15,7 @@ StatusOr<int> IntegerAt(const CsvTable& table, size_t row, int col) {
   if (!value.ok()) return value.status();
   if (*value != static_cast<int>(*value) || *value < 0)
     return Status::BadInput(table.source + ":" + std::to_string(table.line_numbers[row]) + ": column '" +
-                         table.header[col] + "': not a whole number >= 0");
+                            table.header[col] + "': not a whole number >= 0");
   return static_cast<int>(*value);
 }
 

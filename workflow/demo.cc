@@ -225,12 +225,13 @@ Status CalibrateAndCompare(const DemoRequest& request, const DemoScene& scene, S
 Status DemoRequest::Check() const {
   if (poses < kMinDemoPoses || poses > kMaxDemoPoses) {
     return Status::BadInput("--poses must be between " + std::to_string(kMinDemoPoses) + " and " +
-                         std::to_string(kMaxDemoPoses) + " (each pose is a rendered image)");
+                            std::to_string(kMaxDemoPoses) + " (each pose is a rendered image)");
   }
   if (holdout < 0 || holdout > kMaxDemoHoldout) {
     return Status::BadInput("--holdout must be between 0 and " + std::to_string(kMaxDemoHoldout));
   }
-  if (!(std::abs(focal_error_percent) <= 20)) return Status::BadInput("--focal-error must be between -20 and 20 (percent)");
+  if (!(std::abs(focal_error_percent) <= 20))
+    return Status::BadInput("--focal-error must be between -20 and 20 (percent)");
   if (!(point_sigma_m >= 1e-7 && point_sigma_m <= 1e-3))
     return Status::BadInput("--point-sigma must be between 0.0001 and 1 (mm)");
   return Status::Ok();

@@ -24,7 +24,8 @@ StatusOr<std::unique_ptr<Controller>> OpenController(const std::string& url, con
   if (url.rfind("linuxcnc://", 0) == 0) {
     StatusOr<LinuxCncAddress> address = ParseLinuxCncUrl(url);
     if (!address.ok()) return address.status();
-    if (!options.robot) return Status::BadInput("controller '" + url + "' needs the session's robot (OpenAcquisitionRig)");
+    if (!options.robot)
+      return Status::BadInput("controller '" + url + "' needs the session's robot (OpenAcquisitionRig)");
     return OpenLinuxCncController(*address, *options.robot);
   }
   return BadControllerUrl(url, url.empty() ? "empty URL" : "unknown kind");
@@ -45,7 +46,7 @@ StatusOr<std::unique_ptr<FrameSource>> OpenFrameSource(const std::string& url, c
     return OpenAravisFrameSource(url);
 #else
     return Status::BadInput("camera '" + url +
-                         "': this hexcal was built without Aravis (install libaravis-dev: scripts/install-deps.sh)");
+                            "': this hexcal was built without Aravis (install libaravis-dev: scripts/install-deps.sh)");
 #endif
   }
   return BadFrameSourceUrl(url, url.empty() ? "empty URL" : "unknown kind '" + scheme + "'");

@@ -86,10 +86,10 @@ StatusOr<std::array<double, 6>> HomeShifts(const Robot& running, const Robot& ca
                                    (now.b_in_platform * scale - was.b_in_platform * running_scale).norm(),
                                    std::abs(shifts[i])});
     if (!(moved <= kSameMachineShare * size)) {
-      return Status::BadInput("leg " + std::to_string(i + 1) + " of robot '" + CommentText(calibrated.name) +
-                           "' is " + FixedNumber(moved, 6) + " " + MachineUnitName(unit) + " from the running robot '" +
-                           CommentText(running.name) + "''s (more than " + FixedNumber(100 * kSameMachineShare) +
-                           " % of its size): not the same machine, or a robot file in another length unit");
+      return Status::BadInput("leg " + std::to_string(i + 1) + " of robot '" + CommentText(calibrated.name) + "' is " +
+                              FixedNumber(moved, 6) + " " + MachineUnitName(unit) + " from the running robot '" +
+                              CommentText(running.name) + "''s (more than " + FixedNumber(100 * kSameMachineShare) +
+                              " % of its size): not the same machine, or a robot file in another length unit");
     }
   }
   return shifts;

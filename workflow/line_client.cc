@@ -88,7 +88,7 @@ StatusOr<LineClient> LineClient::Connect(const std::string& host, int port, std:
   for (const addrinfo* address = addresses; address && fd < 0; address = address->ai_next)
     fd = ConnectOne(*address, deadline, &error);
   freeaddrinfo(addresses);
-  if (fd < 0) return Status::Failed(peer + ": cannot connect within " + SecondsText(timeout) + ": " + error);
+  if (fd < 0) return Status::IoError(peer + ": cannot connect within " + SecondsText(timeout) + ": " + error);
   return LineClient(fd, peer);
 }
 

@@ -452,7 +452,7 @@ StatusOr<std::unique_ptr<Controller>> OpenLinuxCncController(const LinuxCncAddre
                                                              const LinuxCncOptions& options) {
   if (std::string error; !options.IsValid(&error)) return Status::BadInput(error);
   StatusOr<LineClient> client = LineClient::Connect(address.host, address.port, options.connect_timeout);
-  if (!client.ok()) return Status::Failed("LinuxCNC: " + client.status().message());
+  if (!client.ok()) return client.status().Prefixed("LinuxCNC: ");  // no answer: I/O; a bad host: bad input
   auto controller = std::make_unique<LinuxCncController>(std::move(*client), robot, options);
   if (Status s = controller->Open(); !s.ok()) return s;
   return std::unique_ptr<Controller>(std::move(controller));
@@ -460,7 +460,8 @@ StatusOr<std::unique_ptr<Controller>> OpenLinuxCncController(const LinuxCncAddre
 
 Status RehomeLinuxCnc(Controller& controller, const Vector6d& joints, double tolerance) {
   auto* machine = dynamic_cast<LinuxCncController*>(&controller);
-  if (machine == nullptr) return Status::BadInput(controller.Describe() + " is not a LinuxCNC machine: nothing to home");
+  if (machine == nullptr)
+    return Status::BadInput(controller.Describe() + " is not a LinuxCNC machine: nothing to home");
   return machine->Rehome(joints, tolerance);
 }
 

@@ -113,9 +113,8 @@ Status CheckRobotForMachine(const Robot& robot) {
     char shown[32];
     std::snprintf(shown, sizeof shown, "%.3g", size);
     return Status::BadInput("robot '" + CommentText(robot.name) + "': its farthest anchor point is " + shown +
-                         " m from its frame's origin, outside [" +
-                         FixedNumber(kMinMachineRobotMetres) + ", " + FixedNumber(kMaxMachineRobotMetres) +
-                         "] m: is its length_unit right?");
+                            " m from its frame's origin, outside [" + FixedNumber(kMinMachineRobotMetres) + ", " +
+                            FixedNumber(kMaxMachineRobotMetres) + "] m: is its length_unit right?");
   }
   return Status::Ok();
 }

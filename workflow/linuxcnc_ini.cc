@@ -103,7 +103,7 @@ StatusOr<MachineIni> ParseMachineIni(const std::string& text) {
     for (const char* key : kJointKeys)
       if (!seen.count("[JOINT_" + std::to_string(joint) + "] " + key))
         return Status::BadInput("INI: no [JOINT_" + std::to_string(joint) + "] " + key +
-                             " (a genhexkins machine has six joints, each with its home and limits)");
+                                " (a genhexkins machine has six joints, each with its home and limits)");
   return ini;
 }
 

@@ -84,8 +84,8 @@ Status CheckLivePins(const std::string& halcmd, const PinSet& expected, const st
     const double want = expected.values[k], got = (*live)[k];
     if (std::abs(got - want) > kPinAgreement * std::max(1.0, std::abs(want))) {
       return Status::BadInput("the running machine's " + expected.names[k] + " is " + ExactFixedNumber(got) + ", " +
-                           source + " says " + ExactFixedNumber(want) +
-                           ": the files do not describe the running machine; nothing was changed");
+                              source + " says " + ExactFixedNumber(want) +
+                              ": the files do not describe the running machine; nothing was changed");
     }
   }
   return Status::Ok();
@@ -102,9 +102,10 @@ StatusOr<std::string> GenhexkinsHalFile(const std::string& ini_path, const Machi
     StatusOr<std::string> text = ReadFileToString(path.string());
     if (text.ok() && text->find("setp genhexkins.base.") != std::string::npos) return path.string();
   }
-  return Status::BadInput(ini_path + ": no [HAL] HALFILE beside it sets the genhexkins pins (setp genhexkins.base...): "
-                       "a restart would bring the old geometry back; put the pins in a HAL file of their own, "
-                       "listed as HALFILE");
+  return Status::BadInput(ini_path +
+                          ": no [HAL] HALFILE beside it sets the genhexkins pins (setp genhexkins.base...): "
+                          "a restart would bring the old geometry back; put the pins in a HAL file of their own, "
+                          "listed as HALFILE");
 }
 
 }  // namespace

@@ -63,7 +63,7 @@ StatusOr<MeasureResult> MeasureAndWrite(const std::vector<std::string>& files, c
     if (relative) m.file = std::filesystem::path(m.file).filename().string();
     ++result.counts[PoseStatusName(m.pose.status)];
   }
-  if (Status s = WriteImageMeasurementsCsv(out, result.rows); !s.ok()) return s.AsFailure();
+  if (Status s = WriteImageMeasurementsCsv(out, result.rows); !s.ok()) return s;
   return result;
 }
 

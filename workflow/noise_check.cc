@@ -78,7 +78,7 @@ StatusOr<Repeatability> CameraRepeatability(const std::string& dir, const Sessio
   }
   if (poses.size() < 3)
     return Status::BadInput(input + ": " + std::to_string(poses.size()) +
-                         " images with a board pose: the repeatability needs 3 or more of one pose");
+                            " images with a board pose: the repeatability needs 3 or more of one pose");
   *unit = LengthUnitName(target->length_unit);
   return BoardPoseScatter(poses, covariances, corners);
 }

@@ -59,7 +59,7 @@ StatusOr<CandidatePool> BuildCandidatePool(const PlanningModel& model, const std
   }
   if (pool.poses.empty() && !file.empty()) {
     return Status::BadInput(file + ": none of its " + std::to_string(raw.size()) +
-                         " poses satisfies the robot and measurement constraints (all unreachable)");
+                            " poses satisfies the robot and measurement constraints (all unreachable)");
   }
   if (pool.poses.empty()) return Status::Failed("no candidate pose satisfies the robot and measurement constraints");
   return pool;
@@ -75,7 +75,7 @@ StatusOr<std::vector<Vector6d>> InitialPoses(const PlanningModel& model, const s
     poses = *file;
     if (static_cast<int>(poses.size()) != count) {
       return Status::BadInput("--init: '" + init + "' has " + std::to_string(poses.size()) + " poses, --poses is " +
-                           std::to_string(count));
+                              std::to_string(count));
     }
     return poses;
   }
@@ -391,11 +391,11 @@ StatusOr<PlanOutcome> PlanFromRequest(const PlanRequest& request, const JobHooks
   StatusOr<PlanOutcome> outcome = RunPlan(model, setup, request.candidates_file, hooks);
   if (!outcome.ok()) return outcome.status();
   if (!request.out.empty()) {
-    if (Status s = WritePlanCsv(request.out, model, outcome->plan.poses); !s.ok()) return s.AsFailure();
+    if (Status s = WritePlanCsv(request.out, model, outcome->plan.poses); !s.ok()) return s;
     outcome->out = request.out;
   }
   if (!request.history.empty()) {
-    if (Status s = WriteHistoryCsv(request.history, outcome->plan); !s.ok()) return s.AsFailure();
+    if (Status s = WriteHistoryCsv(request.history, outcome->plan); !s.ok()) return s;
   }
   return outcome;
 }

@@ -49,7 +49,7 @@ StatusOr<std::map<std::string, const PointSet*>> SetsOfRows(const LoadedPoints& 
     const auto found = by_name.find(row.image);
     if (found == by_name.end())
       return Status::BadInput("legs.csv:" + std::to_string(row.line) + ": pose '" + row.image + "' has no points in " +
-                           source);
+                              source);
     of_rows[row.image] = found->second;
   }
   return of_rows;

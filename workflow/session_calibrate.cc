@@ -54,7 +54,8 @@ StatusOr<SessionInputs> LoadSessionInputs(const std::string& dir) {
   }
   if (Status s = CheckRowsNearStroke(*nominal, *legs); !s.ok()) return s.Prefixed(dir + ": ");
   const std::optional<PoseBox> box = nominal->limits.SamplingBox();
-  if (!box || !box->IsComplete()) return Status::BadInput(robot_name + ": needs a complete pose_box to start the FK from");
+  if (!box || !box->IsComplete())
+    return Status::BadInput(robot_name + ": needs a complete pose_box to start the FK from");
   Vector6d centre;
   for (int k = 0; k < 6; ++k) centre[k] = box->bounds[k]->Centre();
   const Pose fk_start = nominal->PoseFromVector(centre);
@@ -79,7 +80,7 @@ StatusOr<CameraPoses> MeasurePointSession(const std::string& dir, SessionInputs*
   const int ok = static_cast<int>(in->legs.size()) - measured->left_out;
   if (ok < kMinBoardPoses)
     return Status::BadInput(dir + ": " + std::to_string(ok) + " poses with fitted points; the calibration needs " +
-                         std::to_string(kMinBoardPoses));
+                            std::to_string(kMinBoardPoses));
   in->config.noise = measured->noise;
   return measured->poses;
 }
@@ -106,7 +107,8 @@ StatusOr<CameraPoses> MeasureSession(const std::string& dir, const SessionInputs
     if (ok < kMinBoardPoses) return Status::BadInput(dir + ": " + diagnosis);
     hooks.Note("warning: " + diagnosis);
   }
-  if (ok < kMinBoardPoses) return Status::BadInput(dir + ": " + ExplainBoardPoseShortfall(dir, measured->poses, in.target));
+  if (ok < kMinBoardPoses)
+    return Status::BadInput(dir + ": " + ExplainBoardPoseShortfall(dir, measured->poses, in.target));
   if (observations != nullptr) *observations = std::move(measured->observations);
   return measured->poses;
 }
@@ -407,7 +409,7 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   const CornerResidualTable* corners = from_pixels ? &from_pixels->corners : nullptr;
   if (Status s = WriteCalibrationResults(dir, &*in, *result, calibration, report, fitted_camera, corners, *inputs);
       !s.ok())
-    return s.AsFailure();
+    return s;
   return report;
 }
 

@@ -31,7 +31,7 @@ Status RefuseInPointsSession(const std::string& dir, const std::string& what) {
   if (!key.ok()) return key.status();
   if (*key == "pose")
     return Status::BadInput(dir + ": a points session has no images (its poses come from its points file): cannot " +
-                         what);
+                            what);
   return Status::Ok();
 }
 
@@ -223,8 +223,9 @@ Status CheckWritableInside(const std::string& dir, const std::string& folder) {
   const fs::path target = fs::weakly_canonical(fs::path(dir) / folder, error);
   const auto [end, unused] = std::mismatch(session.begin(), session.end(), target.begin(), target.end());
   if (error || end != session.end())
-    return Status::BadInput((fs::path(dir) / folder).string() + ": leads out of the session folder (a symbolic link); " +
-                         "hexcal writes only inside it: make " + folder + "/ a real folder");
+    return Status::BadInput((fs::path(dir) / folder).string() +
+                            ": leads out of the session folder (a symbolic link); " +
+                            "hexcal writes only inside it: make " + folder + "/ a real folder");
   return Status::Ok();
 }
 

@@ -72,9 +72,10 @@ Status CheckOutputs(const std::string& dir, const ResultsManifest& manifest) {
     const std::string path = (fs::path(results) / name).string();
     StatusOr<std::string> hash = Sha256OfFile(path, kMaxTableBytes);
     if (!hash.ok() || *hash != expected) {
-      return Status::BadInput(path + ": does not match " + ResultsManifestPath(dir) +
-                           " (changed or replaced after the run that wrote results/); run `hexcal calibrate --session " +
-                           dir + "` again");
+      return Status::BadInput(
+          path + ": does not match " + ResultsManifestPath(dir) +
+          " (changed or replaced after the run that wrote results/); run `hexcal calibrate --session " + dir +
+          "` again");
     }
   }
   return Status::Ok();
@@ -169,8 +170,9 @@ StatusOr<SessionResults> LoadSessionResults(const std::string& dir, const Conten
   const std::string manifest_path = ResultsManifestPath(dir);
   std::error_code error;
   if (!fs::exists(manifest_path, error)) {
-    return Status::BadInput(manifest_path + ": missing: results/ was not written whole by `hexcal calibrate --session` "
-                         "(an older hexcal, or files put there by hand); run it again");
+    return Status::BadInput(manifest_path +
+                            ": missing: results/ was not written whole by `hexcal calibrate --session` "
+                            "(an older hexcal, or files put there by hand); run it again");
   }
   StatusOr<std::string> text = ReadFileToString(manifest_path, kMaxJsonBytes);
   if (!text.ok()) return text.status();

@@ -71,7 +71,7 @@ StatusOr<std::shared_ptr<SimWorld>> SimWorld::ForSession(const std::string& dir,
   auto world = std::make_shared<SimWorld>(MakeDemoScene(models->robot, models->camera, models->target, options));
   if (Status s = world->Command(WorkspaceCentre(models->robot)); !s.ok())
     return Status::BadInput(dir +
-                         ": the sim machine cannot start at the centre of the robot's sampling box: " + s.message());
+                            ": the sim machine cannot start at the centre of the robot's sampling box: " + s.message());
   return world;
 }
 

@@ -276,13 +276,13 @@ Status CheckRequest(const SimulateRequest& request) {
 Status WriteOutputs(SimulateOutcome* outcome) {
   const SimulateRequest& request = outcome->request;
   if (!request.csv.empty()) {
-    if (Status s = WriteTable(request.csv, outcome->result, outcome->sweep); !s.ok()) return s.AsFailure();
+    if (Status s = WriteTable(request.csv, outcome->result, outcome->sweep); !s.ok()) return s;
   }
   if (request.plots.empty()) return Status::Ok();
   const SweepResult* sweep = outcome->sweep ? &*outcome->sweep : nullptr;
   Status s = WriteFigures(request.plots, outcome->result, sweep, LengthUnitName(outcome->robot.length_unit),
                           &outcome->figures);
-  return s.AsFailure();
+  return s;
 }
 
 }  // namespace

@@ -152,7 +152,7 @@ StatusOr<StudyRecord> StudyRecordFromJson(const nlohmann::json& json, const std:
   if (!fields.status().ok()) return fields.status();
   if (const int format = fields.Int("format"); fields.status().ok() && format != kStudyFormat)
     return Status::BadInput(source + ": format " + std::to_string(format) + " is not " + std::to_string(kStudyFormat) +
-                         " (written by another hexcal): run hexcal study again");
+                            " (written by another hexcal): run hexcal study again");
   StudyRecord r;
   r.created = fields.String("created");
   r.session = fields.String("session");

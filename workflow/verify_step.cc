@@ -37,9 +37,9 @@ StatusOr<CheckInputs> LoadCheckInputs(const std::string& dir) {
   const SessionConfig& config = models->config;
   if (!config.base_from_camera || !config.platform_from_target)
     return Status::BadInput(dir +
-                         ": the session has no registered camera and target frames; calibrate it first "
-                         "(hexcal calibrate --session " +
-                         dir + ")");
+                            ": the session has no registered camera and target frames; calibrate it first "
+                            "(hexcal calibrate --session " +
+                            dir + ")");
   Registration frames;
   frames.base_from_camera = *config.base_from_camera;
   frames.platform_from_target = *config.platform_from_target;
@@ -89,11 +89,12 @@ Status CheckImagesOut(const VerifyRequest& request, size_t count) {
   const auto [end, rest] = std::mismatch(images.begin(), images.end(), out.begin(), out.end());
   if (!error && end == images.end())
     return Status::BadInput("--keep-images " + request.images_out + ": that is the session's images/ folder, " +
-                         "which holds the recorded captures: keep the frames in another folder");
+                            "which holds the recorded captures: keep the frames in another folder");
   for (size_t k = 0; k < count && !request.force; ++k) {
     const fs::path frame = fs::path(request.images_out) / FrameName(static_cast<int>(k));
     if (fs::exists(fs::symlink_status(frame, error)))
-      return Status::BadInput("--keep-images: " + frame.string() + " exists: use another folder, or --force to replace");
+      return Status::BadInput("--keep-images: " + frame.string() +
+                              " exists: use another folder, or --force to replace");
   }
   return CreateFolders(request.images_out);
 }

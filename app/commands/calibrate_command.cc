@@ -176,7 +176,7 @@ int RunCalibrate(const CalibrateCliOptions& cli, std::ostream& out, std::ostream
   if (!result.ok()) return ReportError(err, "calibrate", (in_file(result.status())).AsFailure());
   const CalibrationInputs inputs{cli.robot, cli.measurements, options, CurrentUtcTimestamp()};
   if (Status s = SaveCalibratedRobot(cli.out, *result, inputs); !s.ok()) {
-    return ReportError(err, "calibrate", s.AsFailure());
+    return ReportError(err, "calibrate", s);
   }
 
   if (cli.json) {

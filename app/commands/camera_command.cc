@@ -110,7 +110,7 @@ int RunCameraConvert(const CameraConvertOptions& options, std::ostream& out, std
   if (*format == CameraFileFormat::kRos && !IsRosCameraName(options.camera_name)) {
     return ReportError(err, "camera convert",
                        Status::BadInput("--camera-name: " + Excerpt(options.camera_name) +
-                                     " is not a ROS camera name: letters, digits and '_' only"));
+                                        " is not a ROS camera name: letters, digits and '_' only"));
   }
   if (Status s = CheckOutputFree(options.out, options.force); !s.ok()) return ReportError(err, "camera convert", s);
   StatusOr<Camera> camera = LoadCamera(options.camera);

@@ -46,7 +46,7 @@ int RunCandidates(const CandidatesCliOptions& cli, std::ostream& out, std::ostre
     rows.push_back(row);
   }
   if (Status s = WriteCsv(cli.out, {"x", "y", "z", "q1", "q2", "q3"}, rows); !s.ok()) {
-    return ReportError(err, "candidates", s.AsFailure());
+    return ReportError(err, "candidates", s);
   }
   if (cli.json) {
     nlohmann::json j = {{"count", set->poses.size()}, {"kind", cli.kind}, {"out", cli.out}, {"draws", set->draws}};

@@ -22,8 +22,9 @@ int ExitCodeFor(const Status& status) {
       return kExitBadInput;
     case StatusKind::kFailed:
     case StatusKind::kCancelled:
-    case StatusKind::kIo:
       return kExitFailure;
+    case StatusKind::kIo:
+      return kExitIo;
     case StatusKind::kBusy:
       return kExitBusy;
   }
@@ -109,7 +110,7 @@ StatusOr<std::vector<double>> ParseNumberList(const std::string& text, int count
   }
   if (static_cast<int>(values.size()) != count) {
     return Status::BadInput(what + ": expected " + std::to_string(count) + " comma-separated numbers, got " +
-                         std::to_string(values.size()));
+                            std::to_string(values.size()));
   }
   return values;
 }

@@ -133,7 +133,8 @@ Status CheckImageInSession(const SessionPaths& paths, const std::string& image) 
   const std::filesystem::path path = std::filesystem::path(paths.images) / image;
   std::error_code error;
   if (!std::filesystem::exists(std::filesystem::symlink_status(path, error)))
-    return Status::BadInput(paths.images + "/" + Excerpt(image) + ": no such image; put it there first, or give --from");
+    return Status::BadInput(paths.images + "/" + Excerpt(image) +
+                            ": no such image; put it there first, or give --from");
   return CheckFileForReading(path.string(), kMaxImageBytes);
 }
 
@@ -157,10 +158,10 @@ Status CheckTypedLegs(const std::string& dir, const std::vector<double>& legs) {
     const double slack = kFarOutsideStrokes * (leg.stroke_max - leg.stroke_min);
     if (readings[i] >= leg.stroke_min - slack && readings[i] <= leg.stroke_max + slack) continue;
     return Status::BadInput("--legs: L" + std::to_string(i + 1) + " = " + FormatNumber(readings[i]) + unit +
-                         " is outside [" + FormatNumber(leg.stroke_min - slack) + ", " +
-                         FormatNumber(leg.stroke_max + slack) + "]" + unit + ", leg " + std::to_string(i + 1) +
-                         "'s stroke [" + FormatNumber(leg.stroke_min) + ", " + FormatNumber(leg.stroke_max) + "]" +
-                         unit + " give or take a stroke length; not saved (a typo?)");
+                            " is outside [" + FormatNumber(leg.stroke_min - slack) + ", " +
+                            FormatNumber(leg.stroke_max + slack) + "]" + unit + ", leg " + std::to_string(i + 1) +
+                            "'s stroke [" + FormatNumber(leg.stroke_min) + ", " + FormatNumber(leg.stroke_max) + "]" +
+                            unit + " give or take a stroke length; not saved (a typo?)");
   }
   return Status::Ok();
 }
@@ -178,8 +179,8 @@ int RunSessionRecord(const SessionRecordOptions& cli, std::ostream& out, std::os
   if (config->instrument == Instrument::kPoints)
     return ReportError(err, "session record",
                        Status::BadInput(cli.dir + " is a points session: its legs.csv rows are poses " +
-                                     "(pose,L1..L6,holdout), not images; write them there or in the GUI's readings "
-                                     "table (Measure step)"));
+                                        "(pose,L1..L6,holdout), not images; write them there or in the GUI's readings "
+                                        "table (Measure step)"));
   if (Status s = CheckTypedLegs(cli.dir, *legs); !s.ok()) return ReportError(err, "session record", s);
   if (cli.from.empty())
     if (Status s = CheckImageInSession(paths, cli.image); !s.ok()) return ReportError(err, "session record", s);
@@ -245,11 +246,12 @@ int RunCheckNoise(const CheckNoiseOptions& cli, std::ostream& out, std::ostream&
   const bool points = config->instrument == Instrument::kPoints;
   const std::string& input = points ? cli.points : cli.images;
   if (input.empty() || !(points ? cli.images : cli.points).empty())
-    return ReportError(err, "session check-noise",
-                       Status::BadInput(points ? "a points session's repeatability takes --points FILE (k point sets of "
-                                              "one pose)"
-                                            : "a camera session's repeatability takes --images FOLDER (k images of "
-                                              "one pose)"));
+    return ReportError(
+        err, "session check-noise",
+        Status::BadInput(points ? "a points session's repeatability takes --points FILE (k point sets of "
+                                  "one pose)"
+                                : "a camera session's repeatability takes --images FOLDER (k images of "
+                                  "one pose)"));
   TerminalJob job("", cli.json ? &err : &out);
   StatusOr<workflow::NoiseCheck> check = workflow::CheckSessionNoise(
       {cli.dir, input, cli.wait ? LockWait::kForever : LockWait::kNo}, job.hooks());

@@ -82,7 +82,7 @@ int RunSimCamera(const SimCameraOptions& options, std::ostream& out, std::ostrea
 int RunSimCamera(const SimCameraOptions&, std::ostream&, std::ostream& err) {
   return ReportError(err, "sim-camera",
                      Status::BadInput("this hexcal was built without Aravis (install libaravis-dev: "
-                                   "scripts/install-deps.sh)"));
+                                      "scripts/install-deps.sh)"));
 }
 #endif
 
