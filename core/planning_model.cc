@@ -250,7 +250,7 @@ StatusOr<PlanSettings> ParsePlanSettings(const std::string& text, const std::str
 
 StatusOr<PlanSettings> LoadPlanSettings(const std::string& path, const Robot& robot) {
   StatusOr<std::string> text = ReadFileToString(path);
-  if (!text.ok()) return Status::BadInput("plan settings: " + text.status().message());
+  if (!text.ok()) return text.status().Prefixed("plan settings: ");
   return ParsePlanSettings(*text, path, robot);
 }
 

@@ -69,6 +69,15 @@ class Status {
     return prefixed;
   }
 
+  // The same error, `hint` after its message when it is bad input (the hint
+  // says what to change: "(a camera file, or the built-in name ...)"); any
+  // other tier is returned as it is, since the hint would not fix it.
+  Status WithHint(const std::string& hint) const {
+    Status hinted = *this;
+    if (kind_ == StatusKind::kBadInput) hinted.message_ += hint;
+    return hinted;
+  }
+
   // The same error as a failed computation: for a step whose input was
   // accepted but whose work did not succeed (a cancel stays a cancel).
   Status AsFailure() const {

@@ -312,8 +312,7 @@ StatusOr<Camera> LoadCamera(const std::string& path_or_name) {
   if (path_or_name == kSimulatedCameraName && !std::filesystem::exists(path_or_name, error)) return SimulatedCamera();
   StatusOr<std::string> text = ReadFileToString(path_or_name);
   if (!text.ok()) {
-    return Status::BadInput(text.status().message() + " (a camera file, or the built-in name " +
-                            std::string(kSimulatedCameraName) + ")");
+    return text.status().WithHint(" (a camera file, or the built-in name " + std::string(kSimulatedCameraName) + ")");
   }
   return ParseCameraFile(*text, path_or_name);
 }

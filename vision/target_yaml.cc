@@ -292,8 +292,7 @@ StatusOr<Target> LoadTarget(const std::string& path_or_name) {
   if (path_or_name == kDefaultTargetName && !std::filesystem::exists(path_or_name, error)) return DefaultTarget();
   StatusOr<std::string> text = ReadFileToString(path_or_name);
   if (!text.ok()) {
-    return Status::BadInput(text.status().message() + " (a target file, or the built-in name " +
-                            std::string(kDefaultTargetName) + ")");
+    return text.status().WithHint(" (a target file, or the built-in name " + std::string(kDefaultTargetName) + ")");
   }
   return ParseTargetYaml(*text, path_or_name);
 }

@@ -20,7 +20,7 @@ constexpr size_t kQuotedOutputChars = 300;
 // Runs argv to its end: the exit status and the output's last kMaxOutputBytes.
 Status RunCapturing(const std::vector<std::string>& argv, int* exit_status, std::string* output) {
   StatusOr<ChildProcess> child = SpawnWithOutputSocket(argv, /*discard_stderr=*/false);
-  if (!child.ok()) return Status::BadInput(child.status().message() + "; is LinuxCNC installed (linuxcnc-uspace)?");
+  if (!child.ok()) return child.status().WithHint("; is LinuxCNC installed (linuxcnc-uspace)?");
   char buffer[4096];
   for (ssize_t got; (got = read(child->fd, buffer, sizeof buffer)) > 0;) {
     output->append(buffer, static_cast<size_t>(got));

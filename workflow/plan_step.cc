@@ -71,7 +71,7 @@ StatusOr<std::vector<Vector6d>> InitialPoses(const PlanningModel& model, const s
   std::vector<Vector6d> poses;
   if (!kind) {
     StatusOr<std::vector<Vector6d>> file = LoadPoses(init);
-    if (!file.ok()) return Status::BadInput("--init: " + file.status().message());
+    if (!file.ok()) return file.status().Prefixed("--init: ");
     poses = *file;
     if (static_cast<int>(poses.size()) != count) {
       return Status::BadInput("--init: '" + init + "' has " + std::to_string(poses.size()) + " poses, --poses is " +

@@ -83,7 +83,7 @@ StatusOr<CsvTable> ReadLegsTable(const std::string& path, const std::string& key
   if (!fs::exists(fs::symlink_status(path, error)))
     return CsvTable{path, {key, "L1", "L2", "L3", "L4", "L5", "L6", "holdout"}, {}, {}};
   StatusOr<CsvTable> table = ReadCsv(path);
-  if (!table.ok()) return Status::BadInput(table.status().message() + " (fix legs.csv before recording more readings)");
+  if (!table.ok()) return table.status().WithHint(" (fix legs.csv before recording more readings)");
   std::vector<std::string> columns = {key};
   for (int i = 1; i <= kNumLegs; ++i) columns.push_back("L" + std::to_string(i));
   for (const std::string& column : columns)

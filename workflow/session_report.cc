@@ -237,7 +237,7 @@ std::string CameraFrameSection(const CalibrationReport& report) {
 StatusOr<std::string> SessionReportHtml(const std::string& dir) {
   const SessionPaths paths(dir);
   StatusOr<SessionResults> loaded = LoadSessionResults(dir);
-  if (!loaded.ok()) return Status::BadInput(loaded.status().message() + " (run hexcal calibrate --session first)");
+  if (!loaded.ok()) return loaded.status().WithHint(" (run hexcal calibrate --session first)");
   const CalibrationReport& report = loaded->report;
   const std::string unit = report.length_unit;
   std::string html =
