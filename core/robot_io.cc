@@ -360,7 +360,9 @@ StatusOr<Robot> LoadRobot(const std::string& path_or_preset) {
       const std::string& message = text.status().message();
       const std::string prefix = path_or_preset + ": ";
       const size_t skip = message.rfind(prefix, 0) == 0 ? prefix.size() : 0;
-      return Status::BadInput("robot file '" + path_or_preset + "': " + message.substr(skip));
+      const std::string reworded = "robot file '" + path_or_preset + "': " + message.substr(skip);
+      // A read that failed stays I/O (core/status.h); the rest is the path's fault.
+      return text.status().kind() == StatusKind::kIo ? Status::IoError(reworded) : Status::BadInput(reworded);
     }
     return ParseRobotYaml(*text, path_or_preset);
   }

@@ -43,7 +43,7 @@ R="--robot inria-left-hand"
 # The words of an exit_table line, its placeholders filled in.
 words() {
   local line=$1
-  line=${line//ROBOT/$R} line=${line//POSES/$POSES} line=${line//MEM//proc/self/mem}
+  line=${line//ROBOT/$R} line=${line//POSES/$POSES} line=${line//MEM//proc/self/mem} line=${line//DATA/$data}
   # shellcheck disable=SC2086
   echo ${line//IMAGE/$data/bad_inputs/image_no_target.png}
 }
@@ -233,10 +233,10 @@ exit_table)
   # | a failed computation (exit 1), where the command computes something
   # that can fail from valid input. The I/O faults: a file that opens but
   # whose read fails (/proc/self/mem: EIO at address 0), named directly or as
-  # a session's session.yaml (session io); an output under /sys (EACCES or
-  # EPERM, for root too).
+  # a session's session.yaml and results/manifest.json (session io); an
+  # output under /sys (EACCES or EPERM, for root too).
   "$hexcal" session init s $R --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 >/dev/null || exit 1
-  mkdir io && ln -s /proc/self/mem io/session.yaml
+  mkdir -p io/results && ln -s /proc/self/mem io/session.yaml && ln -s /proc/self/mem io/results/manifest.json
   printf 'x,y,z,q1,q2,q3,L1,L2,L3,L4,L5,L6\n0,0,45,0,0,0,3.4,0,3.4,0,3.4,0\n' >far.csv
   commands=$(cat <<'EOF'
 robot check | robot check ./missing.yaml | robot check MEM |
@@ -247,7 +247,7 @@ candidates | candidates ROBOT --count 0 --out c.csv | candidates ROBOT --count 5
 indices | indices ROBOT --poses missing.csv | indices ROBOT --poses MEM |
 demo | demo --poses 5 --out d | demo --poses 8 --out /sys/d |
 plan | plan ROBOT --poses 6 --out p.csv | plan ROBOT --settings MEM --out p.csv |
-calibrate | calibrate ROBOT --measurements missing.csv --out cal.yaml | calibrate ROBOT --measurements MEM --out cal.yaml |
+calibrate | calibrate ROBOT --measurements missing.csv --out cal.yaml | calibrate ROBOT --measurements MEM --out cal.yaml | calibrate ROBOT --measurements DATA/bad_inputs/measurements_singular_poses.csv --out cal.yaml
 validate | validate ROBOT --measurements missing.csv | validate ROBOT --measurements MEM | validate ROBOT --measurements far.csv
 simulate | simulate ROBOT --runs 0 | simulate --robot MEM --runs 1 |
 study | study --session missing | study --session io |
@@ -261,7 +261,7 @@ session init | session init s2 --robot missing.yaml --camera sim-4.2mm-1024x768 
 session status | session status missing | session status io |
 session record | session record s --image a.png --legs 0x10,1,1,1,1,1 | session record io --image a.png --legs 1,1,1,1,1,1 |
 report | report --session missing --out r.html | report --session io --out r.html |
-acquire | acquire --session missing --controller sim --camera sim | acquire --session io --controller sim --camera sim |
+acquire | acquire --session missing --controller sim --camera sim | acquire --session io --poses POSES --controller sim --camera sim |
 verify | verify --session missing --controller sim --camera sim --poses POSES | verify --session io --controller sim --camera sim --poses POSES |
 sim-camera | sim-camera --session missing --machine-robot missing.yaml | sim-camera --session io --machine-robot MEM |
 export | export --robot missing.yaml --out x.hal | export --robot MEM --out x.hal |
