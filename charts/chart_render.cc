@@ -207,7 +207,7 @@ Status CheckChartFilesFree(const std::string& directory, const std::vector<std::
 Status CreatePlotsFolder(const std::string& directory) {
   std::error_code error;
   std::filesystem::create_directories(directory, error);
-  if (error) return Status::IoError(directory + ": cannot create the plots folder: " + error.message());
+  if (error) return FileSystemError(directory, "cannot create the plots folder", error.value());
   return Status::Ok();
 }
 

@@ -15,15 +15,6 @@
 namespace hexcal {
 namespace {
 
-Status ErrnoError(const std::string& path, const std::string& what, int error_number) {
-  return Status::Error(path + ": " + what + ": " + std::strerror(error_number));
-}
-
-// A write that the disk refused: an I/O error, not bad input.
-Status WriteErrnoError(const std::string& path, const std::string& what, int error_number) {
-  return Status::IoError(path + ": " + what + ": " + std::strerror(error_number));
-}
-
 // The umask cannot be read without setting it (umask(2)), which would race with
 // other threads creating files; Linux publishes it in /proc/self/status.
 mode_t ProcessUmask() {
@@ -64,12 +55,12 @@ bool WriteAll(int fd, const std::string& contents) {
 // and say so with EINVAL; the data is still written, so that is not a failure.
 Status SyncDirectory(const std::string& path, const std::string& dir) {
   const int dir_fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dir_fd < 0) return WriteErrnoError(path, "cannot open folder '" + dir + "' to sync it", errno);
+  if (dir_fd < 0) return FileSystemError(path, "cannot open folder '" + dir + "' to sync it", errno);
   const int result = ::fsync(dir_fd);
   const int sync_errno = errno;
   ::close(dir_fd);
   if (result != 0 && sync_errno != EINVAL) {
-    return WriteErrnoError(path, "cannot sync folder '" + dir + "'", sync_errno);
+    return FileSystemError(path, "cannot sync folder '" + dir + "'", sync_errno);
   }
   return Status::Ok();
 }
@@ -109,14 +100,14 @@ std::string MiBText(size_t bytes) {
 }
 
 Status TooLarge(const std::string& path, size_t bytes, size_t max_bytes) {
-  return Status::Error(path + ": " + MiBText(bytes) + " is over the " + MiBText(max_bytes) +
-                       " limit for this kind of file");
+  return Status::BadInput(path + ": " + MiBText(bytes) + " is over the " + MiBText(max_bytes) +
+                          " limit for this kind of file");
 }
 
 Status CheckReadableFile(const std::string& path, const struct stat& info, size_t max_bytes) {
-  if (S_ISDIR(info.st_mode)) return Status::Error(path + ": is a directory, not a file");
+  if (S_ISDIR(info.st_mode)) return Status::BadInput(path + ": is a directory, not a file");
   if (!S_ISREG(info.st_mode)) {
-    return Status::Error(path + ": not a regular file (" + FileTypeName(info.st_mode) + ")");
+    return Status::BadInput(path + ": not a regular file (" + FileTypeName(info.st_mode) + ")");
   }
   if (static_cast<uint64_t>(info.st_size) > max_bytes) {
     return TooLarge(path, static_cast<size_t>(info.st_size), max_bytes);
@@ -129,10 +120,10 @@ Status CheckReadableFile(const std::string& path, const struct stat& info, size_
 Status OpenError(const std::string& path, int error_number) {
   struct stat link;
   if (error_number == ENOENT && ::lstat(path.c_str(), &link) == 0 && S_ISLNK(link.st_mode))
-    return Status::Error(path + ": a symbolic link to a missing file");
-  if (error_number == ENOENT) return Status::Error(path + ": no such file");
-  if (error_number == ELOOP) return Status::Error(path + ": a loop of symbolic links");
-  return ErrnoError(path, "cannot open", error_number);
+    return Status::BadInput(path + ": a symbolic link to a missing file");
+  if (error_number == ENOENT) return Status::BadInput(path + ": no such file");
+  if (error_number == ELOOP) return Status::BadInput(path + ": a loop of symbolic links");
+  return FileSystemError(path, "cannot open", error_number);
 }
 
 // Reads to the end, but never more than max_bytes: the file may grow while read.
@@ -143,7 +134,7 @@ StatusOr<std::string> ReadAll(int fd, const std::string& path, size_t max_bytes)
     const ssize_t n = ::read(fd, buffer, sizeof(buffer));
     if (n < 0) {
       if (errno == EINTR) continue;
-      return ErrnoError(path, "read failed", errno);
+      return FileSystemError(path, "read failed", errno);
     }
     if (n == 0) return contents;
     contents.append(buffer, static_cast<size_t>(n));
@@ -157,7 +148,7 @@ Status WriteFileAtomically(const std::string& path, const std::string& contents)
   const std::filesystem::path target(path);
   const std::string basename = target.filename().string();
   if (basename.empty() || basename == "." || basename == "..") {
-    return Status::Error(path + ": not a file name");
+    return Status::BadInput(path + ": not a file name");
   }
   const std::string dir = target.has_parent_path() ? target.parent_path().string() : ".";
   std::string temp_path = dir + "/." + basename + ".tmp.XXXXXX";
@@ -165,14 +156,14 @@ Status WriteFileAtomically(const std::string& path, const std::string& contents)
   temp_name.push_back('\0');
 
   const int fd = ::mkstemp(temp_name.data());
-  if (fd < 0) return WriteErrnoError(path, "cannot create a temporary file in '" + dir + "'", errno);
+  if (fd < 0) return FileSystemError(path, "cannot create a temporary file in '" + dir + "'", errno);
   temp_path = temp_name.data();
 
   // Every failure below removes the temp file and reports the first error.
   auto fail = [&](const std::string& what, int error_number, bool close_fd) {
     if (close_fd) ::close(fd);
     ::unlink(temp_path.c_str());
-    return WriteErrnoError(path, what, error_number);
+    return FileSystemError(path, what, error_number);
   };
   if (::fchmod(fd, ModeForTarget(path)) != 0) return fail("cannot set permissions", errno, true);
   if (!WriteAll(fd, contents)) return fail("write failed", errno, true);
@@ -190,11 +181,23 @@ Status CreateFolders(const std::string& path) {
   if (std::filesystem::is_directory(path, error)) return Status::Ok();
   std::filesystem::create_directories(path, error);
   if (!error && std::filesystem::is_directory(path, error)) return Status::Ok();
-  const std::string reason = error ? error.message() : std::string("a file of that name is in the way");
-  const int code = error ? error.value() : 0;
-  const std::string message = path + ": cannot create the folder: " + reason;
-  const bool disk_refused = code == ENOSPC || code == EDQUOT || code == EIO || code == EROFS;
-  return disk_refused ? Status::IoError(message) : Status::Error(message);
+  if (!error) return Status::BadInput(path + ": cannot create the folder: a file of that name is in the way");
+  return FileSystemError(path, "cannot create the folder", error.value());
+}
+
+Status FileSystemError(const std::string& path, const std::string& what, int error_number) {
+  const std::string message = path + ": " + what + ": " + std::strerror(error_number);
+  switch (error_number) {
+    case ENOENT:
+    case ENOTDIR:
+    case EISDIR:
+    case ENAMETOOLONG:
+    case ELOOP:
+    case EEXIST:
+      return Status::BadInput(message);
+    default:
+      return Status::IoError(message);
+  }
 }
 
 Status CheckOutputFree(const std::string& path, bool force) {
@@ -202,15 +205,15 @@ Status CheckOutputFree(const std::string& path, bool force) {
   // stat follows links: the rename would replace a link to /dev/sda or to a
   // pipe (/dev/stdout) with a file, which is no more what was meant.
   if (path.empty() || ::stat(path.c_str(), &info) != 0) return Status::Ok();
-  if (S_ISDIR(info.st_mode)) return Status::Error(path + ": is a directory, not a file");
+  if (S_ISDIR(info.st_mode)) return Status::BadInput(path + ": is a directory, not a file");
   // --force or not: the rename would put a file where a device node, a FIFO
   // or a socket was (as root, over /dev/null too).
   if (!S_ISREG(info.st_mode)) {
-    return Status::Error(path + ": not a regular file (" + FileTypeName(info.st_mode) +
-                         "); hexcal replaces only files");
+    return Status::BadInput(path + ": not a regular file (" + FileTypeName(info.st_mode) +
+                            "); hexcal replaces only files");
   }
   if (force) return Status::Ok();
-  return Status::Error(path + ": exists; use --force to overwrite it");
+  return Status::BadInput(path + ": exists; use --force to overwrite it");
 }
 
 StatusOr<int> OpenFileForReading(const std::string& path, size_t max_bytes) {
@@ -222,7 +225,7 @@ StatusOr<int> OpenFileForReading(const std::string& path, size_t max_bytes) {
   if (::fstat(fd, &info) != 0) {
     const int stat_errno = errno;
     ::close(fd);
-    return ErrnoError(path, "cannot access", stat_errno);
+    return FileSystemError(path, "cannot access", stat_errno);
   }
   if (Status s = CheckReadableFile(path, info, max_bytes); !s.ok()) {
     ::close(fd);

@@ -44,11 +44,18 @@ constexpr size_t kMaxImageBytes = 512 * kMiB;  // PNG, JPEG, TIFF
 Status CheckOutputFree(const std::string& path, bool force);
 
 // Creates the folder `path` and its missing parents, with one message and one
-// kind of error in every command (issue 36: exit 1 in some, 2 in others): a
-// path that cannot be a folder (a file in the way, no permission, a name too
-// long) is bad input; a disk that refuses (full, read-only, an I/O error) is
-// an I/O error. "PATH: cannot create the folder: Not a directory".
+// kind of error in every command (issue 36: exit 1 in some, 2 in others),
+// sorted by FileSystemError: a path that cannot be a folder (a file in the
+// way, a name too long) is bad input; a system that refuses (no permission,
+// a full or read-only disk, an I/O error) is an I/O error.
+// "PATH: cannot create the folder: Not a directory".
 Status CreateFolders(const std::string& path);
+
+// "PATH: WHAT: strerror" as the tier that errno says (core/status.h): a path
+// that names the wrong thing (ENOENT, ENOTDIR, EISDIR, ENAMETOOLONG, ELOOP,
+// EEXIST) is bad input, anything else the system refused (EACCES, EROFS,
+// ENOSPC, EIO, ...) an I/O error. The one rule for a failed file operation.
+Status FileSystemError(const std::string& path, const std::string& what, int error_number);
 
 // The whole file as bytes. Errors: missing file, a dangling symbolic link, a
 // directory, not a regular file (a FIFO, a device, a socket: refused at once,

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <filesystem>
 #include <string>
@@ -159,6 +160,7 @@ TEST(AtomicFileTest, ReadingAnUnreadableFileSaysSo) {
   StatusOr<std::string> read = ReadFileToString(path);
   ASSERT_FALSE(read.ok());
   EXPECT_THAT(read.status().message(), HasSubstr(path + ": cannot open"));
+  EXPECT_EQ(read.status().kind(), StatusKind::kIo);  // the path is right; the system refused
 }
 
 // Bounded input (issue 13): a FIFO with no writer would block open(2) and
@@ -204,6 +206,35 @@ TEST(AtomicFileTest, CreateFoldersNamesAFileInTheWayAsBadInput) {
   EXPECT_EQ(under_a_file.kind(), StatusKind::kBadInput);
   EXPECT_EQ(under_a_file.message(), dir.File("file/sub") + ": cannot create the folder: Not a directory");
   EXPECT_EQ(CreateFolders(dir.File("file")).kind(), StatusKind::kBadInput);
+}
+
+// Issue 37: the tier of a failed file operation says what to fix. A path
+// that names the wrong thing is bad input; a refusal of the system is I/O.
+TEST(AtomicFileTest, FileSystemErrorSortsErrnoIntoBadInputAndIo) {
+  for (int path_problem : {ENOENT, ENOTDIR, EISDIR, ENAMETOOLONG, ELOOP, EEXIST})
+    EXPECT_EQ(FileSystemError("p", "cannot open", path_problem).kind(), StatusKind::kBadInput) << path_problem;
+  for (int refusal : {EACCES, EPERM, EROFS, ENOSPC, EDQUOT, EIO})
+    EXPECT_EQ(FileSystemError("p", "cannot open", refusal).kind(), StatusKind::kIo) << refusal;
+  EXPECT_EQ(FileSystemError("p", "cannot open", EIO).message(), "p: cannot open: Input/output error");
+}
+
+TEST(AtomicFileTest, AReadThatFailsIsAnIoError) {
+  // /proc/self/mem opens as a regular file of size 0, and reading address 0 fails with EIO.
+  StatusOr<std::string> read = ReadFileToString("/proc/self/mem");
+  ASSERT_FALSE(read.ok());
+  EXPECT_EQ(read.status().kind(), StatusKind::kIo);
+  EXPECT_EQ(read.status().message(), "/proc/self/mem: read failed: Input/output error");
+}
+
+TEST(AtomicFileTest, AWriteTheSystemRefusesIsAnIoErrorAndAMissingFolderBadInput) {
+  // sysfs refuses a new file, to root too (EACCES); a CI runner's user as well.
+  const Status refused = WriteFileAtomically("/sys/hexcal-test.csv", "x");
+  EXPECT_EQ(refused.kind(), StatusKind::kIo) << refused.message();
+  EXPECT_EQ(CreateFolders("/sys/hexcal-test").kind(), StatusKind::kIo);
+  TempDir dir;
+  const Status no_folder = WriteFileAtomically(dir.File("missing/out.csv"), "x");
+  EXPECT_EQ(no_folder.kind(), StatusKind::kBadInput) << no_folder.message();
+  EXPECT_THAT(no_folder.message(), HasSubstr("No such file or directory"));
 }
 
 TEST(AtomicFileTest, ReadingAFileOverItsSizeCapIsRefused) {

@@ -94,10 +94,10 @@ Status CheckReadingsInStroke(const Robot& nominal, const std::vector<Measurement
       const double reading = measurements[j].legs[i];
       if (reading >= leg.stroke_min - span && reading <= leg.stroke_max + span) continue;
       const char* unit = LengthUnitName(nominal.length_unit);
-      return Status::Error("measurement " + std::to_string(j + 1) + ": L" + std::to_string(i + 1) + " = " +
-                           FormatNumber(reading) + " is far outside the stroke [" + FormatNumber(leg.stroke_min) +
-                           ", " + FormatNumber(leg.stroke_max) + "] " + unit + " of robot '" + nominal.name +
-                           "'; are the readings in " + unit + "?");
+      return Status::BadInput("measurement " + std::to_string(j + 1) + ": L" + std::to_string(i + 1) + " = " +
+                              FormatNumber(reading) + " is far outside the stroke [" + FormatNumber(leg.stroke_min) +
+                              ", " + FormatNumber(leg.stroke_max) + "] " + unit + " of robot '" + nominal.name +
+                              "'; are the readings in " + unit + "?");
     }
   }
   return Status::Ok();
@@ -108,17 +108,17 @@ Status CheckReadingsInStroke(const Robot& nominal, const std::vector<Measurement
 Status CheckCalibrationInput(const Robot& nominal, const std::vector<Measurement>& measurements,
                              const CalibrationOptions& options) {
   std::string error;
-  if (!options.IsValid(&error)) return Status::Error("calibration options: " + error);
+  if (!options.IsValid(&error)) return Status::BadInput("calibration options: " + error);
   if (!ParametersOf(nominal).allFinite()) {
-    return Status::Error("robot '" + nominal.name + "': kinematic parameters are not finite");
+    return Status::BadInput("robot '" + nominal.name + "': kinematic parameters are not finite");
   }
   if (measurements.size() < static_cast<size_t>(kParamsPerLeg)) {
-    return Status::Error("calibration needs at least 7 measurements (7 parameters per leg), got " +
-                         std::to_string(measurements.size()));
+    return Status::BadInput("calibration needs at least 7 measurements (7 parameters per leg), got " +
+                            std::to_string(measurements.size()));
   }
   for (size_t j = 0; j < measurements.size(); ++j) {
     if (!measurements[j].pose.allFinite() || !measurements[j].legs.allFinite()) {
-      return Status::Error("measurement " + std::to_string(j + 1) + ": pose or leg readings are not finite");
+      return Status::BadInput("measurement " + std::to_string(j + 1) + ": pose or leg readings are not finite");
     }
   }
   return CheckReadingsInStroke(nominal, measurements);

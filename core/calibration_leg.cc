@@ -23,9 +23,9 @@ StatusOr<LegData> MakeLegData(const Robot& nominal, int leg, const std::vector<M
       weight = m.pose_covariance ? ResidualStdDev(nominal, leg, m.pose, m.legs[leg], options.noise, *m.pose_covariance)
                                  : ResidualStdDev(nominal, leg, m.pose, m.legs[leg], options.noise);
       if (!(weight > 0) || !std::isfinite(weight)) {
-        return Status::Error("measurement " + std::to_string(j + 1) + ", " + LegLabel(leg) +
-                             ": the noise model gives this residual no spread (standard deviation " +
-                             std::to_string(weight) + "); weighting needs non-zero noise levels");
+        return Status::BadInput("measurement " + std::to_string(j + 1) + ", " + LegLabel(leg) +
+                                ": the noise model gives this residual no spread (standard deviation " +
+                                std::to_string(weight) + "); weighting needs non-zero noise levels");
       }
     }
     data.weights.push_back(weight);
@@ -78,7 +78,7 @@ Status CheckRank(int leg, const LegData& data, const LegParameters& parameters, 
           << " (sigma_min/sigma_max = " << sigma[kParamsPerLeg - 1] / sigma[0] << " < " << options.rank_tolerance
           << "); the poses are repeated or too alike (e.g. one orientation) to identify a, b and l; "
              "measure poses that differ in position and orientation";
-  return Status::Error(message.str());
+  return Status::BadInput(message.str());
 }
 
 namespace {
@@ -154,8 +154,8 @@ Status FillUncertainty(int leg, const LegData& data, const CalibrationOptions& o
   ceres::Covariance covariance(covariance_options);
   const std::vector<std::pair<const double*, const double*>> blocks = {{parameters, parameters}};
   if (!covariance.Compute(blocks, problem)) {
-    return Status::Error("degenerate pose set: " + LegLabel(leg) +
-                         "'s parameters have no finite covariance at the solution (rank-deficient Jacobian)");
+    return Status::Failed("degenerate pose set: " + LegLabel(leg) +
+                          "'s parameters have no finite covariance at the solution (rank-deficient Jacobian)");
   }
   Eigen::Matrix<double, kParamsPerLeg, kParamsPerLeg, Eigen::RowMajor> block;
   covariance.GetCovarianceBlock(parameters, parameters, block.data());
@@ -181,7 +181,7 @@ Status NotConverged(int leg, const LegCalibration& result) {
   std::ostringstream message;
   message << LegLabel(leg) << ": the calibration did not converge (" << result.termination << " after "
           << result.iterations << " iterations: " << result.solver_message << ")";
-  return Status::Error(message.str());
+  return Status::Failed(message.str());
 }
 
 bool Converged(const LegCalibration& result) { return result.termination == "CONVERGENCE"; }

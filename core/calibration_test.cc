@@ -290,8 +290,11 @@ TEST(Calibration, AnUnfinishedSolveIsAnError) {
   const Robot truth = PerturbedRobot(nominal, 0.5);
   CalibrationOptions options;
   options.max_iterations = 1;
-  EXPECT_THAT(CalibrateError(nominal, Measure(truth, RandomFeasiblePoses(nominal, 12, 4)), options),
+  const std::vector<Measurement> measurements = Measure(truth, RandomFeasiblePoses(nominal, 12, 4));
+  EXPECT_THAT(CalibrateError(nominal, measurements, options),
               HasSubstr("did not converge (NO_CONVERGENCE after 1 iterations"));
+  // A failed computation, not bad input (issue 37): the input was accepted.
+  EXPECT_EQ(Calibrate(nominal, measurements, options).status().kind(), StatusKind::kFailed);
 }
 
 TEST(Calibration, CancelledBeforeOrDuringTheSolveReturnsCancelled) {

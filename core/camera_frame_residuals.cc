@@ -91,7 +91,7 @@ StatusOr<CameraFrameResiduals> ComputeCameraFrameResiduals(const Robot& calibrat
                                                            const std::vector<LegReadings>& legs,
                                                            const std::vector<int>& left_out) {
   if (legs.size() != camera_from_target.size())
-    return Status::Error("camera-frame residuals: camera poses and readings differ in number");
+    return Status::BadInput("camera-frame residuals: camera poses and readings differ in number");
   const Pose camera_from_base = Inverse(registration.base_from_camera);
   CameraFrameResiduals result;
   std::array<std::vector<double>, 3> delta, position;
@@ -112,12 +112,12 @@ StatusOr<CameraFrameResiduals> ComputeCameraFrameResiduals(const Robot& calibrat
   }
   result.images = static_cast<int>(delta[2].size());
   if (result.images < 3)
-    return Status::Error("camera-frame residuals: " + std::to_string(result.images) +
-                         " images with a converged FK, at least 3 needed");
+    return Status::Failed("camera-frame residuals: " + std::to_string(result.images) +
+                          " images with a converged FK, at least 3 needed");
   for (int a = 0; a < 3; ++a)
     if (!Varies(position[a]))
-      return Status::Error("camera-frame residuals: the platform does not move along camera axis " +
-                           std::string(1, "xyz"[a]));
+      return Status::BadInput("camera-frame residuals: the platform does not move along camera axis " +
+                              std::string(1, "xyz"[a]));
   result.depth_min = *std::min_element(position[2].begin(), position[2].end());
   result.depth_max = *std::max_element(position[2].begin(), position[2].end());
   for (int a = 0; a < 3; ++a) result.axes[a] = AxisStatistics(delta[a], position[2], position[a]);

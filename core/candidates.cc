@@ -24,8 +24,8 @@ double RadicalInverse(uint64_t n, int base) {
 Status RequireCompleteBox(const Robot& robot, CandidateKind kind) {
   const std::optional<PoseBox> box = robot.limits.SamplingBox();
   if (box && box->IsComplete()) return Status::Ok();
-  return Status::Error(std::string(CandidateKindName(kind)) + " candidates of robot '" + robot.name +
-                       "' need limits.pose_box (or sampling_box) with all of x, y, z, q1, q2, q3");
+  return Status::BadInput(std::string(CandidateKindName(kind)) + " candidates of robot '" + robot.name +
+                          "' need limits.pose_box (or sampling_box) with all of x, y, z, q1, q2, q3");
 }
 
 // Draws points in the unit cube from `next_unit` and keeps the feasible ones.
@@ -127,7 +127,7 @@ LegReadings StrokeCornerReadings(const Robot& robot, int corner) {
 
 StatusOr<CandidateSet> GenerateCandidates(const Robot& robot, const CandidateOptions& options, const JobHooks& hooks) {
   std::string error;
-  if (!options.IsValid(&error)) return Status::Error(error);
+  if (!options.IsValid(&error)) return Status::BadInput(error);
   if (options.kind == CandidateKind::kBoundary) return BoundaryCandidates(robot, hooks);
   if (Status box = RequireCompleteBox(robot, options.kind); !box.ok()) return box;
 

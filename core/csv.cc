@@ -46,7 +46,7 @@ Status SplitFields(const std::string& line, std::vector<std::string>* fields) {
       ++pos;
       while (true) {
         if (pos >= line.size()) {
-          return Status::Error("field " + std::to_string(field_number) + ": quoted field has no closing quote");
+          return Status::BadInput("field " + std::to_string(field_number) + ": quoted field has no closing quote");
         }
         if (line[pos] == '"') {
           if (pos + 1 < line.size() && line[pos + 1] == '"') {
@@ -61,15 +61,15 @@ Status SplitFields(const std::string& line, std::vector<std::string>* fields) {
       }
       while (pos < line.size() && IsBlank(line[pos])) ++pos;
       if (pos < line.size() && line[pos] != ',') {
-        return Status::Error("field " + std::to_string(field_number) + ": text after the closing quote");
+        return Status::BadInput("field " + std::to_string(field_number) + ": text after the closing quote");
       }
     } else {
       const size_t comma = line.find(',', pos);
       const size_t end = comma == std::string::npos ? line.size() : comma;
       field = Trim(line.substr(pos, end - pos));
       if (field.find('"') != std::string::npos) {
-        return Status::Error("field " + std::to_string(field_number) +
-                             ": quote inside an unquoted field (quote the whole field)");
+        return Status::BadInput("field " + std::to_string(field_number) +
+                                ": quote inside an unquoted field (quote the whole field)");
       }
       pos = end;
     }
@@ -92,16 +92,17 @@ Status CheckHeader(const CsvTable& table, int line) {
   for (size_t i = 0; i < table.header.size(); ++i) {
     const std::string& name = table.header[i];
     if (name.empty()) {
-      return Status::Error(LinePrefix(table.source, line) + "header column " + std::to_string(i + 1) + " has no name");
+      return Status::BadInput(LinePrefix(table.source, line) + "header column " + std::to_string(i + 1) +
+                              " has no name");
     }
     // A file without its header line starts with data, which would otherwise
     // be reported as a duplicate or a missing column.
     if (ParseNumber(name).ok()) {
-      return Status::Error(LinePrefix(table.source, line) + "no header: column " + std::to_string(i + 1) +
-                           " is the number " + Excerpt(name) + ", and the first line must name the columns");
+      return Status::BadInput(LinePrefix(table.source, line) + "no header: column " + std::to_string(i + 1) +
+                              " is the number " + Excerpt(name) + ", and the first line must name the columns");
     }
     if (!seen.insert(name).second) {
-      return Status::Error(LinePrefix(table.source, line) + "duplicate column " + Excerpt(name) + " in header");
+      return Status::BadInput(LinePrefix(table.source, line) + "duplicate column " + Excerpt(name) + " in header");
     }
   }
   return Status::Ok();
@@ -183,7 +184,7 @@ StatusOr<std::vector<Vector6d>> LoadSixColumns(const std::string& path, const st
     columns[k] = *column;
   }
   if (table->rows.empty()) {
-    return Status::Error(path + ": no " + what + " (the file has a header but no data rows)");
+    return Status::BadInput(path + ": no " + what + " (the file has a header but no data rows)");
   }
   std::vector<Vector6d> vectors(table->rows.size());
   for (size_t row = 0; row < table->rows.size(); ++row) {
@@ -237,7 +238,7 @@ StatusOr<CsvTable> ParseCsv(const std::string& text, const std::string& source) 
     if (IsBlankOrComment(line)) continue;
 
     Status split = SplitFields(line, &fields);
-    if (!split.ok()) return Status::Error(LinePrefix(source, line_number) + split.message());
+    if (!split.ok()) return Status::BadInput(LinePrefix(source, line_number) + split.message());
     if (!have_header) {
       table.header = fields;
       have_header = true;
@@ -246,14 +247,14 @@ StatusOr<CsvTable> ParseCsv(const std::string& text, const std::string& source) 
       continue;
     }
     if (fields.size() != table.header.size()) {
-      return Status::Error(LinePrefix(source, line_number) + std::to_string(fields.size()) + " columns, header has " +
-                           std::to_string(table.header.size()));
+      return Status::BadInput(LinePrefix(source, line_number) + std::to_string(fields.size()) +
+                              " columns, header has " + std::to_string(table.header.size()));
     }
     table.rows.push_back(fields);
     table.line_numbers.push_back(line_number);
   }
   if (!have_header) {
-    return Status::Error(source + ": no header line (the file is empty or holds only comments)");
+    return Status::BadInput(source + ": no header line (the file is empty or holds only comments)");
   }
   return table;
 }
@@ -265,7 +266,7 @@ StatusOr<CsvTable> ReadCsv(const std::string& path) {
 }
 
 StatusOr<double> ParseNumber(const std::string& text) {
-  if (text.empty()) return Status::Error("expected a number, found nothing");
+  if (text.empty()) return Status::BadInput("expected a number, found nothing");
   // from_chars, unlike strtod, ignores the C locale but also refuses a '+' sign.
   size_t begin = 0;
   if (text[0] == '+' && text.size() > 1 && text[1] != '-' && text[1] != '+') begin = 1;
@@ -273,7 +274,7 @@ StatusOr<double> ParseNumber(const std::string& text) {
   const char* last = text.data() + text.size();
   const auto [end, error] = std::from_chars(text.data() + begin, last, value);
   if (error != std::errc() || end != last || !std::isfinite(value)) {
-    return Status::Error(Excerpt(text) + " is not a finite number");
+    return Status::BadInput(Excerpt(text) + " is not a finite number");
   }
   return value;
 }
@@ -284,16 +285,16 @@ StatusOr<int> ColumnIndex(const CsvTable& table, const std::string& name) {
   }
   // The header is the file's first line, which may be anything: quote its start only.
   const std::string header = Excerpt(Join(table.header, ","));
-  return Status::Error(table.source + ": missing column '" + name +
-                       "' (header: " + header.substr(1, header.size() - 2) + ")");
+  return Status::BadInput(table.source + ": missing column '" + name +
+                          "' (header: " + header.substr(1, header.size() - 2) + ")");
 }
 
 StatusOr<double> NumberAt(const CsvTable& table, size_t row, int col) {
   assert(row < table.rows.size() && col >= 0 && col < static_cast<int>(table.header.size()));
   StatusOr<double> value = ParseNumber(table.rows[row][col]);
   if (value.ok()) return value;
-  return Status::Error(LinePrefix(table.source, table.line_numbers[row]) + "column '" + table.header[col] +
-                       "': " + value.status().message());
+  return Status::BadInput(LinePrefix(table.source, table.line_numbers[row]) + "column '" + table.header[col] +
+                          "': " + value.status().message());
 }
 
 StatusOr<std::vector<Vector6d>> LoadPoses(const std::string& path) {

@@ -308,8 +308,8 @@ StatusOr<double> LongestLeg(const Robot& robot, const LegReadings& readings) {
   for (int i = 0; i < kNumLegs; ++i) {
     const double length = readings[i] + robot.legs[i].offset;
     if (!std::isfinite(length) || length <= 0) {
-      return Status::Error("forward kinematics: leg " + std::to_string(i + 1) +
-                           " has a non-positive or non-finite total length");
+      return Status::BadInput("forward kinematics: leg " + std::to_string(i + 1) +
+                              " has a non-positive or non-finite total length");
     }
     scale = std::max(scale, length);
   }

@@ -40,7 +40,7 @@ Pose ApplyIncrement(const Pose& pose, const Vector6d& increment) {
 
 StatusOr<LocalFkResult> ForwardKinematicsLocal(const Robot& robot, const LegReadings& readings, const Pose& start,
                                                const LocalFkOptions& options) {
-  if (!readings.allFinite()) return Status::Error("forward kinematics: leg readings are not finite");
+  if (!readings.allFinite()) return Status::BadInput("forward kinematics: leg readings are not finite");
   double scale = 0;
   for (int i = 0; i < kNumLegs; ++i) scale = std::max(scale, std::abs(readings[i] + robot.legs[i].offset));
   const double tolerance = options.tolerance * (1 + scale);

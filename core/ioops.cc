@@ -42,12 +42,12 @@ ObservabilityIndices PaperIndices(const Robot& robot, const std::vector<PlanEntr
 Status CheckPlanInput(const std::vector<Vector6d>& candidates, const std::vector<Vector6d>& initial,
                       const PlannerOptions& options) {
   std::string error;
-  if (!options.IsValid(&error)) return Status::Error(error);
+  if (!options.IsValid(&error)) return Status::BadInput(error);
   if (static_cast<int>(initial.size()) != options.num_poses) {
-    return Status::Error("the initial set has " + std::to_string(initial.size()) + " poses, the plan " +
-                         std::to_string(options.num_poses));
+    return Status::BadInput("the initial set has " + std::to_string(initial.size()) + " poses, the plan " +
+                            std::to_string(options.num_poses));
   }
-  if (candidates.empty()) return Status::Error("the candidate set is empty");
+  if (candidates.empty()) return Status::BadInput("the candidate set is empty");
   return Status::Ok();
 }
 
@@ -200,7 +200,7 @@ StatusOr<PlanEntry> AddFindFinite(Search& s, const AddCriteria& criteria) {
     if (criteria.secondary) ScoreInParallel(s.state, *criteria.secondary, scored, &s.secondary_scores, s.options.threads);
     pick = SelectBest(s.primary_scores, criteria.secondary ? &s.secondary_scores : nullptr, s.options.keep);
   }
-  if (pick < 0) return Status::Error("every candidate is already in the plan: the candidate set is too small");
+  if (pick < 0) return Status::BadInput("every candidate is already in the plan: the candidate set is too small");
   const int index = candidate_of(pick);
   s.in_plan[index] = 1;
   return PlanEntry{s.candidates[index], s.rows.Rows(index), index};
@@ -216,7 +216,7 @@ StatusOr<PlanEntry> AddFindContinuous(Search& s, const AddCriteria& criteria) {
   const std::vector<ContinuousResult> found =
       ContinuousAddFind(s.model, s.state, criteria.add, start_poses, 100, s.options.threads);
   if (found.empty()) {
-    return Status::Error("continuous AddFind found no feasible pose from " + std::to_string(s.starts) + " starts");
+    return Status::BadInput("continuous AddFind found no feasible pose from " + std::to_string(s.starts) + " starts");
   }
   s.primary_scores.clear();
   s.secondary_scores.clear();
@@ -227,7 +227,7 @@ StatusOr<PlanEntry> AddFindContinuous(Search& s, const AddCriteria& criteria) {
     }
   }
   const int pick = SelectBest(s.primary_scores, criteria.secondary ? &s.secondary_scores : nullptr, s.options.keep);
-  if (pick < 0) return Status::Error("continuous AddFind found no pose with a finite criterion");
+  if (pick < 0) return Status::Failed("continuous AddFind found no pose with a finite criterion");
   return PlanEntry{found[pick].pose, s.model.Rows(found[pick].pose), s.next_new_id--};
 }
 
@@ -366,11 +366,11 @@ StatusOr<PlanResult> PlanPoses(const PlanningModel& model, const std::vector<Vec
   const auto start_time = std::chrono::steady_clock::now();
   if (Status s = CheckPlanInput(candidates, initial, options); !s.ok()) return s;
   if (candidate_rows && !options.continuous && candidate_rows->size() != static_cast<int>(candidates.size())) {
-    return Status::Error("the candidate rows do not match the candidates");
+    return Status::BadInput("the candidate rows do not match the candidates");
   }
   Search search(model, candidates, options.continuous ? nullptr : candidate_rows, initial, options);
   if (!search.state.full_rank()) {
-    return Status::Error(
+    return Status::BadInput(
         "the initial poses do not identify all 42 parameters (a leg's information matrix is "
         "singular): start from more varied poses");
   }

@@ -16,12 +16,12 @@ StatusOr<std::vector<Measurement>> FromTable(const CsvTable& table) {
   for (int k = 0; k < kNumColumns; ++k) {
     StatusOr<int> column = ColumnIndex(table, names[k]);
     if (!column.ok()) {
-      return Status::Error(column.status().message() + TableKindHint(table.header, TableKind::kRobotMeasurements));
+      return Status::BadInput(column.status().message() + TableKindHint(table.header, TableKind::kRobotMeasurements));
     }
     columns[k] = *column;
   }
   if (table.rows.empty()) {
-    return Status::Error(table.source + ": no measurements (the file has a header but no data rows)");
+    return Status::BadInput(table.source + ": no measurements (the file has a header but no data rows)");
   }
   std::vector<Measurement> measurements(table.rows.size());
   for (size_t row = 0; row < table.rows.size(); ++row) {

@@ -5,7 +5,7 @@
 namespace hexcal {
 
 StatusOr<NoiseModel> ReadNoiseSection(const YAML::Node& section, const std::string& where) {
-  if (!section.IsMap()) return Status::Error(where + ": expected a mapping {position, angle_deg, leg}");
+  if (!section.IsMap()) return Status::BadInput(where + ": expected a mapping {position, angle_deg, leg}");
   StatusOr<std::vector<std::pair<std::string, std::string>>> entries = ScalarEntries(section, where);
   if (!entries.ok()) return entries.status();
   NoiseModel noise;

@@ -107,7 +107,7 @@ StatusOr<OptimalDesign> SolveDOptimal(const CandidateRows& candidates, const Opt
                                       const JobHooks& hooks) {
   const auto start = std::chrono::steady_clock::now();
   const int count = candidates.size();
-  if (count < kParamsPerLeg) return Status::Error("the optimal design needs at least 7 candidates");
+  if (count < kParamsPerLeg) return Status::BadInput("the optimal design needs at least 7 candidates");
 
   Eigen::ArrayXd w = Eigen::ArrayXd::Constant(count, 1.0 / count);
   std::array<InfoBlock, kNumLegs> blocks = DesignInformation(candidates, w), inverses, cholesky_inverses;
@@ -116,7 +116,7 @@ StatusOr<OptimalDesign> SolveDOptimal(const CandidateRows& candidates, const Opt
   for (design.iterations = 0; design.iterations < options.max_iterations; ++design.iterations) {
     if (hooks.Cancelled()) return Status::Cancelled("optimal design cancelled");
     if (!Invert(blocks, &inverses, &cholesky_inverses, &design.log_det)) {
-      return Status::Error("the candidate set does not identify all 42 parameters (singular information)");
+      return Status::BadInput("the candidate set does not identify all 42 parameters (singular information)");
     }
     ParallelVariance(cholesky_inverses, candidates, &d, options.threads);
     Eigen::Index best;

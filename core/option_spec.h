@@ -129,8 +129,8 @@ Status CheckChoices(const OptionSpec<T>& spec, const std::vector<std::string>& i
     if (known) continue;
     std::string names;
     for (const std::string& choice : spec.choices) names += (names.empty() ? "" : ", ") + choice;
-    return Status::Error(where + ": expected " + (spec.type == OptionType::kChoiceList ? "one or more of " : "one of ") +
-                         names);
+    return Status::BadInput(where + ": expected " +
+                            (spec.type == OptionType::kChoiceList ? "one or more of " : "one of ") + names);
   }
   return Status::Ok();
 }
@@ -146,11 +146,11 @@ inline Status CheckIntegerText(const std::string& text, double value, double min
   const char* last = text.data() + text.size();
   const auto [end, error] = std::from_chars(text.data() + (sign && text[0] == '+' ? 1 : 0), last, exact);
   if (text.size() == sign || end != last || (error != std::errc() && error != std::errc::result_out_of_range))
-    return Status::Error(where + ": expected a whole number in decimal digits, got " + Excerpt(text));
+    return Status::BadInput(where + ": expected a whole number in decimal digits, got " + Excerpt(text));
   if (error == std::errc() && std::abs(value) <= 9007199254740992.0 && static_cast<long long>(value) == exact)
     return Status::Ok();
-  if (value < 0) return Status::Error(where + ": must be at least " + FormatNumber(min) + unit + ", got " + text);
-  return Status::Error(where + ": must be at most " + FormatNumber(max) + unit + ", got " + text);
+  if (value < 0) return Status::BadInput(where + ": must be at least " + FormatNumber(min) + unit + ", got " + text);
+  return Status::BadInput(where + ": must be at most " + FormatNumber(max) + unit + ", got " + text);
 }
 
 // A number against the option's inclusive range; the error starts with `where`.
@@ -158,9 +158,11 @@ template <typename T>
 Status CheckOptionRange(const OptionSpec<T>& spec, double value, const std::string& where) {
   const std::string unit = spec.unit.empty() ? "" : " " + spec.unit;
   if (!(value >= spec.min))
-    return Status::Error(where + ": must be at least " + FormatNumber(spec.min) + unit + ", got " + FormatNumber(value));
+    return Status::BadInput(where + ": must be at least " + FormatNumber(spec.min) + unit + ", got " +
+                            FormatNumber(value));
   if (!(value <= spec.max))
-    return Status::Error(where + ": must be at most " + FormatNumber(spec.max) + unit + ", got " + FormatNumber(value));
+    return Status::BadInput(where + ": must be at most " + FormatNumber(spec.max) + unit + ", got " +
+                            FormatNumber(value));
   return Status::Ok();
 }
 
@@ -176,13 +178,14 @@ Status ApplyOptionText(const OptionSpec<T>& spec, const std::string& text, T* va
   if (spec.type == OptionType::kFlag) {
     if (text == "true" || text == "1") spec.set_number(*values, 1);
     else if (text == "false" || text == "0") spec.set_number(*values, 0);
-    else return Status::Error(where + ": expected true or false");
+    else
+      return Status::BadInput(where + ": expected true or false");
     return Status::Ok();
   }
   StatusOr<double> value = ParseNumber(text);
-  if (!value.ok()) return Status::Error(where + ": expected a finite number");
+  if (!value.ok()) return Status::BadInput(where + ": expected a finite number");
   if (spec.type == OptionType::kInteger && *value != std::floor(*value))
-    return Status::Error(where + ": expected a whole number, got " + FormatNumber(*value));
+    return Status::BadInput(where + ": expected a whole number, got " + FormatNumber(*value));
   if (spec.type == OptionType::kInteger) {
     const std::string unit = spec.unit.empty() ? "" : " " + spec.unit;
     if (Status s = CheckIntegerText(text, *value, spec.min, spec.max, where, unit); !s.ok()) return s;
@@ -244,7 +247,7 @@ Status ApplyOptionEntries(const OptionTable<T>& table, const std::vector<std::pa
       std::string keys;
       for (const OptionSpec<T>& known : table) keys += (keys.empty() ? "" : ", ") + known.key;
       const std::string shown = IsPlainName(key) ? key : "(a key that is not a name)";
-      return Status::Error(section + "." + shown + ": unknown key (" + keys + ")");
+      return Status::BadInput(section + "." + shown + ": unknown key (" + keys + ")");
     }
     if (Status s = ApplyOptionText(*spec, text, values, section + "." + key); !s.ok()) return s;
   }

@@ -136,7 +136,7 @@ StatusOr<LegCalibration> CalibrateLegScreened(int leg, const LegData& data, cons
     for (int j : flagged)
       kept += (kept.empty() ? "" : ", ") + std::to_string(j + 1) + " (z = " + FormatNumber(z[j]) + ")";
     const Status failed = NotConverged(leg, *fit);
-    return kept.empty() ? failed : Status::Error(failed.message() + "; outliers kept in its fit: measurement " + kept);
+    return kept.empty() ? failed : Status::Failed(failed.message() + "; outliers kept in its fit: measurement " + kept);
   }
   if (flagged.empty()) return fit;
 
@@ -146,8 +146,8 @@ StatusOr<LegCalibration> CalibrateLegScreened(int leg, const LegData& data, cons
     const LegData kept = data.Without(flagged);
     const std::string context = " left after excluding " + std::to_string(flagged.size()) + " outlier(s)";
     if (kept.size() < static_cast<size_t>(kParamsPerLeg)) {
-      return Status::Error(LegLabel(leg) + ": " + std::to_string(kept.size()) + " measurements" + context +
-                           ", fewer than its 7 parameters; check the readings or keep the outliers");
+      return Status::Failed(LegLabel(leg) + ": " + std::to_string(kept.size()) + " measurements" + context +
+                            ", fewer than its 7 parameters; check the readings or keep the outliers");
     }
     if (Status s = CheckRank(leg, kept, nominal, options, context); !s.ok()) return s;
     fit = CalibrateLeg(leg, kept, nominal, options, hooks);

@@ -143,7 +143,7 @@ bool PlanningModel::IsFeasible(const Vector6d& v) const {
 namespace {
 
 Status SettingsError(const std::string& path, const std::string& key, const std::string& problem) {
-  return Status::Error("plan settings '" + path + "': " + key + ": " + problem);
+  return Status::BadInput("plan settings '" + path + "': " + key + ": " + problem);
 }
 
 StatusOr<double> FiniteNumber(const YAML::Node& node, const std::string& path, const std::string& key) {
@@ -188,7 +188,7 @@ StatusOr<Pose> PoseNode(const YAML::Node& node, const std::string& path, const s
 namespace {
 
 StatusOr<PlanSettings> ReadPlanSettings(const YAML::Node& root, const std::string& path, const Robot& robot) {
-  if (!root.IsMap()) return Status::Error("plan settings '" + path + "': expected a mapping at the top level");
+  if (!root.IsMap()) return Status::BadInput("plan settings '" + path + "': expected a mapping at the top level");
   static const std::set<std::string> kKeys = {"noise",  "planner",           "camera",
                                                  "target", "field_of_view_deg", "max_view_angle_deg"};
   for (const auto& item : root) {
@@ -250,7 +250,7 @@ StatusOr<PlanSettings> ParsePlanSettings(const std::string& text, const std::str
 
 StatusOr<PlanSettings> LoadPlanSettings(const std::string& path, const Robot& robot) {
   StatusOr<std::string> text = ReadFileToString(path);
-  if (!text.ok()) return Status::Error("plan settings: " + text.status().message());
+  if (!text.ok()) return text.status().Prefixed("plan settings: ");
   return ParsePlanSettings(*text, path, robot);
 }
 

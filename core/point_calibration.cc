@@ -19,7 +19,7 @@
 namespace hexcal {
 namespace {
 
-Status Bad(const std::string& message) { return Status::Error("calibration from points: " + message); }
+Status Bad(const std::string& message) { return Status::BadInput("calibration from points: " + message); }
 
 // The second singular value of the centred points over the first: 0 on a line.
 bool OnOneLine(const std::vector<Eigen::Vector3d>& points) {

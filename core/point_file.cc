@@ -14,12 +14,13 @@ namespace {
 // Adds `point` to its pose's set, refusing a point given twice in one pose.
 Status AddPoint(const std::string& pose, NamedPoint point, const std::string& where, PointSets* sets,
                 std::map<std::string, size_t>* index) {
-  if (!(point.sigma > 0)) return Status::Error(where + ": sigma must be positive");
+  if (!(point.sigma > 0)) return Status::BadInput(where + ": sigma must be positive");
   auto [it, added] = index->emplace(pose, sets->size());
   if (added) sets->push_back({pose, {}});
   std::vector<NamedPoint>& points = (*sets)[it->second].points;
   for (const NamedPoint& other : points)
-    if (other.name == point.name) return Status::Error(where + ": point '" + point.name + "' of pose '" + pose + "' is given twice");
+    if (other.name == point.name)
+      return Status::BadInput(where + ": point '" + point.name + "' of pose '" + pose + "' is given twice");
   points.push_back(std::move(point));
   return Status::Ok();
 }
@@ -82,18 +83,18 @@ StatusOr<PointSets> ParseSpatialAnalyzer(const std::string& text, const std::str
     const std::vector<std::string> fields = Fields(line);
     const std::string where = source + ":" + std::to_string(number);
     if (fields.size() != 6 && fields.size() != 7)
-      return Status::Error(where + ": expected collection, group, target, x, y, z and an optional sigma, got " +
-                           std::to_string(fields.size()) + " fields");
+      return Status::BadInput(where + ": expected collection, group, target, x, y, z and an optional sigma, got " +
+                              std::to_string(fields.size()) + " fields");
     NamedPoint point{fields[2], {}, default_sigma};
     for (size_t k = 3; k < fields.size(); ++k) {
       StatusOr<double> value = ParseNumber(fields[k]);
-      if (!value.ok()) return Status::Error(where + ": field " + std::to_string(k + 1) + " is not a number");
+      if (!value.ok()) return Status::BadInput(where + ": field " + std::to_string(k + 1) + " is not a number");
       if (k < 6) point.position[static_cast<int>(k - 3)] = *value;
       else point.sigma = *value;
     }
     if (Status s = AddPoint(fields[1], point, where, &sets, &index); !s.ok()) return s;
   }
-  if (sets.empty()) return Status::Error(source + ": no points");
+  if (sets.empty()) return Status::BadInput(source + ": no points");
   return sets;
 }
 
@@ -126,8 +127,8 @@ StatusOr<std::vector<NamedPoint>> ParseReflectorFile(const std::string& text, co
   for (size_t row = 0; row < table->rows.size(); ++row) {
     NamedPoint point{table->rows[row][static_cast<size_t>(columns[0])], {}, 0};
     if (!seen.insert(point.name).second)
-      return Status::Error(source + ":" + std::to_string(table->line_numbers[row]) + ": reflector '" + point.name +
-                           "' is given twice");
+      return Status::BadInput(source + ":" + std::to_string(table->line_numbers[row]) + ": reflector '" + point.name +
+                              "' is given twice");
     for (int k = 0; k < 3; ++k) {
       StatusOr<double> value = NumberAt(*table, row, columns[1 + k]);
       if (!value.ok()) return value.status();

@@ -24,17 +24,17 @@ StatusOr<std::vector<PointPair>> PairPoints(const std::vector<NamedPoint>& refle
   std::vector<PointPair> pairs;
   std::set<std::string> names;
   for (const NamedPoint& m : measured) {
-    if (!names.insert(m.name).second) return Status::Error("point '" + m.name + "' is measured twice");
+    if (!names.insert(m.name).second) return Status::BadInput("point '" + m.name + "' is measured twice");
     // 1/σ² must be a finite, non-zero weight.
     if (!(m.sigma > 1e-100 && m.sigma < 1e100))
-      return Status::Error("point '" + m.name + "': its sigma must be a positive number between 1e-100 and 1e100");
-    if (!m.position.allFinite()) return Status::Error("point '" + m.name + "': a coordinate is not finite");
+      return Status::BadInput("point '" + m.name + "': its sigma must be a positive number between 1e-100 and 1e100");
+    if (!m.position.allFinite()) return Status::BadInput("point '" + m.name + "': a coordinate is not finite");
     auto known = std::find_if(reflectors.begin(), reflectors.end(), [&](const NamedPoint& r) { return r.name == m.name; });
-    if (known == reflectors.end()) return Status::Error("point '" + m.name + "' is not one of the reflectors");
+    if (known == reflectors.end()) return Status::BadInput("point '" + m.name + "' is not one of the reflectors");
     pairs.push_back({known->position, m.position, 1 / (m.sigma * m.sigma), m.name});
   }
   if (pairs.size() < 3)
-    return Status::Error(std::to_string(pairs.size()) + " points measured: a pose needs 3 or more reflectors");
+    return Status::BadInput(std::to_string(pairs.size()) + " points measured: a pose needs 3 or more reflectors");
   return pairs;
 }
 
@@ -123,9 +123,9 @@ Status CheckScale(const std::vector<PointPair>& pairs) {
     }
   if (closest > 0.5 && closest < 2) return Status::Ok();
   // Distances that overflow (coordinates near 1e300) give no ratio.
-  if (!std::isfinite(closest)) return Status::Error("the points' coordinates are too large to fit");
-  return Status::Error("the measured points are " + FormatSignificant(closest) +
-                       " times as far apart as their reflectors: are they in another length unit?");
+  if (!std::isfinite(closest)) return Status::BadInput("the points' coordinates are too large to fit");
+  return Status::BadInput("the measured points are " + FormatSignificant(closest) +
+                          " times as far apart as their reflectors: are they in another length unit?");
 }
 
 // With 4 or more points: the point farthest from where the others put it,
@@ -147,9 +147,9 @@ Status CheckOutlier(const std::vector<PointPair>& pairs) {
     if (sigmas > worst_sigmas) worst_sigmas = sigmas, worst_distance = difference.norm(), worst = &pairs[k];
   }
   if (worst_sigmas <= kPointOutlierSigmas) return Status::Ok();
-  return Status::Error("point '" + worst->name + "' lies " + FormatSignificant(worst_distance) + " (" +
-                       FormatSignificant(worst_sigmas) + " sigma) from where the other " +
-                       std::to_string(pairs.size() - 1) + " points put it: a wrong reflector or reading");
+  return Status::BadInput("point '" + worst->name + "' lies " + FormatSignificant(worst_distance) + " (" +
+                          FormatSignificant(worst_sigmas) + " sigma) from where the other " +
+                          std::to_string(pairs.size() - 1) + " points put it: a wrong reflector or reading");
 }
 
 }  // namespace
@@ -162,16 +162,16 @@ StatusOr<PointFit> FitPointPose(const std::vector<NamedPoint>& reflectors, const
   constexpr double kMaxCoordinate = 1e100;
   for (const PointPair& p : *pairs)
     if (p.known.cwiseAbs().maxCoeff() > kMaxCoordinate || p.seen.cwiseAbs().maxCoeff() > kMaxCoordinate)
-      return Status::Error("the points' coordinates are too large to fit");
+      return Status::BadInput("the points' coordinates are too large to fit");
   constexpr double kMinFlatness = 1e-6;  // collinear: the rotation about the line is free
-  if (Flatness(*pairs) < kMinFlatness) return Status::Error("the measured reflectors lie on one line");
+  if (Flatness(*pairs) < kMinFlatness) return Status::BadInput("the measured reflectors lie on one line");
   if (Status s = CheckScale(*pairs); !s.ok()) return s;
   if (Status s = CheckOutlier(*pairs); !s.ok()) return s;
   PointFit fit;
   fit.pose = WeightedKabsch(*pairs);
   // Coordinates near the double range (1e300) overflow the cross-covariance.
   if (!fit.pose.position.allFinite() || !fit.pose.rotation.allFinite())
-    return Status::Error("the points' coordinates are too large to fit");
+    return Status::BadInput("the points' coordinates are too large to fit");
   fit.covariance = PoseCovariance(fit.pose, *pairs);
   double sum = 0;
   for (const PointPair& p : *pairs) {

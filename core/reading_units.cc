@@ -52,12 +52,12 @@ Status CheckReadingsUnit(const Robot& robot, const std::vector<LegReadings>& row
     const Leg& at_fault = robot.legs[leg];
     const char* robot_unit = LengthUnitName(robot.length_unit);
     const std::string where = row_label.empty() ? "" : row_label + " " + std::to_string(row + 1) + ": ";
-    return Status::Error("readings look like " + std::string(LengthUnitName(unit)) + ", the robot '" + robot.name +
-                         "' is in " + robot_unit + ": " + where + "L" + std::to_string(leg + 1) + " = " +
-                         FormatNumber(rows[row][leg]) + " is far outside the stroke [" +
-                         FormatNumber(at_fault.stroke_min) + ", " + FormatNumber(at_fault.stroke_max) + "] " +
-                         robot_unit + ", and every reading fits the strokes once converted from " +
-                         LengthUnitName(unit) + " to " + robot_unit);
+    return Status::BadInput("readings look like " + std::string(LengthUnitName(unit)) + ", the robot '" + robot.name +
+                            "' is in " + robot_unit + ": " + where + "L" + std::to_string(leg + 1) + " = " +
+                            FormatNumber(rows[row][leg]) + " is far outside the stroke [" +
+                            FormatNumber(at_fault.stroke_min) + ", " + FormatNumber(at_fault.stroke_max) + "] " +
+                            robot_unit + ", and every reading fits the strokes once converted from " +
+                            LengthUnitName(unit) + " to " + robot_unit);
   }
   return Status::Ok();
 }

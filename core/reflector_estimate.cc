@@ -64,7 +64,7 @@ StatusOr<std::vector<NamedPoint>> EstimateReflectors(const PointSets& sets) {
     return a.points.size() < b.points.size();
   });
   if (largest == sets.end() || largest->points.size() < 3)
-    return Status::Error("no pose has 3 or more points: the reflectors cannot be estimated (give a reflector file)");
+    return Status::BadInput("no pose has 3 or more points: the reflectors cannot be estimated (give a reflector file)");
   std::vector<NamedPoint> estimate = largest->points;
   for (NamedPoint& point : estimate) point.sigma = 0;
   for (int round = 0; round < kMaxRounds; ++round) {

@@ -68,12 +68,12 @@ Status LinearRegistration(const std::vector<Pose>& a, const std::vector<Pose>& b
   // The solution is the null space; it must be one-dimensional, so the second
   // smallest singular value must stand clear of zero relative to the largest.
   if (sv(16) < 1e-6 * sv(0))
-    return Status::Error("registration: the poses do not determine the frames (too few distinct orientations)");
+    return Status::Failed("registration: the poses do not determine the frames (too few distinct orientations)");
   const Eigen::VectorXd v = svd.matrixV().col(17);
   Eigen::Matrix3d ry_raw = Eigen::Map<const Eigen::Matrix3d>(v.data());
   Eigen::Matrix3d rx_raw = Eigen::Map<const Eigen::Matrix3d>(v.data() + 9);
   const double scale = std::cbrt(ry_raw.determinant());
-  if (!(std::abs(scale) > 0)) return Status::Error("registration: degenerate rotation estimate");
+  if (!(std::abs(scale) > 0)) return Status::Failed("registration: degenerate rotation estimate");
   y->rotation = NearestRotation(ry_raw / scale);
   x->rotation = NearestRotation(rx_raw / scale);
 
@@ -152,7 +152,7 @@ StatusOr<int> Refine(const std::vector<Pose>& a, const std::vector<Pose>& b, con
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &problem, &summary);
   if (summary.termination_type != ceres::CONVERGENCE)
-    return Status::Error("registration: the refinement did not converge (" + summary.BriefReport() + ")");
+    return Status::Failed("registration: the refinement did not converge (" + summary.BriefReport() + ")");
   x->rotation = ExpRotation(dx) * x->rotation;
   y->rotation = ExpRotation(dy) * y->rotation;
   x->position = Eigen::Vector3d(tx[0], tx[1], tx[2]);
@@ -183,15 +183,15 @@ StatusOr<Registration> EstimateRegistration(const std::vector<Pose>& base_from_p
                                             const std::vector<Pose>& camera_from_target,
                                             const RegistrationOptions& options) {
   std::string error;
-  if (!options.IsValid(&error)) return Status::Error(error);
+  if (!options.IsValid(&error)) return Status::BadInput(error);
   if (base_from_platform.size() != camera_from_target.size())
-    return Status::Error("registration: " + std::to_string(base_from_platform.size()) + " robot poses but " +
-                         std::to_string(camera_from_target.size()) + " camera poses");
+    return Status::BadInput("registration: " + std::to_string(base_from_platform.size()) + " robot poses but " +
+                            std::to_string(camera_from_target.size()) + " camera poses");
   if (base_from_platform.size() < 3)
-    return Status::Error("registration needs at least 3 poses, got " + std::to_string(base_from_platform.size()));
+    return Status::BadInput("registration needs at least 3 poses, got " + std::to_string(base_from_platform.size()));
   for (size_t j = 0; j < base_from_platform.size(); ++j)
     if (!IsFinite(base_from_platform[j]) || !IsFinite(camera_from_target[j]))
-      return Status::Error("registration: pose " + std::to_string(j + 1) + " is not finite");
+      return Status::BadInput("registration: pose " + std::to_string(j + 1) + " is not finite");
 
   Registration reg;
   Status linear =
@@ -248,7 +248,7 @@ StatusOr<std::vector<Pose>> NominalPoses(const Robot& nominal, const CameraCalib
   std::vector<Pose> poses;
   for (size_t j = 0; j < input.legs.size(); ++j) {
     StatusOr<LocalFkResult> fk = ForwardKinematicsLocal(nominal, input.legs[j], input.fk_start[j]);
-    if (!fk.ok()) return Status::Error("pose " + std::to_string(j + 1) + ": " + fk.status().message());
+    if (!fk.ok()) return Status::BadInput("pose " + std::to_string(j + 1) + ": " + fk.status().message());
     poses.push_back(fk->pose);
   }
   return poses;
@@ -280,7 +280,7 @@ StatusOr<std::vector<Measurement>> MapToBase(const Robot& nominal, const Registr
     if (!input.camera_pose_covariance.empty()) {
       const Matrix6d& covariance = input.camera_pose_covariance[j];
       if (!covariance.allFinite())
-        return Status::Error("pose " + std::to_string(j + 1) + ": the camera pose covariance is not finite");
+        return Status::BadInput("pose " + std::to_string(j + 1) + ": the camera pose covariance is not finite");
       m.pose_covariance = MapCameraPoseCovariance(nominal, reg, input.camera_from_target[j], covariance);
     }
     measurements.push_back(m);
@@ -316,7 +316,7 @@ StatusOr<CameraCalibrationResult> CalibrateFromCameraPoses(const Robot& nominal,
   const size_t n = input.camera_from_target.size();
   if (input.legs.size() != n || input.fk_start.size() != n ||
       (!input.camera_pose_covariance.empty() && input.camera_pose_covariance.size() != n))
-    return Status::Error(
+    return Status::BadInput(
         "calibration from camera poses: camera poses, readings, FK starts and covariances differ in number");
   StatusOr<std::vector<Pose>> nominal_poses = NominalPoses(nominal, input);
   if (!nominal_poses.ok()) return nominal_poses.status();

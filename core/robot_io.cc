@@ -67,7 +67,7 @@ class RobotYamlReader {
 
  private:
   Status Error(const std::string& key_path, const std::string& problem) const {
-    return Status::Error(label_ + ": " + key_path + ": " + problem);
+    return Status::BadInput(label_ + ": " + key_path + ": " + problem);
   }
 
   StatusOr<Robot> ReadRoot(const YAML::Node& root) const {
@@ -360,7 +360,9 @@ StatusOr<Robot> LoadRobot(const std::string& path_or_preset) {
       const std::string& message = text.status().message();
       const std::string prefix = path_or_preset + ": ";
       const size_t skip = message.rfind(prefix, 0) == 0 ? prefix.size() : 0;
-      return Status::Error("robot file '" + path_or_preset + "': " + message.substr(skip));
+      const std::string reworded = "robot file '" + path_or_preset + "': " + message.substr(skip);
+      // A read that failed stays I/O (core/status.h); the rest is the path's fault.
+      return text.status().kind() == StatusKind::kIo ? Status::IoError(reworded) : Status::BadInput(reworded);
     }
     return ParseRobotYaml(*text, path_or_preset);
   }
@@ -368,8 +370,8 @@ StatusOr<Robot> LoadRobot(const std::string& path_or_preset) {
   if (const auto preset = presets.find(path_or_preset); preset != presets.end()) {
     return RobotYamlReader("robot preset '" + preset->first + "'").Read(preset->second);
   }
-  return Status::Error("robot '" + path_or_preset +
-                       "': no such file and no preset of that name (presets: " + Join(PresetNames(), ", ") + ")");
+  return Status::BadInput("robot '" + path_or_preset +
+                          "': no such file and no preset of that name (presets: " + Join(PresetNames(), ", ") + ")");
 }
 
 std::string RobotToYaml(const Robot& robot) {

@@ -75,17 +75,17 @@ StatusOr<Pose> ParseFrame(const YAML::Node& frames, const std::string& source, c
   // frames[key] of a mapping without the key is an invalid node that throws on
   // every query but IsDefined (found by fuzz/session_fuzz).
   const YAML::Node node = frames[key];
-  if (!node.IsDefined()) return Status::Error(source + ": frames." + key + ": missing");
+  if (!node.IsDefined()) return Status::BadInput(source + ": frames." + key + ": missing");
   if (!node.IsSequence() || node.size() != 6)
-    return Status::Error(source + ": frames." + key + " must be [x, y, z, q1, q2, q3]");
+    return Status::BadInput(source + ": frames." + key + " must be [x, y, z, q1, q2, q3]");
   Vector6d v;
   for (int k = 0; k < 6; ++k) {
     try {
       v[k] = node[k].as<double>();
     } catch (const YAML::Exception&) {
-      return Status::Error(source + ": frames." + key + " entry " + std::to_string(k + 1) + " is not a number");
+      return Status::BadInput(source + ": frames." + key + " entry " + std::to_string(k + 1) + " is not a number");
     }
-    if (!std::isfinite(v[k])) return Status::Error(source + ": frames." + key + " is not finite");
+    if (!std::isfinite(v[k])) return Status::BadInput(source + ": frames." + key + " is not finite");
   }
   return PoseFromVector(v, EulerConvention::kXYZ);
 }
@@ -134,28 +134,29 @@ std::set<std::string> ImageFiles(const std::string& folder) {
 // target, or for a points session instrument, points, reflectors, point_sigma.
 Status ReadInstrument(const YAML::Node& root, const std::string& source, SessionConfig* config) {
   const auto text = [&](const char* key, std::string* value) {
-    if (!root[key] || !root[key].IsScalar()) return Status::Error(source + ": missing '" + key + "'");
+    if (!root[key] || !root[key].IsScalar()) return Status::BadInput(source + ": missing '" + key + "'");
     *value = root[key].as<std::string>();
     return Status::Ok();
   };
   if (Status s = text("robot", &config->robot); !s.ok()) return s;
   std::string instrument = "camera";
   if (root["instrument"] && !text("instrument", &instrument).ok())
-    return Status::Error(source + ": instrument: expected camera or points");
+    return Status::BadInput(source + ": instrument: expected camera or points");
   if (instrument == "camera") {
     if (Status s = text("camera", &config->camera); !s.ok()) return s;
     return text("target", &config->target);
   }
-  if (instrument != "points") return Status::Error(source + ": instrument: '" + instrument + "' is not camera or points");
+  if (instrument != "points")
+    return Status::BadInput(source + ": instrument: '" + instrument + "' is not camera or points");
   config->instrument = Instrument::kPoints;
   if (Status s = text("points", &config->points); !s.ok()) return s;
   if (root["reflectors"] && !text("reflectors", &config->reflectors).ok())
-    return Status::Error(source + ": reflectors: expected a file name");
+    return Status::BadInput(source + ": reflectors: expected a file name");
   std::string sigma;
   if (Status s = text("point_sigma", &sigma); !s.ok()) return s;
   StatusOr<double> value = ParseNumber(sigma);
   if (!value.ok() || !(*value > 0 && *value < 1e6))
-    return Status::Error(source + ": point_sigma: expected a positive length in the robot's unit");
+    return Status::BadInput(source + ": point_sigma: expected a positive length in the robot's unit");
   config->point_sigma = *value;
   return Status::Ok();
 }
@@ -168,8 +169,8 @@ StatusOr<std::optional<Vector6d>> CommandedPoseAt(const CsvTable& table, size_t 
   for (int k = 0; k < 6; ++k) empty += table.rows[row][columns[k]].empty();
   if (empty == 6) return std::optional<Vector6d>();
   if (empty != 0)
-    return Status::Error(where + "the commanded pose has " + std::to_string(6 - empty) +
-                         " of its six cells; fill all six or none");
+    return Status::BadInput(where + "the commanded pose has " + std::to_string(6 - empty) +
+                            " of its six cells; fill all six or none");
   Vector6d pose;
   for (int k = 0; k < 6; ++k) {
     StatusOr<double> value = NumberAt(table, row, columns[k]);
@@ -181,17 +182,17 @@ StatusOr<std::optional<Vector6d>> CommandedPoseAt(const CsvTable& table, size_t 
 
 Status SaveSessionConfig(const std::string& dir, const SessionConfig& config) {
   std::string error;
-  if (!config.IsValid(&error)) return Status::Error(error);
+  if (!config.IsValid(&error)) return Status::BadInput(error);
   return WriteFileAtomically(SessionPaths(dir).config, ConfigText(config));
 }
 
 Status InitSession(const std::string& dir, const SessionConfig& config) {
   const SessionPaths paths(dir);
   std::string error;
-  if (!config.IsValid(&error)) return Status::Error(error);
+  if (!config.IsValid(&error)) return Status::BadInput(error);
   std::error_code fs_error;
   if (fs::exists(paths.config, fs_error))
-    return Status::Error(paths.config + ": exists; a session is never initialised twice");
+    return Status::BadInput(paths.config + ": exists; a session is never initialised twice");
   for (const std::string& folder : {paths.dir, paths.images, paths.results})
     if (Status s = CreateFolders(folder); !s.ok()) return s;
   return SaveSessionConfig(dir, config);
@@ -204,7 +205,7 @@ StatusOr<SessionConfig> LoadSessionConfig(const std::string& dir) {
   const StatusOr<YAML::Node> document = LoadYamlDocument(*text, paths.config);
   if (!document.ok()) return document.status();
   const YAML::Node& root = *document;
-  if (!root.IsMap()) return Status::Error(paths.config + ": not a YAML mapping");
+  if (!root.IsMap()) return Status::BadInput(paths.config + ": not a YAML mapping");
   SessionConfig config;
   try {
     if (Status s = ReadInstrument(root, paths.config, &config); !s.ok()) return s;
@@ -214,10 +215,11 @@ StatusOr<SessionConfig> LoadSessionConfig(const std::string& dir) {
       config.noise = *read;
     }
   } catch (const YAML::Exception& e) {
-    return Status::Error(paths.config + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
+    return Status::BadInput(paths.config + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
   }
   if (const YAML::Node frames = root["frames"]) {
-    if (!frames.IsMap()) return Status::Error(paths.config + ": frames: expected base_from_camera and platform_from_target");
+    if (!frames.IsMap())
+      return Status::BadInput(paths.config + ": frames: expected base_from_camera and platform_from_target");
     StatusOr<Pose> x = ParseFrame(frames, paths.config, "base_from_camera");
     if (!x.ok()) return x.status();
     StatusOr<Pose> y = ParseFrame(frames, paths.config, "platform_from_target");
@@ -226,7 +228,7 @@ StatusOr<SessionConfig> LoadSessionConfig(const std::string& dir) {
     config.platform_from_target = *y;
   }
   std::string error;
-  if (!config.IsValid(&error)) return Status::Error(paths.config + ": " + error);
+  if (!config.IsValid(&error)) return Status::BadInput(paths.config + ": " + error);
   return config;
 }
 
@@ -239,7 +241,7 @@ StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir) {
   const SessionPaths paths(dir);
   std::error_code missing;
   if (!fs::exists(fs::symlink_status(paths.legs, missing)))
-    return Status::Error(paths.legs + ": no readings yet: " + kEnterReadings);
+    return Status::BadInput(paths.legs + ": no readings yet: " + kEnterReadings);
   StatusOr<CsvTable> table = ReadCsv(paths.legs);
   if (!table.ok()) return table.status();
   // A session.yaml that does not load is reported by whoever loads it; the
@@ -265,8 +267,8 @@ StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir) {
     commanded_found += commanded_columns[k] >= 0;
   }
   if (commanded_found != 0 && commanded_found != 6)
-    return Status::Error(paths.legs + ": has " + std::to_string(commanded_found) +
-                         " of the six commanded_x..commanded_q3 columns; it needs all six or none");
+    return Status::BadInput(paths.legs + ": has " + std::to_string(commanded_found) +
+                            " of the six commanded_x..commanded_q3 columns; it needs all six or none");
 
   const std::set<std::string> images = ImageFiles(paths.images);
   std::set<std::string> seen;
@@ -277,10 +279,9 @@ StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir) {
     const std::string where = paths.legs + ":" + std::to_string(row.line) + ": ";
     row.image = table->rows[r][*image_column];
     if (!points && images.count(row.image) == 0)
-      return Status::Error(where + "image '" + row.image + "' is not in images/");
-    if (row.image.empty()) return Status::Error(where + "column '" + key + "' is empty");
-    if (!seen.insert(row.image).second)
-      return Status::Error(where + key + " '" + row.image + "' has a second row");
+      return Status::BadInput(where + "image '" + row.image + "' is not in images/");
+    if (row.image.empty()) return Status::BadInput(where + "column '" + key + "' is empty");
+    if (!seen.insert(row.image).second) return Status::BadInput(where + key + " '" + row.image + "' has a second row");
     for (int i = 0; i < kNumLegs; ++i) {
       StatusOr<double> value = NumberAt(*table, r, leg_columns[i]);
       if (!value.ok()) return value.status();
@@ -288,7 +289,7 @@ StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir) {
     }
     if (holdout_column >= 0) {
       const std::string& cell = table->rows[r][holdout_column];
-      if (cell != "0" && cell != "1") return Status::Error(where + "column 'holdout': '" + cell + "' is not 0 or 1");
+      if (cell != "0" && cell != "1") return Status::BadInput(where + "column 'holdout': '" + cell + "' is not 0 or 1");
       row.holdout = cell == "1";
     }
     if (commanded_found == 6) {
@@ -300,8 +301,8 @@ StatusOr<std::vector<LegsRow>> LoadSessionLegs(const std::string& dir) {
   }
   for (const std::string& image : images) {
     if (!points && seen.count(image) == 0)
-      return Status::Error((fs::path(paths.images) / image).string() + ": no row in " + paths.legs + ": " +
-                           kEnterReadings);
+      return Status::BadInput((fs::path(paths.images) / image).string() + ": no row in " + paths.legs + ": " +
+                              kEnterReadings);
   }
   return rows;
 }

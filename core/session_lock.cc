@@ -13,6 +13,8 @@
 #include <mutex>
 #include <thread>
 
+#include "core/atomic_file.h"
+
 namespace hexcal {
 namespace {
 
@@ -70,11 +72,11 @@ StatusOr<int> OpenLockFile(const std::string& path) {
   // A lock file someone else made, or a read-only folder: flock works on a
   // read-only descriptor too (the PID line is then not written).
   if (fd < 0 && (errno == EACCES || errno == EROFS)) fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
-  if (fd < 0) return Status::IoError(path + ": cannot open the session lock: " + std::strerror(errno));
+  if (fd < 0) return FileSystemError(path, "cannot open the session lock", errno);
   struct stat info;
   if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
     ::close(fd);
-    return Status::Error(path + ": not a regular file");
+    return Status::BadInput(path + ": not a regular file");
   }
   return fd;
 }
@@ -144,7 +146,7 @@ StatusOr<std::shared_ptr<SessionLock::Held>> TryLock(const std::string& dir, con
 
 StatusOr<SessionLock> SessionLock::Acquire(const std::string& session_dir, LockWait wait) {
   std::error_code error;
-  if (!fs::is_directory(session_dir, error)) return Status::Error(session_dir + ": not a session folder");
+  if (!fs::is_directory(session_dir, error)) return Status::BadInput(session_dir + ": not a session folder");
   const std::string key = fs::weakly_canonical(session_dir, error).string();
   const auto deadline = std::chrono::steady_clock::now() + kBriefLockWait;
   for (;;) {

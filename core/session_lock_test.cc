@@ -92,7 +92,7 @@ TEST(SessionLock, IsReentrantOnItsThreadAndExcludesOtherThreads) {
   std::future<StatusOr<SessionLock>> other =
       std::async(std::launch::async, [&] { return SessionLock::Acquire(path, LockWait::kNo); });
   EXPECT_EQ(other.get().status().kind(), StatusKind::kBusy);  // the inner release kept the outer hold
-  outer = Status::Error("released");
+  outer = Status::BadInput("released");
   std::future<StatusOr<SessionLock>> after =
       std::async(std::launch::async, [&] { return SessionLock::Acquire(path, LockWait::kNo); });
   EXPECT_TRUE(after.get().ok());

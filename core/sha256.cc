@@ -121,7 +121,7 @@ StatusOr<std::string> Sha256OfFile(const std::string& path, size_t max_bytes) {
     total += static_cast<uint64_t>(got);
     if (total > max_bytes) {
       ::close(fd);
-      return Status::Error(path + ": grew past " + std::to_string(max_bytes >> 20) + " MiB while being read");
+      return Status::BadInput(path + ": grew past " + std::to_string(max_bytes >> 20) + " MiB while being read");
     }
     hash.Update(std::string_view(block.data(), static_cast<size_t>(got)));
   }

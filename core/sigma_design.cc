@@ -160,14 +160,14 @@ StatusOr<SigmaDesign> SolveSigmaOptimal(const CandidateRows& candidates, const O
                                         const JobHooks& hooks) {
   const auto start = std::chrono::steady_clock::now();
   const int count = candidates.size();
-  if (count < kParamsPerLeg) return Status::Error("the optimal design needs at least 7 candidates");
+  if (count < kParamsPerLeg) return Status::BadInput("the optimal design needs at least 7 candidates");
   Eigen::ArrayXd w = Eigen::ArrayXd::Constant(count, 1.0 / count), d;
   SigmaDesign design;
   Blocks blocks = DesignInformation(candidates, w), factors;
   for (design.iterations = 0; design.iterations < options.max_iterations; ++design.iterations) {
     if (hooks.Cancelled()) return Status::Cancelled("optimal design cancelled");
     if (!SigmaFactors(blocks, &factors, &design.sigma_sum)) {
-      return Status::Error("the candidate set does not identify all 42 parameters (singular information)");
+      return Status::BadInput("the candidate set does not identify all 42 parameters (singular information)");
     }
     DirectionalFunction(factors, candidates, &d, options.threads);
     Eigen::Index best;

@@ -53,7 +53,7 @@ StatusOr<std::vector<Vector6d>> PosesOfRun(const Robot& nominal, const Simulatio
   StatusOr<CandidateSet> drawn = GenerateCandidates(sampler, candidates);
   if (!drawn.ok()) {  // keep the kind: a robot without a pose box is bad input, a box too tight a failure
     const std::string message = "pose set '" + set.name + "': " + drawn.status().message();
-    return drawn.status().kind() == StatusKind::kBadInput ? Status::Error(message) : Status::Failed(message);
+    return drawn.status().kind() == StatusKind::kBadInput ? Status::BadInput(message) : Status::Failed(message);
   }
   return std::move(drawn->poses);
 }
@@ -126,14 +126,14 @@ ErrorStats BeforeCalibration(const Robot& nominal, const Robot& true_robot) {
 }
 
 Status CheckSets(const std::vector<SimulationPoseSet>& sets) {
-  if (sets.empty()) return Status::Error("the simulation needs at least one pose set");
+  if (sets.empty()) return Status::BadInput("the simulation needs at least one pose set");
   for (size_t s = 0; s < sets.size(); ++s) {
     if (sets[s].Size() < kParamsPerLeg) {
-      return Status::Error("pose set '" + sets[s].name + "' has " + std::to_string(sets[s].Size()) +
-                           " poses; a calibration needs at least 7");
+      return Status::BadInput("pose set '" + sets[s].name + "' has " + std::to_string(sets[s].Size()) +
+                              " poses; a calibration needs at least 7");
     }
     for (size_t t = 0; t < s; ++t) {
-      if (sets[t].name == sets[s].name) return Status::Error("pose set '" + sets[s].name + "' is listed twice");
+      if (sets[t].name == sets[s].name) return Status::BadInput("pose set '" + sets[s].name + "' is listed twice");
     }
   }
   return Status::Ok();
@@ -246,7 +246,7 @@ std::vector<Measurement> SimulateMeasurements(const Robot& true_robot, const std
 StatusOr<SimulationResult> Simulate(const Robot& nominal, const std::vector<SimulationPoseSet>& sets,
                                     const SimulationOptions& options, const JobHooks& hooks) {
   std::string message;
-  if (!options.IsValid(&message)) return Status::Error("simulation options: " + message);
+  if (!options.IsValid(&message)) return Status::BadInput("simulation options: " + message);
   if (Status s = CheckSets(sets); !s.ok()) return s;
   StudySizes sizes(1);
   for (const SimulationPoseSet& set : sets) sizes[0].push_back(set.Size());
@@ -263,11 +263,11 @@ StatusOr<SimulationResult> Simulate(const Robot& nominal, const std::vector<Simu
 StatusOr<SweepResult> SimulateSweep(const Robot& nominal, const std::vector<SimulationPoseSet>& sets, int min_poses,
                                     int max_poses, const SimulationOptions& options, const JobHooks& hooks) {
   std::string message;
-  if (!options.IsValid(&message)) return Status::Error("simulation options: " + message);
+  if (!options.IsValid(&message)) return Status::BadInput("simulation options: " + message);
   if (Status s = CheckSets(sets); !s.ok()) return s;
   if (min_poses < kParamsPerLeg || max_poses < min_poses || max_poses > 10000) {
-    return Status::Error("sweep " + std::to_string(min_poses) + ":" + std::to_string(max_poses) +
-                         ": the numbers of poses must satisfy 7 <= min <= max <= 10000");
+    return Status::BadInput("sweep " + std::to_string(min_poses) + ":" + std::to_string(max_poses) +
+                            ": the numbers of poses must satisfy 7 <= min <= max <= 10000");
   }
   StudySizes sizes;
   for (int n = min_poses; n <= max_poses; ++n) {

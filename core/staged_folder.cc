@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <vector>
 
+#include "core/atomic_file.h"
+
 namespace hexcal {
 namespace {
 
@@ -44,11 +46,11 @@ StatusOr<StagedFolder> StagedFolder::Begin(const std::string& final_path) {
   fs::path parent = target.parent_path();
   if (parent.empty()) parent = ".";
   std::error_code error;
-  if (!fs::is_directory(parent, error)) return Status::Error(parent.string() + ": no such folder");
+  if (!fs::is_directory(parent, error)) return Status::BadInput(parent.string() + ": no such folder");
   RemoveStaleStaging(fs::path(parent) / target.filename());
   std::string pattern = (parent / (StagingPrefix(target) + "XXXXXX")).string();
   if (::mkdtemp(pattern.data()) == nullptr) {
-    return Status::IoError(parent.string() + ": cannot create a folder: " + std::strerror(errno));
+    return FileSystemError(parent.string(), "cannot create a folder", errno);
   }
   // mkdtemp makes 0700; results are readable by all, as a folder made under
   // the usual umask 022 would be.
@@ -70,7 +72,7 @@ StagedFolder::~StagedFolder() {
 std::string StagedFolder::File(const std::string& name) const { return (fs::path(staging_) / name).string(); }
 
 Status StagedFolder::Publish() {
-  if (published_) return Status::Error(final_ + ": already published");
+  if (published_) return Status::BadInput(final_ + ": already published");
   SyncFolder(staging_);  // the entries of the new folder are on disk before it is swapped in
   struct stat existing;
   const bool replacing = ::lstat(final_.c_str(), &existing) == 0;

@@ -1,11 +1,11 @@
-// Status and StatusOr: how core reports bad user input or configuration.
+// Status and StatusOr: how every layer reports a fault a user can meet.
 //
 // Programmer errors are assert()s; anything a user can cause (a bad file, an
-// unreachable pose, a singular pose set) comes back as a Status whose message
-// a person can act on, e.g.
+// unreachable pose, a singular pose set, a full disk) comes back as a Status
+// of one tier (StatusKind) whose message a person can act on, e.g.
 //
 //   StatusOr<Robot> robot = LoadRobot("robot.yaml");
-//   if (!robot.ok()) { std::cerr << robot.status().message() << "\n"; return 2; }
+//   if (!robot.ok()) return cli::ReportError(std::cerr, "robot check", robot.status());
 //   Use(*robot);
 #pragma once
 
@@ -17,13 +17,29 @@
 namespace hexcal {
 
 // What went wrong, for the front ends: the CLI maps it to an exit code in one
-// place (app/commands/cli_common.h), the GUI to a dialog or a status line.
+// place (ExitCodeFor in app/commands/cli_common.h; the table is in
+// docs/cli.md), the GUI to a dialog or a status line.
+//
+// The tier says what the user can do about it:
+// - kBadInput: change the command or the file. An option or a value out of
+//   range, a file whose contents do not parse, and a path that names the
+//   wrong thing: a missing input, a folder or a FIFO where a file is wanted,
+//   a file in the way of a folder, an output that exists without --force.
+// - kIo: the path is right but the system refused or failed the operation:
+//   permission denied, a read-only or full disk, a failed read, write, fsync,
+//   rename, remove or lock, a camera or a controller that cannot be opened or
+//   connected to. FileSystemError (core/atomic_file.h) sorts an errno into
+//   these two. A device that drops a frame or a reply during a run fails that
+//   pose (kFailed), and the run goes on.
+// - kFailed: the input was accepted but the computation did not succeed (no
+//   convergence, too few usable poses or views).
+// - kBusy: another writer holds the session; try again or wait.
 enum class StatusKind {
   kOk,
-  kBadInput,   // a file, an option or a value the user gave is wrong
+  kBadInput,   // the user's option, value, file contents or path is wrong
   kFailed,     // the computation failed (no convergence, too few usable poses)
   kCancelled,  // a long job stopped by its caller: not a success, not a failure
-  kIo,         // reading or writing the disk failed (full disk, permissions)
+  kIo,         // the disk, a device or the network refused a sound request
   kBusy,       // the session is in use by another writer (core/session_lock.h)
 };
 
@@ -31,8 +47,9 @@ class Status {
  public:
   Status() = default;  // OK
   static Status Ok() { return Status(); }
-  // Bad user input or configuration (the default kind of an error).
-  static Status Error(std::string message) { return Status(std::move(message), StatusKind::kBadInput); }
+  // One factory per tier (StatusKind says which fault is which); there is no
+  // generic "error", so every new failure picks its tier.
+  static Status BadInput(std::string message) { return Status(std::move(message), StatusKind::kBadInput); }
   static Status Failed(std::string message) { return Status(std::move(message), StatusKind::kFailed); }
   static Status IoError(std::string message) { return Status(std::move(message), StatusKind::kIo); }
   static Status Busy(std::string message) { return Status(std::move(message), StatusKind::kBusy); }
@@ -50,6 +67,15 @@ class Status {
     Status prefixed = *this;
     if (!ok()) prefixed.message_ = prefix + message_;
     return prefixed;
+  }
+
+  // The same error, `hint` after its message when it is bad input (the hint
+  // says what to change: "(a camera file, or the built-in name ...)"); any
+  // other tier is returned as it is, since the hint would not fix it.
+  Status WithHint(const std::string& hint) const {
+    Status hinted = *this;
+    if (kind_ == StatusKind::kBadInput) hinted.message_ += hint;
+    return hinted;
   }
 
   // The same error as a failed computation: for a step whose input was

@@ -125,15 +125,15 @@ StatusOr<std::vector<PathPoint>> FollowLegPath(const Robot& robot, const LegPath
       points.push_back(*next);
       h = step;
     } else if ((h /= 2) < min_step) {
-      return Status::Error("forward kinematics does not follow the legs' path at " + Rounded(points.back().s) +
-                           " of the way: " + next.status().message());
+      return Status::BadInput("forward kinematics does not follow the legs' path at " + Rounded(points.back().s) +
+                              " of the way: " + next.status().message());
     }
   }
   const Pose target = PoseFromMotionVector(to);
   const Pose& end = points.back().pose;
   if ((end.position - target.position).norm() > 1e-6 * (1 + target.position.norm()) ||
       RotationDistance(end.rotation, target.rotation) > 1e-6)
-    return Status::Error("the legs' path leads to another assembly mode than the pose " + MotionText(to));
+    return Status::BadInput("the legs' path leads to another assembly mode than the pose " + MotionText(to));
   points.back().m = to;
   return points;
 }
@@ -146,9 +146,9 @@ Status Split(const Robot& robot, const LegPath& path, const PathPoint& a, const 
     out->push_back(b.m);
     return Status::Ok();
   }
-  if (depth >= options.max_split_depth) return Status::Error(why);
+  if (depth >= options.max_split_depth) return Status::BadInput(why);
   StatusOr<PathPoint> middle = PointAt(robot, path, (a.s + b.s) / 2, a);
-  if (!middle.ok()) return Status::Error(why + " (and FK between: " + middle.status().message() + ")");
+  if (!middle.ok()) return Status::BadInput(why + " (and FK between: " + middle.status().message() + ")");
   if (Status s = Split(robot, path, a, *middle, start, options, depth + 1, out); !s.ok()) return s;
   return Split(robot, path, *middle, b, start, options, depth + 1, out);
 }
@@ -201,8 +201,8 @@ StatusOr<std::vector<Vector6d>> PlanStraightMoves(const Robot& robot, const Vect
     first->insert(first->end(), second->begin(), second->end());
     return first;
   }
-  return Status::Error("no straight moves from " + MotionText(from) + " to " + MotionText(to) +
-                       " keep within the robot's limits: " + direct.status().message());
+  return Status::BadInput("no straight moves from " + MotionText(from) + " to " + MotionText(to) +
+                          " keep within the robot's limits: " + direct.status().message());
 }
 
 }  // namespace hexcal

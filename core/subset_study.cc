@@ -107,11 +107,12 @@ StatusOr<Selection> SelectByIoops(const PlanningModel& model, const std::vector<
 
 Status CheckStudyInput(const std::vector<Measurement>& measurements, const SubsetStudyOptions& options) {
   std::string error;
-  if (!options.IsValid(&error)) return Status::Error(error);
+  if (!options.IsValid(&error)) return Status::BadInput(error);
   const int total = static_cast<int>(measurements.size());
   if (options.select >= total) {
-    return Status::Error("--select " + std::to_string(options.select) + " needs more than that many measured poses " +
-                         "(some must be left out to validate); the session has " + std::to_string(total));
+    return Status::BadInput("--select " + std::to_string(options.select) +
+                            " needs more than that many measured poses " +
+                            "(some must be left out to validate); the session has " + std::to_string(total));
   }
   return Status::Ok();
 }

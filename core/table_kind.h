@@ -11,7 +11,7 @@
 //
 //   StatusOr<int> column = ColumnIndex(table, "L1");
 //   if (!column.ok())
-//     return Status::Error(column.status().message() + TableKindHint(table.header, TableKind::kRobotMeasurements));
+//     return Status::BadInput(column.status().message() + TableKindHint(table.header, TableKind::kRobotMeasurements));
 #pragma once
 
 #include <string>

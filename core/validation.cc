@@ -6,7 +6,7 @@
 namespace hexcal {
 
 StatusOr<ValidationReport> Validate(const Robot& robot, const std::vector<Measurement>& measurements) {
-  if (measurements.empty()) return Status::Error("validation needs at least one measurement");
+  if (measurements.empty()) return Status::BadInput("validation needs at least one measurement");
   std::vector<LegReadings> readings;
   for (const Measurement& m : measurements) readings.push_back(m.legs);
   if (Status s = CheckReadingsUnit(robot, readings, "measurement"); !s.ok()) return s;
@@ -15,7 +15,7 @@ StatusOr<ValidationReport> Validate(const Robot& robot, const std::vector<Measur
   for (size_t j = 0; j < measurements.size(); ++j) {
     const Measurement& m = measurements[j];
     if (!m.pose.allFinite() || !m.legs.allFinite()) {
-      return Status::Error("measurement " + std::to_string(j + 1) + ": pose or leg readings are not finite");
+      return Status::BadInput("measurement " + std::to_string(j + 1) + ": pose or leg readings are not finite");
     }
     const Pose measured = robot.PoseFromVector(m.pose);
     StatusOr<LocalFkResult> fk = ForwardKinematicsLocal(robot, m.legs, measured);

@@ -34,8 +34,8 @@ Status CheckUniqueKeys(const YAML::Node& node, const std::string& label, const s
       const int line = entry.first.Mark().line + 1;
       const auto [first, inserted] = lines.emplace(entry.first.Scalar(), line);
       if (!inserted)
-        return Status::Error(label + ": " + key_path + ": duplicate key (lines " + std::to_string(first->second) +
-                             " and " + std::to_string(line) + ")");
+        return Status::BadInput(label + ": " + key_path + ": duplicate key (lines " + std::to_string(first->second) +
+                                " and " + std::to_string(line) + ")");
     }
     if (Status s = CheckUniqueKeys(entry.second, label, key_path, budget); !s.ok()) return s;
   }
@@ -56,22 +56,22 @@ StatusOr<YAML::Node> LoadYamlDocument(const std::string& text, const std::string
     if (Status s = CheckUniqueKeys(root, label, "", &budget); !s.ok()) return s;
     return root;
   } catch (const YAML::ParserException& e) {
-    return Status::Error(label + ": YAML syntax error at line " + std::to_string(e.mark.line + 1) + ", column " +
-                         std::to_string(e.mark.column + 1) + ": " + e.msg);
+    return Status::BadInput(label + ": YAML syntax error at line " + std::to_string(e.mark.line + 1) + ", column " +
+                            std::to_string(e.mark.column + 1) + ": " + e.msg);
   } catch (const YAML::Exception& e) {  // not a syntax error, e.g. nesting too deep
-    return Status::Error(label + ": cannot read as YAML: " + e.what());
+    return Status::BadInput(label + ": cannot read as YAML: " + e.what());
   }
 }
 
 StatusOr<std::vector<std::pair<std::string, std::string>>> ScalarEntries(const YAML::Node& map,
                                                                          const std::string& where) {
-  if (!map.IsMap()) return Status::Error(where + ": expected a mapping of keys to values");
+  if (!map.IsMap()) return Status::BadInput(where + ": expected a mapping of keys to values");
   std::vector<std::pair<std::string, std::string>> entries;
   for (const auto& item : map) {
-    if (!item.first.IsScalar()) return Status::Error(where + ": a key that is not a name");
+    if (!item.first.IsScalar()) return Status::BadInput(where + ": a key that is not a name");
     const std::string key = item.first.Scalar();
     if (!item.second.IsScalar())
-      return Status::Error(where + "." + YamlKeyText(item.first) + ": expected a single value");
+      return Status::BadInput(where + "." + YamlKeyText(item.first) + ": expected a single value");
     entries.emplace_back(key, item.second.Scalar());
   }
   return entries;

@@ -44,7 +44,7 @@ StatusOr<T> WithYamlBackstop(const std::string& label, Read read) {
   try {
     return read();
   } catch (const YAML::Exception& e) {
-    return Status::Error(label + ": " + e.what());
+    return Status::BadInput(label + ": " + e.what());
   }
 }
 

@@ -80,8 +80,8 @@ Status SelectPixelFormat(ArvCamera* camera, const std::string& url) {
   }
   if (Conversion(arv_camera_get_pixel_format(camera, error.out()))) return Status::Ok();
   const char* name = arv_camera_get_pixel_format_as_string(camera, error.out());
-  return Status::Error(url + ": the camera has no Mono8, and hexcal does not read its pixel format " +
-                       (name != nullptr ? name : "?") + " (Mono8, RGB8, BGR8 and 8-bit Bayer are read)");
+  return Status::BadInput(url + ": the camera has no Mono8, and hexcal does not read its pixel format " +
+                          (name != nullptr ? name : "?") + " (Mono8, RGB8, BGR8 and 8-bit Bayer are read)");
 }
 
 StatusOr<GObjectPtr<ArvStream>> StartStream(ArvCamera* camera, const std::string& url) {
@@ -167,15 +167,16 @@ class AravisFrameSource final : public FrameSource {
 
   Status SetExposure(double microseconds) override {
     if (!std::isfinite(microseconds) || microseconds <= 0)
-      return Status::Error(url_ + ": exposure must be a positive number of microseconds, not " + Number(microseconds));
+      return Status::BadInput(url_ + ": exposure must be a positive number of microseconds, not " +
+                              Number(microseconds));
     GErrorHolder error;
     if (!arv_camera_is_exposure_time_available(camera_.get(), error.out()))
       return FrameSource::SetExposure(microseconds);
     double min = 0, max = 0;
     arv_camera_get_exposure_time_bounds(camera_.get(), &min, &max, error.out());
     if (!error.failed() && (microseconds < min || microseconds > max))
-      return Status::Error(url_ + ": exposure " + Number(microseconds) + " µs is outside the camera's range [" +
-                           Number(min) + ", " + Number(max) + "] µs");
+      return Status::BadInput(url_ + ": exposure " + Number(microseconds) + " µs is outside the camera's range [" +
+                              Number(min) + ", " + Number(max) + "] µs");
     arv_camera_set_exposure_time(camera_.get(), microseconds, error.out());
     if (error.failed()) return Status::IoError(url_ + ": setting the exposure failed: " + error.message());
     UpdateSettleTime();
@@ -183,14 +184,15 @@ class AravisFrameSource final : public FrameSource {
   }
 
   Status SetGain(double decibels) override {
-    if (!std::isfinite(decibels)) return Status::Error(url_ + ": gain must be a number of dB, not " + Number(decibels));
+    if (!std::isfinite(decibels))
+      return Status::BadInput(url_ + ": gain must be a number of dB, not " + Number(decibels));
     GErrorHolder error;
     if (!arv_camera_is_gain_available(camera_.get(), error.out())) return FrameSource::SetGain(decibels);
     double min = 0, max = 0;
     arv_camera_get_gain_bounds(camera_.get(), &min, &max, error.out());
     if (!error.failed() && (decibels < min || decibels > max))
-      return Status::Error(url_ + ": gain " + Number(decibels) + " is outside the camera's range [" + Number(min) +
-                           ", " + Number(max) + "]");
+      return Status::BadInput(url_ + ": gain " + Number(decibels) + " is outside the camera's range [" + Number(min) +
+                              ", " + Number(max) + "]");
     arv_camera_set_gain(camera_.get(), decibels, error.out());
     if (error.failed()) return Status::IoError(url_ + ": setting the gain failed: " + error.message());
     return Status::Ok();
@@ -284,7 +286,7 @@ StatusOr<std::unique_ptr<FrameSource>> OpenAravisFrameSource(const std::string& 
   if (!camera) {
     const std::string why = error.message();
     if (g_error_matches(error.get(), ARV_DEVICE_ERROR, ARV_DEVICE_ERROR_NOT_FOUND))
-      return Status::Error("camera '" + url + "': no GenICam camera '" + parsed->device_id + "'; " + CamerasSeen());
+      return Status::BadInput("camera '" + url + "': no GenICam camera '" + parsed->device_id + "'; " + CamerasSeen());
     return Status::IoError("camera '" + url + "': cannot open it: " + why + "; " + CamerasSeen());
   }
   if (Status format = SelectPixelFormat(camera.get(), url); !format.ok()) return format;

@@ -11,7 +11,7 @@ namespace {
 constexpr const char* kForm = "expected aravis:NAME[?exposure=US][&gain=DB], NAME as arv-tool-0.8 lists it";
 
 Status BadAravisUrl(const std::string& url, const std::string& problem) {
-  return Status::Error("camera '" + url + "': " + problem + "; " + kForm);
+  return Status::BadInput("camera '" + url + "': " + problem + "; " + kForm);
 }
 
 // The whole text as a finite number, or nullopt.

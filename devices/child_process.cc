@@ -8,6 +8,8 @@
 
 #include <cstring>
 
+#include "core/atomic_file.h"
+
 extern char** environ;
 
 namespace hexcal::workflow {
@@ -34,7 +36,7 @@ StatusOr<ChildProcess> SpawnWithOutputSocket(const std::vector<std::string>& arg
   close(fds[1]);
   if (spawned != 0) {
     close(fds[0]);
-    return Status::Error(argv[0] + ": cannot run it: " + std::strerror(spawned));
+    return FileSystemError(argv[0], "cannot run it", spawned);  // not installed: bad input; not allowed: I/O
   }
   child.fd = fds[0];
   return child;

@@ -9,8 +9,8 @@ namespace hexcal::workflow {
 Status CheckPoseInWorkspace(const Robot& robot, const Vector6d& pose) {
   const ConstraintReport report = EvaluateConstraints(robot, robot.PoseFromVector(pose));
   if (report.feasible) return Status::Ok();
-  return Status::Error("pose " + PoseText(pose) + " is out of the robot's workspace: " + report.worst_label + " by " +
-                       FormatNumber(std::round(-report.worst_margin * 1e4) / 1e4));
+  return Status::BadInput("pose " + PoseText(pose) + " is out of the robot's workspace: " + report.worst_label +
+                          " by " + FormatNumber(std::round(-report.worst_margin * 1e4) / 1e4));
 }
 
 std::string PoseText(const Vector6d& pose) {

@@ -10,20 +10,21 @@ namespace hexcal::workflow {
 namespace {
 
 Status BadControllerUrl(const std::string& url, const std::string& problem) {
-  return Status::Error("controller '" + url + "': " + problem + "; accepted forms: " + kControllerForms);
+  return Status::BadInput("controller '" + url + "': " + problem + "; accepted forms: " + kControllerForms);
 }
 
 }  // namespace
 
 StatusOr<std::unique_ptr<Controller>> OpenController(const std::string& url, const ControllerOptions& options) {
   if (url == "sim") {
-    if (!options.sim) return Status::Error("controller 'sim' needs the session's sim world (OpenAcquisitionRig)");
+    if (!options.sim) return Status::BadInput("controller 'sim' needs the session's sim world (OpenAcquisitionRig)");
     return options.sim();
   }
   if (url.rfind("linuxcnc://", 0) == 0) {
     StatusOr<LinuxCncAddress> address = ParseLinuxCncUrl(url);
     if (!address.ok()) return address.status();
-    if (!options.robot) return Status::Error("controller '" + url + "' needs the session's robot (OpenAcquisitionRig)");
+    if (!options.robot)
+      return Status::BadInput("controller '" + url + "' needs the session's robot (OpenAcquisitionRig)");
     return OpenLinuxCncController(*address, *options.robot);
   }
   return BadControllerUrl(url, url.empty() ? "empty URL" : "unknown kind");
@@ -31,7 +32,7 @@ StatusOr<std::unique_ptr<Controller>> OpenController(const std::string& url, con
 
 StatusOr<std::unique_ptr<FrameSource>> OpenFrameSource(const std::string& url, const FrameSourceOptions& options) {
   if (url == "sim") {
-    if (!options.sim) return Status::Error("camera 'sim' looks at the sim world: use it with --controller sim");
+    if (!options.sim) return Status::BadInput("camera 'sim' looks at the sim world: use it with --controller sim");
     return options.sim();
   }
   const size_t colon = url.find(':');
@@ -43,8 +44,8 @@ StatusOr<std::unique_ptr<FrameSource>> OpenFrameSource(const std::string& url, c
 #ifdef HEXCAL_HAVE_ARAVIS
     return OpenAravisFrameSource(url);
 #else
-    return Status::Error("camera '" + url +
-                         "': this hexcal was built without Aravis (install libaravis-dev: scripts/install-deps.sh)");
+    return Status::BadInput("camera '" + url +
+                            "': this hexcal was built without Aravis (install libaravis-dev: scripts/install-deps.sh)");
 #endif
   }
   return BadFrameSourceUrl(url, url.empty() ? "empty URL" : "unknown kind '" + scheme + "'");

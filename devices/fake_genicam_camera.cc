@@ -41,17 +41,17 @@ Status CheckControlPortFree(const std::string& interface) {
 }
 
 Status CheckOptions(const FakeCameraOptions& options, const std::function<cv::Mat()>& render) {
-  if (!render) return Status::Error("fake GenICam camera: no render function");
-  if (options.interface.empty()) return Status::Error("fake GenICam camera: no interface address");
+  if (!render) return Status::BadInput("fake GenICam camera: no render function");
+  if (options.interface.empty()) return Status::BadInput("fake GenICam camera: no interface address");
   if (options.serial.empty() || options.serial.size() > kMaxSerialLength)
-    return Status::Error("fake GenICam camera: the serial '" + options.serial + "' must have 1 to 15 characters");
+    return Status::BadInput("fake GenICam camera: the serial '" + options.serial + "' must have 1 to 15 characters");
   if (options.width < 0 || options.height < 0 || (options.width == 0) != (options.height == 0))
-    return Status::Error(
+    return Status::BadInput(
         "fake GenICam camera: width and height must both be positive, or both 0 (from the first "
         "frame), not " +
         std::to_string(options.width) + "x" + std::to_string(options.height));
   if (!(options.lost_packet_ratio >= 0 && options.lost_packet_ratio <= 1))
-    return Status::Error("fake GenICam camera: lost_packet_ratio must be in [0, 1]");
+    return Status::BadInput("fake GenICam camera: lost_packet_ratio must be in [0, 1]");
   return Status::Ok();
 }
 
@@ -107,7 +107,7 @@ StatusOr<std::unique_ptr<FakeGenICamCamera>> FakeGenICamCamera::Start(const Fake
   if (impl->width == 0) {
     const cv::Mat first = render();
     if (first.empty() || first.type() != CV_8UC1)
-      return Status::Error("fake GenICam camera: the render function must return a CV_8UC1 image");
+      return Status::BadInput("fake GenICam camera: the render function must return a CV_8UC1 image");
     impl->width = first.cols;
     impl->height = first.rows;
   }

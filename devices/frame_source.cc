@@ -91,7 +91,7 @@ bool IsStillImage(const std::string& path) {
 }  // namespace
 
 Status BadFrameSourceUrl(const std::string& url, const std::string& problem) {
-  return Status::Error("camera '" + url + "': " + problem + "; accepted forms: " + kFrameSourceForms);
+  return Status::BadInput("camera '" + url + "': " + problem + "; accepted forms: " + kFrameSourceForms);
 }
 
 StatusOr<std::unique_ptr<FrameSource>> OpenFileFrameSource(const std::string& url, const std::string& path) {
@@ -120,11 +120,11 @@ StatusOr<std::unique_ptr<FrameSource>> OpenV4l2FrameSource(const std::string& ur
 }
 
 Status FrameSource::SetExposure(double) {
-  return Status::Error(Describe() + ": setting the exposure is not supported by this camera");
+  return Status::BadInput(Describe() + ": setting the exposure is not supported by this camera");
 }
 
 Status FrameSource::SetGain(double) {
-  return Status::Error(Describe() + ": setting the gain is not supported by this camera");
+  return Status::BadInput(Describe() + ": setting the gain is not supported by this camera");
 }
 
 }  // namespace hexcal::workflow

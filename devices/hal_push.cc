@@ -20,7 +20,7 @@ constexpr size_t kQuotedOutputChars = 300;
 // Runs argv to its end: the exit status and the output's last kMaxOutputBytes.
 Status RunCapturing(const std::vector<std::string>& argv, int* exit_status, std::string* output) {
   StatusOr<ChildProcess> child = SpawnWithOutputSocket(argv, /*discard_stderr=*/false);
-  if (!child.ok()) return Status::Error(child.status().message() + "; is LinuxCNC installed (linuxcnc-uspace)?");
+  if (!child.ok()) return child.status().WithHint("; is LinuxCNC installed (linuxcnc-uspace)?");
   char buffer[4096];
   for (ssize_t got; (got = read(child->fd, buffer, sizeof buffer)) > 0;) {
     output->append(buffer, static_cast<size_t>(got));
@@ -86,10 +86,10 @@ StatusOr<std::array<double, 6>> HomeShifts(const Robot& running, const Robot& ca
                                    (now.b_in_platform * scale - was.b_in_platform * running_scale).norm(),
                                    std::abs(shifts[i])});
     if (!(moved <= kSameMachineShare * size)) {
-      return Status::Error("leg " + std::to_string(i + 1) + " of robot '" + CommentText(calibrated.name) +
-                           "' is " + FixedNumber(moved, 6) + " " + MachineUnitName(unit) + " from the running robot '" +
-                           CommentText(running.name) + "''s (more than " + FixedNumber(100 * kSameMachineShare) +
-                           " % of its size): not the same machine, or a robot file in another length unit");
+      return Status::BadInput("leg " + std::to_string(i + 1) + " of robot '" + CommentText(calibrated.name) + "' is " +
+                              FixedNumber(moved, 6) + " " + MachineUnitName(unit) + " from the running robot '" +
+                              CommentText(running.name) + "''s (more than " + FixedNumber(100 * kSameMachineShare) +
+                              " % of its size): not the same machine, or a robot file in another length unit");
     }
   }
   return shifts;

@@ -75,20 +75,20 @@ std::string Excerpt(const std::string& text, size_t max_chars) {
 StatusOr<LineClient> LineClient::Connect(const std::string& host, int port, std::chrono::milliseconds timeout) {
   const std::string peer = host + ":" + std::to_string(port);
   if (host.empty() || port < 1 || port > 65535)
-    return Status::Error(peer + ": expected HOST:PORT with a port 1..65535");
+    return Status::BadInput(peer + ": expected HOST:PORT with a port 1..65535");
   addrinfo hints{};
   hints.ai_family = AF_UNSPEC;
   hints.ai_socktype = SOCK_STREAM;
   addrinfo* addresses = nullptr;
   if (const int code = getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &addresses); code != 0)
-    return Status::Error(peer + ": cannot resolve '" + host + "': " + gai_strerror(code));
+    return Status::BadInput(peer + ": cannot resolve '" + host + "': " + gai_strerror(code));
   const Clock::time_point deadline = Clock::now() + timeout;
   std::string error = "no address";
   int fd = -1;
   for (const addrinfo* address = addresses; address && fd < 0; address = address->ai_next)
     fd = ConnectOne(*address, deadline, &error);
   freeaddrinfo(addresses);
-  if (fd < 0) return Status::Failed(peer + ": cannot connect within " + SecondsText(timeout) + ": " + error);
+  if (fd < 0) return Status::IoError(peer + ": cannot connect within " + SecondsText(timeout) + ": " + error);
   return LineClient(fd, peer);
 }
 

@@ -306,7 +306,7 @@ Status LinuxCncController::MoveTo(const Vector6d& pose) {
   StraightMoveOptions options;
   options.vias = {MotionVectorFromPose(robot_.PoseFromVector(WorkspaceCentre(robot_)))};
   StatusOr<std::vector<Vector6d>> moves = PlanStraightMoves(robot_, motion(*here), motion(target), options);
-  if (!moves.ok()) return Status::Error("pose " + PoseText(pose) + ": " + moves.status().message());
+  if (!moves.ok()) return Status::BadInput("pose " + PoseText(pose) + ": " + moves.status().message());
   Vector6d from = *here;
   for (size_t k = 0; k + 1 < moves->size(); ++k) {
     Vector6d waypoint = (*moves)[k];
@@ -425,7 +425,7 @@ bool LinuxCncOptions::IsValid(std::string* error) const {
 StatusOr<LinuxCncAddress> ParseLinuxCncUrl(const std::string& url) {
   const std::string scheme = "linuxcnc://";
   auto bad = [&](const std::string& problem) {
-    return Status::Error("controller '" + url + "': " + problem + "; expected linuxcnc://HOST:PORT");
+    return Status::BadInput("controller '" + url + "': " + problem + "; expected linuxcnc://HOST:PORT");
   };
   if (url.rfind(scheme, 0) != 0) return bad("not a linuxcnc:// URL");
   const std::string rest = url.substr(scheme.size());
@@ -450,9 +450,9 @@ StatusOr<LinuxCncAddress> ParseLinuxCncUrl(const std::string& url) {
 
 StatusOr<std::unique_ptr<Controller>> OpenLinuxCncController(const LinuxCncAddress& address, const Robot& robot,
                                                              const LinuxCncOptions& options) {
-  if (std::string error; !options.IsValid(&error)) return Status::Error(error);
+  if (std::string error; !options.IsValid(&error)) return Status::BadInput(error);
   StatusOr<LineClient> client = LineClient::Connect(address.host, address.port, options.connect_timeout);
-  if (!client.ok()) return Status::Failed("LinuxCNC: " + client.status().message());
+  if (!client.ok()) return client.status().Prefixed("LinuxCNC: ");  // no answer: I/O; a bad host: bad input
   auto controller = std::make_unique<LinuxCncController>(std::move(*client), robot, options);
   if (Status s = controller->Open(); !s.ok()) return s;
   return std::unique_ptr<Controller>(std::move(controller));
@@ -460,7 +460,8 @@ StatusOr<std::unique_ptr<Controller>> OpenLinuxCncController(const LinuxCncAddre
 
 Status RehomeLinuxCnc(Controller& controller, const Vector6d& joints, double tolerance) {
   auto* machine = dynamic_cast<LinuxCncController*>(&controller);
-  if (machine == nullptr) return Status::Error(controller.Describe() + " is not a LinuxCNC machine: nothing to home");
+  if (machine == nullptr)
+    return Status::BadInput(controller.Describe() + " is not a LinuxCNC machine: nothing to home");
   return machine->Rehome(joints, tolerance);
 }
 

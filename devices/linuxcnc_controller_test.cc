@@ -199,6 +199,7 @@ TEST(LineClient, NamesAClosedConnectionARefusedOneAndAnOverlongLine) {
   EXPECT_NE(refused.status().message().find("127.0.0.1:" + std::to_string(port) + ": cannot connect"),
             std::string::npos)
       << refused.status().message();
+  EXPECT_EQ(refused.status().kind(), StatusKind::kIo);  // no machine answers: I/O, not a failed computation
 }
 
 TEST(LineClient, ExcerptIsShortAndPrintable) {

@@ -108,14 +108,13 @@ std::string ExactFixedNumber(double value) {
 
 Status CheckRobotForMachine(const Robot& robot) {
   const double size = RobotSizeMetres(robot);
-  if (std::isnan(size)) return Status::Error("robot '" + CommentText(robot.name) + "': a value is not finite");
+  if (std::isnan(size)) return Status::BadInput("robot '" + CommentText(robot.name) + "': a value is not finite");
   if (size < kMinMachineRobotMetres || size > kMaxMachineRobotMetres) {
     char shown[32];
     std::snprintf(shown, sizeof shown, "%.3g", size);
-    return Status::Error("robot '" + CommentText(robot.name) + "': its farthest anchor point is " + shown +
-                         " m from its frame's origin, outside [" +
-                         FixedNumber(kMinMachineRobotMetres) + ", " + FixedNumber(kMaxMachineRobotMetres) +
-                         "] m: is its length_unit right?");
+    return Status::BadInput("robot '" + CommentText(robot.name) + "': its farthest anchor point is " + shown +
+                            " m from its frame's origin, outside [" + FixedNumber(kMinMachineRobotMetres) + ", " +
+                            FixedNumber(kMaxMachineRobotMetres) + "] m: is its length_unit right?");
   }
   return Status::Ok();
 }

@@ -86,24 +86,24 @@ StatusOr<MachineIni> ParseMachineIni(const std::string& text) {
     const bool wanted = (section == "TRAJ" && parsed.key == "LINEAR_UNITS") || (joint >= 0 && key >= 0);
     if (parsed.key.empty() || !wanted) continue;
     const std::string where = "[" + section + "] " + parsed.key;
-    if (++seen[where] > 1) return Status::Error("INI: " + where + " is given twice; keep one");
+    if (++seen[where] > 1) return Status::BadInput("INI: " + where + " is given twice; keep one");
     if (joint < 0) {
       units = parsed.value;
       continue;
     }
     const std::optional<double> value = DecimalNumber(parsed.value);
-    if (!value) return Status::Error("INI: " + where + " is not a decimal number");
+    if (!value) return Status::BadInput("INI: " + where + " is not a decimal number");
     JointValue(ini.joints[joint], key) = *value;
   }
-  if (!units) return Status::Error("INI: no [TRAJ] LINEAR_UNITS");
+  if (!units) return Status::BadInput("INI: no [TRAJ] LINEAR_UNITS");
   const std::optional<MachineUnit> unit = ParseMachineUnit(*units);
-  if (!unit) return Status::Error("INI: [TRAJ] LINEAR_UNITS is not mm or inch");
+  if (!unit) return Status::BadInput("INI: [TRAJ] LINEAR_UNITS is not mm or inch");
   ini.unit = *unit;
   for (int joint = 0; joint < 6; ++joint)
     for (const char* key : kJointKeys)
       if (!seen.count("[JOINT_" + std::to_string(joint) + "] " + key))
-        return Status::Error("INI: no [JOINT_" + std::to_string(joint) + "] " + key +
-                             " (a genhexkins machine has six joints, each with its home and limits)");
+        return Status::BadInput("INI: no [JOINT_" + std::to_string(joint) + "] " + key +
+                                " (a genhexkins machine has six joints, each with its home and limits)");
   return ini;
 }
 

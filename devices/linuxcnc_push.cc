@@ -83,9 +83,9 @@ Status CheckLivePins(const std::string& halcmd, const PinSet& expected, const st
   for (size_t k = 0; k < expected.names.size(); ++k) {
     const double want = expected.values[k], got = (*live)[k];
     if (std::abs(got - want) > kPinAgreement * std::max(1.0, std::abs(want))) {
-      return Status::Error("the running machine's " + expected.names[k] + " is " + ExactFixedNumber(got) + ", " +
-                           source + " says " + ExactFixedNumber(want) +
-                           ": the files do not describe the running machine; nothing was changed");
+      return Status::BadInput("the running machine's " + expected.names[k] + " is " + ExactFixedNumber(got) + ", " +
+                              source + " says " + ExactFixedNumber(want) +
+                              ": the files do not describe the running machine; nothing was changed");
     }
   }
   return Status::Ok();
@@ -102,9 +102,10 @@ StatusOr<std::string> GenhexkinsHalFile(const std::string& ini_path, const Machi
     StatusOr<std::string> text = ReadFileToString(path.string());
     if (text.ok() && text->find("setp genhexkins.base.") != std::string::npos) return path.string();
   }
-  return Status::Error(ini_path + ": no [HAL] HALFILE beside it sets the genhexkins pins (setp genhexkins.base...): "
-                       "a restart would bring the old geometry back; put the pins in a HAL file of their own, "
-                       "listed as HALFILE");
+  return Status::BadInput(ini_path +
+                          ": no [HAL] HALFILE beside it sets the genhexkins pins (setp genhexkins.base...): "
+                          "a restart would bring the old geometry back; put the pins in a HAL file of their own, "
+                          "listed as HALFILE");
 }
 
 }  // namespace
@@ -115,7 +116,7 @@ StatusOr<PushPlan> PlanPush(const PushRequest& request) {
   StatusOr<std::string> ini_text = ReadFileToString(request.ini_path);
   if (!ini_text.ok()) return ini_text.status();
   StatusOr<MachineIni> ini = ParseMachineIni(*ini_text);
-  if (!ini.ok()) return Status::Error(request.ini_path + ": " + ini.status().message());
+  if (!ini.ok()) return Status::BadInput(request.ini_path + ": " + ini.status().message());
   PushPlan plan{*ini, {}, {}, {}, {}};
   StatusOr<std::array<double, 6>> shifts = HomeShifts(request.running, request.calibrated, ini->unit);
   if (!shifts.ok()) return shifts.status();

@@ -237,7 +237,7 @@ std::string CameraFrameSection(const CalibrationReport& report) {
 StatusOr<std::string> SessionReportHtml(const std::string& dir) {
   const SessionPaths paths(dir);
   StatusOr<SessionResults> loaded = LoadSessionResults(dir);
-  if (!loaded.ok()) return Status::Error(loaded.status().message() + " (run hexcal calibrate --session first)");
+  if (!loaded.ok()) return loaded.status().WithHint(" (run hexcal calibrate --session first)");
   const CalibrationReport& report = loaded->report;
   const std::string unit = report.length_unit;
   std::string html =
@@ -297,7 +297,7 @@ StatusOr<std::string> WriteSessionReport(const ReportRequest& request) {
       request.out.empty() ? (fs::path(SessionPaths(request.session).results) / "report.html").string() : request.out;
   std::error_code exists_error;
   if (!request.out.empty() && !request.force && fs::exists(out, exists_error))
-    return Status::Error(out + ": exists; use --force to overwrite it");
+    return Status::BadInput(out + ": exists; use --force to overwrite it");
   // Writing into results/: held while reading it and writing, or a run
   // publishing a new results/ meanwhile would be described by the old page.
   // A page written elsewhere only reads (LoadSessionResults checks the unit).

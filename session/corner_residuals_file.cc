@@ -14,8 +14,8 @@ StatusOr<int> IntegerAt(const CsvTable& table, size_t row, int col) {
   StatusOr<double> value = NumberAt(table, row, col);
   if (!value.ok()) return value.status();
   if (*value != static_cast<int>(*value) || *value < 0)
-    return Status::Error(table.source + ":" + std::to_string(table.line_numbers[row]) + ": column '" +
-                         table.header[col] + "': not a whole number >= 0");
+    return Status::BadInput(table.source + ":" + std::to_string(table.line_numbers[row]) + ": column '" +
+                            table.header[col] + "': not a whole number >= 0");
   return static_cast<int>(*value);
 }
 

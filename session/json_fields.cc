@@ -30,7 +30,7 @@ std::string JsonFields::PathOf(const std::string& key) const {
 void JsonFields::Fail(const std::string& key, const std::string& problem) {
   if (!first_error_->ok()) return;
   const std::string where = PathOf(key);
-  *first_error_ = Status::Error(source_ + (where.empty() ? "" : ": key '" + where + "'") + ": " + problem);
+  *first_error_ = Status::BadInput(source_ + (where.empty() ? "" : ": key '" + where + "'") + ": " + problem);
 }
 
 bool JsonFields::Has(const std::string& key) const {
@@ -171,7 +171,7 @@ std::vector<JsonFields> JsonFields::Array(const std::string& key) {
 
 StatusOr<nlohmann::json> ParseJsonText(const std::string& text, const std::string& source) {
   nlohmann::json document = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (document.is_discarded()) return Status::Error(source + ": not valid JSON");
+  if (document.is_discarded()) return Status::BadInput(source + ": not valid JSON");
   return document;
 }
 

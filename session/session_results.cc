@@ -62,7 +62,7 @@ StatusOr<std::string> HashConfigInputs(const std::string& dir, const SessionConf
 Status CheckOutputs(const std::string& dir, const ResultsManifest& manifest) {
   const std::string results = SessionPaths(dir).results;
   for (const char* name : {"report.json", "calibrated.yaml", "calibration_measurements.csv"})
-    if (manifest.outputs.count(name) == 0) return Status::Error(ResultsManifestPath(dir) + ": lists no " + name);
+    if (manifest.outputs.count(name) == 0) return Status::BadInput(ResultsManifestPath(dir) + ": lists no " + name);
   // camera.yaml and corner_residuals.csv: the intrinsics a calibration from
   // pixels estimated and its corners' residuals; reflectors.csv and
   // point_residuals.csv: the calibration from points' (docs/session.md).
@@ -70,14 +70,15 @@ Status CheckOutputs(const std::string& dir, const ResultsManifest& manifest) {
   for (const char* name : {"camera.yaml", "corner_residuals.csv", "reflectors.csv", "point_residuals.csv"})
     optional += manifest.outputs.count(name);
   if (manifest.outputs.size() != 3 + optional)
-    return Status::Error(ResultsManifestPath(dir) + ": lists other outputs");
+    return Status::BadInput(ResultsManifestPath(dir) + ": lists other outputs");
   for (const auto& [name, expected] : manifest.outputs) {
     const std::string path = (fs::path(results) / name).string();
     StatusOr<std::string> hash = Sha256OfFile(path, kMaxTableBytes);
     if (!hash.ok() || *hash != expected) {
-      return Status::Error(path + ": does not match " + ResultsManifestPath(dir) +
-                           " (changed or replaced after the run that wrote results/); run `hexcal calibrate --session " +
-                           dir + "` again");
+      return Status::BadInput(
+          path + ": does not match " + ResultsManifestPath(dir) +
+          " (changed or replaced after the run that wrote results/); run `hexcal calibrate --session " + dir +
+          "` again");
     }
   }
   return Status::Ok();
@@ -88,10 +89,10 @@ Status CheckOutputs(const std::string& dir, const ResultsManifest& manifest) {
 Status ReadContentHashes(const nlohmann::json& json, const char* key, const std::string& source, ContentHashes* out) {
   const auto found = json.find(key);
   if (found == json.end() || !found->is_object())
-    return Status::Error(source + ": " + key + ": missing or not an object");
+    return Status::BadInput(source + ": " + key + ": missing or not an object");
   for (const auto& [name, hash] : found->items()) {
     if (!hash.is_string() || hash.get<std::string>().size() != 64) {
-      return Status::Error(source + ": " + key + "." + name + ": not a SHA-256 hex digest");
+      return Status::BadInput(source + ": " + key + "." + name + ": not a SHA-256 hex digest");
     }
     (*out)[name] = hash.get<std::string>();
   }
@@ -122,14 +123,14 @@ std::string ManifestToJsonText(const ResultsManifest& manifest) {
 StatusOr<ResultsManifest> ParseResultsManifest(const std::string& text, const std::string& source) {
   StatusOr<nlohmann::json> json = ParseJsonText(text, source);
   if (!json.ok()) return json.status();
-  if (!json->is_object()) return Status::Error(source + ": not a JSON object");
+  if (!json->is_object()) return Status::BadInput(source + ": not a JSON object");
   JsonFields fields(*json, source);
   ResultsManifest manifest;
   const int format = fields.Int("format");
   manifest.created = fields.String("created");
   manifest.command = fields.String("command");
   if (!fields.status().ok()) return fields.status();
-  if (format != kManifestFormat) return Status::Error(source + ": format " + std::to_string(format) + " is not 1");
+  if (format != kManifestFormat) return Status::BadInput(source + ": format " + std::to_string(format) + " is not 1");
   if (Status s = ReadContentHashes(*json, "inputs", source, &manifest.inputs); !s.ok()) return s;
   if (Status s = ReadContentHashes(*json, "outputs", source, &manifest.outputs); !s.ok()) return s;
   return manifest;
@@ -172,8 +173,9 @@ StatusOr<SessionResults> LoadSessionResults(const std::string& dir, const Conten
   const std::string manifest_path = ResultsManifestPath(dir);
   std::error_code error;
   if (!fs::exists(manifest_path, error)) {
-    return Status::Error(manifest_path + ": missing: results/ was not written whole by `hexcal calibrate --session` "
-                         "(an older hexcal, or files put there by hand); run it again");
+    return Status::BadInput(manifest_path +
+                            ": missing: results/ was not written whole by `hexcal calibrate --session` "
+                            "(an older hexcal, or files put there by hand); run it again");
   }
   StatusOr<std::string> text = ReadFileToString(manifest_path, kMaxJsonBytes);
   if (!text.ok()) return text.status();

@@ -52,8 +52,8 @@ StatusOr<std::vector<std::vector<double>>> ReadRandomValues(const std::string& p
   StatusOr<CsvTable> table = ReadCsv(path);
   if (!table.ok()) return table.status();
   if (table->rows.size() != static_cast<size_t>(record.random_count) + 1)
-    return Status::Error(path + ": " + std::to_string(table->rows.size()) + " rows, study.json has " +
-                         std::to_string(record.random_count) + " random subsets and the selected one");
+    return Status::BadInput(path + ": " + std::to_string(table->rows.size()) + " rows, study.json has " +
+                            std::to_string(record.random_count) + " random subsets and the selected one");
   StatusOr<int> ok_column = ColumnIndex(*table, "ok");
   if (!ok_column.ok()) return ok_column.status();
   std::vector<std::vector<double>> values(std::size(kSubsetMetrics));
@@ -68,8 +68,8 @@ StatusOr<std::vector<std::vector<double>>> ReadRandomValues(const std::string& p
       values[m].push_back(*value);
     }
     if (static_cast<int>(values[m].size()) != record.Metric(metric).random.count)
-      return Status::Error(path + ": does not match study.json (" + SubsetMetricName(metric) +
-                           "): run hexcal study again");
+      return Status::BadInput(path + ": does not match study.json (" + SubsetMetricName(metric) +
+                              "): run hexcal study again");
   }
   return values;
 }
@@ -91,7 +91,7 @@ Status SaveSessionStudy(StudyOutcome* outcome, LockWait wait) {
   StatusOr<StagedFolder> staged = StagedFolder::Begin(folder);
   if (!staged.ok()) return staged.status();
   std::vector<std::string> figures;  // in the staging folder: not the paths to report
-  if (Status s = WriteStudyFigures(*outcome, staged->Path(), &figures); !s.ok()) return s.AsFailure();
+  if (Status s = WriteStudyFigures(*outcome, staged->Path(), &figures); !s.ok()) return s;
   if (Status s = WriteFileAtomically(staged->File(kSubsetsCsv), SubsetsCsv(outcome->result)); !s.ok()) return s;
   StudyRecord record = MakeStudyRecord(*outcome);
   record.saved = folder;

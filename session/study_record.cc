@@ -151,8 +151,8 @@ StatusOr<StudyRecord> StudyRecordFromJson(const nlohmann::json& json, const std:
   JsonFields fields(json, source);
   if (!fields.status().ok()) return fields.status();
   if (const int format = fields.Int("format"); fields.status().ok() && format != kStudyFormat)
-    return Status::Error(source + ": format " + std::to_string(format) + " is not " + std::to_string(kStudyFormat) +
-                         " (written by another hexcal): run hexcal study again");
+    return Status::BadInput(source + ": format " + std::to_string(format) + " is not " + std::to_string(kStudyFormat) +
+                            " (written by another hexcal): run hexcal study again");
   StudyRecord r;
   r.created = fields.String("created");
   r.session = fields.String("session");

@@ -5,6 +5,7 @@
 
 #include <utility>
 
+#include "core/atomic_file.h"
 #include "core/robot_io.h"
 #include "devices/child_process.h"
 #include "devices/line_client.h"
@@ -112,7 +113,7 @@ MachineFollower::~MachineFollower() {
 Status MachineFollower::RefreshRobot() {
   std::error_code error;
   const fs::file_time_type time = fs::last_write_time(robot_file_, error);
-  if (error) return Status::Error(robot_file_ + ": cannot read the machine's robot file: " + error.message());
+  if (error) return FileSystemError(robot_file_, "cannot read the machine's robot file", error.value());
   if (time == robot_time_ && !robot_.name.empty()) return Status::Ok();
   StatusOr<Robot> robot = LoadRobot(robot_file_);
   if (!robot.ok()) return robot.status();

@@ -82,8 +82,8 @@ StatusOr<std::shared_ptr<SimWorld>> SimWorld::ForSession(const std::string& dir,
   options.seed = seed;
   auto world = std::make_shared<SimWorld>(MakeDemoScene(models->robot, models->camera, models->target, options));
   if (Status s = world->Command(WorkspaceCentre(models->robot)); !s.ok())
-    return Status::Error(dir +
-                         ": the sim machine cannot start at the centre of the robot's sampling box: " + s.message());
+    return Status::BadInput(dir +
+                            ": the sim machine cannot start at the centre of the robot's sampling box: " + s.message());
   return world;
 }
 

@@ -165,15 +165,16 @@ SessionConfig NewSessionDialog::Config() const {
 }
 
 Status NewSessionDialog::Check() const {
-  if (Folder().trimmed().isEmpty()) return Status::Error("Choose the session's folder.");
+  if (Folder().trimmed().isEmpty()) return Status::BadInput("Choose the session's folder.");
   const SessionConfig config = Config();
   if (config.instrument != Instrument::kPoints) return Status::Ok();
   bool number = false;
   const double sigma = point_sigma_->text().toDouble(&number);
   if (!number || !(sigma > 0 && sigma < 1e6))
-    return Status::Error("Point σ: a positive length in the robot's unit (" + std::string(LengthUnitName(unit_)) +
-                         ")");
-  if (config.points.empty()) return Status::Error("A points session needs its points file (it may be written later).");
+    return Status::BadInput("Point σ: a positive length in the robot's unit (" + std::string(LengthUnitName(unit_)) +
+                            ")");
+  if (config.points.empty())
+    return Status::BadInput("A points session needs its points file (it may be written later).");
   if (config.reflectors.empty()) return Status::Ok();
   // The reflector file is checked now, as `hexcal session init` does.
   const QString path = QDir(QDir(Folder()).absolutePath()).filePath(QString::fromStdString(config.reflectors));

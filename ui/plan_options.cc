@@ -27,7 +27,7 @@ StatusOr<workflow::PlanSetup> PlanOptionsForm::Options() const {
   StatusOr<workflow::PlanSetup> setup = ReadOptionRows(workflow::PlanSetupOptions(), rows_);
   if (!setup.ok()) return setup.status();
   if (setup->planner.criterion_switch_probability > 0 && !setup->planner.secondary)
-    return Status::Error("Criterion switch needs a Secondary criterion: choose one, or set the switch to 0");
+    return Status::BadInput("Criterion switch needs a Secondary criterion: choose one, or set the switch to 0");
   if (Status s = setup->Check(); !s.ok()) return s;
   return setup;
 }

@@ -23,9 +23,10 @@ enum Source { kOff = 0, kSession = 1, kFile = 2 };
 StatusOr<MeasurementConstraints> FromSession(const SessionState& session) {
   const SessionConfig& config = session.Config();
   if (!config.base_from_camera || !config.platform_from_target)
-    return Status::Error("the session has no registered camera and target yet (they are found by the first "
-                         "calibration); choose a settings file instead");
-  if (!session.SessionCamera()) return Status::Error("the session's camera does not load");
+    return Status::BadInput(
+        "the session has no registered camera and target yet (they are found by the first "
+        "calibration); choose a settings file instead");
+  if (!session.SessionCamera()) return Status::BadInput("the session's camera does not load");
   const Camera& camera = *session.SessionCamera();
   MeasurementConstraints constraints;
   constraints.base_from_camera = *config.base_from_camera;
@@ -84,14 +85,14 @@ StatusOr<std::optional<MeasurementConstraints>> VisibilityForm::Constraints() co
   switch (source_->currentIndex()) {
     case kSession: {
       StatusOr<MeasurementConstraints> constraints = FromSession(*session_);
-      if (!constraints.ok()) return Status::Error("Camera visibility: " + constraints.status().message());
+      if (!constraints.ok()) return Status::BadInput("Camera visibility: " + constraints.status().message());
       return std::optional<MeasurementConstraints>(*constraints);
     }
     case kFile: {
       StatusOr<PlanSettings> settings = LoadPlanSettings(file_->text().toStdString(), session_->NominalRobot());
-      if (!settings.ok()) return Status::Error("Camera visibility: " + settings.status().message());
+      if (!settings.ok()) return Status::BadInput("Camera visibility: " + settings.status().message());
       if (!settings->measurement)
-        return Status::Error("Camera visibility: " + file_->text().toStdString() + " has no camera: section");
+        return Status::BadInput("Camera visibility: " + file_->text().toStdString() + " has no camera: section");
       return settings->measurement;
     }
     default:

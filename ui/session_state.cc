@@ -191,11 +191,11 @@ bool SessionState::ReloadIfChanged() {
 // results/ and study/ come back loaded for the panels, the inputs hashed once.
 void SessionState::LoadStatus() {
   const std::string dir = dir_.toStdString();
-  StatusOr<workflow::ContentHashes> inputs = Status::Error("not hashed");
+  StatusOr<workflow::ContentHashes> inputs = Status::BadInput("not hashed");
   StatusOr<workflow::SessionStatus> status = workflow::ReadSessionStatus(dir, &results_, &inputs);
   status_ = status.ok() ? std::optional<workflow::SessionStatus>(*status) : std::nullopt;
   study_ = workflow::HasSessionStudy(dir) ? workflow::LoadSessionStudy(dir, inputs.ok() ? &*inputs : nullptr)
-                                          : StatusOr<workflow::SessionStudy>(Status::Error(kNoStudyYet));
+                                          : StatusOr<workflow::SessionStudy>(Status::BadInput(kNoStudyYet));
 }
 
 QString SessionState::InSession(const QString& text) const {

@@ -157,8 +157,8 @@ class SessionState : public QObject {
   std::vector<LegsRow> legs_;
   QString legs_error_;
   std::optional<workflow::SessionStatus> status_;  // none when the status could not be read
-  StatusOr<workflow::SessionResults> results_ = Status::Error("No results yet: run the Calibrate step.");
-  StatusOr<workflow::SessionStudy> study_ = Status::Error(kNoStudyYet);
+  StatusOr<workflow::SessionResults> results_ = Status::BadInput("No results yet: run the Calibrate step.");
+  StatusOr<workflow::SessionStudy> study_ = Status::BadInput(kNoStudyYet);
   QString load_error_;  // why session.yaml does not load since the last reload; empty when it does
   QFileSystemWatcher watcher_;
   bool watcher_enabled_ = true;

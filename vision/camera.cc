@@ -264,29 +264,30 @@ FieldOfView CameraFieldOfView(const Camera& camera) {
 
 Status Camera::Validate() const {
   if (width <= 0 || height <= 0) {
-    return Status::Error("image size " + std::to_string(width) + " x " + std::to_string(height) + ": must be positive");
+    return Status::BadInput("image size " + std::to_string(width) + " x " + std::to_string(height) +
+                            ": must be positive");
   }
   // No image hexcal reads is larger (image_header.h): a camera of 10^6 x 10^6
   // pixels made acquire allocate 4 TB and abort with std::bad_alloc (issue 36).
   if (static_cast<uint64_t>(width) * static_cast<uint64_t>(height) > kMaxImagePixels) {
-    return Status::Error("image size " + std::to_string(width) + " x " + std::to_string(height) + ": over the " +
-                         std::to_string(kMaxImagePixels / 1'000'000) + "-megapixel limit of an image hexcal reads");
+    return Status::BadInput("image size " + std::to_string(width) + " x " + std::to_string(height) + ": over the " +
+                            std::to_string(kMaxImagePixels / 1'000'000) + "-megapixel limit of an image hexcal reads");
   }
   for (const auto& [name, f] : {std::pair{"fx", fx}, std::pair{"fy", fy}}) {
-    if (!std::isfinite(f)) return Status::Error(std::string("focal length ") + name + ": not a finite number");
+    if (!std::isfinite(f)) return Status::BadInput(std::string("focal length ") + name + ": not a finite number");
   }
   if (!(fx > 0) || !(fy > 0)) {
-    return Status::Error("focal lengths fx = " + FormatNumber(fx) + ", fy = " + FormatNumber(fy) +
-                         ": must be positive");
+    return Status::BadInput("focal lengths fx = " + FormatNumber(fx) + ", fy = " + FormatNumber(fy) +
+                            ": must be positive");
   }
-  if (!std::isfinite(cx) || !std::isfinite(cy)) return Status::Error("principal point: not finite");
+  if (!std::isfinite(cx) || !std::isfinite(cy)) return Status::BadInput("principal point: not finite");
   for (double k : distortion) {
-    if (!std::isfinite(k)) return Status::Error("distortion_coefficients: not finite");
+    if (!std::isfinite(k)) return Status::BadInput("distortion_coefficients: not finite");
   }
   for (size_t i = static_cast<size_t>(NumCoefficients()); i < distortion.size(); ++i) {
     if (distortion[i] != 0) {
-      return Status::Error("distortion_coefficients: coefficient " + std::to_string(i + 1) + " is not 0; the " +
-                           CameraModelName(model) + " model has " + std::to_string(NumCoefficients()));
+      return Status::BadInput("distortion_coefficients: coefficient " + std::to_string(i + 1) + " is not 0; the " +
+                              CameraModelName(model) + " model has " + std::to_string(NumCoefficients()));
     }
   }
   return ValidateRanges();
@@ -296,8 +297,8 @@ Status Camera::Validate() const {
 // 1e300 or 1e-300, k1 = 1e300 or a principal point at -5000 px were accepted).
 Status Camera::ValidateRanges() const {
   const auto outside = [](const std::string& key, double value, double min, double max, const std::string& unit) {
-    return Status::Error(key + " = " + FormatNumber(value) + unit + " is outside [" + FormatNumber(min) + ", " +
-                         FormatNumber(max) + "]" + unit);
+    return Status::BadInput(key + " = " + FormatNumber(value) + unit + " is outside [" + FormatNumber(min) + ", " +
+                            FormatNumber(max) + "]" + unit);
   };
   for (const auto& [name, f] : {std::pair{"fx", fx}, std::pair{"fy", fy}})
     if (f < kMinFocalPixels || f > kMaxFocalPixels) return outside(name, f, kMinFocalPixels, kMaxFocalPixels, " px");

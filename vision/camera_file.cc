@@ -40,7 +40,7 @@ class CameraReader {
  public:
   explicit CameraReader(const std::string& source) : label_("camera file '" + source + "'") {}
 
-  Status Error(const std::string& problem) const { return Status::Error(label_ + ": " + problem); }
+  Status Error(const std::string& problem) const { return Status::BadInput(label_ + ": " + problem); }
 
   // `model`: the file's distortion_model, or nullopt: 4 or 5 coefficients are
   // kRadTan, more (8, 12, 14: OpenCV's lists) kRational. Coefficients past the
@@ -169,7 +169,7 @@ class CameraReader {
     if (!node || !node.IsSequence()) return Error(key + ": expected a list of numbers");
     std::vector<double> values;
     for (const YAML::Node& item : node) {
-      StatusOr<double> value = item.IsScalar() ? ParseNumber(item.Scalar()) : Status::Error("");
+      StatusOr<double> value = item.IsScalar() ? ParseNumber(item.Scalar()) : Status::BadInput("");
       if (!value.ok())
         return Error(key + ": expected numbers, found " + (item.IsScalar() ? Excerpt(item.Scalar()) : "a list"));
       values.push_back(*value);
@@ -184,8 +184,8 @@ class CameraReader {
     StatusOr<std::vector<double>> data = Numbers(MapChild(node, "data"), key + ".data");
     if (!data.ok() || !MapChild(node, "rows") || !MapChild(node, "cols")) return data;
     const YAML::Node rows_node = node["rows"], cols_node = node["cols"];
-    StatusOr<double> rows = rows_node.IsScalar() ? ParseNumber(rows_node.Scalar()) : Status::Error("");
-    StatusOr<double> cols = cols_node.IsScalar() ? ParseNumber(cols_node.Scalar()) : Status::Error("");
+    StatusOr<double> rows = rows_node.IsScalar() ? ParseNumber(rows_node.Scalar()) : Status::BadInput("");
+    StatusOr<double> cols = cols_node.IsScalar() ? ParseNumber(cols_node.Scalar()) : Status::BadInput("");
     if (!rows.ok() || !cols.ok() || *rows != std::floor(*rows) || *cols != std::floor(*cols))
       return Error(key + ": rows, cols: missing or not whole numbers");
     constexpr double kMaxEntries = 64;  // a 3 x 3 matrix or a handful of coefficients
@@ -312,8 +312,7 @@ StatusOr<Camera> LoadCamera(const std::string& path_or_name) {
   if (path_or_name == kSimulatedCameraName && !std::filesystem::exists(path_or_name, error)) return SimulatedCamera();
   StatusOr<std::string> text = ReadFileToString(path_or_name);
   if (!text.ok()) {
-    return Status::Error(text.status().message() + " (a camera file, or the built-in name " +
-                         std::string(kSimulatedCameraName) + ")");
+    return text.status().WithHint(" (a camera file, or the built-in name " + std::string(kSimulatedCameraName) + ")");
   }
   return ParseCameraFile(*text, path_or_name);
 }

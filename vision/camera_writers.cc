@@ -150,17 +150,17 @@ std::string CameraToRosYaml(const Camera& camera, const std::string& camera_name
 StatusOr<std::string> CameraToKalibrYaml(const Camera& camera) {
   const std::string refused = "a Kalibr camchain cannot hold this camera: ";
   if (camera.model == CameraModel::kRational) {
-    return Status::Error(refused + "Kalibr has no rational model (k1 k2 p1 p2 k3 k4 k5 k6); its pinhole camera " +
-                         "takes radtan (k1 k2 p1 p2) or equidistant; write it --to ros or opencv");
+    return Status::BadInput(refused + "Kalibr has no rational model (k1 k2 p1 p2 k3 k4 k5 k6); its pinhole camera " +
+                            "takes radtan (k1 k2 p1 p2) or equidistant; write it --to ros or opencv");
   }
   if (camera.model == CameraModel::kRadTan && camera.distortion[4] != 0) {
-    return Status::Error(refused + "k3 = " + FormatNumber(camera.distortion[4]) +
-                         ", and Kalibr's radtan has k1 k2 p1 p2 only (k3 = 0); write it --to ros or opencv");
+    return Status::BadInput(refused + "k3 = " + FormatNumber(camera.distortion[4]) +
+                            ", and Kalibr's radtan has k1 k2 p1 p2 only (k3 = 0); write it --to ros or opencv");
   }
   // Kalibr's CameraParameters.checkIntrinsics refuses these.
   if (camera.cx < 0 || camera.cy < 0) {
-    return Status::Error(refused + "principal point (" + FormatNumber(camera.cx) + ", " + FormatNumber(camera.cy) +
-                         ") is negative, which Kalibr's reader refuses");
+    return Status::BadInput(refused + "principal point (" + FormatNumber(camera.cx) + ", " + FormatNumber(camera.cy) +
+                            ") is negative, which Kalibr's reader refuses");
   }
   const bool fisheye = camera.model == CameraModel::kPinholeEqui;
   const std::vector<double> coefficients(camera.distortion.begin(), camera.distortion.begin() + 4);
@@ -179,8 +179,8 @@ StatusOr<std::string> CameraToText(const Camera& camera, CameraFileFormat format
   switch (format) {
     case CameraFileFormat::kRos:
       if (!IsRosCameraName(ros_camera_name)) {
-        return Status::Error("camera name " + Excerpt(ros_camera_name) +
-                             ": ROS takes letters, digits and '_' only (camera_info_manager)");
+        return Status::BadInput("camera name " + Excerpt(ros_camera_name) +
+                                ": ROS takes letters, digits and '_' only (camera_info_manager)");
       }
       return CameraToRosYaml(camera, ros_camera_name);
     case CameraFileFormat::kKalibr:

@@ -55,9 +55,9 @@ bool DetectorOptions::IsValid(std::string* error) const {
 StatusOr<std::unique_ptr<TagDetector>> TagDetector::Create(const DetectorOptions& options,
                                                            std::shared_ptr<const IdealPixelMap> ideal) {
   std::string error;
-  if (!options.IsValid(&error)) return Status::Error("detector options: " + error);
+  if (!options.IsValid(&error)) return Status::BadInput("detector options: " + error);
   StatusOr<TagCodebook> codebook = TagCodebook::Create(options.family, options.border_bits);
-  if (!codebook.ok()) return Status::Error("detector options: " + codebook.status().message());
+  if (!codebook.ok()) return Status::BadInput("detector options: " + codebook.status().message());
   StatusOr<std::unique_ptr<QuadFinder>> grown =
       QuadFinder::Create(options.threads, options.quad_sigma, codebook->width_at_border(), /*grow_white=*/true);
   if (!grown.ok()) return grown.status();

@@ -75,8 +75,8 @@ StatusOr<cv::Mat> DecodeImage(const std::string& bytes) {
   if (!plugin.ok()) return plugin.status();
   cv::Mat image;
   if (std::string error = (*plugin)->decode(bytes, cv::IMREAD_UNCHANGED, &image); !error.empty())
-    return Status::Error("cannot decode: " + error);
-  if (image.empty()) return Status::Error("cannot decode: corrupt, truncated or not an image");
+    return Status::BadInput("cannot decode: " + error);
+  if (image.empty()) return Status::BadInput("cannot decode: corrupt, truncated or not an image");
   return image;
 }
 
@@ -86,7 +86,7 @@ StatusOr<cv::Mat> ReadImageFile(const std::string& path) {
   if (!bytes.ok()) return bytes.status();
   StatusOr<cv::Mat> image = DecodeImage(*bytes);
   if (!image.ok() && image.status().kind() != StatusKind::kIo)
-    return Status::Error(path + ": not an image OpenCV can read");
+    return Status::BadInput(path + ": not an image OpenCV can read");
   return image;
 }
 
@@ -104,7 +104,7 @@ StatusOr<std::unique_ptr<VideoStream>> OpenVideoFile(const std::string& path) {
   if (!plugin.ok()) return plugin.status();
   std::string error;
   std::unique_ptr<VideoStream> stream((*plugin)->open_video_file(path, &error));
-  if (!stream) return Status::Error(path + ": not a video OpenCV can read (" + error + ")");
+  if (!stream) return Status::BadInput(path + ": not a video OpenCV can read (" + error + ")");
   return stream;
 }
 

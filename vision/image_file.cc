@@ -19,20 +19,21 @@ Status CheckImageHeader(const ImageHeader& header, const std::string& source) {
   // (GDCM's reader asserts: found by fuzz/image_fuzz). hexcal reads only
   // PNG, JPEG and TIFF, so nothing else reaches imdecode.
   if (header.format == ImageFormat::kOther) {
-    return Status::Error(source + ": cannot decode: not a PNG, JPEG or TIFF file");
+    return Status::BadInput(source + ": cannot decode: not a PNG, JPEG or TIFF file");
   }
   // Truncated files are caught here, before the decoders print their own
   // complaints on stderr.
   if (header.truncated && header.format == ImageFormat::kPng) {
-    return Status::Error(source + ": truncated PNG (no IEND chunk)");
+    return Status::BadInput(source + ": truncated PNG (no IEND chunk)");
   }
-  if (header.truncated) return Status::Error(source + ": truncated JPEG (no end-of-image marker)");
-  if (!header.corrupt.empty()) return Status::Error(source + ": cannot decode: corrupt JPEG (" + header.corrupt + ")");
+  if (header.truncated) return Status::BadInput(source + ": truncated JPEG (no end-of-image marker)");
+  if (!header.corrupt.empty())
+    return Status::BadInput(source + ": cannot decode: corrupt JPEG (" + header.corrupt + ")");
   // The decoder allocates what the header claims, however small the file.
   if (header.size && header.size->Pixels() > kMaxImagePixels) {
-    return Status::Error(source + ": " + std::to_string(header.size->width) + " x " +
-                         std::to_string(header.size->height) + " pixels is over the " +
-                         std::to_string(kMaxImagePixels / 1'000'000) + "-megapixel limit");
+    return Status::BadInput(source + ": " + std::to_string(header.size->width) + " x " +
+                            std::to_string(header.size->height) + " pixels is over the " +
+                            std::to_string(kMaxImagePixels / 1'000'000) + "-megapixel limit");
   }
   return Status::Ok();
 }
@@ -93,7 +94,7 @@ StatusOr<cv::Mat> LoadGrayImage(const std::string& path, ImageNotes* notes) {
 }
 
 StatusOr<cv::Mat> DecodeGrayImage(const std::string& bytes, const std::string& source, ImageNotes* notes) {
-  if (bytes.empty()) return Status::Error(source + ": empty file");
+  if (bytes.empty()) return Status::BadInput(source + ": empty file");
   const ImageHeader header = ReadImageHeader(bytes);
   if (const Status checked = CheckImageHeader(header, source); !checked.ok()) return checked;
   // Every channel and bit as stored, orientation not applied.
@@ -101,8 +102,8 @@ StatusOr<cv::Mat> DecodeGrayImage(const std::string& bytes, const std::string& s
   if (!image.ok()) return Status(image.status()).Prefixed(source + ": ");
   const cv::Mat& decoded = *image;
   if (decoded.channels() > 4 || (decoded.depth() != CV_8U && decoded.depth() != CV_16U && decoded.depth() != CV_32F)) {
-    return Status::Error(source + ": cannot decode: " + std::to_string(decoded.channels()) +
-                         " channels of an unsupported sample type (8-bit, 16-bit or float grey or colour are read)");
+    return Status::BadInput(source + ": cannot decode: " + std::to_string(decoded.channels()) +
+                            " channels of an unsupported sample type (8-bit, 16-bit or float grey or colour are read)");
   }
   ImageNotes local;
   ImageNotes* out = notes ? notes : &local;

@@ -229,8 +229,8 @@ CrossValidation CrossValidate(const std::vector<CalibrationView>& views, const s
 StatusOr<IntrinsicsResult> Run(int count, const std::vector<std::string>& names, const ImageLoader& load,
                                const Target& target, const IntrinsicsOptions& options, const JobHooks& hooks) {
   std::string error;
-  if (!options.IsValid(&error)) return Status::Error("intrinsics options: " + error);
-  if (count == 0) return Status::Error("no images");
+  if (!options.IsValid(&error)) return Status::BadInput("intrinsics options: " + error);
+  if (count == 0) return Status::BadInput("no images");
   const int passes = 1 + options.refinement_passes;
   // Detection pass `pass` of `passes` as one count over every pass.
   auto stage_hooks = [&](int pass) -> JobHooks {
@@ -254,9 +254,9 @@ StatusOr<IntrinsicsResult> Run(int count, const std::vector<std::string>& names,
       size = d.size;
       size_source = view.file;
     } else if (d.size != size) {
-      return Status::Error("images have different sizes: " + size_source + " is " + std::to_string(size.width) + " x " +
-                           std::to_string(size.height) + ", " + view.file + " is " + std::to_string(d.size.width) +
-                           " x " + std::to_string(d.size.height));
+      return Status::BadInput("images have different sizes: " + size_source + " is " + std::to_string(size.width) +
+                              " x " + std::to_string(size.height) + ", " + view.file + " is " +
+                              std::to_string(d.size.width) + " x " + std::to_string(d.size.height));
     }
     view.tags = d.observation.NumTags();
     view.used = d.loaded && view.tags >= options.min_tags_per_view;
@@ -273,11 +273,11 @@ StatusOr<IntrinsicsResult> Run(int count, const std::vector<std::string>& names,
     // Bad input, as measure and calibrate --session have it: the wrong
     // images, or a target file that does not describe the printed board.
     const CalibrationView& first = result.views[static_cast<size_t>(loaded - detected->begin())];
-    return Status::Error("no image shows the target: 0 of " + std::to_string(count) + " images show at least " +
-                         std::to_string(options.min_tags_per_view) + " target tags (" + first.file + ": " +
-                         std::to_string(first.tags) + " tags" +
-                         "); check that these are images of the board and that --target describes it as printed "
-                         "(hexcal detect --images IMAGE says what an image holds)");
+    return Status::BadInput("no image shows the target: 0 of " + std::to_string(count) + " images show at least " +
+                            std::to_string(options.min_tags_per_view) + " target tags (" + first.file + ": " +
+                            std::to_string(first.tags) + " tags" +
+                            "); check that these are images of the board and that --target describes it as printed "
+                            "(hexcal detect --images IMAGE says what an image holds)");
   }
   if (usable < options.min_views) {
     return Status::Failed("too few usable views: " + std::to_string(usable) + " of " + std::to_string(count) +

@@ -41,7 +41,7 @@ Status CheckIntrinsicsFit(const IntrinsicsResult& result, const Target& target, 
     if (bad.size() > 5) why << " and " << bad.size() - 5 << " more";
     why << "; check them (motion blur, a bent board, another board in view) and leave them out.";
   }
-  return Status::Error(why.str());
+  return Status::BadInput(why.str());
 }
 
 CrossValidation CompareHalves(const Camera& full, const Camera& a, const std::vector<double>& sigma_a,

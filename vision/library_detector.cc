@@ -32,14 +32,15 @@ struct LibraryDetector::Impl {
 
 StatusOr<std::unique_ptr<LibraryDetector>> LibraryDetector::Create(const std::string& family,
                                                                    const LibraryDetectorSettings& settings) {
-  if (!FindTagFamily(family)) return Status::Error("library detector: family '" + family + "' is not supported");
-  if (settings.threads < 1 || settings.threads > 64) return Status::Error("library detector: threads must be in 1..64");
+  if (!FindTagFamily(family)) return Status::BadInput("library detector: family '" + family + "' is not supported");
+  if (settings.threads < 1 || settings.threads > 64)
+    return Status::BadInput("library detector: threads must be in 1..64");
   if (!(settings.quad_decimate >= 1 && settings.quad_decimate <= 8))
-    return Status::Error("library detector: quad_decimate must be in [1, 8]");
+    return Status::BadInput("library detector: quad_decimate must be in [1, 8]");
   if (!(settings.quad_sigma >= 0 && settings.quad_sigma <= 10))
-    return Status::Error("library detector: quad_sigma must be in [0, 10] px");
+    return Status::BadInput("library detector: quad_sigma must be in [0, 10] px");
   if (settings.bits_corrected < 0 || settings.bits_corrected > 3)
-    return Status::Error("library detector: bits_corrected must be in 0..3");
+    return Status::BadInput("library detector: bits_corrected must be in 0..3");
   auto impl = std::make_unique<Impl>();
   impl->family = CreateAprilTagFamily(family);
   // Everything else as apriltag_detector_create leaves it: refine_edges 1,

@@ -39,7 +39,7 @@ StatusOr<std::vector<std::string>> ListImages(const std::string& folder_or_file)
   if (!fs::is_directory(status)) {
     std::error_code link_error;
     const bool link = fs::is_symlink(fs::symlink_status(folder_or_file, link_error));
-    if ((error || !fs::exists(status)) && !link) return Status::Error(folder_or_file + ": no such file or folder");
+    if ((error || !fs::exists(status)) && !link) return Status::BadInput(folder_or_file + ": no such file or folder");
     // One image: a FIFO, a device or a dangling link is bad input here, not an unreadable row later.
     if (Status s = CheckFileForReading(folder_or_file, kMaxImageBytes); !s.ok()) return s;
     return std::vector<std::string>{folder_or_file};
@@ -48,8 +48,8 @@ StatusOr<std::vector<std::string>> ListImages(const std::string& folder_or_file)
   for (fs::directory_iterator it(folder_or_file, error), end; !error && it != end; it.increment(error)) {
     if (!it->is_directory(error) && HasImageExtension(it->path())) files.push_back(it->path().string());
   }
-  if (error) return Status::Error(folder_or_file + ": cannot list the folder: " + error.message());
-  if (files.empty()) return Status::Error(folder_or_file + ": no PNG, JPEG or TIFF images in the folder");
+  if (error) return FileSystemError(folder_or_file, "cannot list the folder", error.value());
+  if (files.empty()) return Status::BadInput(folder_or_file + ": no PNG, JPEG or TIFF images in the folder");
   std::sort(files.begin(), files.end());
   return files;
 }
@@ -79,7 +79,7 @@ StatusOr<std::vector<ImageMeasurement>> MeasureImages(const std::vector<std::str
                                                       const Target& target, const MeasureOptions& options,
                                                       const JobHooks& hooks) {
   std::string error;
-  if (!options.IsValid(&error)) return Status::Error("measure options: " + error);
+  if (!options.IsValid(&error)) return Status::BadInput("measure options: " + error);
   const int count = static_cast<int>(files.size());
   const int workers = ParallelWorkers(count, options.threads);
   auto ideal = std::make_shared<const IdealPixelMap>(camera);
@@ -160,7 +160,7 @@ StatusOr<std::vector<ImageMeasurementRecord>> ParseImageMeasurementsCsv(const st
   StatusOr<CsvTable> table = ParseCsv(text, source);
   if (!table.ok()) return table.status();
   if (table->header != ImageMeasurementColumns())
-    return Status::Error(source + ": not the columns hexcal measure writes; remove it to re-measure");
+    return Status::BadInput(source + ": not the columns hexcal measure writes; remove it to re-measure");
   std::vector<ImageMeasurementRecord> records;
   for (size_t r = 0; r < table->rows.size(); ++r) {
     ImageMeasurementRecord record;
@@ -181,8 +181,8 @@ StatusOr<std::vector<ImageMeasurementRecord>> ParseImageMeasurementsCsv(const st
       record.camera_from_target = PoseFromVector(v, EulerConvention::kXYZ);
       std::optional<Matrix6d> covariance = CovarianceFromSigmasAndCorrelations(sigma, correlation);
       if (!covariance)
-        return Status::Error(source + ":" + std::to_string(r + 2) +
-                             ": a sigma is negative or a correlation is outside [-1, 1]");
+        return Status::BadInput(source + ":" + std::to_string(r + 2) +
+                                ": a sigma is negative or a correlation is outside [-1, 1]");
       record.covariance = *covariance;
     }
     records.push_back(std::move(record));

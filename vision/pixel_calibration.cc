@@ -21,20 +21,20 @@ constexpr int kMinImages = 7;  // as Calibrate: 7 parameters per leg
 
 Status CheckInput(const PixelCalibrationInput& input, const PixelCalibrationOptions& options) {
   std::string error;
-  if (!options.IsValid(&error)) return Status::Error("calibration from pixels: " + error);
+  if (!options.IsValid(&error)) return Status::BadInput("calibration from pixels: " + error);
   if (static_cast<int>(input.images.size()) < kMinImages) {
-    return Status::Error("calibration from pixels: " + std::to_string(input.images.size()) +
-                         " images with corners; at least 7 are needed");
+    return Status::BadInput("calibration from pixels: " + std::to_string(input.images.size()) +
+                            " images with corners; at least 7 are needed");
   }
   if (!(input.target_to_robot > 0) || !std::isfinite(input.target_to_robot)) {
-    return Status::Error("calibration from pixels: the target-to-robot unit factor must be positive");
+    return Status::BadInput("calibration from pixels: the target-to-robot unit factor must be positive");
   }
   for (size_t j = 0; j < input.images.size(); ++j) {
     const PixelImage& image = input.images[j];
     if (image.observation.image_points.empty())
-      return Status::Error("calibration from pixels: image " + std::to_string(j) + " has no corners");
+      return Status::BadInput("calibration from pixels: image " + std::to_string(j) + " has no corners");
     if (!image.legs.allFinite() || !image.base_from_platform.position.allFinite())
-      return Status::Error("calibration from pixels: image " + std::to_string(j) + " has a non-finite value");
+      return Status::BadInput("calibration from pixels: image " + std::to_string(j) + " has a non-finite value");
   }
   return input.camera.Validate();
 }

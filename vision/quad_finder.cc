@@ -83,8 +83,8 @@ struct QuadFinder::Impl {
 
 StatusOr<std::unique_ptr<QuadFinder>> QuadFinder::Create(int threads, double quad_sigma, int min_width_cells,
                                                          bool grow_white) {
-  if (threads < 1 || threads > 64) return Status::Error("quad finder: threads must be in 1..64");
-  if (!(quad_sigma >= 0 && quad_sigma <= 10)) return Status::Error("quad finder: quad_sigma must be in [0, 10] px");
+  if (threads < 1 || threads > 64) return Status::BadInput("quad finder: threads must be in 1..64");
+  if (!(quad_sigma >= 0 && quad_sigma <= 10)) return Status::BadInput("quad finder: quad_sigma must be in [0, 10] px");
   auto impl = std::make_unique<Impl>();
   impl->family = CreateAprilTagFamily("tag16h5");  // the smallest table; its codes are never used
   impl->family->width_at_border = static_cast<uint32_t>(std::max(min_width_cells, 3));

@@ -104,8 +104,8 @@ std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> FitGreyModels(const c
 
 StatusOr<TagCodebook> TagCodebook::Create(const std::string& family, int border_bits) {
   const std::optional<TagFamilyInfo> info = FindTagFamily(family);
-  if (!info) return Status::Error("tag family '" + family + "' is not supported");
-  if (border_bits != 1 && border_bits != 2) return Status::Error("border_bits: must be 1 or 2");
+  if (!info) return Status::BadInput("tag family '" + family + "' is not supported");
+  if (border_bits != 1 && border_bits != 2) return Status::BadInput("border_bits: must be 1 or 2");
   TagCodebook codebook;
   codebook.border_bits_ = border_bits;
   codebook.data_width_ = info->width_at_border - 2;  // the library's families have a one-cell border

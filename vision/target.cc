@@ -133,37 +133,37 @@ Status Target::Validate() const {
   if (!info) {
     std::string names;
     for (const std::string& name : SupportedTagFamilies()) names += (names.empty() ? "" : ", ") + name;
-    return Status::Error("family: '" + family + "' is not supported; expected one of " + names);
+    return Status::BadInput("family: '" + family + "' is not supported; expected one of " + names);
   }
   if (layout_ == TargetLayout::kGrid) {
-    if (rows < 1) return Status::Error("rows: must be at least 1, found " + Int(rows));
-    if (cols < 1) return Status::Error("cols: must be at least 1, found " + Int(cols));
-    if (first_id < 0) return Status::Error("first_id: must be at least 0, found " + Int(first_id));
+    if (rows < 1) return Status::BadInput("rows: must be at least 1, found " + Int(rows));
+    if (cols < 1) return Status::BadInput("cols: must be at least 1, found " + Int(cols));
+    if (first_id < 0) return Status::BadInput("first_id: must be at least 0, found " + Int(first_id));
     const long long last = static_cast<long long>(first_id) + static_cast<long long>(rows) * cols - 1;
     if (last >= info->num_codes) {
-      return Status::Error("first_id: ids " + Int(first_id) + " to " + Int(last) + " exceed the " +
-                           Int(info->num_codes) + " tags of " + family);
+      return Status::BadInput("first_id: ids " + Int(first_id) + " to " + Int(last) + " exceed the " +
+                              Int(info->num_codes) + " tags of " + family);
     }
   } else if (layout_ == TargetLayout::kIdMatrix) {
     if (Status s = ValidateIdMatrix(info->num_codes); !s.ok()) return s;
   }
   if (!(tag_size > 0) || !std::isfinite(tag_size)) {
-    return Status::Error("tag_size: must be a positive length, found " + FormatNumber(tag_size));
+    return Status::BadInput("tag_size: must be a positive length, found " + FormatNumber(tag_size));
   }
   // A printable tag: 0.1 mm to 10 m. 1e300 mm printed a PDF 301 digits wide;
   // 1e-300 made every pose a rounding error (issue 36).
   const double unit = MetresPerUnit(length_unit);
   if (tag_size * unit < kMinTagSizeMetres || tag_size * unit > kMaxTagSizeMetres) {
     const std::string name = LengthUnitName(length_unit);
-    return Status::Error("tag_size: " + FormatNumber(tag_size) + " " + name + " is outside [" +
-                         FormatNumber(kMinTagSizeMetres / unit) + ", " + FormatNumber(kMaxTagSizeMetres / unit) + "] " +
-                         name);
+    return Status::BadInput("tag_size: " + FormatNumber(tag_size) + " " + name + " is outside [" +
+                            FormatNumber(kMinTagSizeMetres / unit) + ", " + FormatNumber(kMaxTagSizeMetres / unit) +
+                            "] " + name);
   }
   // AprilTag needs white around each black square to find it: at least one
   // bit cell between neighbours and at the edge of the sheet.
   if (border_bits != 1 && border_bits != 2) {
-    return Status::Error("border_bits: must be 1 (AprilTag's tags) or 2 (Kalibr's aprilgrid), found " +
-                         Int(border_bits));
+    return Status::BadInput("border_bits: must be 1 (AprilTag's tags) or 2 (Kalibr's aprilgrid), found " +
+                            Int(border_bits));
   }
   // With a two-cell border the edge fit reaches two cells out: keep that white.
   const double cell_ratio = static_cast<double>(border_bits) / WidthAtBorder();
@@ -171,33 +171,33 @@ Status Target::Validate() const {
   if (layout_ == TargetLayout::kTagList) {
     if (Status s = ValidateTagList(info->num_codes); !s.ok()) return s;
   } else if (!(tag_spacing >= cell_ratio) || !std::isfinite(tag_spacing)) {
-    return Status::Error("tag_spacing: " + FormatNumber(tag_spacing) + " leaves less than " + cells + " (tag_size/" +
-                         Int(WidthAtBorder()) + " each) of white between tags; use at least " +
-                         FormatNumber(cell_ratio) + " (Kalibr's default is 0.3)");
+    return Status::BadInput("tag_spacing: " + FormatNumber(tag_spacing) + " leaves less than " + cells + " (tag_size/" +
+                            Int(WidthAtBorder()) + " each) of white between tags; use at least " +
+                            FormatNumber(cell_ratio) + " (Kalibr's default is 0.3)");
   }
   if (!(margin >= tag_size * cell_ratio) || !std::isfinite(margin)) {
-    return Status::Error("margin: " + FormatNumber(margin) + " is less than " + cells + " (" +
-                         FormatNumber(tag_size * cell_ratio) + ") of white around the outer tags");
+    return Status::BadInput("margin: " + FormatNumber(margin) + " is less than " + cells + " (" +
+                            FormatNumber(tag_size * cell_ratio) + ") of white around the outer tags");
   }
   return Status::Ok();
 }
 
 Status Target::ValidateIdMatrix(int num_codes) const {
   if (rows != static_cast<int>(id_matrix_.size())) {
-    return Status::Error("rows: " + Int(rows) + ", but ids has " + Int(static_cast<long long>(id_matrix_.size())) +
-                         " rows");
+    return Status::BadInput("rows: " + Int(rows) + ", but ids has " + Int(static_cast<long long>(id_matrix_.size())) +
+                            " rows");
   }
-  if (rows < 1 || cols < 1) return Status::Error("ids: expected at least one row of at least one entry");
+  if (rows < 1 || cols < 1) return Status::BadInput("ids: expected at least one row of at least one entry");
   if (cols != static_cast<int>(id_matrix_[0].size())) {
-    return Status::Error("cols: " + Int(cols) + ", but the rows of ids have " +
-                         Int(static_cast<long long>(id_matrix_[0].size())) + " entries");
+    return Status::BadInput("cols: " + Int(cols) + ", but the rows of ids have " +
+                            Int(static_cast<long long>(id_matrix_[0].size())) + " entries");
   }
-  if (ids_.empty()) return Status::Error("ids: no tag on the board (every entry is -1)");
+  if (ids_.empty()) return Status::BadInput("ids: no tag on the board (every entry is -1)");
   for (size_t index = 0; index < ids_.size(); ++index) {
     const int id = ids_[index], cell = cells_[index];
     if (id < 0 || id >= num_codes) {
-      return Status::Error("ids: " + CellName(cell / cols, cell % cols, rows) + ": " + Int(id) + " is not a tag of " +
-                           family + " (0 to " + Int(num_codes - 1) + ", or -1 for no tag)");
+      return Status::BadInput("ids: " + CellName(cell / cols, cell % cols, rows) + ": " + Int(id) +
+                              " is not a tag of " + family + " (0 to " + Int(num_codes - 1) + ", or -1 for no tag)");
     }
   }
   for (size_t k = 1; k < index_of_id_.size(); ++k) {
@@ -205,8 +205,8 @@ Status Target::ValidateIdMatrix(int num_codes) const {
     int a = cells_[static_cast<size_t>(index_of_id_[k - 1].second)];
     int b = cells_[static_cast<size_t>(index_of_id_[k].second)];
     if (a / cols < b / cols) std::swap(a, b);  // as printed: the upper row first
-    return Status::Error("ids: id " + Int(index_of_id_[k].first) + " appears twice (" +
-                         CellName(a / cols, a % cols, rows) + " and " + CellName(b / cols, b % cols, rows) + ")");
+    return Status::BadInput("ids: id " + Int(index_of_id_[k].first) + " appears twice (" +
+                            CellName(a / cols, a % cols, rows) + " and " + CellName(b / cols, b % cols, rows) + ")");
   }
   return Status::Ok();
 }
@@ -214,20 +214,20 @@ Status Target::ValidateIdMatrix(int num_codes) const {
 // Each black square needs border_bits cells of white all round (the edge fit
 // reaches that far out): two squares' Chebyshev gap must be at least that.
 Status Target::ValidateTagList(int num_codes) const {
-  if (tag_list_.empty()) return Status::Error("tags: expected at least one tag");
+  if (tag_list_.empty()) return Status::BadInput("tags: expected at least one tag");
   for (const TargetTag& tag : tag_list_) {
     if (tag.id < 0 || tag.id >= num_codes) {
-      return Status::Error("tags: id " + Int(tag.id) + " is not a tag of " + family + " (0 to " + Int(num_codes - 1) +
-                           ")");
+      return Status::BadInput("tags: id " + Int(tag.id) + " is not a tag of " + family + " (0 to " +
+                              Int(num_codes - 1) + ")");
     }
     if (!std::isfinite(tag.x) || !std::isfinite(tag.y)) {
-      return Status::Error("tags: id " + Int(tag.id) + ": x and y must be finite");
+      return Status::BadInput("tags: id " + Int(tag.id) + ": x and y must be finite");
     }
   }
   for (size_t k = 1; k < index_of_id_.size(); ++k) {
     if (index_of_id_[k].first == index_of_id_[k - 1].first) {
-      return Status::Error("tags: id " + Int(index_of_id_[k].first) + " appears twice (entries " +
-                           Int(index_of_id_[k - 1].second + 1) + " and " + Int(index_of_id_[k].second + 1) + ")");
+      return Status::BadInput("tags: id " + Int(index_of_id_[k].first) + " appears twice (entries " +
+                              Int(index_of_id_[k - 1].second + 1) + " and " + Int(index_of_id_[k].second + 1) + ")");
     }
   }
   const double white = tag_size * border_bits / WidthAtBorder();
@@ -238,9 +238,9 @@ Status Target::ValidateTagList(int num_codes) const {
           std::max(std::abs(tag_list_[a].x - tag_list_[b].x), std::abs(tag_list_[a].y - tag_list_[b].y)) - tag_size;
       if (gap >= white) continue;
       const std::string pair = "tags " + Int(tag_list_[a].id) + " and " + Int(tag_list_[b].id);
-      if (gap < 0) return Status::Error("tags: " + pair + " overlap");
-      return Status::Error("tags: " + pair + " are " + FormatNumber(gap) + " apart, less than " + cells + " (" +
-                           FormatNumber(white) + ") of white");
+      if (gap < 0) return Status::BadInput("tags: " + pair + " overlap");
+      return Status::BadInput("tags: " + pair + " are " + FormatNumber(gap) + " apart, less than " + cells + " (" +
+                              FormatNumber(white) + ") of white");
     }
   }
   return Status::Ok();

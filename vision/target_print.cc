@@ -296,13 +296,13 @@ std::string TargetPdf(const Target& target) {
 
 StatusOr<std::string> TargetPng(const Target& target, double dpi) {
   if (!(dpi >= kMinPrintDpi && dpi <= kMaxPrintDpi))
-    return Status::Error("--dpi: " + Fixed(dpi, 1) + " is outside [" + Fixed(kMinPrintDpi, 0) + ", " +
-                         Fixed(kMaxPrintDpi, 0) + "]");
+    return Status::BadInput("--dpi: " + Fixed(dpi, 1) + " is outside [" + Fixed(kMinPrintDpi, 0) + ", " +
+                            Fixed(kMaxPrintDpi, 0) + "]");
   const auto [content_w, content_h] = ContentSize(target);
   const double page_w = content_w + 2 * kPageMarginMm, page_h = content_h + 2 * kPageMarginMm;
   if (std::max(page_w, page_h) * dpi / 25.4 > 30000) {
-    return Status::Error("the PNG would be over 30000 pixels on a side at " + Fixed(dpi, 0) +
-                         " dpi; use a lower --dpi");
+    return Status::BadInput("the PNG would be over 30000 pixels on a side at " + Fixed(dpi, 0) +
+                            " dpi; use a lower --dpi");
   }
   PngCanvas canvas(page_w, page_h, dpi);
   DrawTarget(target, kPageMarginMm, kPageMarginMm, canvas);
@@ -316,7 +316,7 @@ Status WriteTargetPrint(const Target& target, const std::string& path, double dp
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (extension == ".pdf") return WriteFileAtomically(path, TargetPdf(target));
-  if (extension != ".png") return Status::Error(path + ": the output must end in .pdf or .png");
+  if (extension != ".png") return Status::BadInput(path + ": the output must end in .pdf or .png");
   StatusOr<std::string> png = TargetPng(target, dpi);
   if (!png.ok()) return png.status();
   return WriteFileAtomically(path, *png);

@@ -52,7 +52,7 @@ class TargetReader {
 
  private:
   Status Error(const std::string& key, const std::string& problem) const {
-    return Status::Error(label_ + ": " + key + ": " + problem);
+    return Status::BadInput(label_ + ": " + key + ": " + problem);
   }
 
   // Unknown keys, a key under both names, keys that do not go together.
@@ -124,7 +124,7 @@ class TargetReader {
       const double gap = target.Layout() == TargetLayout::kTagList ? 0.3 * target.tag_size : target.Gap();
       target.margin = std::max(gap, 2.0 * target.tag_size / target.WidthAtBorder());
     }
-    if (Status s = target.Validate(); !s.ok()) return Status::Error(label_ + ": " + s.message());
+    if (Status s = target.Validate(); !s.ok()) return Status::BadInput(label_ + ": " + s.message());
     return target;
   }
 
@@ -205,7 +205,7 @@ class TargetReader {
       TargetTag placed{*id, 0, 0};
       for (auto [key, out] : {std::pair{"x", &placed.x}, std::pair{"y", &placed.y}}) {
         StatusOr<double> value =
-            tag[key].IsScalar() ? ParseNumber(tag[key].Scalar()) : StatusOr<double>(Status::Error(""));
+            tag[key].IsScalar() ? ParseNumber(tag[key].Scalar()) : StatusOr<double>(Status::BadInput(""));
         if (!value.ok()) return Error("tags", where + ": " + key + ": expected a finite number");
         *out = *value;
       }
@@ -215,7 +215,7 @@ class TargetReader {
   }
 
   StatusOr<int> WholeNumber(const YAML::Node& node, const std::string& key, const std::string& where) const {
-    StatusOr<double> value = node.IsScalar() ? ParseNumber(node.Scalar()) : StatusOr<double>(Status::Error(""));
+    StatusOr<double> value = node.IsScalar() ? ParseNumber(node.Scalar()) : StatusOr<double>(Status::BadInput(""));
     if (!value.ok() || *value != std::floor(*value) || std::abs(*value) > 1e9) {
       return Error(key, where + ": expected a whole number" +
                             (node.IsScalar() ? ", found " + Excerpt(node.Scalar()) : std::string()));
@@ -292,8 +292,7 @@ StatusOr<Target> LoadTarget(const std::string& path_or_name) {
   if (path_or_name == kDefaultTargetName && !std::filesystem::exists(path_or_name, error)) return DefaultTarget();
   StatusOr<std::string> text = ReadFileToString(path_or_name);
   if (!text.ok()) {
-    return Status::Error(text.status().message() + " (a target file, or the built-in name " +
-                         std::string(kDefaultTargetName) + ")");
+    return text.status().WithHint(" (a target file, or the built-in name " + std::string(kDefaultTargetName) + ")");
   }
   return ParseTargetYaml(*text, path_or_name);
 }

@@ -57,8 +57,8 @@ Status ClearImageSlot(const std::string& dir, const std::string& image, bool rem
   std::error_code error;
   if (!fs::exists(fs::symlink_status(path, error))) return Status::Ok();
   if (PendingCapture(dir) != image)
-    return Status::Error("images/" + image + " exists without a row in legs.csv and hexcal acquire did not " +
-                         "write it: move it away, or record its readings (hexcal session record), then run again");
+    return Status::BadInput("images/" + image + " exists without a row in legs.csv and hexcal acquire did not " +
+                            "write it: move it away, or record its readings (hexcal session record), then run again");
   if (!remove) return Status::Ok();
   fs::remove(path, error);
   if (error)
@@ -73,7 +73,7 @@ Status RecordWithPendingName(const std::string& dir, const std::string& png, con
   if (Status s = WriteFileAtomically(pending, row.image + "\n"); !s.ok()) return s;
   const EditOutcome outcome = RecordCaptureBytes(dir, png, row, {false, wait});
   if (!outcome.status.ok()) return outcome.status;
-  if (outcome.conflict) return Status::Error(outcome.conflict_text);
+  if (outcome.conflict) return Status::BadInput(outcome.conflict_text);
   std::error_code error;
   fs::remove(pending, error);  // a name left behind names an image with its row: harmless
   return Status::Ok();

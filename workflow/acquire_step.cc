@@ -70,7 +70,7 @@ StatusOr<std::vector<Vector6d>> LoadRequestedPoses(const AcquireRequest& request
   const std::string path = request.poses.empty() ? SessionPaths(request.session).plan : request.poses;
   std::error_code error;
   if (request.poses.empty() && !fs::exists(fs::symlink_status(path, error)))  // a dangling link is named by LoadPoses
-    return Status::Error(path + ": no plan in the session; run hexcal plan --out " + path + " or pass --poses FILE");
+    return Status::BadInput(path + ": no plan in the session; run hexcal plan --out " + path + " or pass --poses FILE");
   return LoadPoses(path);
 }
 
@@ -83,7 +83,7 @@ StatusOr<std::string> FreeCaptureName(const std::string& dir, const ReadingCheck
   StatusOr<std::vector<ReadingsRow>> rows = ReadReadingsTable(dir);
   if (!rows.ok()) return rows.status();
   if (const int row = CaptureOfPose(check, pose_index, pose, *rows); row >= 0)
-    return Status::Error(dir + ": " + (*rows)[row].image + " is recorded already");
+    return Status::BadInput(dir + ": " + (*rows)[row].image + " is recorded already");
   const std::string image = CaptureImageName(pose_index, *rows);
   if (Status s = ClearImageSlot(dir, image, remove, hooks); !s.ok()) return s;
   return image;
@@ -179,8 +179,8 @@ Status WriteOrCheckTruth(const SimWorld& world, const std::string& dir, uint64_t
   StatusOr<std::string> on_disk = ReadFileToString(robot_file, kMaxTableBytes);
   if (!on_disk.ok()) return on_disk.status();
   if (*on_disk != RobotToYaml(world.scene().truth))
-    return Status::Error(robot_file + ": the session's sim truth was drawn with another --seed than " +
-                         std::to_string(seed) + "; resume with the seed of the first run");
+    return Status::BadInput(robot_file + ": the session's sim truth was drawn with another --seed than " +
+                            std::to_string(seed) + "; resume with the seed of the first run");
   return Status::Ok();
 }
 
@@ -230,7 +230,7 @@ StatusOr<AcquisitionRig> OpenAcquisitionRig(const std::string& dir, const std::s
   AcquisitionRig rig;
   const bool sim = controller_url == "sim" || camera_url == "sim";
   if (camera_url == "sim" && controller_url != "sim")
-    return Status::Error("camera 'sim' renders the sim world's platform: it needs --controller sim");
+    return Status::BadInput("camera 'sim' renders the sim world's platform: it needs --controller sim");
   if (sim) {
     StatusOr<std::shared_ptr<SimWorld>> world = SimWorld::ForSession(dir, seed);
     if (!world.ok()) return world.status();
@@ -259,7 +259,7 @@ StatusOr<AcquisitionRig> OpenAcquisitionRig(const std::string& dir, const std::s
 }
 
 StatusOr<AcquireResult> AcquirePlan(const AcquireRequest& request, const JobHooks& hooks) {
-  if (std::string error; !request.options.IsValid(&error)) return Status::Error(error);
+  if (std::string error; !request.options.IsValid(&error)) return Status::BadInput(error);
   // The plan and the session are checked before a sim world writes its truth
   // into the session, or a machine is powered on and homed.
   if (StatusOr<std::vector<Vector6d>> poses = LoadRequestedPoses(request); !poses.ok()) return poses.status();
@@ -273,7 +273,7 @@ StatusOr<AcquireResult> AcquirePlan(const AcquireRequest& request, const JobHook
 StatusOr<AcquireResult> AcquirePlan(const AcquireRequest& request, Controller& controller, FrameSource& camera,
                                     const JobHooks& hooks) {
   const auto start = std::chrono::steady_clock::now();
-  if (std::string error; !request.options.IsValid(&error)) return Status::Error(error);
+  if (std::string error; !request.options.IsValid(&error)) return Status::BadInput(error);
   StatusOr<std::vector<Vector6d>> poses = LoadRequestedPoses(request);
   if (!poses.ok()) return poses.status();
   StatusOr<Robot> robot = LoadSessionRobot(request.session);

@@ -4,7 +4,7 @@
 // (another border width or family, vision/layout_hint.h). Without this the
 // calibration stopped at "registration needs at least 3 poses, got 0".
 //
-//   if (ok < kMinBoardPoses) return Status::Error(dir + ": " + ExplainBoardPoseShortfall(dir, poses, target));
+//   if (ok < kMinBoardPoses) return Status::BadInput(dir + ": " + ExplainBoardPoseShortfall(dir, poses, target));
 #pragma once
 
 #include <map>

@@ -50,8 +50,8 @@ Status PrepareOutFolder(const std::string& out, bool force) {
   const bool empty = fs::is_directory(out, error) && fs::is_empty(out, error);
   if (empty) return Status::Ok();
   if (!fs::exists(fs::path(out) / "truth" / "frames.yaml", error))
-    return Status::Error(out + ": exists and is not a demo folder; choose another --out");
-  if (!force) return Status::Error(out + ": exists; use --force to replace the demo in it");
+    return Status::BadInput(out + ": exists and is not a demo folder; choose another --out");
+  if (!force) return Status::BadInput(out + ": exists; use --force to replace the demo in it");
   fs::remove_all(out, error);
   if (error) return Status::IoError(out + ": cannot remove: " + error.message());
   return Status::Ok();
@@ -227,15 +227,16 @@ Status CalibrateAndCompare(const DemoRequest& request, const DemoScene& scene, S
 
 Status DemoRequest::Check() const {
   if (poses < kMinDemoPoses || poses > kMaxDemoPoses) {
-    return Status::Error("--poses must be between " + std::to_string(kMinDemoPoses) + " and " +
-                         std::to_string(kMaxDemoPoses) + " (each pose is a rendered image)");
+    return Status::BadInput("--poses must be between " + std::to_string(kMinDemoPoses) + " and " +
+                            std::to_string(kMaxDemoPoses) + " (each pose is a rendered image)");
   }
   if (holdout < 0 || holdout > kMaxDemoHoldout) {
-    return Status::Error("--holdout must be between 0 and " + std::to_string(kMaxDemoHoldout));
+    return Status::BadInput("--holdout must be between 0 and " + std::to_string(kMaxDemoHoldout));
   }
-  if (!(std::abs(focal_error_percent) <= 20)) return Status::Error("--focal-error must be between -20 and 20 (percent)");
+  if (!(std::abs(focal_error_percent) <= 20))
+    return Status::BadInput("--focal-error must be between -20 and 20 (percent)");
   if (!(point_sigma_m >= 1e-7 && point_sigma_m <= 1e-3))
-    return Status::Error("--point-sigma must be between 0.0001 and 1 (mm)");
+    return Status::BadInput("--point-sigma must be between 0.0001 and 1 (mm)");
   return Status::Ok();
 }
 

@@ -50,11 +50,11 @@ StatusOr<IntrinsicsOutcome> CalibrateCameraFromFiles(const std::vector<std::stri
   // Unusable images (sizes, too few views) are the usual cause: bad input.
   if (!result.ok()) return result.status();
   if (Status s = CheckIntrinsicsFit(*result, target, options.max_rms_px); !s.ok()) return s;
-  if (Status s = SaveCamera(result->camera, out, ExtrasOf(*result)); !s.ok()) return s.AsFailure();
+  if (Status s = SaveCamera(result->camera, out, ExtrasOf(*result)); !s.ok()) return s;
   if (!coverage.empty()) {
     StatusOr<std::string> png = EncodePng(CoverageImage(*result));
     if (!png.ok()) return png.status().AsFailure();
-    if (Status s = WriteFileAtomically(coverage, *png); !s.ok()) return s.AsFailure();
+    if (Status s = WriteFileAtomically(coverage, *png); !s.ok()) return s;
   }
   const std::string residuals = coverage.empty() ? "" : WriteResidualField(*result, coverage);
   return IntrinsicsOutcome{std::move(*result), out,      coverage, static_cast<int>(files.size()),

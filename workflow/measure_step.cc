@@ -63,7 +63,7 @@ StatusOr<MeasureResult> MeasureAndWrite(const std::vector<std::string>& files, c
     if (relative) m.file = std::filesystem::path(m.file).filename().string();
     ++result.counts[PoseStatusName(m.pose.status)];
   }
-  if (Status s = WriteImageMeasurementsCsv(out, result.rows); !s.ok()) return s.AsFailure();
+  if (Status s = WriteImageMeasurementsCsv(out, result.rows); !s.ok()) return s;
   return result;
 }
 
@@ -75,7 +75,7 @@ StatusOr<MeasureResult> MeasureFolder(const MeasureRequest& request, const JobHo
   StatusOr<Target> target = LoadTarget(request.target);
   if (!target.ok()) return target.status();
   std::string error;
-  if (!request.options.IsValid(&error)) return Status::Error(error);
+  if (!request.options.IsValid(&error)) return Status::BadInput(error);
   StatusOr<std::vector<std::string>> files = ListImages(request.images);
   if (!files.ok()) return files.status();
   if (Status s = CheckOutputFree(request.out, request.force); !s.ok()) return s;

@@ -21,7 +21,7 @@ StatusOr<Repeatability> PointRepeatability(const SessionConfig& config, const st
   StatusOr<PointSets> sets = LoadPointFile(input, config.point_sigma);
   if (!sets.ok()) return sets.status();
   StatusOr<Repeatability> figures = MeasurePointRepeatability(*sets);
-  if (!figures.ok()) return Status::Error(input + ": " + figures.status().message());
+  if (!figures.ok()) return Status::BadInput(input + ": " + figures.status().message());
   return figures;
 }
 
@@ -77,8 +77,8 @@ StatusOr<Repeatability> CameraRepeatability(const std::string& dir, const Sessio
     corners = std::max(corners, m.pose.num_corners);
   }
   if (poses.size() < 3)
-    return Status::Error(input + ": " + std::to_string(poses.size()) +
-                         " images with a board pose: the repeatability needs 3 or more of one pose");
+    return Status::BadInput(input + ": " + std::to_string(poses.size()) +
+                            " images with a board pose: the repeatability needs 3 or more of one pose");
   *unit = LengthUnitName(target->length_unit);
   return BoardPoseScatter(poses, covariances, corners);
 }
@@ -99,7 +99,7 @@ StatusOr<NoiseCheck> CheckSessionNoise(const NoiseCheckRequest& request, const J
   if (!lock.ok()) return lock.status();
   NoiseCheck check;
   check.instrument = config->instrument;
-  StatusOr<Repeatability> figures = Status::Error("");
+  StatusOr<Repeatability> figures = Status::BadInput("");
   if (config->instrument == Instrument::kPoints) {
     StatusOr<Robot> robot = LoadRobot(ResolveSessionFile(dir, config->robot));
     if (!robot.ok()) return robot.status();

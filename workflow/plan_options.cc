@@ -137,8 +137,8 @@ PlannerOptions DefaultPlannerOptions() {
 
 Status PlanSetup::Check() const {
   std::string error;
-  if (!planner.IsValid(&error)) return Status::Error("planner options: " + error);
-  if (candidate_kinds.empty()) return Status::Error("candidate_kind: name at least one kind");
+  if (!planner.IsValid(&error)) return Status::BadInput("planner options: " + error);
+  if (candidate_kinds.empty()) return Status::BadInput("candidate_kind: name at least one kind");
   return Status::Ok();
 }
 

@@ -46,7 +46,7 @@ StatusOr<CandidatePool> BuildCandidatePool(const PlanningModel& model, const std
     const int per_set = count > 0 ? count : (continuous ? 2000 : 10000);
     for (size_t k = 0; k < names.size(); ++k) {
       const std::optional<CandidateKind> kind = ParseCandidateKind(names[k]);
-      if (!kind) return Status::Error("--candidate-kind: '" + names[k] + "' is not random, uniform or boundary");
+      if (!kind) return Status::BadInput("--candidate-kind: '" + names[k] + "' is not random, uniform or boundary");
       StatusOr<CandidateSet> set = Generate(model.robot, *kind, per_set, seed + 7919 * k, hooks);
       if (!set.ok()) return set.status();
       raw.insert(raw.end(), set->poses.begin(), set->poses.end());
@@ -58,8 +58,8 @@ StatusOr<CandidatePool> BuildCandidatePool(const PlanningModel& model, const std
     if (feasible[j]) pool.poses.push_back(raw[j]);
   }
   if (pool.poses.empty() && !file.empty()) {
-    return Status::Error(file + ": none of its " + std::to_string(raw.size()) +
-                         " poses satisfies the robot and measurement constraints (all unreachable)");
+    return Status::BadInput(file + ": none of its " + std::to_string(raw.size()) +
+                            " poses satisfies the robot and measurement constraints (all unreachable)");
   }
   if (pool.poses.empty()) return Status::Failed("no candidate pose satisfies the robot and measurement constraints");
   return pool;
@@ -71,11 +71,11 @@ StatusOr<std::vector<Vector6d>> InitialPoses(const PlanningModel& model, const s
   std::vector<Vector6d> poses;
   if (!kind) {
     StatusOr<std::vector<Vector6d>> file = LoadPoses(init);
-    if (!file.ok()) return Status::Error("--init: " + file.status().message());
+    if (!file.ok()) return file.status().Prefixed("--init: ");
     poses = *file;
     if (static_cast<int>(poses.size()) != count) {
-      return Status::Error("--init: '" + init + "' has " + std::to_string(poses.size()) + " poses, --poses is " +
-                           std::to_string(count));
+      return Status::BadInput("--init: '" + init + "' has " + std::to_string(poses.size()) + " poses, --poses is " +
+                              std::to_string(count));
     }
     return poses;
   }
@@ -391,11 +391,11 @@ StatusOr<PlanOutcome> PlanFromRequest(const PlanRequest& request, const JobHooks
   StatusOr<PlanOutcome> outcome = RunPlan(model, setup, request.candidates_file, hooks);
   if (!outcome.ok()) return outcome.status();
   if (!request.out.empty()) {
-    if (Status s = WritePlanCsv(request.out, model, outcome->plan.poses); !s.ok()) return s.AsFailure();
+    if (Status s = WritePlanCsv(request.out, model, outcome->plan.poses); !s.ok()) return s;
     outcome->out = request.out;
   }
   if (!request.history.empty()) {
-    if (Status s = WriteHistoryCsv(request.history, outcome->plan); !s.ok()) return s.AsFailure();
+    if (Status s = WriteHistoryCsv(request.history, outcome->plan); !s.ok()) return s;
   }
   return outcome;
 }

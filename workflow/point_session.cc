@@ -25,7 +25,7 @@ StatusOr<LoadedPoints> LoadPoints(const PointFiles& files) {
   LoadedPoints loaded{std::move(*sets), {}, files.reflectors.empty()};
   if (loaded.estimated) {
     StatusOr<std::vector<NamedPoint>> estimate = EstimateReflectors(loaded.sets);
-    if (!estimate.ok()) return Status::Error(files.points + ": " + estimate.status().message());
+    if (!estimate.ok()) return Status::BadInput(files.points + ": " + estimate.status().message());
     loaded.reflectors = std::move(*estimate);
     return loaded;
   }
@@ -46,8 +46,8 @@ StatusOr<std::map<std::string, const PointSet*>> SetsOfRows(const LoadedPoints& 
   for (const LegsRow& row : rows) {
     const auto found = by_name.find(row.image);
     if (found == by_name.end())
-      return Status::Error("legs.csv:" + std::to_string(row.line) + ": pose '" + row.image + "' has no points in " +
-                           source);
+      return Status::BadInput("legs.csv:" + std::to_string(row.line) + ": pose '" + row.image + "' has no points in " +
+                              source);
     of_rows[row.image] = found->second;
   }
   return of_rows;
@@ -125,7 +125,7 @@ std::vector<std::string> PointPoseRow(const std::string& pose, const StatusOr<Po
 StatusOr<PointMeasureResult> MeasurePointFile(const PointFiles& files, const std::string& out, bool force) {
   std::error_code error;
   if (!force && fs::exists(fs::symlink_status(out, error)))
-    return Status::Error(out + ": exists; use --force to replace it");
+    return Status::BadInput(out + ": exists; use --force to replace it");
   StatusOr<LoadedPoints> loaded = LoadPoints(files);
   if (!loaded.ok()) return loaded.status();
   PointMeasureResult result;
@@ -195,11 +195,11 @@ StatusOr<double> SessionNoiseFactor(const std::string& session_dir) {
   if (!text.ok()) return text.status();
   StatusOr<nlohmann::json> json = ParseJsonText(*text, record);
   if (!json.ok()) return json.status();
-  if (!json->is_object()) return Status::Error(record + ": not a JSON object");
+  if (!json->is_object()) return Status::BadInput(record + ": not a JSON object");
   JsonFields fields(*json, record);
   const double ratio = fields.Number("ratio");
   if (!fields.status().ok()) return fields.status();
-  if (!(ratio > 0 && ratio < 1e6)) return Status::Error(record + ": ratio: not a positive number");
+  if (!(ratio > 0 && ratio < 1e6)) return Status::BadInput(record + ": ratio: not a positive number");
   return std::max(1.0, ratio);
 }
 

@@ -72,18 +72,18 @@ Status CheckTypedReading(const ReadingCheck& check, const std::string& where, in
   const Leg& stroke = check.robot.legs[leg];
   const double tolerance = TypedTolerance(check, leg);
   const std::string reading = where + ": L" + std::to_string(leg + 1) + " = " + Number(value);
-  if (!std::isfinite(value)) return Status::Error(reading + " is not a finite number; not saved");
+  if (!std::isfinite(value)) return Status::BadInput(reading + " is not a finite number; not saved");
   if (value < stroke.stroke_min - tolerance || value > stroke.stroke_max + tolerance)
-    return Status::Error(reading + unit + " is outside leg " + std::to_string(leg + 1) + "'s stroke [" +
-                         Number(stroke.stroke_min) + ", " + Number(stroke.stroke_max) + "]" + unit +
-                         "; not saved (a typo, or a reading in another unit?)");
+    return Status::BadInput(reading + unit + " is outside leg " + std::to_string(leg + 1) + "'s stroke [" +
+                            Number(stroke.stroke_min) + ", " + Number(stroke.stroke_max) + "]" + unit +
+                            "; not saved (a typo, or a reading in another unit?)");
   if (!commanded) return Status::Ok();
   const double needed = InverseKinematics(check.robot, check.robot.PoseFromVector(*commanded))[leg];
   if (std::abs(value - needed) <= tolerance) return Status::Ok();
-  return Status::Error(reading + unit + " is " + Number(std::abs(value - needed)) + unit + " from the " +
-                       Number(needed) + unit + " the commanded pose needs, more than " + Number(tolerance) + unit +
-                       " (" + Number(100 * kTypedReadingStrokeShare) +
-                       " % of the stroke); not saved (another pose's reading, swapped legs or a typo?)");
+  return Status::BadInput(reading + unit + " is " + Number(std::abs(value - needed)) + unit + " from the " +
+                          Number(needed) + unit + " the commanded pose needs, more than " + Number(tolerance) + unit +
+                          " (" + Number(100 * kTypedReadingStrokeShare) +
+                          " % of the stroke); not saved (another pose's reading, swapped legs or a typo?)");
 }
 
 Status CheckTypedReadings(const ReadingCheck& check, const std::string& where, const LegReadings& readings,

@@ -52,11 +52,12 @@ StatusOr<SessionInputs> LoadSessionInputs(const std::string& dir) {
   std::vector<LegReadings> readings;
   for (const LegsRow& row : *legs) readings.push_back(row.legs);
   if (Status s = CheckReadingsUnit(*nominal, readings, "row"); !s.ok()) {
-    return Status::Error(SessionPaths(dir).legs + ": " + s.message());
+    return Status::BadInput(SessionPaths(dir).legs + ": " + s.message());
   }
   if (Status s = CheckRowsNearStroke(*nominal, *legs); !s.ok()) return s.Prefixed(dir + ": ");
   const std::optional<PoseBox> box = nominal->limits.SamplingBox();
-  if (!box || !box->IsComplete()) return Status::Error(robot_name + ": needs a complete pose_box to start the FK from");
+  if (!box || !box->IsComplete())
+    return Status::BadInput(robot_name + ": needs a complete pose_box to start the FK from");
   Vector6d centre;
   for (int k = 0; k < 6; ++k) centre[k] = box->bounds[k]->Centre();
   const Pose fk_start = nominal->PoseFromVector(centre);
@@ -80,8 +81,8 @@ StatusOr<CameraPoses> MeasurePointSession(const std::string& dir, SessionInputs*
   if (!measured.ok()) return measured.status();
   const int ok = static_cast<int>(in->legs.size()) - measured->left_out;
   if (ok < kMinBoardPoses)
-    return Status::Error(dir + ": " + std::to_string(ok) + " poses with fitted points; the calibration needs " +
-                         std::to_string(kMinBoardPoses));
+    return Status::BadInput(dir + ": " + std::to_string(ok) + " poses with fitted points; the calibration needs " +
+                            std::to_string(kMinBoardPoses));
   in->config.noise = measured->noise;
   return measured->poses;
 }
@@ -105,10 +106,11 @@ StatusOr<CameraPoses> MeasureSession(const std::string& dir, const SessionInputs
   }
   // A board that fits badly in most images is the target or camera file, not the images.
   if (const std::string diagnosis = DiagnoseBoardFits(counts); !diagnosis.empty()) {
-    if (ok < kMinBoardPoses) return Status::Error(dir + ": " + diagnosis);
+    if (ok < kMinBoardPoses) return Status::BadInput(dir + ": " + diagnosis);
     hooks.Note("warning: " + diagnosis);
   }
-  if (ok < kMinBoardPoses) return Status::Error(dir + ": " + ExplainBoardPoseShortfall(dir, measured->poses, in.target));
+  if (ok < kMinBoardPoses)
+    return Status::BadInput(dir + ": " + ExplainBoardPoseShortfall(dir, measured->poses, in.target));
   if (observations != nullptr) *observations = std::move(measured->observations);
   return measured->poses;
 }
@@ -342,11 +344,11 @@ StatusOr<PointOutcome> ApplyFromPoints(const std::string& dir, const OpenSession
 // Asking for the other instrument's joint fit by name is bad input.
 Status CheckJointFitRequest(const std::string& dir, const CalibrateSessionRequest& request, Instrument instrument) {
   if (instrument == Instrument::kPoints && request.from_pixels.enabled && !request.from_pixels.fall_back)
-    return Status::Error(dir + ": a points session has no pixels; --from-points fits the measured points themselves");
+    return Status::BadInput(dir + ": a points session has no pixels; --from-points fits the measured points themselves");
   if (instrument == Instrument::kCamera && request.from_points.enabled && !request.from_points.fall_back)
-    return Status::Error(dir + ": a camera session has no points; --from-pixels fits the tag corners themselves");
+    return Status::BadInput(dir + ": a camera session has no points; --from-pixels fits the tag corners themselves");
   if (instrument == Instrument::kCamera && !request.from_points.estimate_reflectors)
-    return Status::Error(dir + ": --keep-reflectors is for a points session (a camera session has no reflectors)");
+    return Status::BadInput(dir + ": --keep-reflectors is for a points session (a camera session has no reflectors)");
   return Status::Ok();
 }
 
@@ -424,7 +426,7 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   const RegistrationOptions registration = SessionRegistrationOptions(in->config.noise);
   const CalibrationOptions calibration = SessionCalibrationOptions(in->config.noise, request.outliers);
   std::string options_error;
-  if (!calibration.IsValid(&options_error)) return Status::Error(options_error);
+  if (!calibration.IsValid(&options_error)) return Status::BadInput(options_error);
   hooks.Stage("register and calibrate");
   StatusOr<CameraCalibrationResult> result =
       CalibrateFromCameraPoses(in->nominal, split.input, registration, calibration, hooks);
@@ -489,7 +491,7 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   if (Status s =
           WriteCalibrationResults(dir, &*in, *result, calibration, report, fitted_camera, corners, points, *inputs);
       !s.ok())
-    return s.AsFailure();
+    return s;
   return report;
 }
 

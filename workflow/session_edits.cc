@@ -30,8 +30,8 @@ Status RefuseInPointsSession(const std::string& dir, const std::string& what) {
   StatusOr<std::string> key = KeyColumn(dir);
   if (!key.ok()) return key.status();
   if (*key == "pose")
-    return Status::Error(dir + ": a points session has no images (its poses come from its points file): cannot " +
-                         what);
+    return Status::BadInput(dir + ": a points session has no images (its poses come from its points file): cannot " +
+                            what);
   return Status::Ok();
 }
 
@@ -43,18 +43,18 @@ EditOutcome Done() { return EditOutcome{}; }
 // a path that leads out of the session.
 Status CheckImageName(const std::string& name) {
   if (name.empty() || name == "." || name == ".." || name.find_first_of(std::string("/\0", 2)) != std::string::npos)
-    return Status::Error(Excerpt(name) + ": not an image file name (a name inside images/, no folders)");
+    return Status::BadInput(Excerpt(name) + ": not an image file name (a name inside images/, no folders)");
   // legs.csv holds one row a line: a line break in a name split the row and no
   // command could read the file again (issue 36); other control bytes would
   // reach terminals raw.
   const auto control = [](unsigned char c) { return c < 0x20 || c == 0x7f; };
   if (std::any_of(name.begin(), name.end(), control))
-    return Status::Error(Excerpt(name) + ": a control character in an image name; legs.csv cannot hold it");
+    return Status::BadInput(Excerpt(name) + ": a control character in an image name; legs.csv cannot hold it");
   std::string extension = fs::path(name).extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   for (const char* known : {".png", ".jpg", ".jpeg", ".tif", ".tiff"})
     if (extension == known) return Status::Ok();
-  return Status::Error(Excerpt(name) + ": not a .png, .jpg or .tif name");
+  return Status::BadInput(Excerpt(name) + ": not a .png, .jpg or .tif name");
 }
 
 // A pose of a points session's legs.csv: the name its points file gives it,
@@ -62,7 +62,7 @@ Status CheckImageName(const std::string& name) {
 Status CheckPoseName(const std::string& name) {
   const auto control = [](unsigned char c) { return c < 0x20 || c == 0x7f; };
   if (name.empty() || std::any_of(name.begin(), name.end(), control))
-    return Status::Error(Excerpt(name) + ": not a pose name (empty, or a control character legs.csv cannot hold)");
+    return Status::BadInput(Excerpt(name) + ": not a pose name (empty, or a control character legs.csv cannot hold)");
   return Status::Ok();
 }
 
@@ -72,7 +72,7 @@ Status CheckReadings(const LegsEdit& edit) {
   const bool finite = edit.kind == LegsEdit::Kind::kSetRow
                           ? edit.row.legs.allFinite() && (!edit.row.commanded || edit.row.commanded->allFinite())
                           : std::isfinite(edit.value);
-  return finite ? Status::Ok() : Status::Error(edit.image + ": a reading is not a finite number");
+  return finite ? Status::Ok() : Status::BadInput(edit.image + ": a reading is not a finite number");
 }
 
 // legs.csv as it is on disk; a missing file is an empty table with the usual
@@ -83,7 +83,7 @@ StatusOr<CsvTable> ReadLegsTable(const std::string& path, const std::string& key
   if (!fs::exists(fs::symlink_status(path, error)))
     return CsvTable{path, {key, "L1", "L2", "L3", "L4", "L5", "L6", "holdout"}, {}, {}};
   StatusOr<CsvTable> table = ReadCsv(path);
-  if (!table.ok()) return Status::Error(table.status().message() + " (fix legs.csv before recording more readings)");
+  if (!table.ok()) return table.status().WithHint(" (fix legs.csv before recording more readings)");
   std::vector<std::string> columns = {key};
   for (int i = 1; i <= kNumLegs; ++i) columns.push_back("L" + std::to_string(i));
   for (const std::string& column : columns)
@@ -141,7 +141,7 @@ StatusOr<std::string> EditTable(CsvTable* table, const std::string& key, const L
     }
     return std::string();
   }
-  if (row < 0) return Status::Error("legs.csv: no row for " + edit.image + " (removed by another program?)");
+  if (row < 0) return Status::BadInput("legs.csv: no row for " + edit.image + " (removed by another program?)");
   const bool reading = edit.kind == LegsEdit::Kind::kSetReading;
   const std::string name = reading ? "L" + std::to_string(edit.leg + 1) : "holdout";
   std::string& cell = table->rows[row][ColumnOf(table, name)];
@@ -189,7 +189,7 @@ namespace {
 // outcome says why not (an error, a conflict) when it cannot be applied.
 StatusOr<CsvTable> EditedLegs(const std::string& dir, const LegsEdit& edit, bool overwrite, EditOutcome* outcome) {
   if (edit.kind == LegsEdit::Kind::kSetReading && (edit.leg < 0 || edit.leg >= kNumLegs))
-    return Status::Error("leg " + std::to_string(edit.leg + 1) + ": legs are 1 to 6");
+    return Status::BadInput("leg " + std::to_string(edit.leg + 1) + ": legs are 1 to 6");
   StatusOr<std::string> key = KeyColumn(dir);
   if (!key.ok()) return key.status();
   if (Status s = *key == "pose" ? CheckPoseName(edit.image) : CheckImageName(edit.image); !s.ok()) return s;
@@ -200,7 +200,7 @@ StatusOr<CsvTable> EditedLegs(const std::string& dir, const LegsEdit& edit, bool
   if (!conflict.ok()) return conflict.status();
   if (!conflict->empty()) {
     *outcome = Conflict(*conflict);
-    return Status::Error(*conflict);
+    return Status::BadInput(*conflict);
   }
   return table;
 }
@@ -223,8 +223,9 @@ Status CheckWritableInside(const std::string& dir, const std::string& folder) {
   const fs::path target = fs::weakly_canonical(fs::path(dir) / folder, error);
   const auto [end, unused] = std::mismatch(session.begin(), session.end(), target.begin(), target.end());
   if (error || end != session.end())
-    return Status::Error((fs::path(dir) / folder).string() + ": leads out of the session folder (a symbolic link); " +
-                         "hexcal writes only inside it: make " + folder + "/ a real folder");
+    return Status::BadInput((fs::path(dir) / folder).string() +
+                            ": leads out of the session folder (a symbolic link); " +
+                            "hexcal writes only inside it: make " + folder + "/ a real folder");
   return Status::Ok();
 }
 
@@ -251,7 +252,7 @@ EditOutcome RecordCaptureBytes(const std::string& dir, const std::string& image_
   const std::string target = (fs::path(SessionPaths(dir).images) / row.image).string();
   std::error_code error;
   if (fs::exists(fs::symlink_status(target, error)))  // recorded images are never replaced
-    return Failed(Status::Error(target + ": exists already; record the capture under another name"));
+    return Failed(Status::BadInput(target + ": exists already; record the capture under another name"));
   if (Status s = WriteFileAtomically(target, image_bytes); !s.ok()) return Failed(s);
   return Failed(WriteFileAtomically(SessionPaths(dir).legs, FormatCsv(table->header, table->rows)));
 }
@@ -378,7 +379,7 @@ Status RemoveCapture(const std::string& dir, const std::string& image, LockWait 
   std::error_code error;
   const bool had_image = fs::remove(file, error);
   if (error) return Status::IoError(file.string() + ": cannot remove: " + error.message());
-  if (row < 0 && !had_image) return Status::Error(image + ": neither in legs.csv nor in images/");
+  if (row < 0 && !had_image) return Status::BadInput(image + ": neither in legs.csv nor in images/");
   return Status::Ok();
 }
 

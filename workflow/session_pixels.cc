@@ -126,7 +126,7 @@ StatusOr<FromPixelsRequest> ParsePixelEstimates(const std::string& list) {
   // "none" is the whole list or absent: with a quantity beside it, it would mean both.
   const std::vector<std::string> words = SplitOptionList(list);
   if (words.size() > 1 && std::find(words.begin(), words.end(), "none") != words.end())
-    return Status::Error(spec.Flag() + ": none stands alone (no quantity estimated), not in a list");
+    return Status::BadInput(spec.Flag() + ": none stands alone (no quantity estimated), not in a list");
   request.enabled = true;
   return request;
 }

@@ -61,10 +61,10 @@ Status CheckRowsNearStroke(const Robot& nominal, const std::vector<LegsRow>& row
       const Leg& leg = nominal.legs[i];
       const double span = leg.stroke_max - leg.stroke_min;
       if (row.legs[i] >= leg.stroke_min - span && row.legs[i] <= leg.stroke_max + span) continue;
-      return Status::Error(RowName(row) + ": L" + std::to_string(i + 1) + " = " + FormatNumber(row.legs[i]) + " " +
-                           unit + " is far outside leg " + std::to_string(i + 1) + "'s stroke [" +
-                           FormatNumber(leg.stroke_min) + ", " + FormatNumber(leg.stroke_max) + "] " + unit +
-                           ": a typo, or a reading in another unit? Fix the reading");
+      return Status::BadInput(RowName(row) + ": L" + std::to_string(i + 1) + " = " + FormatNumber(row.legs[i]) + " " +
+                              unit + " is far outside leg " + std::to_string(i + 1) + "'s stroke [" +
+                              FormatNumber(leg.stroke_min) + ", " + FormatNumber(leg.stroke_max) + "] " + unit +
+                              ": a typo, or a reading in another unit? Fix the reading");
     }
   }
   return Status::Ok();

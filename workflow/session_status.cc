@@ -176,13 +176,13 @@ const char* StepStatusName(StepStatus status) {
 }
 
 StatusOr<SessionStatus> ReadSessionStatus(const std::string& dir) {
-  StatusOr<SessionResults> results = Status::Error("no results");
+  StatusOr<SessionResults> results = Status::BadInput("no results");
   return ReadSessionStatus(dir, &results);
 }
 
 StatusOr<SessionStatus> ReadSessionStatus(const std::string& dir, StatusOr<SessionResults>* results,
                                           StatusOr<ContentHashes>* inputs) {
-  *results = Status::Error("No results yet: run the Calibrate step.");
+  *results = Status::BadInput("No results yet: run the Calibrate step.");
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   if (!config.ok()) return config.status();
   SessionStatus status;

@@ -51,10 +51,10 @@ StatusOr<PoseBox> ParseBox(const std::string& text) {
       if (item.substr(0, a) == kNames[k]) index = k;
     }
     if (index < 0 || a == b)
-      return Status::Error("--random-box: '" + item + "' is not NAME:MIN:MAX (x, y, z, q1, q2, q3)");
+      return Status::BadInput("--random-box: '" + item + "' is not NAME:MIN:MAX (x, y, z, q1, q2, q3)");
     StatusOr<double> lo = ParseNumber(item.substr(a + 1, b - a - 1)), hi = ParseNumber(item.substr(b + 1));
     if (!lo.ok() || !hi.ok() || !(*lo < *hi))
-      return Status::Error("--random-box: '" + item + "' needs finite MIN < MAX");
+      return Status::BadInput("--random-box: '" + item + "' needs finite MIN < MAX");
     box.bounds[index] = Range{*lo, *hi};
   }
   return box;
@@ -71,7 +71,7 @@ StatusOr<std::pair<int, int>> ParseSweep(const std::string& text) {
       return std::make_pair(static_cast<int>(*lo), static_cast<int>(*hi));
     }
   }
-  return Status::Error("--sweep: '" + text + "' is not MIN:MAX with 7 <= MIN <= MAX <= 10000, e.g. 8:41");
+  return Status::BadInput("--sweep: '" + text + "' is not MIN:MAX with 7 <= MIN <= MAX <= 10000, e.g. 8:41");
 }
 
 // "random" draws poses in every run, "boundary" is the boundary candidate set
@@ -99,7 +99,7 @@ StatusOr<std::vector<SimulationPoseSet>> ResolveSets(const Robot& robot, const S
       if (cli.poses_given && static_cast<int>(poses.size()) > cli.poses) poses.resize(cli.poses);
       sets.push_back(FixedPoseSet("boundary", std::move(poses)));
     } else if (name.empty()) {
-      return Status::Error("--sets: empty entry in '" + cli.sets + "'");
+      return Status::BadInput("--sets: empty entry in '" + cli.sets + "'");
     } else {
       StatusOr<std::vector<Vector6d>> poses = LoadPoses(name);
       if (!poses.ok()) return poses.status();
@@ -266,9 +266,9 @@ Status CheckOutputsFree(const SimulateRequest& request) {
 
 Status CheckRequest(const SimulateRequest& request) {
   std::string error;
-  if (!request.study.IsValid(&error)) return Status::Error(error);
+  if (!request.study.IsValid(&error)) return Status::BadInput(error);
   if (request.poses < kParamsPerLeg)
-    return Status::Error("--poses must be at least 7, got " + std::to_string(request.poses));
+    return Status::BadInput("--poses must be at least 7, got " + std::to_string(request.poses));
   return CheckOutputsFree(request);
 }
 
@@ -276,13 +276,13 @@ Status CheckRequest(const SimulateRequest& request) {
 Status WriteOutputs(SimulateOutcome* outcome) {
   const SimulateRequest& request = outcome->request;
   if (!request.csv.empty()) {
-    if (Status s = WriteTable(request.csv, outcome->result, outcome->sweep); !s.ok()) return s.AsFailure();
+    if (Status s = WriteTable(request.csv, outcome->result, outcome->sweep); !s.ok()) return s;
   }
   if (request.plots.empty()) return Status::Ok();
   const SweepResult* sweep = outcome->sweep ? &*outcome->sweep : nullptr;
   Status s = WriteFigures(request.plots, outcome->result, sweep, LengthUnitName(outcome->robot.length_unit),
                           &outcome->figures);
-  return s.AsFailure();
+  return s;
 }
 
 }  // namespace

@@ -30,7 +30,7 @@ Status WritePlots(StudyOutcome* outcome) {
 StatusOr<StudyOutcome> RunStudy(StudyRequest request, const JobHooks& hooks) {
   const auto start = std::chrono::steady_clock::now();
   std::string error;
-  if (!request.study.IsValid(&error)) return Status::Error(error);
+  if (!request.study.IsValid(&error)) return Status::BadInput(error);
   if (Status s = CheckFiguresFree(request); !s.ok()) return s;
   StatusOr<MeasuredSession> session = LoadMeasuredSession(request.session, request.wait, hooks);
   if (!session.ok()) return session.status();
@@ -54,7 +54,7 @@ StatusOr<StudyOutcome> RunStudy(StudyRequest request, const JobHooks& hooks) {
   outcome.threads = ParallelWorkers(request.study.subsets + 1, request.study.num_threads);
   outcome.inputs = std::move(session->inputs);
   if (!request.plots.empty()) {
-    if (Status s = WritePlots(&outcome); !s.ok()) return s.AsFailure();
+    if (Status s = WritePlots(&outcome); !s.ok()) return s;
   }
   outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   outcome.created = CurrentUtcTimestamp();

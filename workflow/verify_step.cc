@@ -36,10 +36,10 @@ StatusOr<CheckInputs> LoadCheckInputs(const std::string& dir) {
   if (!models.ok()) return models.status();
   const SessionConfig& config = models->config;
   if (!config.base_from_camera || !config.platform_from_target)
-    return Status::Error(dir +
-                         ": the session has no registered camera and target frames; calibrate it first "
-                         "(hexcal calibrate --session " +
-                         dir + ")");
+    return Status::BadInput(dir +
+                            ": the session has no registered camera and target frames; calibrate it first "
+                            "(hexcal calibrate --session " +
+                            dir + ")");
   Registration frames;
   frames.base_from_camera = *config.base_from_camera;
   frames.platform_from_target = *config.platform_from_target;
@@ -88,12 +88,13 @@ Status CheckImagesOut(const VerifyRequest& request, size_t count) {
   const fs::path out = fs::weakly_canonical(request.images_out, error);
   const auto [end, rest] = std::mismatch(images.begin(), images.end(), out.begin(), out.end());
   if (!error && end == images.end())
-    return Status::Error("--keep-images " + request.images_out + ": that is the session's images/ folder, " +
-                         "which holds the recorded captures: keep the frames in another folder");
+    return Status::BadInput("--keep-images " + request.images_out + ": that is the session's images/ folder, " +
+                            "which holds the recorded captures: keep the frames in another folder");
   for (size_t k = 0; k < count && !request.force; ++k) {
     const fs::path frame = fs::path(request.images_out) / FrameName(static_cast<int>(k));
     if (fs::exists(fs::symlink_status(frame, error)))
-      return Status::Error("--keep-images: " + frame.string() + " exists: use another folder, or --force to replace");
+      return Status::BadInput("--keep-images: " + frame.string() +
+                              " exists: use another folder, or --force to replace");
   }
   return CreateFolders(request.images_out);
 }
@@ -158,7 +159,7 @@ int VerifyResult::Seen() const {
 StatusOr<VerifyResult> VerifyPoses(const VerifyRequest& request, const JobHooks& hooks) {
   const auto start = std::chrono::steady_clock::now();
   if (!(request.settle_seconds >= 0) || request.grab_timeout_ms < 1)
-    return Status::Error("settle must be ≥ 0 s and the grab time-out ≥ 1 ms");
+    return Status::BadInput("settle must be ≥ 0 s and the grab time-out ≥ 1 ms");
   StatusOr<CheckInputs> in = LoadCheckInputs(request.session);
   if (!in.ok()) return in.status();
   StatusOr<std::vector<Vector6d>> poses =

@@ -155,7 +155,7 @@ int RunCalibrate(const CalibrateCliOptions& cli, std::ostream& out, std::ostream
   if (!measurements.ok()) return ReportError(err, "calibrate", measurements.status());
   const std::optional<RobustLoss> loss = ParseRobustLoss(cli.loss);
   if (!loss) {
-    return ReportError(err, "calibrate", Status::Error("--loss: '" + cli.loss + "' is not none, huber or cauchy"));
+    return ReportError(err, "calibrate", Status::BadInput("--loss: '" + cli.loss + "' is not none, huber or cauchy"));
   }
   CalibrationOptions options;
   options.loss = *loss;
@@ -166,8 +166,8 @@ int RunCalibrate(const CalibrateCliOptions& cli, std::ostream& out, std::ostream
   // Past valid options, what CheckCalibrationInput and Calibrate reject is the
   // measurement file's content: name the file.
   std::string options_error;
-  if (!options.IsValid(&options_error)) return ReportError(err, "calibrate", Status::Error(options_error));
-  const auto in_file = [&](const Status& s) { return Status::Error(cli.measurements + ": " + s.message()); };
+  if (!options.IsValid(&options_error)) return ReportError(err, "calibrate", Status::BadInput(options_error));
+  const auto in_file = [&](const Status& s) { return Status::BadInput(cli.measurements + ": " + s.message()); };
   if (Status s = CheckCalibrationInput(*robot, *measurements, options); !s.ok()) {
     return ReportError(err, "calibrate", in_file(s));
   }
@@ -179,7 +179,7 @@ int RunCalibrate(const CalibrateCliOptions& cli, std::ostream& out, std::ostream
   if (!result.ok()) return ReportError(err, "calibrate", (in_file(result.status())).AsFailure());
   const CalibrationInputs inputs{cli.robot, cli.measurements, options, CurrentUtcTimestamp()};
   if (Status s = SaveCalibratedRobot(cli.out, *result, inputs); !s.ok()) {
-    return ReportError(err, "calibrate", s.AsFailure());
+    return ReportError(err, "calibrate", s);
   }
 
   if (cli.json) {
@@ -263,7 +263,7 @@ void AddCalibrateCommand(CLI::App& app, int* exit_code) {
       *exit_code = RunCalibrateSession(*options, std::cout, std::cerr);
     } else if (options->robot.empty() || options->measurements.empty() || options->out.empty()) {
       *exit_code =
-          ReportError(std::cerr, "calibrate", Status::Error("give --robot, --measurements and --out, or --session"));
+          ReportError(std::cerr, "calibrate", Status::BadInput("give --robot, --measurements and --out, or --session"));
     } else {
       *exit_code = RunCalibrate(*options, std::cout, std::cerr);
     }

@@ -105,12 +105,12 @@ int RunCameraConvert(const CameraConvertOptions& options, std::ostream& out, std
   if (!format) {
     return ReportError(
         err, "camera convert",
-        Status::Error("--to: unknown format " + Excerpt(options.to) + "; accepted: opencv, ros, kalibr"));
+        Status::BadInput("--to: unknown format " + Excerpt(options.to) + "; accepted: opencv, ros, kalibr"));
   }
   if (*format == CameraFileFormat::kRos && !IsRosCameraName(options.camera_name)) {
     return ReportError(err, "camera convert",
-                       Status::Error("--camera-name: " + Excerpt(options.camera_name) +
-                                     " is not a ROS camera name: letters, digits and '_' only"));
+                       Status::BadInput("--camera-name: " + Excerpt(options.camera_name) +
+                                        " is not a ROS camera name: letters, digits and '_' only"));
   }
   if (Status s = CheckOutputFree(options.out, options.force); !s.ok()) return ReportError(err, "camera convert", s);
   StatusOr<Camera> camera = LoadCamera(options.camera);

@@ -25,14 +25,14 @@ int RunCandidates(const CandidatesCliOptions& cli, std::ostream& out, std::ostre
   const std::optional<CandidateKind> kind = ParseCandidateKind(cli.kind);
   if (!kind) {
     return ReportError(err, "candidates",
-                       Status::Error("--kind: '" + cli.kind + "' is not random, uniform or boundary"));
+                       Status::BadInput("--kind: '" + cli.kind + "' is not random, uniform or boundary"));
   }
   CandidateOptions options;
   options.kind = *kind;
   options.count = cli.count;
   options.seed = cli.seed;
   std::string error;
-  if (!options.IsValid(&error)) return ReportError(err, "candidates", Status::Error(error));
+  if (!options.IsValid(&error)) return ReportError(err, "candidates", Status::BadInput(error));
 
   ProgressBar progress(std::string("candidates (") + cli.kind + ")");
   StatusOr<CandidateSet> set =
@@ -46,7 +46,7 @@ int RunCandidates(const CandidatesCliOptions& cli, std::ostream& out, std::ostre
     rows.push_back(row);
   }
   if (Status s = WriteCsv(cli.out, {"x", "y", "z", "q1", "q2", "q3"}, rows); !s.ok()) {
-    return ReportError(err, "candidates", s.AsFailure());
+    return ReportError(err, "candidates", s);
   }
   if (cli.json) {
     nlohmann::json j = {{"count", set->poses.size()}, {"kind", cli.kind}, {"out", cli.out}, {"draws", set->draws}};

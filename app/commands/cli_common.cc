@@ -22,8 +22,9 @@ int ExitCodeFor(const Status& status) {
       return kExitBadInput;
     case StatusKind::kFailed:
     case StatusKind::kCancelled:
-    case StatusKind::kIo:
       return kExitFailure;
+    case StatusKind::kIo:
+      return kExitIo;
     case StatusKind::kBusy:
       return kExitBusy;
   }
@@ -104,12 +105,12 @@ StatusOr<std::vector<double>> ParseNumberList(const std::string& text, int count
   std::string item;
   while (std::getline(stream, item, ',')) {
     StatusOr<double> value = ParseNumber(item);
-    if (!value.ok()) return Status::Error(what + ": '" + item + "' is not a finite number");
+    if (!value.ok()) return Status::BadInput(what + ": '" + item + "' is not a finite number");
     values.push_back(*value);
   }
   if (static_cast<int>(values.size()) != count) {
-    return Status::Error(what + ": expected " + std::to_string(count) + " comma-separated numbers, got " +
-                         std::to_string(values.size()));
+    return Status::BadInput(what + ": expected " + std::to_string(count) + " comma-separated numbers, got " +
+                            std::to_string(values.size()));
   }
   return values;
 }

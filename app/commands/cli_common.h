@@ -18,11 +18,13 @@
 
 namespace hexcal::cli {
 
-// Exit codes of every command.
+// Exit codes of every command, one per tier of core/status.h (docs/cli.md,
+// "Exit codes").
 constexpr int kExitOk = 0;
-constexpr int kExitFailure = 1;   // the computation failed (no convergence, ...), an I/O error, a cancel
-constexpr int kExitBadInput = 2;  // a file or an option is wrong
+constexpr int kExitFailure = 1;   // the computation failed (no convergence, too few usable poses), a cancel
+constexpr int kExitBadInput = 2;  // an option, a value, a file's contents or a path is wrong
 constexpr int kExitBusy = 3;      // the session is in use by another writer: try again, or --wait
+constexpr int kExitIo = 4;        // the disk, a device or the network refused: permissions, full, unplugged
 
 // The one mapping of a status's kind to an exit code (docs/cli.md).
 int ExitCodeFor(const Status& status);

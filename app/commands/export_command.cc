@@ -37,8 +37,9 @@ struct ExportOptions {
 Status Confirm(const ExportOptions& options, const Robot& robot, std::ostream& out) {
   if (options.yes) return Status::Ok();
   if (!isatty(STDIN_FILENO))
-    return Status::Error("--push changes the kinematics of a running machine: confirm with --yes "
-                         "(standard input is not a terminal)");
+    return Status::BadInput(
+        "--push changes the kinematics of a running machine: confirm with --yes "
+        "(standard input is not a terminal)");
   out << "Load robot '" << workflow::CommentText(robot.name)
       << "' into the running LinuxCNC? The platform moves to its home switches, the genhexkins pins and the INI's "
          "joint homes change and the machine homes again. [y/N] "
@@ -54,9 +55,9 @@ Status CheckPushFlags(const ExportOptions& options) {
   for (const auto& [flag, value] : {std::pair{"--running-robot", &options.running_robot},
                                     std::pair{"--ini", &options.ini}, std::pair{"--controller", &options.controller}})
     if (value->empty())
-      return Status::Error(std::string("--push needs ") + flag +
-                           " (the robot the machine runs with, its INI and its linuxcncrsh address: "
-                           "the offsets l are the joints' homes, which change in the INI and by homing again)");
+      return Status::BadInput(std::string("--push needs ") + flag +
+                              " (the robot the machine runs with, its INI and its linuxcncrsh address: "
+                              "the offsets l are the joints' homes, which change in the INI and by homing again)");
   return Status::Ok();
 }
 
@@ -68,8 +69,8 @@ StatusOr<workflow::PushPlan> PlanMachinePush(const ExportOptions& options, const
   *request = {*running, robot, options.ini, options.running_robot, options.controller, options.halcmd};
   StatusOr<workflow::PushPlan> plan = workflow::PlanPush(*request);
   if (plan.ok() && workflow::MachineUnitName(plan->ini.unit) != std::string(options.machine_unit))
-    return Status::Error("--machine-unit is " + options.machine_unit + " but the INI's [TRAJ] LINEAR_UNITS is " +
-                         workflow::MachineUnitName(plan->ini.unit));
+    return Status::BadInput("--machine-unit is " + options.machine_unit + " but the INI's [TRAJ] LINEAR_UNITS is " +
+                            workflow::MachineUnitName(plan->ini.unit));
   return plan;
 }
 
@@ -129,17 +130,18 @@ int ExportLinuxCncHal(const ExportOptions& options, const Robot& robot, workflow
 
 int RunExport(const ExportOptions& options, std::ostream& out, std::ostream& err) {
   if (options.format != "linuxcnc-hal" && options.format != "robot")
-    return ReportError(err, "export",
-                       Status::Error("--format: unknown format '" + options.format + "'; accepted: linuxcnc-hal, robot"));
+    return ReportError(
+        err, "export",
+        Status::BadInput("--format: unknown format '" + options.format + "'; accepted: linuxcnc-hal, robot"));
   const std::optional<workflow::MachineUnit> unit = workflow::ParseMachineUnit(options.machine_unit);
   if (!unit)
     return ReportError(err, "export",
-                       Status::Error("--machine-unit: '" + options.machine_unit +
-                                     "' is not a LinuxCNC linear unit; accepted: mm, inch"));
+                       Status::BadInput("--machine-unit: '" + options.machine_unit +
+                                        "' is not a LinuxCNC linear unit; accepted: mm, inch"));
   if (options.push && options.format != "linuxcnc-hal")
-    return ReportError(err, "export", Status::Error("--push needs --format linuxcnc-hal"));
+    return ReportError(err, "export", Status::BadInput("--push needs --format linuxcnc-hal"));
   // --push asks on the terminal and prints halcmd's answers: not one JSON object.
-  if (options.push && options.json) return ReportError(err, "export", Status::Error("--json cannot go with --push"));
+  if (options.push && options.json) return ReportError(err, "export", Status::BadInput("--json cannot go with --push"));
   if (Status s = CheckOutputFree(options.out, options.force); !s.ok()) return ReportError(err, "export", s);
   StatusOr<Robot> robot = LoadRobot(options.robot);
   if (!robot.ok()) return ReportError(err, "export", robot.status());

@@ -46,7 +46,7 @@ int RunIk(const IkOptions& options, std::ostream& out, std::ostream& err) {
   if (!options.out.empty()) {
     const std::vector<std::string> header = {"x",  "y",  "z",  "q1", "q2", "q3",       "L1",
                                              "L2", "L3", "L4", "L5", "L6", "feasible", "violated"};
-    if (Status s = WriteCsv(options.out, header, rows); !s.ok()) return ReportError(err, "ik", s.AsFailure());
+    if (Status s = WriteCsv(options.out, header, rows); !s.ok()) return ReportError(err, "ik", s);
   }
   if (options.json) {
     out << JsonText(nlohmann::json{

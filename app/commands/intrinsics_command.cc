@@ -19,7 +19,7 @@ struct IntrinsicsCliOptions {
 
 int RunIntrinsics(IntrinsicsCliOptions cli, std::ostream& out, std::ostream& err) {
   const std::optional<CameraModel> model = CameraModelFromName(cli.model);
-  if (!model) return ReportError(err, "intrinsics", Status::Error("--model: unknown model '" + cli.model + "'"));
+  if (!model) return ReportError(err, "intrinsics", Status::BadInput("--model: unknown model '" + cli.model + "'"));
   cli.request.options.model = *model;
   TerminalJob job("intrinsics");
   StatusOr<workflow::IntrinsicsOutcome> outcome = workflow::CalibrateCameraFromFolder(cli.request, job.hooks());

@@ -21,10 +21,11 @@ struct MeasureCliOptions {
 // --points: each pose of a points file fitted to the reflectors (workflow/point_session.h).
 int RunMeasurePoints(const MeasureCliOptions& cli, std::ostream& out, std::ostream& err) {
   if (!cli.request.camera.empty() || !cli.request.images.empty())
-    return ReportError(err, "measure", Status::Error("--points measures a points file: no --camera or --images"));
+    return ReportError(err, "measure", Status::BadInput("--points measures a points file: no --camera or --images"));
   if (!(cli.point_sigma > 0))
-    return ReportError(err, "measure", Status::Error("--points needs --point-sigma (the points' sigma per coordinate, "
-                                                     "their unit) for points the file gives none"));
+    return ReportError(err, "measure",
+                       Status::BadInput("--points needs --point-sigma (the points' sigma per coordinate, "
+                                        "their unit) for points the file gives none"));
   StatusOr<workflow::PointMeasureResult> result = workflow::MeasurePointFile(
       {cli.points, cli.reflectors, cli.point_sigma}, cli.request.out, cli.request.force);
   if (!result.ok()) return ReportError(err, "measure", result.status());
@@ -55,9 +56,9 @@ Status NoPose(const workflow::MeasureResult& result, const std::string& diagnosi
     std::string statuses;
     for (const auto& [status, n] : result.counts)
       statuses += (statuses.empty() ? "" : ", ") + status + " " + std::to_string(n);
-    return Status::Error("no image shows the target (" + statuses + " of " + std::to_string(result.rows.size()) +
-                         " images); check that these are images of the board and that --target describes it as "
-                         "printed (hexcal detect --images IMAGE says what an image holds)");
+    return Status::BadInput("no image shows the target (" + statuses + " of " + std::to_string(result.rows.size()) +
+                            " images); check that these are images of the board and that --target describes it as "
+                            "printed (hexcal detect --images IMAGE says what an image holds)");
   }
   return Status::Failed("no image gave a pose" + (diagnosis.empty() ? "" : ": " + diagnosis));
 }
@@ -65,7 +66,8 @@ Status NoPose(const workflow::MeasureResult& result, const std::string& diagnosi
 int RunMeasure(const MeasureCliOptions& cli, std::ostream& out, std::ostream& err) {
   if (!cli.points.empty()) return RunMeasurePoints(cli, out, err);
   if (cli.request.camera.empty() || cli.request.images.empty())
-    return ReportError(err, "measure", Status::Error("give --camera and --images (or --points for a tracker's points)"));
+    return ReportError(err, "measure",
+                       Status::BadInput("give --camera and --images (or --points for a tracker's points)"));
   TerminalJob job("measure");
   StatusOr<workflow::MeasureResult> result = workflow::MeasureFolder(cli.request, job.hooks());
   if (!result.ok()) return ReportError(err, "measure", result.status());

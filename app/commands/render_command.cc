@@ -41,11 +41,11 @@ int RunRender(const RenderCliOptions& cli, std::ostream& out, std::ostream& err)
   if (!vectors.ok()) return ReportError(err, "render", vectors.status());
   if (vectors->size() > kMaxRenderImages) {
     return ReportError(err, "render",
-                       Status::Error(cli.poses + ": " + std::to_string(vectors->size()) + " poses, more than the " +
-                                     std::to_string(kMaxRenderImages) + " images render writes at once"));
+                       Status::BadInput(cli.poses + ": " + std::to_string(vectors->size()) + " poses, more than the " +
+                                        std::to_string(kMaxRenderImages) + " images render writes at once"));
   }
   std::string error;
-  if (!cli.render.IsValid(&error)) return ReportError(err, "render", Status::Error(error));
+  if (!cli.render.IsValid(&error)) return ReportError(err, "render", Status::BadInput(error));
   namespace fs = std::filesystem;
   const fs::path folder(cli.out);
   const std::string truth_path = (folder / "ground_truth.csv").string();
@@ -69,7 +69,7 @@ int RunRender(const RenderCliOptions& cli, std::ostream& out, std::ostream& err)
               },
               {[&](int done, int total) { progress.Update(done, total); }});
   for (const Status& s : written) {
-    if (!s.ok()) return ReportError(err, "render", s.AsFailure());
+    if (!s.ok()) return ReportError(err, "render", s);
   }
   std::vector<std::vector<std::string>> truth, corners;
   int visible = 0;
@@ -88,10 +88,10 @@ int RunRender(const RenderCliOptions& cli, std::ostream& out, std::ostream& err)
   if (Status s =
           WriteCsv((folder / "corners.csv").string(), {"file", "tag_id", "corner", "u", "v", "visible"}, corners);
       !s.ok()) {
-    return ReportError(err, "render", s.AsFailure());
+    return ReportError(err, "render", s);
   }
   if (Status s = WriteCsv(truth_path, {"file", "x", "y", "z", "q1", "q2", "q3"}, truth); !s.ok()) {
-    return ReportError(err, "render", s.AsFailure());
+    return ReportError(err, "render", s);
   }
   if (cli.json) {
     out << JsonText(nlohmann::json{{"images", views.size()},

@@ -53,7 +53,7 @@ Status PoseNoiseFromReflectors(const std::vector<NamedPoint>& reflectors, Sessio
   for (const auto& [key, value] : *cli->noise)
     if (key == "position" || key == "angle_deg" || key == "angle") return Status::Ok();
   StatusOr<std::pair<double, double>> sigma = PoseSigmaOfReflectors(reflectors, config.point_sigma);
-  if (!sigma.ok()) return Status::Error(config.reflectors + ": " + sigma.status().message());
+  if (!sigma.ok()) return Status::BadInput(config.reflectors + ": " + sigma.status().message());
   config.noise.position = std::sqrt(3.0) * sigma->first;
   config.noise.angle_deg = std::sqrt(3.0) * sigma->second;
   return Status::Ok();
@@ -64,8 +64,8 @@ Status PoseNoiseFromReflectors(const std::vector<NamedPoint>& reflectors, Sessio
 Status PreparePointSession(const Robot& robot, SessionInitOptions* cli) {
   SessionConfig& config = cli->config;
   if (!config.camera.empty() || !config.target.empty())
-    return Status::Error("--camera and --target are for camera sessions; a points session has --points");
-  if (config.points.empty()) return Status::Error("--instrument points needs --points FILE (the tracker's export)");
+    return Status::BadInput("--camera and --target are for camera sessions; a points session has --points");
+  if (config.points.empty()) return Status::BadInput("--instrument points needs --points FILE (the tracker's export)");
   config.instrument = Instrument::kPoints;
   if (!cli->point_sigma_given) config.point_sigma = cli->point_sigma_mm * 0.001 / MetresPerUnit(robot.length_unit);
   if (!config.reflectors.empty()) {  // read once: checked now, and the pose noise it implies
@@ -81,7 +81,7 @@ Status PreparePointSession(const Robot& robot, SessionInitOptions* cli) {
 Status PrepareCameraSession(SessionInitOptions* cli) {
   SessionConfig& config = cli->config;
   if (config.camera.empty() || config.target.empty())
-    return Status::Error("a camera session needs --camera and --target (or --instrument points)");
+    return Status::BadInput("a camera session needs --camera and --target (or --instrument points)");
   if (StatusOr<Camera> camera = LoadCamera(config.camera); !camera.ok()) return camera.status();
   if (StatusOr<Target> target = LoadTarget(config.target); !target.ok()) return target.status();
   for (std::string* name : {&config.robot, &config.camera, &config.target}) *name = AsSessionPath(cli->dir, *name);
@@ -133,7 +133,8 @@ Status CheckImageInSession(const SessionPaths& paths, const std::string& image) 
   const std::filesystem::path path = std::filesystem::path(paths.images) / image;
   std::error_code error;
   if (!std::filesystem::exists(std::filesystem::symlink_status(path, error)))
-    return Status::Error(paths.images + "/" + Excerpt(image) + ": no such image; put it there first, or give --from");
+    return Status::BadInput(paths.images + "/" + Excerpt(image) +
+                            ": no such image; put it there first, or give --from");
   return CheckFileForReading(path.string(), kMaxImageBytes);
 }
 
@@ -150,17 +151,17 @@ Status CheckTypedLegs(const std::string& dir, const std::vector<double>& legs) {
   const Robot& robot = check->robot;
   LegReadings readings;
   for (int i = 0; i < kNumLegs; ++i) readings[i] = legs[static_cast<size_t>(i)];
-  if (Status s = CheckReadingsUnit(robot, {readings}, ""); !s.ok()) return Status::Error("--legs: " + s.message());
+  if (Status s = CheckReadingsUnit(robot, {readings}, ""); !s.ok()) return Status::BadInput("--legs: " + s.message());
   const std::string unit = " " + std::string(LengthUnitName(robot.length_unit));
   for (int i = 0; i < kNumLegs; ++i) {
     const Leg& leg = robot.legs[i];
     const double slack = kFarOutsideStrokes * (leg.stroke_max - leg.stroke_min);
     if (readings[i] >= leg.stroke_min - slack && readings[i] <= leg.stroke_max + slack) continue;
-    return Status::Error("--legs: L" + std::to_string(i + 1) + " = " + FormatNumber(readings[i]) + unit +
-                         " is outside [" + FormatNumber(leg.stroke_min - slack) + ", " +
-                         FormatNumber(leg.stroke_max + slack) + "]" + unit + ", leg " + std::to_string(i + 1) +
-                         "'s stroke [" + FormatNumber(leg.stroke_min) + ", " + FormatNumber(leg.stroke_max) + "]" +
-                         unit + " give or take a stroke length; not saved (a typo?)");
+    return Status::BadInput("--legs: L" + std::to_string(i + 1) + " = " + FormatNumber(readings[i]) + unit +
+                            " is outside [" + FormatNumber(leg.stroke_min - slack) + ", " +
+                            FormatNumber(leg.stroke_max + slack) + "]" + unit + ", leg " + std::to_string(i + 1) +
+                            "'s stroke [" + FormatNumber(leg.stroke_min) + ", " + FormatNumber(leg.stroke_max) + "]" +
+                            unit + " give or take a stroke length; not saved (a typo?)");
   }
   return Status::Ok();
 }
@@ -177,9 +178,9 @@ int RunSessionRecord(const SessionRecordOptions& cli, std::ostream& out, std::os
   if (!config.ok()) return ReportError(err, "session record", config.status());
   if (config->instrument == Instrument::kPoints)
     return ReportError(err, "session record",
-                       Status::Error(cli.dir + " is a points session: its legs.csv rows are poses " +
-                                     "(pose,L1..L6,holdout), not images; write them there or in the GUI's readings "
-                                     "table (Measure step)"));
+                       Status::BadInput(cli.dir + " is a points session: its legs.csv rows are poses " +
+                                        "(pose,L1..L6,holdout), not images; write them there or in the GUI's readings "
+                                        "table (Measure step)"));
   if (Status s = CheckTypedLegs(cli.dir, *legs); !s.ok()) return ReportError(err, "session record", s);
   if (cli.from.empty())
     if (Status s = CheckImageInSession(paths, cli.image); !s.ok()) return ReportError(err, "session record", s);
@@ -193,7 +194,7 @@ int RunSessionRecord(const SessionRecordOptions& cli, std::ostream& out, std::os
                                          : workflow::RecordCapture(cli.dir, cli.from, row, options);
   if (!done.status.ok()) return ReportError(err, "session record", done.status);
   if (done.conflict)
-    return ReportError(err, "session record", Status::Error(done.conflict_text + "; use --replace to replace it"));
+    return ReportError(err, "session record", Status::BadInput(done.conflict_text + "; use --replace to replace it"));
   if (cli.json)
     out << JsonText({{"session", cli.dir}, {"image", cli.image}, {"legs", paths.legs}, {"holdout", cli.holdout}});
   else
@@ -245,11 +246,12 @@ int RunCheckNoise(const CheckNoiseOptions& cli, std::ostream& out, std::ostream&
   const bool points = config->instrument == Instrument::kPoints;
   const std::string& input = points ? cli.points : cli.images;
   if (input.empty() || !(points ? cli.images : cli.points).empty())
-    return ReportError(err, "session check-noise",
-                       Status::Error(points ? "a points session's repeatability takes --points FILE (k point sets of "
-                                              "one pose)"
-                                            : "a camera session's repeatability takes --images FOLDER (k images of "
-                                              "one pose)"));
+    return ReportError(
+        err, "session check-noise",
+        Status::BadInput(points ? "a points session's repeatability takes --points FILE (k point sets of "
+                                  "one pose)"
+                                : "a camera session's repeatability takes --images FOLDER (k images of "
+                                  "one pose)"));
   TerminalJob job("", cli.json ? &err : &out);
   StatusOr<workflow::NoiseCheck> check = workflow::CheckSessionNoise(
       {cli.dir, input, cli.wait ? LockWait::kForever : LockWait::kNo}, job.hooks());

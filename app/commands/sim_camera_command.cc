@@ -53,7 +53,7 @@ int RunSimCamera(const SimCameraOptions& options, std::ostream& out, std::ostrea
   const std::optional<workflow::MachineUnit> unit = workflow::ParseMachineUnit(options.machine_unit);
   if (!unit)
     return ReportError(err, "sim-camera",
-                       Status::Error("--machine-unit: '" + options.machine_unit + "'; accepted: mm, inch"));
+                       Status::BadInput("--machine-unit: '" + options.machine_unit + "'; accepted: mm, inch"));
   StatusOr<std::shared_ptr<workflow::SimWorld>> world = workflow::SimWorld::ForSession(options.session, options.seed);
   if (!world.ok()) return ReportError(err, "sim-camera", world.status());
   if (Status s = (*world)->WriteTruth(options.session); !s.ok()) return ReportError(err, "sim-camera", s);
@@ -81,8 +81,8 @@ int RunSimCamera(const SimCameraOptions& options, std::ostream& out, std::ostrea
 #else
 int RunSimCamera(const SimCameraOptions&, std::ostream&, std::ostream& err) {
   return ReportError(err, "sim-camera",
-                     Status::Error("this hexcal was built without Aravis (install libaravis-dev: "
-                                   "scripts/install-deps.sh)"));
+                     Status::BadInput("this hexcal was built without Aravis (install libaravis-dev: "
+                                      "scripts/install-deps.sh)"));
 }
 #endif
 

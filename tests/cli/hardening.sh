@@ -40,6 +40,13 @@ unchanged() {
 }
 
 R="--robot inria-left-hand"
+# The words of an exit_table line, its placeholders filled in.
+words() {
+  local line=$1
+  line=${line//ROBOT/$R} line=${line//POSES/$POSES} line=${line//MEM//proc/self/mem} line=${line//DATA/$data}
+  # shellcheck disable=SC2086
+  echo ${line//IMAGE/$data/bad_inputs/image_no_target.png}
+}
 POSES=$data/poses/inria_sample.csv
 REFUSED="exists; use --force to overwrite it"
 
@@ -221,51 +228,66 @@ exit_table)
   # Issue 36: one table of exit codes for every command (docs/cli.md), each
   # error after "hexcal COMMAND: ", CLI11's own refusals too; every command
   # takes --json but sim-camera (a server until Ctrl-C; README.md says so).
-  # One line a command: COMMAND | a command line with a bad input (exit 2).
+  # Issue 37: one code per tier, the same fault the same code everywhere.
+  # One line a command: COMMAND | a bad input (exit 2) | an I/O fault (exit 4)
+  # | a failed computation (exit 1), where the command computes something
+  # that can fail from valid input. The I/O faults: a file that opens but
+  # whose read fails (/proc/self/mem: EIO at address 0), named directly or as
+  # a session's session.yaml and results/manifest.json (session io); an
+  # output under /sys (EACCES or EPERM, for root too).
   "$hexcal" session init s $R --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 >/dev/null || exit 1
+  mkdir -p io/results && ln -s /proc/self/mem io/session.yaml && ln -s /proc/self/mem io/results/manifest.json
+  printf 'x,y,z,q1,q2,q3,L1,L2,L3,L4,L5,L6\n0,0,45,0,0,0,3.4,0,3.4,0,3.4,0\n' >far.csv
   commands=$(cat <<'EOF'
-robot check | robot check ./missing.yaml
-robot show | robot show ./missing.yaml
-ik | ik --robot missing.yaml --poses POSES
-fk | fk ROBOT --legs 1,2
-candidates | candidates ROBOT --count 0 --out c.csv
-indices | indices ROBOT --poses missing.csv
-demo | demo --poses 5 --out d
-plan | plan ROBOT --poses 6 --out p.csv
-calibrate | calibrate ROBOT --measurements missing.csv --out cal.yaml
-validate | validate ROBOT --measurements missing.csv
-simulate | simulate ROBOT --runs 0
-study | study --session missing
-target check | target check --target missing.yaml
-target print | target print --target missing.yaml --out t.pdf
-detect | detect --images missing
-render | render --camera missing.yaml --poses POSES --out r
-intrinsics | intrinsics --images missing --out cam.yaml
-measure | measure --camera missing.yaml --images missing --out m.csv
-session init | session init s2 --robot missing.yaml --camera sim-4.2mm-1024x768 --target aprilgrid-6x6
-session status | session status missing
-session record | session record s --image a.png --legs 0x10,1,1,1,1,1
-report | report --session missing --out r.html
-acquire | acquire --session missing --controller sim --camera sim
-verify | verify --session missing --controller sim --camera sim --poses POSES
-sim-camera | sim-camera --session missing --machine-robot missing.yaml
-export | export --robot missing.yaml --out x.hal
-camera show | camera show missing.yaml
-camera convert | camera convert missing.yaml --to ros --out x.yaml
+robot check | robot check ./missing.yaml | robot check MEM |
+robot show | robot show ./missing.yaml | robot show MEM |
+ik | ik --robot missing.yaml --poses POSES | ik ROBOT --poses POSES --out /sys/ik.csv |
+fk | fk ROBOT --legs 1,2 | fk --robot MEM --legs 1,1,1,1,1,1 | fk ROBOT --legs 3.5,0,3.5,0,3.5,0 --start 0,0,60,0,0,0
+candidates | candidates ROBOT --count 0 --out c.csv | candidates ROBOT --count 5 --out /sys/c.csv |
+indices | indices ROBOT --poses missing.csv | indices ROBOT --poses MEM |
+demo | demo --poses 5 --out d | demo --poses 8 --out /sys/d |
+plan | plan ROBOT --poses 6 --out p.csv | plan ROBOT --settings MEM --out p.csv |
+calibrate | calibrate ROBOT --measurements missing.csv --out cal.yaml | calibrate ROBOT --measurements MEM --out cal.yaml | calibrate ROBOT --measurements DATA/bad_inputs/measurements_singular_poses.csv --out cal.yaml
+validate | validate ROBOT --measurements missing.csv | validate ROBOT --measurements MEM | validate ROBOT --measurements far.csv
+simulate | simulate ROBOT --runs 0 | simulate --robot MEM --runs 1 |
+study | study --session missing | study --session io |
+target check | target check --target missing.yaml | target check --target MEM |
+target print | target print --target missing.yaml --out t.pdf | target print --target aprilgrid-6x6 --out /sys/t.pdf |
+detect | detect --images missing | detect --target MEM --images IMAGE |
+render | render --camera missing.yaml --poses POSES --out r | render --poses POSES --out /sys/r |
+intrinsics | intrinsics --images missing --out cam.yaml | intrinsics --target MEM --images IMAGE --out cam.yaml |
+measure | measure --camera missing.yaml --images missing --out m.csv | measure --camera MEM --images IMAGE --out m.csv |
+session init | session init s2 --robot missing.yaml --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 | session init /sys/s2 ROBOT --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 |
+session status | session status missing | session status io |
+session record | session record s --image a.png --legs 0x10,1,1,1,1,1 | session record io --image a.png --legs 1,1,1,1,1,1 |
+report | report --session missing --out r.html | report --session io --out r.html |
+acquire | acquire --session missing --controller sim --camera sim | acquire --session io --poses POSES --controller sim --camera sim |
+verify | verify --session missing --controller sim --camera sim --poses POSES | verify --session io --controller sim --camera sim --poses POSES |
+sim-camera | sim-camera --session missing --machine-robot missing.yaml | sim-camera --session io --machine-robot MEM |
+export | export --robot missing.yaml --out x.hal | export --robot MEM --out x.hal |
+camera show | camera show missing.yaml | camera show MEM |
+camera convert | camera convert missing.yaml --to ros --out x.yaml | camera convert sim-4.2mm-1024x768 --to ros --out /sys/x.yaml |
 EOF
 )
-  while IFS='|' read -r command args; do
-    command=$(echo $command) args=${args//ROBOT/$R}
-    # shellcheck disable=SC2086
-    expect 2 "^hexcal $command: " ${args//POSES/$POSES}
+  while IFS='|' read -r command bad io failed; do
+    command=$(echo $command)
+    # shellcheck disable=SC2046
+    expect 2 "^hexcal $command: " $(words "$bad")
     # shellcheck disable=SC2086
     expect 2 "^hexcal $command: " $command --no-such-option
+    # shellcheck disable=SC2046
+    expect 4 "^hexcal $command: .*(Input/output error|Permission denied|Operation not permitted)" $(words "$io")
+    # shellcheck disable=SC2046
+    [ -n "$(words "$failed")" ] && expect 1 "^hexcal $command: " $(words "$failed")
     # shellcheck disable=SC2086
     if [ "$command" != sim-camera ] && ! "$hexcal" $command --help | grep -q -- "--json"; then
       echo "FAIL: hexcal $command takes no --json"; failures=$((failures + 1))
     fi
   done <<<"$commands"
-  leftovers=$(ls -A | grep -v "^s$")
+  # A video device that is not there is an I/O fault too: the camera's own open failed.
+  expect 4 "^hexcal acquire: v4l2:97: cannot open /dev/video97" acquire --session s --poses "$POSES" \
+    --controller sim --camera v4l2:97
+  leftovers=$(ls -A | grep -v -x -e s -e io -e far.csv)
   [ -n "$leftovers" ] && { echo "FAIL: files left behind: $leftovers"; failures=$((failures + 1)); }
   ;;
 text_and_numbers)

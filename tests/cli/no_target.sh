@@ -31,6 +31,23 @@ cat "$dir/out"
 # Read with two border cells, a one-cell board gives an image no tag or one or two
 # (no_target, too_few_tags): both statuses are counted, and the first image named.
 grep -Eq "only 0 of 8 images give a board pose, and the camera registration needs 3: (no_target|too_few_tags) [0-9] \(view_0" "$dir/out"
+# The same fault, the same code whatever the method (issue 36: 1 with
+# --from-pixels, 2 without): the board poses are missing before either runs.
+for method in --from-pixels --two-stage; do
+  code=0
+  "$hexcal" calibrate --session "$s" $method >"$dir/out_method" 2>&1 || code=$?
+  [ "$code" -eq 2 ] && grep -q "only 0 of 8 images give a board pose" "$dir/out_method" ||
+    { cat "$dir/out_method"; echo "FAIL: calibrate --session $method: exit $code, expected 2"; exit 1; }
+done
+# A target file that is not there: bad input with every method too.
+cp -r "$s" "$dir/gone"
+sed -i "s|^target:.*$|target: $dir/missing_target.yaml|" "$dir/gone/session.yaml"
+for method in "" --from-pixels --two-stage; do
+  code=0
+  "$hexcal" calibrate --session "$dir/gone" $method >"$dir/out_gone" 2>&1 || code=$?
+  [ "$code" -eq 2 ] && grep -q "missing_target.yaml: no such file" "$dir/out_gone" ||
+    { cat "$dir/out_gone"; echo "FAIL: a missing target, calibrate --session $method: exit $code, expected 2"; exit 1; }
+done
 image=$(sed -n 's/.*; \(view_[0-9]*\.png\) holds 36 tags with border_bits 1 (--border-bits, or the target file.s border_bits key)$/\1/p' "$dir/out")
 [ -n "$image" ] || { echo "FAIL: no image named with the border that reads it"; exit 1; }
 "$hexcal" detect --images "$s/images/$image" --target "$dir/two_cells.yaml" >"$dir/detect" 2>&1

@@ -94,7 +94,7 @@ class Prepared {
     const QString root = temp_.path();
     const std::string dir = (root + "/session").toStdString();
     const std::string spare = (root + "/spare").toStdString();
-    const auto fail = [&](const std::string& what) { return Status::Error("prepare: " + what); };
+    const auto fail = [&](const std::string& what) { return Status::BadInput("prepare: " + what); };
     if (!CopyFolder(sessions_dir + "/calibrated", root + "/session")) return fail("copy");
     QDir().mkpath(root + "/robots");
     QDir().mkpath(root + "/spare");
