@@ -341,8 +341,9 @@ void AcquirePanel::UpdateButtons() {
   cancel_->setEnabled(busy);
   const QString why = !rig_ && points ? "Connect a controller first (Controller, Connect)."
                     : !rig_          ? "Connect the devices first (Controller, Camera, Connect)."
-                            : "No controller connected: choose one (Controller) and Connect; by hand, move the robot "
-                              "to the lengths shown and press Capture.";
+                            : QString("No controller connected: choose one (Controller) and Connect; by hand, move "
+                                      "the robot to the lengths shown and press %1.")
+                                  .arg(points ? "Record readings" : "Capture");
   // A tooltip's first line is the button's; a second, while it is disabled, says why.
   for (QPushButton* needs : {move_, run_rest_})
     needs->setToolTip(needs->isEnabled() ? needs->toolTip().section("\n", 0, 0)

@@ -195,9 +195,13 @@ TEST_F(PointsWalkTest, AcquireMeasureCalibrateValidateReport) {
   EXPECT_TRUE(text.startsWith("4 held-out poses: forward kinematics from their readings against the tracker's pose"))
       << text.toStdString();
   // Every text of the panel in the session's noun: the charts too.
+  int held_out_charts = 0;
   for (QtCharts::QChartView* chart : validate->findChildren<QtCharts::QChartView*>()) {
+    if (!chart->chart()->title().startsWith("Held-out")) continue;  // the study tab's
+    ++held_out_charts;
     EXPECT_TRUE(chart->chart()->title().endsWith("per pose")) << chart->chart()->title().toStdString();
   }
+  EXPECT_EQ(held_out_charts, 2);
   // The verdict's findings (their figures, in the tooltips) count poses, not images.
   for (const QWidget* part : validate->findChild<VerdictView*>()->findChildren<QWidget*>())
     EXPECT_FALSE(part->toolTip().contains("image")) << part->toolTip().toStdString();
