@@ -5,6 +5,7 @@
 // with the pose's name as their group; the checklist reads both back from
 // legs.csv and the points file. The camera's layout and actions are in
 // acquire_panel.cc and acquire_actions.cc.
+#include <QComboBox>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QLabel>
