@@ -23,6 +23,7 @@
 #include "ui/acquire_panel.h"
 #include "ui/calibrate_panel.h"
 #include "ui/gui_terms.h"
+#include "ui/image_view.h"
 #include "ui/main_window.h"
 #include "ui/measure_panel.h"
 #include "ui/tests/gui_test_support.h"
