@@ -41,7 +41,13 @@ StatusOr<SessionPointsFile> PointsFileOf(const std::string& dir) {
   if (!config.ok()) return config.status();
   if (config->instrument != Instrument::kPoints)
     return Status::Error(dir + ": not a points session (session.yaml has no 'instrument: points')");
-  return SessionPointsFile{ResolveSessionFile(dir, config->points), config->point_sigma};
+  // A points file not written yet is the session folder's, never one of the
+  // working folder that ResolveSessionFile would fall back on.
+  std::string path = ResolveSessionFile(dir, config->points);
+  std::error_code error;
+  if (!fs::exists(fs::symlink_status(path, error)) && fs::path(config->points).is_relative())
+    path = (fs::path(dir) / config->points).string();
+  return SessionPointsFile{path, config->point_sigma};
 }
 
 // As core/point_file.h decides: CSV when the first line that is not blank or a
