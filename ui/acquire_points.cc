@@ -106,6 +106,8 @@ void AcquirePanel::FillPointChecklist(const std::vector<workflow::ReadingsRow>& 
   checklist_->blockSignals(false);
 }
 
+QString AcquirePanel::PointsGuide() const { return guide_->text(); }
+
 bool AcquirePanel::PointPoseDone(int index) const {
   return index >= 0 && index < static_cast<int>(has_points_.size()) && has_points_[index] && has_readings_[index];
 }
