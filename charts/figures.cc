@@ -171,11 +171,11 @@ ChartSpec ValidationSummaryChart(const ValidationErrors& rms, const std::string&
 }
 
 ChartSpec ValidationPerImageChart(const std::vector<ImageValidation>& images, ValidationQuantity quantity,
-                                  const std::string& length_unit) {
+                                  const std::string& length_unit, const std::string& noun) {
   const bool position = quantity == ValidationQuantity::kPosition;
   ChartSpec spec;
-  spec.title = position ? "Held-out position error per image" : "Held-out orientation error per image";
-  spec.x = CategoryAxis("image number", {});
+  spec.title = std::string(position ? "Held-out position error per " : "Held-out orientation error per ") + noun;
+  spec.x = CategoryAxis(noun + " number", {});
   spec.y = LinearAxis(position ? WithUnit("position error", length_unit) : "orientation error (deg)");
   std::vector<double> before, after;
   for (const ImageValidation& image : images) {

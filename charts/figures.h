@@ -97,8 +97,9 @@ struct ImageValidation {
   ValidationErrors errors;
 };
 enum class ValidationQuantity { kPosition, kOrientation };
-// One group of before/after bars per held-out image. GUI.
+// One group of before/after bars per held-out image, or pose: `noun` names
+// what a row of legs.csv is ("image", a points session's "pose"). GUI.
 ChartSpec ValidationPerImageChart(const std::vector<ImageValidation>& images, ValidationQuantity quantity,
-                                  const std::string& length_unit);
+                                  const std::string& length_unit, const std::string& noun = "image");
 
 }  // namespace hexcal::charts

@@ -219,6 +219,12 @@ TEST(ValidationPerImageChart, OneGroupPerImage) {
   EXPECT_THAT(position.series[1].values, ElementsAre(0.01, 0));
   EXPECT_THAT(orientation.series[0].values, ElementsAre(0.2, 0.3));
   EXPECT_EQ(position.y.label, "position error (mm)");
+  EXPECT_EQ(position.title, "Held-out position error per image");
+  EXPECT_EQ(position.x.label, "image number");
+  // A points session's rows are poses.
+  const ChartSpec poses = ValidationPerImageChart(images, ValidationQuantity::kOrientation, "mm", "pose");
+  EXPECT_EQ(poses.title, "Held-out orientation error per pose");
+  EXPECT_EQ(poses.x.label, "pose number");
   const ChartSpec empty = ValidationPerImageChart({}, ValidationQuantity::kPosition, "");  // no results yet
   ExpectValid(empty);
   EXPECT_EQ(empty.y.label, "position error");

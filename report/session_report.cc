@@ -160,8 +160,8 @@ std::string ResidualSection(const SessionPaths& paths, const Robot& nominal) {
   if (!rows.ok() || !calibrated.ok())
     return "<h2>Residuals</h2><p>" + Escape(!rows.ok() ? rows.status().message() : calibrated.status().message()) +
            "</p>\n";
-  return "<h2>Residuals</h2><p>The implicit residual (paper eq. 4, as a length) of every leg of each "
-         "calibration image, in the registered base frame.</p>\n" +
+  return "<h2>Residuals</h2><p>The implicit residual (paper eq. 4, as a length) of every leg at each "
+         "calibration pose, in the registered base frame.</p>\n" +
          ChartHtml(charts::CalibrationResidualsChart(nominal, *calibrated, *rows));
 }
 
@@ -193,7 +193,9 @@ std::string OutlierSection(const CalibrationReport& report) {
   if (report.outliers.empty()) return "";
   std::string html = "<h2>Outliers</h2><p>Leg readings far beyond the noise model (|z| above " +
                      (report.screening ? Figure(report.screening->threshold) : std::string("the threshold")) +
-                     "): residual = reading &minus; the length the camera pose implies.</p>\n<table><tr><th>image</th>"
+                     "): residual = reading &minus; the length the " +
+                     (report.instrument == Instrument::kPoints ? "tracker" : "camera") +
+                     " pose implies.</p>\n<table><tr><th>" + MeasurementNoun(report.instrument) + "</th>"
                      "<th>legs.csv line</th><th>leg</th><th>residual (" +
                      Escape(report.length_unit) + ")</th><th>z (&sigma;)</th><th>in the fit</th></tr>\n";
   for (const OutlierReading& o : report.outliers) {

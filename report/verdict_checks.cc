@@ -63,7 +63,8 @@ std::string Figure(double value) {
 }
 
 Finding CheckFkErrors(const PoseErrorStats& after, const ExpectedPoseError& expected, const std::string& unit,
-                      const std::string& worst_image) {
+                      const std::string& worst_image, Instrument instrument) {
+  const bool points = instrument == Instrument::kPoints;
   const double ratio =
       std::max(after.position_rms / expected.position_rms, after.orientation_rms / expected.orientation_rms_deg);
   Finding finding = NoiseRatioFinding("held-out error", ratio, FkFigure(after, expected, unit));
@@ -71,10 +72,13 @@ Finding CheckFkErrors(const PoseErrorStats& after, const ExpectedPoseError& expe
     finding.meaning = "the calibrated robot predicts poses it was not fitted to as well as the measurements allow.";
   } else {
     finding.meaning = "poses the fit did not see are predicted " + Figure(ratio) +
-                      " times worse than the measurement noise explains: the model, the camera or the noise model "
-                      "is off.";
-    finding.advice = "check the camera calibration and the noise model in session.yaml, then add poses";
-    if (!worst_image.empty()) finding.advice += " near held-out image " + worst_image + " (its error is the largest)";
+                      " times worse than the measurement noise explains: the model, the " +
+                      (points ? "tracker" : "camera") + " or the noise model is off.";
+    finding.advice = std::string(points ? "check the reflector file and the points' σ" : "check the camera calibration") +
+                     " and the noise model in session.yaml, then add poses";
+    if (!worst_image.empty())
+      finding.advice += " near held-out " + std::string(MeasurementNoun(instrument)) + " " + worst_image +
+                        " (its error is the largest)";
   }
   if (after.failed > 0) {
     finding.level = std::max(finding.level, VerdictLevel::kAcceptable);
@@ -89,8 +93,9 @@ Finding CheckHeldOut(const CalibrationReport& report) {
   if (!report.validation) {
     return {"held-out error",
             VerdictLevel::kAcceptable,
-            "no held-out images",
-            "good: at least " + std::to_string(kHeldOutImagesGood) + " held-out images",
+            "no held-out " + std::string(MeasurementNoun(report.instrument)) + "s",
+            "good: at least " + std::to_string(kHeldOutImagesGood) + " held-out " + MeasurementNoun(report.instrument) +
+                "s",
             "without poses kept out of the fit nothing checks the calibrated robot on new poses.",
             "set holdout = 1 on about one row in five of legs.csv and calibrate again"};
   }
@@ -103,7 +108,8 @@ Finding CheckHeldOut(const CalibrationReport& report) {
             "run hexcal calibrate --session again"};
   }
   const ExpectedPoseError expected{report.noise->position_rms, report.noise->orientation_rms_deg};
-  return CheckFkErrors(report.validation->after, expected, report.length_unit, WorstHeldOutImage(*report.validation));
+  return CheckFkErrors(report.validation->after, expected, report.length_unit, WorstHeldOutImage(*report.validation),
+                       report.instrument);
 }
 
 Finding CheckClosure(const CalibrationReport& report) {
@@ -112,11 +118,16 @@ Finding CheckClosure(const CalibrationReport& report) {
                                       "RMS " + Figure(report.closure_position_rms) + " " + report.length_unit + " = " +
                                           Figure(ratio) + "× expected " + Figure(report.noise->position_rms) + " " +
                                           report.length_unit);
+  const bool points = report.instrument == Instrument::kPoints;
+  const std::string instrument = points ? "tracker" : "camera";
   if (finding.level == VerdictLevel::kGood) {
-    finding.meaning = "camera, registered frames and calibrated robot agree on the calibration poses.";
+    finding.meaning = instrument + ", registered frames and calibrated robot agree on the calibration poses.";
   } else {
-    finding.meaning = "camera poses and the calibrated robot disagree beyond the noise on the poses it was fitted to.";
-    finding.advice = "recalibrate the camera (intrinsics) and check the target file's tag size (closure RMS " +
+    finding.meaning =
+        instrument + " poses and the calibrated robot disagree beyond the noise on the poses it was fitted to.";
+    finding.advice = std::string(points ? "check the reflector file and that the points are in the robot's unit"
+                                        : "recalibrate the camera (intrinsics) and check the target file's tag size") +
+                     " (closure RMS " +
                      Figure(report.closure_position_rms) + " " + report.length_unit +
                      "); if they are right, the noise model in session.yaml is optimistic";
   }

@@ -17,9 +17,11 @@
 
 namespace hexcal::workflow {
 
-// FK errors against the noise prediction; `worst_image` names where to add poses.
+// FK errors against the noise prediction; `worst_image` names where to add
+// poses (an image, or a points session's pose: `instrument` says which, and
+// what measured it).
 Finding CheckFkErrors(const PoseErrorStats& after, const ExpectedPoseError& expected, const std::string& unit,
-                      const std::string& worst_image);
+                      const std::string& worst_image, Instrument instrument = Instrument::kCamera);
 Finding CheckHeldOut(const CalibrationReport& report);
 Finding CheckClosure(const CalibrationReport& report);  // needs report.noise
 Finding CheckResiduals(const CalibrationReport& report);

@@ -8,7 +8,18 @@
 
 namespace hexcal::workflow {
 
+namespace {
+
+// What a legs.csv row is ("image", a points session's "pose") and what measures it.
+std::string Noun(const CalibrationReport& report) { return MeasurementNoun(report.instrument); }
+std::string InstrumentWord(const CalibrationReport& report) {
+  return report.instrument == Instrument::kPoints ? "tracker" : "camera";
+}
+
+}  // namespace
+
 Finding CheckPoses(const CalibrationReport& report) {
+  const std::string noun = Noun(report);
   const int calibration = report.calibration_images, held_out = report.held_out_images;
   VerdictLevel level = calibration >= kCalibrationImagesGood ? VerdictLevel::kGood
                        : calibration >= kMinRowsToScreen     ? VerdictLevel::kAcceptable
@@ -16,9 +27,9 @@ Finding CheckPoses(const CalibrationReport& report) {
   if (held_out > 0 && held_out < kHeldOutImagesGood) level = std::max(level, VerdictLevel::kAcceptable);
   Finding finding{"poses",
                   level,
-                  Plural(calibration, "calibration image") + ", " + std::to_string(held_out) + " held out",
-                  "good ≥ " + std::to_string(kCalibrationImagesGood) +
-                      " calibration images, 3 per leg parameter, and ≥ " + std::to_string(kHeldOutImagesGood) +
+                  Plural(calibration, "calibration " + noun) + ", " + std::to_string(held_out) + " held out",
+                  "good ≥ " + std::to_string(kCalibrationImagesGood) + " calibration " + noun +
+                      "s, 3 per leg parameter, and ≥ " + std::to_string(kHeldOutImagesGood) +
                       " held out; poor < " + std::to_string(kMinRowsToScreen),
                   "enough poses to fit each leg's 7 parameters with redundancy to spare.",
                   ""};
@@ -28,7 +39,7 @@ Finding CheckPoses(const CalibrationReport& report) {
                      " more planned poses (hexcal plan)";
   } else if (level != VerdictLevel::kGood) {
     finding.meaning = "too few held-out poses to judge the calibration on new poses reliably.";
-    finding.advice = "hold out at least " + std::to_string(kHeldOutImagesGood) + " images (holdout = 1 in legs.csv)";
+    finding.advice = "hold out at least " + std::to_string(kHeldOutImagesGood) + " " + noun + "s (holdout = 1 in legs.csv)";
   }
   return finding;
 }
@@ -96,13 +107,14 @@ Finding CheckKeptOutliers(const CalibrationReport& report, int kept) {
                   level,
                   Plural(kept, "flagged reading") + " of " + std::to_string(readings) + " kept in the fit",
                   "good: none kept, acceptable ≤ " + Figure(100 * kOutlierFractionAcceptable) + " % of the readings",
-                  "some leg readings disagree with the camera by far more than the noise: a wrong reading or image.",
+                  "some leg readings disagree with the " + InstrumentWord(report) +
+                      " by far more than the noise: a wrong reading or " + Noun(report) + ".",
                   ""};
   auto by_z = [](const OutlierReading& a, const OutlierReading& b) {
     return (a.excluded ? 0 : std::abs(a.z)) < (b.excluded ? 0 : std::abs(b.z));
   };
   const OutlierReading& worst = *std::max_element(report.outliers.begin(), report.outliers.end(), by_z);
-  finding.advice = "check the readings of image " + worst.image +
+  finding.advice = "check the readings of " + Noun(report) + " " + worst.image +
                    (worst.legs_line ? " (legs.csv line " + std::to_string(*worst.legs_line) + ")" : "") + ", leg " +
                    std::to_string(worst.leg) + ": its residual is " + Figure(std::abs(worst.z)) +
                    "σ; without --keep-outliers it is left out";
@@ -120,6 +132,7 @@ Finding CheckOutliers(const CalibrationReport& report) {
                                                   [](const OutlierReading& o) { return !o.excluded; }));
   if (kept > 0) return CheckKeptOutliers(report, kept);
   const std::vector<ImageClosure> left_out = LeftOutImages(report);
+  const std::string noun = Noun(report);
   const int images = std::max(report.calibration_images, 1);
   const double fraction = static_cast<double>(left_out.size()) / images;
   const VerdictLevel level = fraction <= kLeftOutImageFractionGood         ? VerdictLevel::kGood
@@ -127,17 +140,17 @@ Finding CheckOutliers(const CalibrationReport& report) {
                                                                            : VerdictLevel::kPoor;
   const std::string figure =
       report.outliers.empty()
-          ? "no reading flagged (" + Plural(images, "calibration image") + ")"
-          : Plural(static_cast<int>(left_out.size()), "calibration image") + " of " + std::to_string(images) +
+          ? "no reading flagged (" + Plural(images, "calibration " + noun) + ")"
+          : Plural(static_cast<int>(left_out.size()), "calibration " + noun) + " of " + std::to_string(images) +
                 " left out for " + Plural(static_cast<int>(report.outliers.size()), "flagged reading");
   Finding finding{"outliers",
                   level,
                   figure,
                   "good ≤ " + Figure(100 * kLeftOutImageFractionGood) + " %, acceptable ≤ " +
-                      Figure(100 * kLeftOutImageFractionAcceptable) + " % of the calibration images",
-                  "every leg reading agrees with its image's camera pose within the noise.",
+                      Figure(100 * kLeftOutImageFractionAcceptable) + " % of the calibration " + noun + "s",
+                  "every leg reading agrees with its " + noun + "'s " + InstrumentWord(report) + " pose within the noise.",
                   ""};
-  if (report.screening && !report.screening->screened) finding.figure += " (not screened: too few images)";
+  if (report.screening && !report.screening->screened) finding.figure += " (not screened: too few " + noun + "s)";
   if (left_out.empty()) return finding;
   constexpr size_t kNamed = 3;  // in the figure; the meaning names every one
   for (size_t k = 0; k < left_out.size() && k < kNamed; ++k)
@@ -148,8 +161,9 @@ Finding CheckOutliers(const CalibrationReport& report) {
   finding.meaning.back() = '.';
   if (level != VerdictLevel::kGood)
     finding.advice = "more than " + Figure(100 * kLeftOutImageFractionGood) +
-                     " % of the calibration images left out: check that images and legs.csv rows belong together, "
-                     "and add poses";
+                     " % of the calibration " + noun + "s left out: check that " +
+                     (report.instrument == Instrument::kPoints ? "the points file's poses" : "images") +
+                     " and legs.csv rows belong together, and add poses";
   return finding;
 }
 

@@ -9,6 +9,7 @@
 #include "core/inverse_kinematics.h"
 #include "core/registration.h"
 #include "core/session.h"
+#include "sim/sim_world.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -68,12 +69,33 @@ std::vector<NamedPoint> DemoReflectors(const DemoScene& scene) {
   return reflectors;
 }
 
+std::vector<NamedPoint> ReflectorsInTracker(const DemoScene& scene, const Pose& base_from_platform) {
+  // tracker_from_reflectors = X⁻¹ · base_from_platform · Y
+  const Pose seen_from =
+      Compose(Compose(Inverse(scene.base_from_camera), base_from_platform), scene.platform_from_target);
+  std::vector<NamedPoint> seen;
+  for (const NamedPoint& r : DemoReflectors(scene))
+    seen.push_back({r.name, seen_from.rotation * r.position + seen_from.position, 0});
+  return seen;
+}
+
+PointSet SimTrackerMeasure(SimWorld& world, double sigma, const std::string& pose, uint64_t draw) {
+  std::mt19937_64 rng(world.scene().seed * 104729 + draw);
+  std::normal_distribution<double> point_noise(0, sigma);
+  PointSet measured{pose, {}};
+  for (NamedPoint seen : ReflectorsInTracker(world.scene(), world.ActualPose())) {
+    for (int k = 0; k < 3; ++k) seen.position[k] += point_noise(rng);
+    seen.sigma = sigma;
+    measured.points.push_back(seen);
+  }
+  return measured;
+}
+
 Status RecordPointDemoSession(const DemoScene& scene, const PointDemoOptions& options, const std::string& robot_name,
                               const std::vector<Vector6d>& planned, const std::vector<Vector6d>& held_out,
                               const std::string& dir) {
   if (Status s = InitSession(dir, PointSessionConfig(scene, options, robot_name)); !s.ok()) return s;
   if (Status s = WriteSceneTruth(scene, dir); !s.ok()) return s;
-  const std::vector<NamedPoint> reflectors = DemoReflectors(scene);
   std::vector<Vector6d> poses = planned;
   poses.insert(poses.end(), held_out.begin(), held_out.end());
   std::mt19937_64 rng(scene.seed * 7919 + 17);
@@ -87,19 +109,22 @@ Status RecordPointDemoSession(const DemoScene& scene, const PointDemoOptions& op
     std::vector<std::string> row = {PoseName(j)};
     for (int i = 0; i < kNumLegs; ++i) row.push_back(FormatNumber(readings[i] + scene.noise.leg * unit_noise(rng)));
     row.push_back(j < planned.size() ? "0" : "1");
+    // The pose each row was commanded to, as the Acquire step records it: the
+    // GUI's checklist then shows the plan's poses recorded (plan_captures.h).
+    for (int k = 0; k < 6; ++k) row.push_back(FormatNumber(poses[j][k]));
     legs_rows.push_back(row);
-    // tracker_from_reflectors = X⁻¹ · base_from_platform · Y
-    const Pose seen_from = Compose(Compose(Inverse(scene.base_from_camera), platform), scene.platform_from_target);
-    for (const NamedPoint& r : reflectors) {
+    for (const NamedPoint& seen : ReflectorsInTracker(scene, platform)) {
       const Eigen::Vector3d noise(point_noise(rng), point_noise(rng), point_noise(rng));
-      points += PointLine(PoseName(j), {r.name, seen_from.rotation * r.position + seen_from.position + noise, 0});
+      points += PointLine(PoseName(j), {seen.name, seen.position + noise, 0});
     }
   }
   if (Status s = WriteFileAtomically((fs::path(dir) / kPointsFile).string(), points); !s.ok()) return s;
   if (options.reflector_file) {
-    if (Status s = WriteReflectorFile((fs::path(dir) / kReflectorFile).string(), reflectors); !s.ok()) return s;
+    if (Status s = WriteReflectorFile((fs::path(dir) / kReflectorFile).string(), DemoReflectors(scene)); !s.ok()) return s;
   }
-  return WriteCsv(SessionPaths(dir).legs, {"pose", "L1", "L2", "L3", "L4", "L5", "L6", "holdout"}, legs_rows);
+  std::vector<std::string> header = {"pose", "L1", "L2", "L3", "L4", "L5", "L6", "holdout"};
+  header.insert(header.end(), std::begin(kCommandedColumns), std::end(kCommandedColumns));
+  return WriteCsv(SessionPaths(dir).legs, header, legs_rows);
 }
 
 }  // namespace hexcal::workflow

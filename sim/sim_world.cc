@@ -63,6 +63,27 @@ std::unique_ptr<FrameSource> MakeSimFrameSource(std::shared_ptr<SimWorld> world)
   return std::make_unique<SimFrameSource>(std::move(world));
 }
 
+namespace {
+
+// A points session names no camera or target: its world is the one `hexcal
+// demo --instrument points` draws, with the sim camera's place for the
+// tracker and the default board's for the reflectors, so that a demo
+// session's truth is the sim world's of the same seed.
+StatusOr<SessionModels> SimWorldModels(const std::string& dir) {
+  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
+  if (!config.ok()) return config.status();
+  if (config->instrument != Instrument::kPoints) return LoadSessionModels(dir);
+  StatusOr<Robot> robot = LoadRobot(ResolveSessionFile(dir, config->robot));
+  if (!robot.ok()) return robot.status();
+  StatusOr<Camera> camera = LoadCamera(kSimulatedCameraName);
+  if (!camera.ok()) return camera.status();
+  StatusOr<Target> target = LoadTarget(kDefaultTargetName);
+  if (!target.ok()) return target.status();
+  return SessionModels{std::move(*config), std::move(*robot), std::move(*camera), std::move(*target)};
+}
+
+}  // namespace
+
 ControllerOptions SimControllerOptions(std::shared_ptr<SimWorld> world) {
   ControllerOptions options;
   if (world) options.sim = [world] { return MakeSimController(world); };
@@ -76,7 +97,7 @@ FrameSourceOptions SimFrameSourceOptions(std::shared_ptr<SimWorld> world) {
 }
 
 StatusOr<std::shared_ptr<SimWorld>> SimWorld::ForSession(const std::string& dir, uint64_t seed) {
-  StatusOr<SessionModels> models = LoadSessionModels(dir);
+  StatusOr<SessionModels> models = SimWorldModels(dir);
   if (!models.ok()) return models.status();
   DemoSceneOptions options;
   options.seed = seed;

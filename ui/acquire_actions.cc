@@ -53,7 +53,8 @@ void AcquirePanel::Connect(const QString& controller_url, const QString& camera_
     return;
   }
   const std::string controller = ControllerChoice().toStdString();
-  const std::string camera = CameraChoice().toStdString();
+  // A points session's tracker is not a device of hexcal's: no camera.
+  const std::string camera = session_->IsPointsSession() ? std::string() : CameraChoice().toStdString();
   const std::string dir = session_->Dir().toStdString();
   const bool by_hand = ByHand(QString::fromStdString(controller));
   // Said here in the panel's terms (the workflow's message names the CLI's flag).
@@ -66,7 +67,9 @@ void AcquirePanel::Connect(const QString& controller_url, const QString& camera_
   job_->Start("connecting", [this, controller, camera, dir, by_hand](const JobContext&) -> GuiContinuation {
     auto rig = std::make_shared<workflow::AcquisitionRig>();
     Status opened = Status::Ok();
-    if (by_hand) {
+    if (by_hand && camera.empty()) {
+      // A points session by hand: nothing to open; the readings are typed.
+    } else if (by_hand) {
       StatusOr<std::unique_ptr<workflow::FrameSource>> source = workflow::OpenFrameSource(camera);
       if (source.ok()) rig->camera = std::move(*source);
       opened = source.status();
@@ -85,10 +88,13 @@ void AcquirePanel::Connected(std::shared_ptr<workflow::AcquisitionRig> rig, cons
     return ShowError(this, "Connect", Message(opened));
   }
   rig_ = std::move(rig);
-  devices_->setText(Breakable(QString("Connected: %1; %2.")
-                                  .arg(rig_->controller ? QString::fromStdString(rig_->controller->Describe())
-                                                        : "no controller (move the robot by hand, type the readings)",
-                                       QString::fromStdString(rig_->camera->Describe()))));  // a file: camera's path
+  const QString controller = rig_->controller ? QString::fromStdString(rig_->controller->Describe())
+                                              : "no controller (move the robot by hand, type the readings)";
+  // A points session's rig has no camera; with the sim controller, the sim tracker beside it.
+  const QString second = rig_->camera ? QString::fromStdString(rig_->camera->Describe())  // a file: camera's path
+                         : rig_->sim  ? "the sim tracker (its reflectors where the sim platform really is)"
+                                      : "the tracker's points come from its software (the points file, Import points…)";
+  devices_->setText(Breakable(QString("Connected: %1; %2.").arg(controller, second)));
   connect_->setText("Disconnect");
   UpdateButtons();
   GrabLiveFrame();
@@ -96,6 +102,7 @@ void AcquirePanel::Connected(std::shared_ptr<workflow::AcquisitionRig> rig, cons
 
 void AcquirePanel::Disconnect() {
   pending_ = nullptr;
+  moved_to_ = -1;
   rig_.reset();  // a running job keeps its own reference until it ends
   connect_->setText("Connect");
   devices_->setText("Not connected.");
@@ -107,7 +114,11 @@ void AcquirePanel::Disconnect() {
 
 bool AcquirePanel::ReadyToAct(const QString& what, std::function<void()> action) {
   if (!session_->IsOpen()) return ShowError(this, what, "Open or create a session first (File menu)."), false;
-  if (!rig_) return ShowError(this, what, "Connect a camera first (and a controller, or move by hand)."), false;
+  if (!rig_)
+    return ShowError(this, what,
+                     session_->IsPointsSession() ? "Connect a controller first (Controller, Connect)."
+                                                 : "Connect a camera first (and a controller, or move by hand)."),
+           false;
   if (current_ < 0) return ShowError(this, what, "There is no planned pose: plan first (Plan step)."), false;
   if (job_->Running() && !job_->Abandoned() && job_->What() == kLiveJob) {
     // A live frame in flight ends in a moment (the camera's time-out at most): then the action.
@@ -131,13 +142,17 @@ void AcquirePanel::MoveToPose() {
     if (moved.ok()) moved = rig->controller->WaitSettled(0);
     return [this, moved, index] {
       if (!moved.ok()) return SetOutcome(QString("pose %1: %2").arg(index + 1).arg(Message(moved)));
-      SetOutcome(QString("at pose %1: check the live view, then Capture.").arg(index + 1));
+      moved_to_ = index;
+      SetOutcome(session_->IsPointsSession()
+                     ? QString("at pose %1: Record readings, and measure the reflectors with the tracker.").arg(index + 1)
+                     : QString("at pose %1: check the live view, then Capture.").arg(index + 1));
       GrabLiveFrame();
     };
   });
 }
 
 void AcquirePanel::CapturePose(const std::optional<LegReadings>& typed) {
+  if (session_->IsPointsSession()) return RecordPointReadings(typed, /*again=*/false);
   if (!ReadyToAct("Capture", [this, typed] { CapturePose(typed); })) return;
   const int index = current_;
   const Vector6d pose = session_->Plan()[index];
@@ -241,6 +256,16 @@ std::optional<LegReadings> AcquirePanel::AskReadings(int index) {
 }
 
 void AcquirePanel::RedoPose() {
+  if (session_->IsPointsSession()) {
+    if (current_ < 0 || current_ >= static_cast<int>(captures_.size()) || captures_[current_].empty()) return;
+    if (Interactive() &&
+        QMessageBox::question(this, "Redo pose", QString("Record the readings of pose %1 (%2) again, replacing "
+                                                         "those in legs.csv?")
+                                                     .arg(current_ + 1)
+                                                     .arg(ImageOfPose(current_))) != QMessageBox::Yes)
+      return;
+    return RecordPointReadings(std::nullopt, /*again=*/true);
+  }
   if (!ReadyToAct("Redo", [this] { RedoPose(); })) return;
   if (current_ >= static_cast<int>(captures_.size()) || captures_[current_].empty()) return CapturePose();
   const std::string image = captures_[current_];  // the capture of this pose, whatever its name
@@ -257,6 +282,10 @@ void AcquirePanel::RedoPose() {
 }
 
 void AcquirePanel::RunRest() {
+  // The tracker measures each pose before the robot leaves it: one pose at a time.
+  if (session_->IsPointsSession())
+    return ShowError(this, "Run the rest", "A points session records one pose at a time: Record readings, then the "
+                                           "tracker's points, then the next pose.");
   if (!ReadyToAct("Run the rest", [this] { RunRest(); })) return;
   if (!rig_->controller)
     return ShowError(this, "Run the rest", "Needs a controller: choose one in the Controller list and Connect.");

@@ -12,6 +12,7 @@
 #include <QPushButton>
 #include <QSpinBox>
 #include <QSplitter>
+#include <QStackedWidget>
 #include <QTableWidget>
 #include <QTimer>
 #include <QVBoxLayout>
@@ -95,6 +96,7 @@ void AcquirePanel::BuildLayout() {
   camera_url_->setToolTip(
       "The camera: sim, aravis:NAME (GenICam through Aravis), v4l2:N (OpenCV), file:PATH (a video or an image)");
   connect_ = new QPushButton("Connect");
+  connect_->setObjectName("acquire_connect");
   connect(connect_, &QPushButton::clicked, this, [this] { Connected() ? Disconnect() : Connect(); });
   devices_ = new QLabel("Not connected.");
   devices_->setWordWrap(true);
@@ -146,6 +148,18 @@ void AcquirePanel::BuildLayout() {
   live_ = new ImageView;
   live_->setObjectName("live_view");
   live_->SetMessage("Connect a camera to see it live.");
+  camera_label_ = new QLabel("Camera");
+  guide_ = new QLabel;
+  guide_->setObjectName("acquire_points_guide");
+  guide_->setTextFormat(Qt::RichText);
+  guide_->setWordWrap(true);
+  guide_->setAlignment(Qt::AlignTop | Qt::AlignLeft);
+  guide_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  import_points_ = button("Import points", "Add a tracker export (SpatialAnalyzer ASCII or CSV) to the session's "
+                          "points file; a file of one point set is the selected pose's", [this] { ImportPoints(); });
+  import_points_->setText("Import points…");
+  sim_tracker_ = button("Sim tracker", "Measure the reflectors with the simulated tracker where the sim platform is "
+                        "now, and add them to the points file as the selected pose's", [this] { MeasureWithSimTracker(); });
   ArrangeWidgets();
 }
 
@@ -159,7 +173,7 @@ void AcquirePanel::ArrangeWidgets() {
   auto* devices = new QGridLayout;
   devices->addWidget(new QLabel("Controller"), 0, 0);
   devices->addWidget(controller_url_, 0, 1);
-  devices->addWidget(new QLabel("Camera"), 1, 0);
+  devices->addWidget(camera_label_, 1, 0);
   devices->addWidget(camera_url_, 1, 1);
   devices->addWidget(connect_, 0, 2, 2, 1);
   devices->setColumnStretch(1, 1);
@@ -178,16 +192,28 @@ void AcquirePanel::ArrangeWidgets() {
   left_layout->addLayout(actions);
   left_layout->addWidget(progress_);
   left_layout->addWidget(status_);
-  auto* right = new QWidget;
-  auto* right_layout = new QVBoxLayout(right);
+  auto* camera_page = new QWidget;
+  auto* right_layout = new QVBoxLayout(camera_page);
   right_layout->addWidget(live_, 1);
   auto* live_row = new QHBoxLayout;
   live_row->addWidget(live_on_);
   live_row->addWidget(readiness_, 1);
   right_layout->addLayout(live_row);
+  auto* points_page = new QWidget;
+  auto* points_layout = new QVBoxLayout(points_page);
+  points_layout->addWidget(guide_);
+  auto* points_buttons = new QHBoxLayout;
+  points_buttons->addWidget(import_points_);
+  points_buttons->addWidget(sim_tracker_);
+  points_buttons->addStretch();
+  points_layout->addLayout(points_buttons);
+  points_layout->addStretch(1);
+  right_ = new QStackedWidget;
+  right_->addWidget(camera_page);
+  right_->addWidget(points_page);
   auto* splitter = new QSplitter;
   splitter->addWidget(left);
-  splitter->addWidget(right);
+  splitter->addWidget(right_);
   splitter->setStretchFactor(1, 1);
   splitter->setSizes({560, 520});
   auto* layout = new QVBoxLayout(this);
@@ -227,6 +253,7 @@ void AcquirePanel::FillChecklist() {
   free_names_.clear();
   checklist_->horizontalHeaderItem(2)->setText(
       QString("x  y  z (%1)").arg(LengthUnitName(session_->NominalRobot().length_unit)));
+  if (session_->IsPointsSession()) return FillPointChecklist(shown, found);
   checklist_->blockSignals(true);
   checklist_->setRowCount(static_cast<int>(plan.size()));
   for (int k = 0; k < static_cast<int>(plan.size()); ++k) {
@@ -248,6 +275,9 @@ void AcquirePanel::FillChecklist() {
 }
 
 void AcquirePanel::Refresh() {
+  ArrangeForInstrument();
+  const int shown = current_;
+  const bool shown_done = PointPoseDone(shown);
   // A line about another plan ("12 recorded, of 12 poses") does not outlive it.
   if (!job_->Running() && !outcome_.isEmpty() && session_->Plan() != outcome_plan_) SetOutcome({});
   FillChecklist();
@@ -270,6 +300,7 @@ void AcquirePanel::Refresh() {
   } else if (outcome_ == kNoPlan || outcome_.startsWith(kPlanBroken)) {
     SetOutcome({});  // a plan came: the line would send the operator back for nothing
   }
+  AdvanceWhenRecorded(shown, shown_done);
 }
 
 // Nothing of the last session stays: its devices, pose, lengths, marks and
@@ -294,17 +325,25 @@ void AcquirePanel::UpdateButtons() {
   const bool busy = job_->Running() && !job_->Abandoned() && job_->What() != "live";
   const bool pose = current_ >= 0;
   const bool controller = rig_ && rig_->controller;
-  capture_->setEnabled(rig_ && pose);
+  const bool points = session_->IsPointsSession();
+  // A points session's readings may be typed without connecting: there is no camera to open.
+  capture_->setEnabled((rig_ || points) && pose);
   const bool recorded = pose && current_ < static_cast<int>(captures_.size()) && !captures_[current_].empty();
-  redo_->setEnabled(rig_ && recorded);  // a pose not recorded is captured, not redone
+  redo_->setEnabled((rig_ || points) && recorded);  // a pose not recorded is captured, not redone
+  import_points_->setEnabled(pose && !busy);
+  sim_tracker_->setVisible(points && rig_ && rig_->sim);
+  sim_tracker_->setEnabled(pose && !busy);
+  run_rest_->setVisible(!points);  // the tracker measures each pose before the robot moves on
   skip_->setEnabled(pose);
   copy_->setEnabled(pose);
   move_->setEnabled(controller && pose);
   run_rest_->setEnabled(controller && pose);
   cancel_->setEnabled(busy);
-  const QString why = !rig_ ? "Connect the devices first (Controller, Camera, Connect)."
-                            : "No controller connected: choose one (Controller) and Connect; by hand, move the robot "
-                              "to the lengths shown and press Capture.";
+  const QString why = !rig_ && points ? "Connect a controller first (Controller, Connect)."
+                    : !rig_          ? "Connect the devices first (Controller, Camera, Connect)."
+                            : QString("No controller connected: choose one (Controller) and Connect; by hand, move "
+                                      "the robot to the lengths shown and press %1.")
+                                  .arg(points ? "Record readings" : "Capture");
   // A tooltip's first line is the button's; a second, while it is disabled, says why.
   for (QPushButton* needs : {move_, run_rest_})
     needs->setToolTip(needs->isEnabled() ? needs->toolTip().section("\n", 0, 0)
@@ -333,6 +372,7 @@ void AcquirePanel::SelectPose(int index) {
                            .arg(ImageOfPose(index))
                            .arg(Joined(plan[index], 0, 3), Joined(plan[index], 3, 3), lengths.join("  "),
                                 LengthUnitName(robot.length_unit)));
+  FillPointsGuide();
   UpdateButtons();
 }
 
@@ -342,7 +382,8 @@ bool AcquirePanel::NextPose() {
   for (int step = 1; step <= poses; ++step) {
     const int k = (current_ + step + poses) % poses;
     const QString state = checklist_->item(k, 1)->text();
-    if (state == "to do" || state.startsWith("failed")) {
+    // Not recorded, not skipped: to do, failed, or (points) half recorded.
+    if (!state.startsWith("✓") && state != "skipped") {
       SelectPose(k);
       return true;
     }

@@ -17,6 +17,18 @@
 // from them again. The session is written after every pose
 // (workflow::RecordCaptureBytes under the lock).
 //
+// A points session (docs/session.md, "Points sessions") has no camera: the
+// tracker and its own software measure the reflectors. The camera's choice
+// and live view give way to what to do at the selected pose — move the robot
+// there, record the leg readings (Record readings: from the controller, which
+// moves first, or typed), measure the reflectors and export them with the
+// pose's name as their group — and each step's state, read from legs.csv and
+// the points file (which the window watches: a tracker's export written
+// there shows at once). Import points… adds a tracker export to the points
+// file; with the sim controller, Sim tracker measures the reflectors where
+// the sim platform really is (ui/acquire_points.cc). A pose is recorded when
+// it has both.
+//
 //   auto* acquire = new AcquirePanel(session);
 //   acquire->Connect("sim", "sim");  // or linuxcnc://HOST:PORT and aravis:NAME
 //   acquire->CapturePose();          // records pose CurrentPose(), then moves on
@@ -37,12 +49,14 @@ class QCheckBox;
 class QComboBox;
 class QLabel;
 class QProgressBar;
+class QStackedWidget;
 class QPushButton;
 class QTableWidget;
 class QTimer;
 
 namespace hexcal::workflow {
 struct AcquisitionRig;
+struct ReadingsRow;
 }
 
 namespace hexcal::ui {
@@ -68,6 +82,8 @@ class AcquirePanel : public QWidget {
   QString CameraChoice() const;
   // The image a capture of plan row `index` has, or would get (workflow/plan_captures.h).
   QString ImageOfPose(int index) const;
+  // Points sessions: what to do at the selected pose and each step's state.
+  QString PointsGuide() const;
 
  public slots:
   void Refresh();
@@ -84,12 +100,34 @@ class AcquirePanel : public QWidget {
   void RedoPose();
   void RunRest();
   void GrabLiveFrame();
+  // Points sessions: a tracker export (either layout of core/point_file.h)
+  // into the points file; a file of one point set is the selected pose's.
+  // `chosen` stands for the file dialog (tests).
+  void ImportPoints(const QString& chosen = {});
+  // Points sessions with the sim controller: the sim tracker's points of the selected pose.
+  void MeasureWithSimTracker();
 
  private:
   void BuildLayout();     // the widgets
   void ArrangeWidgets();  // and where they go
   void FillChecklist();
   QString PoseState(int index) const;
+  // The camera's devices and live view, or a points session's guide (acquire_points.cc).
+  void ArrangeForInstrument();
+  // A points session's checklist: per pose, its readings and its points.
+  void FillPointChecklist(const std::vector<workflow::ReadingsRow>& rows, const std::vector<int>& found);
+  void FillPointsGuide();
+  // Points sessions: Record readings (from the controller after a move, or typed).
+  // `again`: the pose has readings, which the new ones replace (Redo).
+  void RecordPointReadings(const std::optional<LegReadings>& typed, bool again);
+  // Checked as a controller's (`from_controller`: close to the commanded
+  // pose's IK) or as typed ones (workflow/reading_check.h), then saved.
+  void SavePointReadings(int index, const LegReadings& readings, bool overwrite, bool from_controller);
+  // After readings or points of pose `index` were saved (`done` says which):
+  // the line says what the pose still needs, or Refresh has moved on.
+  void PointPoseSaved(int index, const QString& done);
+  bool PointPoseDone(int index) const;  // readings and points
+  void AdvanceWhenRecorded(int index, bool was_done);
   // Selects the next pose to record; false when every pose is recorded or skipped.
   bool NextPose();
   // False (and says why) when the operator's action cannot start now. A live
@@ -114,6 +152,13 @@ class AcquirePanel : public QWidget {
   QCheckBox* live_on_;
   QTimer* live_timer_;
   QLabel *devices_, *pose_label_, *readiness_, *status_;
+  QLabel *camera_label_, *guide_;                 // guide_: a points session's steps at the pose
+  QPushButton *import_points_, *sim_tracker_;    // points sessions only
+  QStackedWidget* right_;                        // the live view, or the points guide
+  std::optional<bool> arranged_for_points_;      // the instrument the widgets are arranged for
+  std::vector<char> has_points_, has_readings_;  // points sessions, per plan row
+  int sim_tracker_draws_ = 0;                    // the sim tracker's noise differs per measurement
+  int moved_to_ = -1;  // the plan row the controller last moved to (the sim tracker measures there)
   QProgressBar* progress_;
   QTableWidget* checklist_;
   ImageView* live_;

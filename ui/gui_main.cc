@@ -33,7 +33,10 @@ int main(int argc, char** argv) {
        "NAME"});
   parser.addOption(
       {"size", "Window size, WIDTHxHEIGHT (default 1280x720; on screen, at most the screen's).", "WxH", "1280x720"});
-  parser.addOption({"controller", "Acquire step: connect this controller at start (sim, none).", "URL"});
+  parser.addOption({"controller",
+                    "Acquire step: connect this controller at start (sim, none), with --camera (a points session: "
+                    "alone).",
+                    "URL"});
   parser.addOption({"camera", "Acquire step: connect this camera at start (sim, v4l2:N, file:PATH).", "URL"});
   parser.addOption({"demo", "Open the demo session (hexcal demo makes it the first time, about 15 s)."});
   parser.addPositionalArgument("session", "A session folder (hexcal session init, or File > New).");
@@ -63,7 +66,9 @@ int main(int argc, char** argv) {
     window.resize(wanted);
   }
   window.show();
-  if (parser.isSet("camera") && window.Session()->IsOpen())
+  // A points session has no camera to name: its controller connects alone.
+  const bool devices = parser.isSet("camera") || (parser.isSet("controller") && window.Session()->IsPointsSession());
+  if (devices && window.Session()->IsOpen())
     window.Acquire()->Connect(parser.value("controller").isEmpty() ? "none" : parser.value("controller"),
                               parser.value("camera"));
   // A screenshot shows the devices connected and a live frame, not "connecting".

@@ -276,12 +276,21 @@ bool PlanPanel::ApplyPlan(const std::vector<Vector6d>& plan, const std::vector<V
     if (left.size() > 4) names << "…";
     const QString text = QString("The new plan leaves %1 without its pose (%2): taken at poses it does not have.")
                              .arg(FormatCount(static_cast<int>(left.size()), "recorded capture"), names.join(", "));
+    // A points session's captures are legs.csv rows and the tracker's sets in
+    // its points file, which hexcal does not archive or delete: kept, or no new plan.
     const int answer =
-        AskChoice(this, "Plan", text,
-                  "Keep: they stay images with readings, which the calibration uses; the new plan's poses are captured "
-                  "under new names.\nArchive: moved with their readings into the session's archive/ folder, out of the "
-                  "calibration.\nDiscard: deleted with their readings.",
-                  {"Keep captures", "Archive captures", "Discard captures", "Cancel"}, 0);
+        session_->IsPointsSession()
+            ? AskChoice(this, "Plan", text,
+                        "Keep: they stay poses with readings and points, which the calibration uses; the new plan's "
+                        "poses are recorded under new names.",
+                        {"Keep captures", "Cancel"}, 0) == 0
+                  ? 0
+                  : -1
+            : AskChoice(this, "Plan", text,
+                        "Keep: they stay images with readings, which the calibration uses; the new plan's poses are "
+                        "captured under new names.\nArchive: moved with their readings into the session's archive/ "
+                        "folder, out of the calibration.\nDiscard: deleted with their readings.",
+                        {"Keep captures", "Archive captures", "Discard captures", "Cancel"}, 0);
     if (answer < 0 || answer > 2) {
       SetOutcome("cancelled: the plan is unchanged.");
       return false;

@@ -16,6 +16,7 @@
 #include <filesystem>
 
 #include "charts/figures.h"
+#include "core/atomic_file.h"
 #include "report/calibration_verdict.h"
 #include "report/session_report.h"
 #include "session/session_results.h"
@@ -56,7 +57,9 @@ ValidatePanel::ValidatePanel(SessionState* session, QWidget* parent) : QWidget(p
   position_chart_ = MakeChartView(charts::ValidationPerImageChart({}, charts::ValidationQuantity::kPosition, ""));
   orientation_chart_ = MakeChartView(charts::ValidationPerImageChart({}, charts::ValidationQuantity::kOrientation, ""));
   auto* export_robot = new QPushButton("Export calibrated robot…");
+  export_robot->setObjectName("export_robot");
   auto* export_report = new QPushButton("Export HTML report…");
+  export_report->setObjectName("export_report");
   connect(export_robot, &QPushButton::clicked, this, [this] { ExportCalibratedRobot(); });
   connect(export_report, &QPushButton::clicked, this, [this] { ExportHtmlReport(); });
   auto* buttons = new QHBoxLayout;
@@ -93,8 +96,10 @@ void ValidatePanel::Refresh() {
   const StatusOr<workflow::SessionResults>& results = session_->Results();
   StatusOr<workflow::CalibrationReport> report =
       results.ok() ? StatusOr<workflow::CalibrationReport>(results->report) : results.status();
-  ShowChart(position_chart_, charts::ValidationPerImageChart({}, charts::ValidationQuantity::kPosition, ""));
-  ShowChart(orientation_chart_, charts::ValidationPerImageChart({}, charts::ValidationQuantity::kOrientation, ""));
+  const std::string row_noun = session_->RowNoun().toStdString();
+  ShowChart(position_chart_, charts::ValidationPerImageChart({}, charts::ValidationQuantity::kPosition, "", row_noun));
+  ShowChart(orientation_chart_,
+            charts::ValidationPerImageChart({}, charts::ValidationQuantity::kOrientation, "", row_noun));
   verdict_->Clear();
   // Figures only when there are some: empty axes and a table of dashes said nothing.
   const bool validated = report.ok() && report->validation.has_value();
@@ -135,7 +140,7 @@ void ValidatePanel::ShowValidation(const workflow::ValidationSummary& validation
   }
   std::vector<charts::ImageValidation> images;
   for (const workflow::HeldOutImage& row : validation.per_image) {
-    // The number in the image name fits under a bar.
+    // The number in the image's (pose's) name fits under a bar.
     const QString name = QString::fromStdString(row.image).section('.', 0, 0);
     const QRegularExpressionMatch number = QRegularExpression("(\\d+)$").match(name);
     images.push_back({(number.hasMatch() ? number.captured(1) : name).toStdString(),
@@ -143,10 +148,10 @@ void ValidatePanel::ShowValidation(const workflow::ValidationSummary& validation
                        ValueOrNan(row.orientation_before), ValueOrNan(row.orientation_after)}});
   }
   const std::string length_unit = unit.toStdString();
-  ShowChart(position_chart_,
-            charts::ValidationPerImageChart(images, charts::ValidationQuantity::kPosition, length_unit));
-  ShowChart(orientation_chart_,
-            charts::ValidationPerImageChart(images, charts::ValidationQuantity::kOrientation, length_unit));
+  ShowChart(position_chart_, charts::ValidationPerImageChart(images, charts::ValidationQuantity::kPosition,
+                                                             length_unit, noun.toStdString()));
+  ShowChart(orientation_chart_, charts::ValidationPerImageChart(images, charts::ValidationQuantity::kOrientation,
+                                                                length_unit, noun.toStdString()));
 }
 
 // The session read again (what a watcher missed is seen), then: results
@@ -181,8 +186,10 @@ void ValidatePanel::ExportCalibratedRobot(const QString& chosen) {
                                                                        "calibrated.yaml", "YAML (*.yaml)")
                                         : chosen;
   if (path.isEmpty()) return;
-  QFile::remove(path);
-  if (!QFile::copy(source, path)) ShowError(this, "Export robot", "Could not write " + path + ": check the folder.");
+  // Written whole or not at all: a copy cut short would leave a robot file that loads wrong.
+  StatusOr<std::string> robot = ReadFileToString(source.toStdString(), kMaxYamlBytes);
+  const Status written = robot.ok() ? WriteFileAtomically(path.toStdString(), *robot) : robot.status();
+  if (!written.ok()) ShowError(this, "Export robot", session_->InSession(QString::fromStdString(written.message())));
 }
 
 void ValidatePanel::ExportHtmlReport(const QString& chosen) {

@@ -238,7 +238,9 @@ StatusOr<AcquisitionRig> OpenAcquisitionRig(const std::string& dir, const std::s
   }
   // The camera first: a bad camera URL is refused before a real machine is
   // powered on and homed.
-  StatusOr<std::unique_ptr<FrameSource>> camera = OpenFrameSource(camera_url, SimFrameSourceOptions(rig.sim));
+  // No camera URL: a points session's rig, whose poses the tracker measures.
+  StatusOr<std::unique_ptr<FrameSource>> camera =
+      camera_url.empty() ? std::unique_ptr<FrameSource>() : OpenFrameSource(camera_url, SimFrameSourceOptions(rig.sim));
   if (!camera.ok()) return camera.status();
   ControllerOptions controller_options = SimControllerOptions(rig.sim);
   if (controller_url != "sim") {  // a real machine converts poses and joints with the session's robot

@@ -82,11 +82,13 @@ StatusOr<PoseRecord> AcquirePose(const std::string& session_dir, int pose_index,
 
 // The controller and camera of one run. `sim` URLs share one SimWorld,
 // whose hidden truth is written to SESSION/truth/ (and must match a truth
-// there already: resume with the same seed).
+// there already: resume with the same seed). An empty camera URL opens none:
+// a points session's rig (its sim world then also stands behind the sim
+// tracker, point_demo_scene.h).
 struct AcquisitionRig {
   std::shared_ptr<SimWorld> sim;  // null without `sim` URLs
   std::unique_ptr<Controller> controller;
-  std::unique_ptr<FrameSource> camera;
+  std::unique_ptr<FrameSource> camera;  // null for an empty camera URL
 };
 // What a `sim` rig does with its hidden truth: write it into SESSION/truth/
 // (or check it against the one there: acquire), or only check it against one

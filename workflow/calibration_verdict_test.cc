@@ -225,6 +225,24 @@ TEST(Verdict, OutliersNameTheImagesLeftOutAndTheirCause) {
   EXPECT_THAT(poor.advice, HasSubstr("check that images and legs.csv rows belong together"));
 }
 
+// A points session's rows are poses measured by the tracker: its findings say so.
+TEST(Verdict, APointsSessionsFindingsCountPosesNotImages) {
+  CalibrationReport report = GoodReport();
+  report.instrument = Instrument::kPoints;
+  report.calibration_images = 24;
+  report.held_out_images = 3;
+  const Finding poses = FindingOf(MakeVerdict(report), "poses");
+  EXPECT_THAT(poses.figure, HasSubstr("24 calibration poses, 3 held out"));
+  EXPECT_THAT(poses.threshold, HasSubstr("calibration poses, 3 per leg parameter"));
+  EXPECT_THAT(poses.advice, HasSubstr("poses (holdout = 1 in legs.csv)"));
+  EXPECT_EQ(FindingOf(MakeVerdict(report), "outliers").figure, "no reading flagged (24 calibration poses)");
+  EXPECT_THAT(FindingOf(MakeVerdict(report), "closure").meaning, HasSubstr("tracker, registered frames"));
+  report.outliers = {{"pose_0003", 5, 2, 0.01, 6.2, false}};
+  const Finding kept = FindingOf(MakeVerdict(report), "outliers");
+  EXPECT_THAT(kept.meaning, HasSubstr("disagree with the tracker"));
+  EXPECT_THAT(kept.advice, HasSubstr("check the readings of pose pose_0003 (legs.csv line 5)"));
+}
+
 TEST(Verdict, OutliersKeptInTheFitNameTheWorstReading) {
   CalibrationReport report = GoodReport();
   report.outliers = {{"view_0003.png", 5, 2, 0.01, 6.2, false}, {"view_0007.png", 9, 3, 0.1, -48, false}};

@@ -23,7 +23,8 @@ namespace fs = std::filesystem;
 // A row written before legs.csv held commanded poses: pose k's by its name
 // and its readings near the nominal IK of the pose.
 bool LegacyCaptureOf(const ReadingCheck& check, int pose_index, const Vector6d& pose, const ReadingsRow& row) {
-  if (row.image != AcquiredImageName(pose_index)) return false;
+  // A points session's row is named after the pose, without the image's extension.
+  if (row.image != AcquiredImageName(pose_index) && row.image != AcquiredPoseName(pose_index)) return false;
   const LegReadings needed = InverseKinematics(check.robot, check.robot.PoseFromVector(pose));
   for (int i = 0; i < kNumLegs; ++i)
     if (!row.legs[i] || !(std::abs(*row.legs[i] - needed[i]) <= TypedTolerance(check, i))) return false;
@@ -78,17 +79,34 @@ std::vector<int> CapturesOfPlan(const ReadingCheck& check, const std::vector<Vec
   return found;
 }
 
-std::string CaptureImageName(int pose_index, const std::vector<ReadingsRow>& rows) {
+std::string AcquiredPoseName(int pose_index) {
+  const std::string image = AcquiredImageName(pose_index);
+  return image.substr(0, image.size() - 4);  // without ".png"
+}
+
+namespace {
+
+// `stem` + `extension`, else stem_2, stem_3, ... + extension: the first name
+// no row of legs.csv has.
+std::string FreeName(const std::string& stem, const std::string& extension, const std::vector<ReadingsRow>& rows) {
   std::set<std::string> taken;
   for (const ReadingsRow& row : rows)
     if (row.recorded) taken.insert(row.image);
-  const std::string first = AcquiredImageName(pose_index);
-  if (!taken.count(first)) return first;
-  const std::string stem = first.substr(0, first.size() - 4);  // "pose_0007"
+  if (!taken.count(stem + extension)) return stem + extension;
   for (int n = 2;; ++n) {
-    const std::string name = stem + "_" + std::to_string(n) + ".png";
+    const std::string name = stem + "_" + std::to_string(n) + extension;
     if (!taken.count(name)) return name;
   }
+}
+
+}  // namespace
+
+std::string CaptureImageName(int pose_index, const std::vector<ReadingsRow>& rows) {
+  return FreeName(AcquiredPoseName(pose_index), ".png", rows);
+}
+
+std::string CapturePoseName(int pose_index, const std::vector<ReadingsRow>& rows) {
+  return FreeName(AcquiredPoseName(pose_index), "", rows);
 }
 
 std::vector<std::string> CapturesLeftByPlan(const ReadingCheck& check, const std::vector<Vector6d>& old_plan,

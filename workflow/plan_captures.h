@@ -33,6 +33,10 @@ namespace hexcal::workflow {
 // names it first (CaptureImageName when the name is taken).
 std::string AcquiredImageName(int pose_index);
 
+// "pose_0007": the name a points session gives plan row `pose_index` in
+// legs.csv and in the points file (the tracker's group), first.
+std::string AcquiredPoseName(int pose_index);
+
 // Two commanded poses are the same pose: plan.csv and legs.csv hold the same
 // number text (an exact round trip); 1e-9 relative for other writers.
 bool SameCommandedPose(const Vector6d& a, const Vector6d& b);
@@ -50,6 +54,8 @@ std::vector<int> CapturesOfPlan(const ReadingCheck& check, const std::vector<Vec
 // AcquiredImageName (pose_0007.png) unless legs.csv has a row of that name
 // (another pose's capture, kept after a new plan), then pose_0007_2.png, ...
 std::string CaptureImageName(int pose_index, const std::vector<ReadingsRow>& rows);
+// The same for a points session's row: pose_0007, else pose_0007_2, ...
+std::string CapturePoseName(int pose_index, const std::vector<ReadingsRow>& rows);
 
 // The images recorded at a pose of `old_plan` that is in no row of
 // `new_plan`: the captures a new plan leaves without their pose.

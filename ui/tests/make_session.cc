@@ -52,6 +52,7 @@ int main(int argc, char** argv) {
   points.out = (out / "points").string();
   points.instrument = Instrument::kPoints;
   points.quick_plan = true;  // a calibrated session is wanted, not the demo's figures
+  points.seed = 1;           // the GUI's sim world's: its Acquire step connects to the session's truth
   if (StatusOr<workflow::DemoResult> made_points = workflow::RunDemo(points); !made_points.ok()) {
     std::cerr << "make_session: " << made_points.status().message() << "\n";
     return 1;
