@@ -34,6 +34,7 @@
 #include "workflow/plan_captures.h"
 #include "workflow/plan_step.h"
 #include "workflow/readings_table.h"
+#include "workflow/session_plan_model.h"
 
 namespace hexcal::ui {
 namespace {
@@ -172,11 +173,17 @@ void PlanPanel::ResetForSession() {
   SetOutcome(kIdleOutcome);
 }
 
-// The robot, the session's noise model and the camera visibility chosen.
+// The robot, the session's noise model (a points session's tracker: each
+// pose's covariance and line of sight, workflow/session_plan_model.h) and the
+// camera visibility chosen.
 StatusOr<PlanningModel> PlanPanel::Model() const {
   StatusOr<std::optional<MeasurementConstraints>> visibility = visibility_->Constraints();
   if (!visibility.ok()) return visibility.status();
-  return PlanningModel{session_->NominalRobot(), session_->Config().noise, *visibility};
+  StatusOr<PlanningModel> model =
+      workflow::SessionPlanningModel(session_->Dir().toStdString(), session_->Config(), session_->NominalRobot());
+  if (!model.ok()) return model.status();
+  model->measurement = *visibility;
+  return model;
 }
 
 void PlanPanel::SetOutcome(const QString& text) {
