@@ -30,7 +30,7 @@ const OptionTable<TrackerSettings>& TrackerSettingsOptions() {
         [](TrackerSettings& s) -> double& { return s.sigma0; }));
     t.push_back(NumberOption<TrackerSettings>(
         "sigma_per_distance", "Tracker: σ per distance", OptionType::kNumber, "unit per unit", 0, 1e-3,
-        "growth of σ with the distance to the tracker (law linear; 6 µm/m is 6e-6)",
+        "growth of σ with the distance to the tracker (law linear; 6 µm/m is 0.000006)",
         [](TrackerSettings& s) -> double& { return s.sigma_per_distance; }));
     t.push_back(NumberOption<TrackerSettings>(
         "acceptance_deg", "Tracker: acceptance half-angle", OptionType::kNumber, "deg", 1, 90,

@@ -269,5 +269,12 @@ TEST(TrackerModel, SessionTrackerSectionRoundTripsAndNamesBadKeys) {
   EXPECT_THAT(bad.status().message(), HasSubstr("tracker.sigma_per_distance: must be at most 0.001"));
 }
 
+// docs/session.md carries the table the code generates (keys, flags, ranges, defaults).
+TEST(TrackerModel, DocsListEveryTrackerKey) {
+  const std::string docs = hexcal::testing::ReadTextFile((hexcal::testing::SourceDir() / "docs" / "session.md").string());
+  const std::string table = OptionsMarkdownTable(TrackerSettingsOptions(), "tracker-");
+  EXPECT_NE(docs.find(table), std::string::npos) << "docs/session.md needs this table:\n" << table;
+}
+
 }  // namespace
 }  // namespace hexcal

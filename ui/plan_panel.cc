@@ -233,6 +233,12 @@ QString PredictionText(const workflow::PlanOutcome& outcome) {
                      FormatLength(p.mean_error, unit), FormatLength(p.heldout.position_rms, unit),
                      FormatAngle(p.heldout.orientation_rms_deg));
   }
+  if (const auto& sigma = outcome.reflector_sigma) {
+    const QString unit = QString::fromStdString(outcome.length_unit);
+    text += QString("\nTracker: reflector σ %1 to %2 over the plan's poses%3.")
+                .arg(FormatLength(sigma->first, unit), FormatLength(sigma->second, unit),
+                     QString(outcome.line_of_sight ? ", every reflector in its line of sight" : ""));
+  }
   if (const std::optional<PlanCertificate>& cert = outcome.certificate) {
     text += QString("\nS-efficiency ≥ %1, D-efficiency ≥ %2 on the candidates.")
                 .arg(cert->s_efficiency, 0, 'f', 3)
