@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/constraints.h"
 #include "core/point_fit.h"
 
 namespace hexcal {
@@ -116,35 +117,6 @@ Matrix6d TrackerPoseCovariance(const TrackerModel& tracker, const Robot& robot, 
   // the base frame has the registered fit's covariance.
   return PointPoseCovariance(base_from_platform, tracker.reflectors, ReflectorSigmas(tracker, base_from_platform),
                              robot.euler);
-}
-
-double SegmentDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
-                       const Eigen::Vector3d& q1) {
-  // The closest points s, t ∈ [0, 1] of p0 + s d1 and q0 + t d2 (Ericson,
-  // Real-Time Collision Detection, 5.1.9).
-  const Eigen::Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  constexpr double kTiny = 1e-300;
-  double s = 0, t = 0;
-  if (a <= kTiny && e <= kTiny) return r.norm();
-  if (a <= kTiny) {
-    t = std::clamp(f / e, 0.0, 1.0);
-  } else {
-    const double c = d1.dot(r);
-    if (e <= kTiny) {
-      s = std::clamp(-c / a, 0.0, 1.0);
-    } else {
-      const double b = d1.dot(d2), denominator = a * e - b * b;
-      s = denominator > 0 ? std::clamp((b * f - c * e) / denominator, 0.0, 1.0) : 0.0;
-      t = (b * s + f) / e;
-      if (t < 0) {
-        t = 0, s = std::clamp(-c / a, 0.0, 1.0);
-      } else if (t > 1) {
-        t = 1, s = std::clamp((b - c) / a, 0.0, 1.0);
-      }
-    }
-  }
-  return ((p0 + s * d1) - (q0 + t * d2)).norm();
 }
 
 std::array<double, 3> ReflectorSightMargins(const SightScene& scene, const Eigen::Vector3d& reflector,

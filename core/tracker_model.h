@@ -17,7 +17,8 @@
 //      platform anchors (z = their mean z in the platform frame), centred on
 //      their centroid, of their largest radius;
 //   3. the segment p→t passes no leg closer than `leg_radius` (each leg the
-//      cylinder about the segment a_i → P + R b_i).
+//      cylinder about the segment a_i → P + R b_i; SegmentDistance of
+//      core/constraints.h).
 // A pose is admissible when every reflector is seen: the planned covariance
 // assumes all of them are measured.
 //
@@ -104,9 +105,5 @@ std::array<double, 3> ReflectorSightMargins(const SightScene& scene, const Eigen
 // Three margins per reflector (ReflectorSightMargins) at the pose; empty
 // without a tracker position.
 std::vector<double> LineOfSightMargins(const TrackerModel& tracker, const Robot& robot, const Pose& base_from_platform);
-
-// The shortest distance between the segments [p0, p1] and [q0, q1].
-double SegmentDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
-                       const Eigen::Vector3d& q1);
 
 }  // namespace hexcal

@@ -168,14 +168,6 @@ TEST(TrackerModel, LegBlocksASightLinePassingWithinItsRadius) {
   EXPECT_NEAR(ReflectorSightMargins(scene, {0.5, 0, 0}, -Eigen::Vector3d::UnitX())[2], 0.5 - 0.3, 1e-12);
 }
 
-TEST(TrackerModel, SegmentDistanceOfHandCases) {
-  const Eigen::Vector3d o(0, 0, 0), x(1, 0, 0);
-  EXPECT_NEAR(SegmentDistance(o, x, {0, 1, 0}, {1, 1, 0}), 1, 1e-15);              // parallel
-  EXPECT_NEAR(SegmentDistance(o, x, {0.5, -1, 2}, {0.5, 1, 2}), 2, 1e-15);        // crossing above
-  EXPECT_NEAR(SegmentDistance(o, x, {3, 4, 0}, {3, 4, 0}), std::hypot(2, 4), 1e-15);  // a point
-  EXPECT_NEAR(SegmentDistance(o, x, {2, -1, 0}, {2, 1, 0}), 1, 1e-15);            // beyond the end
-}
-
 // Reflectors on top of the platform facing up: a tracker above the platform
 // sees every one; one below it sees none (each behind the platform: outside
 // its cone and behind the disc), and the planner refuses the pose.
