@@ -148,8 +148,8 @@ TEST(TrackerModel, AcceptanceConeMarginIsTheAngleToSpare) {
 TEST(TrackerModel, DiscBlocksASightLineCrossingItInsideItsRadius) {
   const SightScene scene = UnitDiscScene({2, 0, 3});
   EXPECT_NEAR(ReflectorSightMargins(scene, {0.5, 0, -0.1}, Eigen::Vector3d::UnitX())[1], 0.5 + 0.15 / 3.1 - 1, 1e-12);
-  // From (1.5, 0, −0.1) it crosses at x = 1.5 + 1.5·0.1/3.1, outside the disc.
-  EXPECT_NEAR(ReflectorSightMargins(scene, {1.5, 0, -0.1}, Eigen::Vector3d::UnitX())[1], 0.5 + 0.15 / 3.1, 1e-12);
+  // From (1.5, 0, −0.1) it crosses at x = 1.5 + 0.5·0.1/3.1, outside the disc.
+  EXPECT_NEAR(ReflectorSightMargins(scene, {1.5, 0, -0.1}, Eigen::Vector3d::UnitX())[1], 0.5 + 0.05 / 3.1, 1e-12);
   // Above the disc, no crossing: the margin is the nearer end's height, 0.2.
   EXPECT_NEAR(ReflectorSightMargins(scene, {0.5, 0, 0.2}, Eigen::Vector3d::UnitZ())[1], 0.2, 1e-12);
 }

@@ -107,8 +107,9 @@ PlanOutcome PlanWith(const PlanningModel& model) {
   return *outcome;
 }
 
-// A tracker 75 cm from the workspace, to the side (45° up), with a steep law
-// (15 µm + 100 µm/m: σ about 0.009 cm, growing 1 % per 7 mm): the plan made
+// A tracker 150 cm from the workspace, 11° off its vertical (at 45° no
+// sampled pose tilts far enough to face it), with a steep law (15 µm +
+// 100 µm/m: σ about 0.0165 cm): the plan made
 // with the law has a smaller predicted parameter σ under the law than the
 // plan made with a constant σ at the same feasible poses, and lies nearer the
 // tracker. Figures on stdout (docs/planner.md quotes them).
@@ -116,14 +117,14 @@ TEST(SessionPlanningModel, DistanceLawPlanBeatsConstantSigmaPlanUnderTheLaw) {
   TempDir dir;
   SessionConfig config = PointsConfig();
   config.tracker = TrackerSettings{};
-  config.tracker->position = Eigen::Vector3d(53, 0, 106);
+  config.tracker->position = Eigen::Vector3d(30, 0, 200);
   config.tracker->sigma_law = PointSigmaLaw::kLinear;
   config.tracker->sigma0 = 0.0015;
   config.tracker->sigma_per_distance = 1e-4;
   StatusOr<PlanningModel> linear = SessionPlanningModel(MakeSession(dir, config, "linear"));
   ASSERT_TRUE(linear.ok()) << linear.status().message();
   config.tracker->sigma_law = PointSigmaLaw::kConstant;  // point_sigma everywhere, same line of sight
-  config.point_sigma = 0.009;
+  config.point_sigma = 0.0165;
   StatusOr<PlanningModel> constant = SessionPlanningModel(MakeSession(dir, config, "constant"));
   ASSERT_TRUE(constant.ok());
 

@@ -17,7 +17,7 @@ fail() { echo "$1"; cat "$2"; exit 1; }
 printf 'point,x,y,z\nR1,7,0,1\nR2,-3.5,6,0.5\nR3,-3.5,-6,1.5\nR4,0,0.5,3\n' >"$dir/reflectors.csv"
 init=("$hexcal" session init --robot inria-left-hand --instrument points --points points.txt
   --reflectors "$dir/reflectors.csv")
-"${init[@]}" "$dir/s" --tracker-position 53,0,106 --tracker-sigma-law linear --tracker-sigma0 0.0015 \
+"${init[@]}" "$dir/s" --tracker-position 30,0,200 --tracker-sigma-law linear --tracker-sigma0 0.0015 \
   --tracker-sigma-per-distance 0.000006 --tracker-leg-radius 1 >"$dir/init.txt"
 grep -q "plan with hexcal plan --session $dir/s --out $dir/s/plan.csv$" "$dir/init.txt" || fail "init" "$dir/init.txt"
 grep -q "sigma_law: linear" "$dir/s/session.yaml" || fail "session.yaml" "$dir/s/session.yaml"
@@ -32,7 +32,7 @@ python3 - "$dir/s/plan.csv" <<'PY'
 import csv, math, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 assert len(rows) == 12, len(rows)
-tracker = (53.0, 0.0, 106.0)
+tracker = (30.0, 0.0, 200.0)
 reflectors = [(7, 0, 1), (-3.5, 6, 0.5), (-3.5, -6, 1.5), (0, 0.5, 3)]
 def rot(axis, a):
     c, s = math.cos(a), math.sin(a)
