@@ -113,7 +113,12 @@ double ResidualStdDev(const Robot& robot, int leg, const Vector6d& pose_vector, 
 
 double ResidualStdDev(const Robot& robot, int leg, const Vector6d& pose_vector, double reading,
                       const NoiseModel& noise, const Matrix6d& pose_covariance) {
-  Eigen::Matrix<double, 7, 1> g = ResidualMeasurementGradient(robot, leg, pose_vector, reading);
+  return ResidualStdDev(robot.legs[leg], MeasuredPoseOf(robot, pose_vector), reading, noise, pose_covariance);
+}
+
+double ResidualStdDev(const Leg& leg, const MeasuredPose& measured, double reading, const NoiseModel& noise,
+                      const Matrix6d& pose_covariance) {
+  Eigen::Matrix<double, 7, 1> g = ResidualMeasurementGradient(leg, measured, reading);
   g.segment<3>(3) *= DegToRad(1.0);  // per degree, as the covariance
   const double sl = noise.LegStdDev();
   const double variance = g.head<6>().dot(pose_covariance * g.head<6>()) + g[6] * g[6] * sl * sl;

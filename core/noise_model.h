@@ -61,5 +61,7 @@ double ResidualStdDev(const Leg& leg, const MeasuredPose& measured, double readi
 // correlations) in place of the model's pose terms; the reading's from `noise`.
 double ResidualStdDev(const Robot& robot, int leg, const Vector6d& pose_vector, double reading,
                       const NoiseModel& noise, const Matrix6d& pose_covariance);
+double ResidualStdDev(const Leg& leg, const MeasuredPose& measured, double reading, const NoiseModel& noise,
+                      const Matrix6d& pose_covariance);
 
 }  // namespace hexcal

@@ -50,9 +50,29 @@ PoseRows WeightedRows(const Robot& robot, const MeasuredPose& measured, const No
   return rows;
 }
 
+// The same with the pose's own covariance (the tracker's at this pose).
+PoseRows TrackerWeightedRows(const Robot& robot, const Vector6d& v, const NoiseModel& noise,
+                             const Matrix6d& pose_covariance) {
+  const MeasuredPose measured = MeasuredPoseOf(robot, v);
+  PoseRows rows;
+  for (int i = 0; i < kNumLegs; ++i) {
+    const Leg& leg = robot.legs[i];
+    rows[i] = NominalJacobianRow(leg, measured.pose);
+    const double reading = LegVector(leg, measured.pose).norm() - leg.offset;
+    rows[i] /= ResidualStdDev(leg, measured, reading, noise, pose_covariance);
+  }
+  return rows;
+}
+
 }  // namespace
 
+std::optional<Matrix6d> PlanningModel::PoseCovariance(const Vector6d& v) const {
+  if (!tracker) return std::nullopt;
+  return TrackerPoseCovariance(*tracker, robot, robot.PoseFromVector(v));
+}
+
 PoseRows PlanningModel::Rows(const Vector6d& v) const {
+  if (noise && tracker) return TrackerWeightedRows(robot, v, *noise, *PoseCovariance(v));
   if (noise) return WeightedRows(robot, MeasuredPoseOf(robot, v), *noise);
   PoseRows rows;
   const Pose pose = robot.PoseFromVector(v);
@@ -72,7 +92,7 @@ std::array<Eigen::Matrix<double, kParamsPerLeg, 6>, kNumLegs> PlanningModel::Row
       plus[k] += h;
       minus[k] -= h;
       PoseRows rp, rm;
-      if (k < 3) {
+      if (k < 3 && !tracker) {  // the tracker's covariance moves with the position
         MeasuredPose moved = at;
         moved.pose.position[k] = plus[k];
         rp = WeightedRows(robot, moved, *noise);
@@ -127,12 +147,19 @@ std::vector<double> PlanningModel::Margins(const Vector6d& v, bool include_box) 
   if (measurement) {
     for (double m : MeasurementMargins(*measurement, pose)) margins.push_back(m);
   }
+  if (tracker) {
+    for (double m : LineOfSightMargins(*tracker, robot, pose)) margins.push_back(m);
+  }
   return margins;
 }
 
 bool PlanningModel::IsFeasible(const Vector6d& v) const {
   const Pose pose = robot.PoseFromVector(v);
   if (!hexcal::IsFeasible(robot, pose)) return false;
+  if (tracker) {
+    for (double m : LineOfSightMargins(*tracker, robot, pose))
+      if (!(m >= -kFeasibilityTolerance)) return false;
+  }
   if (!measurement) return true;
   for (double m : MeasurementMargins(*measurement, pose)) {
     if (!(m >= -kFeasibilityTolerance)) return false;

@@ -7,9 +7,15 @@
 // inverse covariance of the least-squares estimate: the planner then maximises
 // precision under the actual measurement noise, not the conditioning of J_P.
 //
+// With a laser tracker (core/tracker_model.h) the pose noise is the tracker's
+// at each pose: the rows are divided by σ(F_ij) computed with that pose's
+// covariance (the reflectors' σ grow with their distance from the tracker),
+// the reading noise still the noise model's.
+//
 // Measurement constraints (optional, beyond the paper) keep the target
 // measurable: its centre inside the camera's field of view and its normal
-// within a maximum angle of the line of sight.
+// within a maximum angle of the line of sight; with a tracker's position,
+// every reflector in its line of sight.
 #pragma once
 
 #include <optional>
@@ -18,6 +24,7 @@
 #include "core/design_criteria.h"
 #include "core/noise_model.h"
 #include "core/status.h"
+#include "core/tracker_model.h"
 
 namespace hexcal {
 
@@ -33,6 +40,9 @@ struct PlanningModel {
   Robot robot;
   std::optional<NoiseModel> noise;                    // weight rows by 1/σ(F_ij)
   std::optional<MeasurementConstraints> measurement;  // camera visibility
+  // A laser tracker: its per-pose covariance replaces the noise model's pose
+  // terms (with `noise` set), its position adds the line of sight.
+  std::optional<TrackerModel> tracker{};
 
   PoseRows Rows(const Vector6d& pose) const;
   // The rows of every pose, on `threads` cores (0: every core).
@@ -44,6 +54,9 @@ struct PlanningModel {
   // Robot margins (optionally without the pose box) followed by the measurement margins.
   std::vector<double> Margins(const Vector6d& pose, bool include_box) const;
   bool IsFeasible(const Vector6d& pose) const;
+  // The tracker's covariance of the pose vector at `pose` (robot unit²,
+  // degrees²); none without a tracker.
+  std::optional<Matrix6d> PoseCovariance(const Vector6d& pose) const;
 };
 
 // Margins of the measurement constraints: fov x, fov y, in front of the camera, view angle.

@@ -1,6 +1,7 @@
 #include "core/point_fit.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <set>
 
@@ -91,15 +92,15 @@ Matrix6d IncrementCovariance(const Pose& pose, const std::vector<PointPair>& pai
   return normal.inverse();
 }
 
-// The covariance of VectorFromPose(pose, kXYZ), the increment's mapped by central differences.
-Matrix6d PoseCovariance(const Pose& pose, const std::vector<PointPair>& pairs) {
+// The covariance of VectorFromPose(pose, convention), the increment's mapped by central differences.
+Matrix6d PoseCovariance(const Pose& pose, const std::vector<PointPair>& pairs, EulerConvention convention) {
   Matrix6d map;
   constexpr double kStep = 1e-6;
   for (int k = 0; k < 6; ++k) {
     Vector6d step = Vector6d::Zero();
     step[k] = kStep;
-    map.col(k) = (VectorFromPose(ApplyIncrement(pose, step), EulerConvention::kXYZ) -
-                  VectorFromPose(ApplyIncrement(pose, -step), EulerConvention::kXYZ)) /
+    map.col(k) = (VectorFromPose(ApplyIncrement(pose, step), convention) -
+                  VectorFromPose(ApplyIncrement(pose, -step), convention)) /
                  (2 * kStep);
   }
   return map * IncrementCovariance(pose, pairs) * map.transpose();
@@ -172,7 +173,7 @@ StatusOr<PointFit> FitPointPose(const std::vector<NamedPoint>& reflectors, const
   // Coordinates near the double range (1e300) overflow the cross-covariance.
   if (!fit.pose.position.allFinite() || !fit.pose.rotation.allFinite())
     return Status::BadInput("the points' coordinates are too large to fit");
-  fit.covariance = PoseCovariance(fit.pose, *pairs);
+  fit.covariance = PoseCovariance(fit.pose, *pairs, EulerConvention::kXYZ);
   double sum = 0;
   for (const PointPair& p : *pairs) {
     fit.residuals.push_back(Residual(fit.pose, p));
@@ -180,6 +181,15 @@ StatusOr<PointFit> FitPointPose(const std::vector<NamedPoint>& reflectors, const
   }
   fit.rms = std::sqrt(sum / static_cast<double>(pairs->size()));
   return fit;
+}
+
+Matrix6d PointPoseCovariance(const Pose& pose, const std::vector<Eigen::Vector3d>& known,
+                             const std::vector<double>& sigmas, EulerConvention convention) {
+  assert(known.size() == sigmas.size() && known.size() >= 3);
+  std::vector<PointPair> pairs;
+  for (size_t k = 0; k < known.size(); ++k)
+    pairs.push_back({known[k], pose * known[k], 1 / (sigmas[k] * sigmas[k]), ""});
+  return PoseCovariance(pose, pairs, convention);
 }
 
 StatusOr<std::pair<double, double>> PoseSigmaOfReflectors(const std::vector<NamedPoint>& reflectors, double sigma) {

@@ -56,6 +56,14 @@ constexpr double kPointOutlierSigmas = 10;
 // far from 1 (another length unit).
 StatusOr<PointFit> FitPointPose(const std::vector<NamedPoint>& reflectors, const std::vector<NamedPoint>& measured);
 
+// The covariance of VectorFromPose(pose, convention) (unit², degrees²) that
+// FitPointPose states for the reflectors `known` (their own frame) seen,
+// without noise, at `pose` · known, each coordinate of point k with σ
+// sigmas[k]: (JᵀWJ)⁻¹ at a pose not yet measured, for the planner's per-pose
+// noise (core/tracker_model.h). 3 or more points, not collinear (assert).
+Matrix6d PointPoseCovariance(const Pose& pose, const std::vector<Eigen::Vector3d>& known,
+                             const std::vector<double>& sigmas, EulerConvention convention);
+
 // The σ of a pose fitted to these reflectors when each coordinate of each is
 // measured with σ `sigma` (the covariance FitPointPose states for noiseless
 // points at the reflectors' own frame): what a tracker's noise means for the

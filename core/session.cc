@@ -11,6 +11,7 @@
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/noise_yaml.h"
+#include "core/tracker_yaml.h"
 #include "core/yaml_document.h"
 
 namespace hexcal {
@@ -37,7 +38,12 @@ bool SessionConfig::IsValid(std::string* error) const {
       *error = "session: point_sigma must be a positive length in the robot's unit";
       return false;
     }
+    if (tracker && !tracker->IsValid(error)) return false;
     return noise.IsValid(error);
+  }
+  if (tracker) {
+    *error = "session: tracker: only a points session has a tracker";
+    return false;
   }
   if (camera.empty()) {
     *error = "session: no camera";
@@ -100,6 +106,7 @@ std::string ConfigText(const SessionConfig& config) {
     root["points"] = config.points;
     if (!config.reflectors.empty()) root["reflectors"] = config.reflectors;
     root["point_sigma"] = FormatNumber(config.point_sigma);
+    if (config.tracker) root["tracker"] = TrackerSectionNode(*config.tracker);
   } else {  // the camera session's file as it always was
     root["camera"] = config.camera;
     root["target"] = config.target;
@@ -213,6 +220,11 @@ StatusOr<SessionConfig> LoadSessionConfig(const std::string& dir) {
       StatusOr<NoiseModel> read = ReadNoiseSection(noise, paths.config + ": noise");
       if (!read.ok()) return read.status();
       config.noise = *read;
+    }
+    if (const YAML::Node tracker = root["tracker"]) {
+      StatusOr<TrackerSettings> read = ReadTrackerSection(tracker, paths.config);
+      if (!read.ok()) return read.status();
+      config.tracker = *read;
     }
   } catch (const YAML::Exception& e) {
     return Status::BadInput(paths.config + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);

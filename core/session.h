@@ -29,6 +29,7 @@
 #include "core/noise_model.h"
 #include "core/pose.h"
 #include "core/status.h"
+#include "core/tracker_model.h"
 
 namespace hexcal {
 
@@ -53,6 +54,9 @@ struct SessionConfig {
   std::string points{};
   std::string reflectors{};
   double point_sigma = 0;
+  // Points sessions, optional: the tracker's position, σ law and line of
+  // sight for the planner (core/tracker_model.h; docs/session.md).
+  std::optional<TrackerSettings> tracker{};
   // Set by the registration step (core/registration.h), robot unit; the robot's
   // Euler convention in the file.
   std::optional<Pose> base_from_camera{};

@@ -34,6 +34,8 @@
 #include "ui/text_wrap.h"
 #include "workflow/plan_captures.h"
 #include "workflow/plan_step.h"
+#include "session/readings_table.h"
+#include "workflow/session_plan_model.h"
 
 namespace hexcal::ui {
 namespace {
@@ -172,11 +174,17 @@ void PlanPanel::ResetForSession() {
   SetOutcome(kIdleOutcome);
 }
 
-// The robot, the session's noise model and the camera visibility chosen.
+// The robot, the session's noise model (a points session's tracker: each
+// pose's covariance and line of sight, workflow/session_plan_model.h) and the
+// camera visibility chosen.
 StatusOr<PlanningModel> PlanPanel::Model() const {
   StatusOr<std::optional<MeasurementConstraints>> visibility = visibility_->Constraints();
   if (!visibility.ok()) return visibility.status();
-  return PlanningModel{session_->NominalRobot(), session_->Config().noise, *visibility};
+  StatusOr<PlanningModel> model =
+      workflow::SessionPlanningModel(session_->Dir().toStdString(), session_->Config(), session_->NominalRobot());
+  if (!model.ok()) return model.status();
+  model->measurement = *visibility;
+  return model;
 }
 
 void PlanPanel::SetOutcome(const QString& text) {
@@ -225,6 +233,12 @@ QString PredictionText(const workflow::PlanOutcome& outcome) {
                 .arg(FormatLength(p.mean_sigma, unit), FormatLength(p.max_sigma, unit),
                      FormatLength(p.mean_error, unit), FormatLength(p.heldout.position_rms, unit),
                      FormatAngle(p.heldout.orientation_rms_deg));
+  }
+  if (const auto& sigma = outcome.reflector_sigma) {
+    const QString unit = QString::fromStdString(outcome.length_unit);
+    text += QString("\nTracker: reflector σ %1 to %2 over the plan's poses%3.")
+                .arg(FormatLength(sigma->first, unit), FormatLength(sigma->second, unit),
+                     QString(outcome.line_of_sight ? ", every reflector in its line of sight" : ""));
   }
   if (const std::optional<PlanCertificate>& cert = outcome.certificate) {
     text += QString("\nS-efficiency ≥ %1, D-efficiency ≥ %2 on the candidates.")

@@ -3,6 +3,8 @@
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <cmath>
+#include <functional>
+#include <optional>
 
 #include "core/candidates.h"
 #include "core/identification.h"
@@ -13,17 +15,23 @@ namespace {
 
 constexpr double kMeanAbsOverSigma = 0.7978845608028654;  // √(2/π)
 
+// Each pose's own covariance, when it has one (PlanningModel::PoseCovariance).
+using PoseCovarianceAt = std::function<std::optional<Matrix6d>(const Vector6d&)>;
+
 // C_i of every leg (see the header); false if a leg's information is singular.
 bool ParameterCovariances(const Robot& robot, const std::vector<Vector6d>& poses, const NoiseModel& noise,
-                          bool weighted, std::array<InfoBlock, kNumLegs>* covariances) {
+                          const PoseCovarianceAt& pose_covariance, bool weighted,
+                          std::array<InfoBlock, kNumLegs>* covariances) {
   std::array<InfoBlock, kNumLegs> information, scatter;
   for (int i = 0; i < kNumLegs; ++i) information[i].setZero(), scatter[i].setZero();
   for (const Vector6d& v : poses) {
     const MeasuredPose measured = MeasuredPoseOf(robot, v);  // once for the six legs
     const LegReadings readings = InverseKinematics(robot, measured.pose);  // the nominal model's
+    const std::optional<Matrix6d> own = pose_covariance ? pose_covariance(v) : std::nullopt;
     for (int i = 0; i < kNumLegs; ++i) {
       const JacobianRow r = NominalJacobianRow(robot.legs[i], measured.pose);
-      const double sd = ResidualStdDev(robot.legs[i], measured, readings[i], noise);
+      const double sd = own ? ResidualStdDev(robot.legs[i], measured, readings[i], noise, *own)
+                            : ResidualStdDev(robot.legs[i], measured, readings[i], noise);
       const InfoBlock outer = r.transpose() * r;
       information[i] += weighted ? InfoBlock(outer / (sd * sd)) : outer;
       scatter[i] += sd * sd * outer;
@@ -57,14 +65,13 @@ ExpectedPoseError SquaredParameterPoseError(const Robot& robot, const Vector6d& 
   return {covariance.topLeftCorner<3, 3>().trace(), RadToDeg(RadToDeg(covariance.bottomRightCorner<3, 3>().trace()))};
 }
 
-}  // namespace
-
-PlanPrediction PredictPlanError(const Robot& robot, const std::vector<Vector6d>& poses, const NoiseModel& noise,
-                                bool weighted, const std::vector<Vector6d>& validation) {
+PlanPrediction Predict(const Robot& robot, const std::vector<Vector6d>& poses, const NoiseModel& noise,
+                       const PoseCovarianceAt& pose_covariance, bool weighted,
+                       const std::vector<Vector6d>& validation) {
   PlanPrediction prediction;
   std::array<InfoBlock, kNumLegs> covariances;
   if (poses.size() < static_cast<size_t>(kParamsPerLeg) ||
-      !ParameterCovariances(robot, poses, noise, weighted, &covariances)) {
+      !ParameterCovariances(robot, poses, noise, pose_covariance, weighted, &covariances)) {
     return prediction;
   }
   for (const InfoBlock& c : covariances) {
@@ -92,6 +99,19 @@ PlanPrediction PredictPlanError(const Robot& robot, const std::vector<Vector6d>&
   }
   prediction.valid = true;
   return prediction;
+}
+
+}  // namespace
+
+PlanPrediction PredictPlanError(const Robot& robot, const std::vector<Vector6d>& poses, const NoiseModel& noise,
+                                bool weighted, const std::vector<Vector6d>& validation) {
+  return Predict(robot, poses, noise, {}, weighted, validation);
+}
+
+PlanPrediction PredictPlanError(const PlanningModel& model, const std::vector<Vector6d>& poses,
+                                const NoiseModel& noise, bool weighted, const std::vector<Vector6d>& validation) {
+  return Predict(model.robot, poses, noise, [&model](const Vector6d& v) { return model.PoseCovariance(v); },
+                 weighted, validation);
 }
 
 std::vector<Vector6d> ValidationPoses(const Robot& robot) {

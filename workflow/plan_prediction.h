@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "core/noise_model.h"
+#include "core/planning_model.h"
 #include "core/robot.h"
 #include "report/expected_error.h"
 
@@ -39,6 +40,12 @@ struct PlanPrediction {
 // `noise`, checked on `validation` poses.
 PlanPrediction PredictPlanError(const Robot& robot, const std::vector<Vector6d>& poses, const NoiseModel& noise,
                                 bool weighted, const std::vector<Vector6d>& validation);
+// The same with each pose's own covariance (a tracker's:
+// PlanningModel::PoseCovariance, robot unit² and degrees²) in place of the
+// noise model's pose terms in v_ij; the readings' noise, and the measurement
+// noise of the held-out figure, stay the noise model's.
+PlanPrediction PredictPlanError(const PlanningModel& model, const std::vector<Vector6d>& poses,
+                                const NoiseModel& noise, bool weighted, const std::vector<Vector6d>& validation);
 
 // 200 feasible random poses of the robot's sampling box (else its pose box),
 // from a fixed seed: where a calibrated robot will be used, for the held-out figure.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <limits>
 #include <random>
 #include <sstream>
 
@@ -11,6 +12,7 @@
 #include "core/robot_io.h"
 #include "core/straight_moves.h"
 #include "devices/controller.h"
+#include "workflow/session_plan_model.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -146,9 +148,16 @@ std::string FormatPrediction(const PlanOutcome& outcome) {
     out << "\n";
   }
   if (!p.valid) return out.str() + "  predicted error: none (a leg's parameters are not identified)\n";
-  out << "  predicted with noise ±" << outcome.noise.position << unit << ", ±" << outcome.noise.angle_deg << " deg, ±"
-      << outcome.noise.leg << unit << " (calibrate's unweighted fit):\n"
-      << "    parameter σ mean " << p.mean_sigma << unit << ", max " << p.max_sigma << unit
+  if (const auto& sigma = outcome.reflector_sigma) {
+    out << "  tracker: reflector σ " << sigma->first << " to " << sigma->second << unit << " over the plan's poses"
+        << (outcome.line_of_sight ? ", every reflector in its line of sight" : "") << "\n"
+        << "  predicted with each pose's covariance from the tracker, readings ±" << outcome.noise.leg << unit
+        << " (calibrate's unweighted fit):\n";
+  } else {
+    out << "  predicted with noise ±" << outcome.noise.position << unit << ", ±" << outcome.noise.angle_deg
+        << " deg, ±" << outcome.noise.leg << unit << " (calibrate's unweighted fit):\n";
+  }
+  out << "    parameter σ mean " << p.mean_sigma << unit << ", max " << p.max_sigma << unit
       << "; expected mean |error| " << p.mean_error << unit << "\n"
       << "    held-out FK error RMS " << p.heldout.position_rms << unit << ", " << p.heldout.orientation_rms_deg
       << " deg (parameters alone " << p.from_parameters.position_rms << unit << ", "
@@ -197,6 +206,10 @@ nlohmann::json ToJson(const PlanOutcome& outcome) {
   j["length_unit"] = outcome.length_unit;
   j["unreachable_from_centre"] = outcome.unreachable;
   j["predicted"] = ToJson(outcome.prediction, outcome.noise, /*weighted=*/false);
+  if (const auto& sigma = outcome.reflector_sigma)
+    j["tracker"] = {{"reflector_sigma_min", sigma->first},
+                    {"reflector_sigma_max", sigma->second},
+                    {"line_of_sight", outcome.line_of_sight}};
   if (const std::optional<PlanCertificate>& cert = outcome.certificate) {
     j["d_efficiency"] = cert->d_efficiency;
     j["gap"] = cert->design.gap;
@@ -296,6 +309,16 @@ Status ContinuousPhase(const PlanningModel& model, const PlanSetup& setup, int i
   return Status::Ok();
 }
 
+// The smallest and largest σ of a reflector over the poses.
+std::pair<double, double> ReflectorSigmaRange(const TrackerModel& tracker, const Robot& robot,
+                                              const std::vector<Vector6d>& poses) {
+  std::pair<double, double> range(std::numeric_limits<double>::infinity(), 0);
+  for (const Vector6d& v : poses)
+    for (double sigma : ReflectorSigmas(tracker, robot.PoseFromVector(v)))
+      range = {std::min(range.first, sigma), std::max(range.second, sigma)};
+  return range;
+}
+
 // The certificates on the pool plus the plan's own poses (a polished pose is
 // not in the pool), so that no efficiency can exceed 1.
 Status Certify(const PlanningModel& model, const PlanSetup& setup, const CandidateRows& pool_rows,
@@ -351,24 +374,41 @@ StatusOr<PlanOutcome> RunPlan(const PlanningModel& given_model, const PlanSetup&
   hooks.Stage("prediction");
   outcome.length_unit = LengthUnitName(model.robot.length_unit);
   outcome.noise = model.noise.value_or(NoiseModel{});
-  outcome.prediction = PredictPlanError(model.robot, outcome.plan.poses, outcome.noise, /*weighted=*/false,
-                                        ValidationPoses(model.robot));
+  if (model.tracker) {
+    outcome.prediction = PredictPlanError(model, outcome.plan.poses, outcome.noise, /*weighted=*/false,
+                                          ValidationPoses(model.robot));
+    outcome.reflector_sigma = ReflectorSigmaRange(*model.tracker, model.robot, outcome.plan.poses);
+    outcome.line_of_sight = model.tracker->settings.position.has_value();
+  } else {
+    outcome.prediction = PredictPlanError(model.robot, outcome.plan.poses, outcome.noise, /*weighted=*/false,
+                                          ValidationPoses(model.robot));
+  }
   outcome.unreachable = UnreachablePoses(model.robot, outcome.plan.poses);
   return outcome;
 }
 
 namespace {
 
-// Robot, settings file and entries: the model and the setup of a request.
-StatusOr<std::pair<PlanningModel, PlanSetup>> ResolvePlanRequest(const PlanRequest& request) {
-  StatusOr<Robot> robot = LoadRobot(request.robot);
+StatusOr<PlanningModel> ModelOfRobot(const std::string& name) {
+  StatusOr<Robot> robot = LoadRobot(name);
   if (!robot.ok()) return robot.status();
-  PlanningModel model{*robot, std::nullopt, std::nullopt};
+  return PlanningModel{*robot, std::nullopt, std::nullopt};
+}
+
+// Robot or session, settings file and entries: the model and the setup of a request.
+StatusOr<std::pair<PlanningModel, PlanSetup>> ResolvePlanRequest(const PlanRequest& request) {
+  if (request.robot.empty() == request.session.empty())
+    return Status::BadInput("give the robot (--robot) or a session (--session), one of them");
+  const bool session = !request.session.empty();
+  StatusOr<PlanningModel> loaded = session ? SessionPlanningModel(request.session) : ModelOfRobot(request.robot);
+  if (!loaded.ok()) return loaded.status();
+  PlanningModel model = std::move(*loaded);
   PlanSetup setup;
   if (!request.settings.empty()) {
-    StatusOr<PlanSettings> settings = LoadPlanSettings(request.settings, *robot);
+    StatusOr<PlanSettings> settings = LoadPlanSettings(request.settings, model.robot);
     if (!settings.ok()) return settings.status();
-    model.noise = settings->noise;
+    // A session's noise model stays unless the file gives one.
+    if (settings->noise || !session) model.noise = settings->noise;
     model.measurement = settings->measurement;
     const std::string section = "plan settings '" + request.settings + "': planner";
     if (Status s = ApplyOptionEntries(PlanSetupOptions(), settings->planner, &setup, section); !s.ok()) return s;

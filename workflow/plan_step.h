@@ -60,6 +60,11 @@ struct PlanOutcome {
   // centre of the sampling box through moves within the strokes
   // (core/straight_moves.h), as "pose K: why"; empty when it reaches all.
   std::vector<std::string> unreachable{};
+  // With a tracker (PlanningModel::tracker): the smallest and largest σ of a
+  // reflector's coordinate over the plan's poses (robot unit), and whether
+  // its line of sight was a constraint; the prediction used each pose's covariance.
+  std::optional<std::pair<double, double>> reflector_sigma{};
+  bool line_of_sight = false;
 };
 
 // The poses a straight-line controller cannot reach from the centre of the
@@ -83,7 +88,8 @@ StatusOr<PlanOutcome> RunPlan(const PlanningModel& model, const PlanSetup& setup
                               const PlanIterationObserver& on_iteration = {});
 
 struct PlanRequest {
-  std::string robot;            // robot file or preset name
+  std::string robot;            // robot file or preset name; or
+  std::string session;          // a session folder: its robot, noise and tracker (session_plan_model.h)
   std::string settings;         // plan settings YAML (noise, planner, camera visibility); may be empty
   std::string candidates_file;  // candidate pose CSV instead of generated sets; may be empty
   // (key, value) over the defaults and the settings file's sections: the flags.
@@ -93,8 +99,9 @@ struct PlanRequest {
   std::string history;            // indices per iteration CSV; may be empty
 };
 
-// Loads the robot and the settings, applies the entries (defaults < settings
-// file < request), plans and writes `out` and `history`.
+// Loads the robot (or the session's model) and the settings, applies the
+// entries (defaults < session < settings file < request), plans and writes
+// `out` and `history`.
 StatusOr<PlanOutcome> PlanFromRequest(const PlanRequest& request, const JobHooks& hooks = {});
 
 }  // namespace hexcal::workflow

@@ -1,4 +1,4 @@
-// hexcal plan --robot R --out plan.csv [--candidates FILE] [--settings plan.yaml]
+// hexcal plan (--robot R | --session DIR) --out plan.csv [--candidates FILE] [--settings plan.yaml]
 //   [every option of workflow::PlanSetupOptions(): --poses, --criterion, --secondary, --tabu, ...]
 //   [--noise-position p --noise-angle a --noise-leg l] [--history history.csv] [--json]
 //
@@ -45,7 +45,12 @@ int RunPlanCommand(PlanCliOptions cli, std::ostream& out, std::ostream& err) {
 void AddPlanCommand(CLI::App& app, int* exit_code) {
   auto o = std::make_shared<PlanCliOptions>();
   CLI::App* sub = app.add_subcommand("plan", "choose N measurement poses (IOOPS, paper section 4)");
-  sub->add_option("--robot", o->request.robot, "robot file or preset name")->required();
+  auto* robot = sub->add_option("--robot", o->request.robot, "robot file or preset name");
+  auto* session = sub->add_option("--session", o->request.session,
+                                  "session folder: its robot, noise model and (points sessions) the tracker's "
+                                  "per-pose noise and line of sight; docs/planner.md");
+  robot->excludes(session);
+  session->excludes(robot);
   sub->add_option("--candidates", o->request.candidates_file, "candidate pose CSV (x,y,z,q1,q2,q3)");
   AddOptionFlags(sub, workflow::PlanSetupOptions(), o->planner);
   AddOptionFlags(sub, NoiseModelOptions(), o->noise, "noise-");

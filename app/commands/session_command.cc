@@ -1,5 +1,7 @@
 // hexcal session init --robot R --camera C --target T DIR [--noise-position p]
 // hexcal session init --robot R --instrument points --points FILE [--reflectors FILE] [--point-sigma S] DIR
+//   [--tracker-position x,y,z] [--tracker-sigma-law linear --tracker-sigma0 s --tracker-sigma-per-distance k]
+//   [--tracker-acceptance-deg a] [--tracker-leg-radius r]
 //   [--noise-angle a] [--noise-leg l] [--json]
 // hexcal session status DIR [--json]
 // hexcal session check-noise DIR (--points FILE | --images FOLDER) [--wait] [--json]
@@ -19,6 +21,7 @@
 #include "core/reading_units.h"
 #include "core/robot_io.h"
 #include "core/session.h"
+#include "core/tracker_model.h"
 #include "workflow/noise_check.h"
 #include "workflow/reading_check.h"
 #include "workflow/session_edits.h"
@@ -38,7 +41,25 @@ struct SessionInitOptions {
   bool point_sigma_given = false;
   bool json = false;
   std::shared_ptr<OptionEntries> noise = std::make_shared<OptionEntries>();  // --noise-*
+  std::string tracker_position;                                              // "x,y,z"
+  std::shared_ptr<OptionEntries> tracker = std::make_shared<OptionEntries>();  // --tracker-*
 };
+
+// Points sessions: session.yaml's `tracker:` section from --tracker-position
+// and the --tracker-* flags of TrackerSettingsOptions(), when any is given.
+Status ApplyTrackerFlags(SessionInitOptions* cli) {
+  if (cli->tracker_position.empty() && cli->tracker->empty()) return Status::Ok();
+  if (cli->instrument != "points") return Status::BadInput("--tracker-* are for points sessions (--instrument points)");
+  TrackerSettings tracker;
+  if (!cli->tracker_position.empty()) {
+    StatusOr<std::vector<double>> xyz = ParseNumberList(cli->tracker_position, 3, "--tracker-position");
+    if (!xyz.ok()) return xyz.status();
+    tracker.position = Eigen::Vector3d((*xyz)[0], (*xyz)[1], (*xyz)[2]);
+  }
+  if (Status s = ApplyOptionEntries(TrackerSettingsOptions(), *cli->tracker, &tracker, "tracker"); !s.ok()) return s;
+  cli->config.tracker = tracker;
+  return Status::Ok();
+}
 
 // A file the user named from here, as session.yaml keeps it: relative to the
 // session folder (workflow/session_init.h, which the GUI's New session uses too).
@@ -97,6 +118,7 @@ std::string ResolvedInSession(const std::string& dir, const std::string& name) {
 int RunSessionInit(SessionInitOptions cli, std::ostream& out, std::ostream& err) {
   if (Status s = ApplyOptionEntries(NoiseModelOptions(), *cli.noise, &cli.config.noise, "noise"); !s.ok())
     return ReportError(err, "session init", s);
+  if (Status s = ApplyTrackerFlags(&cli); !s.ok()) return ReportError(err, "session init", s);
   // Check that the names load now rather than at the first calibration.
   StatusOr<Robot> robot = LoadRobot(cli.config.robot);
   if (!robot.ok()) return ReportError(err, "session init", robot.status());
@@ -112,9 +134,13 @@ int RunSessionInit(SessionInitOptions cli, std::ostream& out, std::ostream& err)
         << ResolvedInSession(cli.dir, cli.config.points) << " and their readings in " << paths.legs
         << " (pose,L1..L6,holdout; pose as the points file names it)\n"
         << "noise: " << NoiseModelText(cli.config.noise)
-        << (cli.config.reflectors.empty() ? "" : " (position and angle_deg from the reflectors and --point-sigma)")
-        << "; plan with hexcal plan --noise-position " << FormatSignificant(cli.config.noise.position)
-        << " --noise-angle " << FormatSignificant(cli.config.noise.angle_deg) << "\n";
+        << (cli.config.reflectors.empty() ? "" : " (position and angle_deg from the reflectors and --point-sigma)");
+    if (cli.config.reflectors.empty()) {
+      out << "; plan with hexcal plan --noise-position " << FormatSignificant(cli.config.noise.position)
+          << " --noise-angle " << FormatSignificant(cli.config.noise.angle_deg) << "\n";
+    } else {  // the planner weighs each pose by the tracker's covariance there (docs/planner.md)
+      out << "; plan with hexcal plan --session " << cli.dir << " --out " << paths.plan << "\n";
+    }
   } else {
     out << "session " << cli.dir << ": wrote " << paths.config << "; put the images in " << paths.images
         << " and their readings in " << paths.legs << " (image,L1..L6,holdout)\n";
@@ -301,6 +327,10 @@ void AddSessionCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::PositiveNumber)
       ->each([options](const std::string&) { options->point_sigma_given = true; });
   AddOptionFlags(init, NoiseModelOptions(), options->noise, "noise-");
+  init->add_option("--tracker-position", options->tracker_position,
+                   "points sessions: the tracker's head in the base frame, x,y,z in the robot's unit: the planner "
+                   "keeps every reflector in its line of sight (docs/planner.md)");
+  AddOptionFlags(init, TrackerSettingsOptions(), options->tracker, "tracker-");
   init->add_flag("--json", options->json, "print one JSON object on stdout");
   init->callback([=] { *exit_code = RunSessionInit(*options, std::cout, std::cerr); });
   AddSessionRecord(session, exit_code);

@@ -81,7 +81,7 @@ grep -q "^Verdict: \(good\|acceptable\)$" "$dir/hand.txt" || fail "by hand: verd
 # With a reflector file, init derives the pose noise the planner weighs by.
 "$hexcal" session init --robot inria-left-hand --instrument points --points points.txt \
   --reflectors "$demo/reflectors.csv" "$dir/refl" >"$dir/init2.txt"
-grep -q "^noise: position: 0.00[0-9]*, angle_deg: 0.0[0-9]*, leg: 0.001 (position and angle_deg from the reflectors and --point-sigma); plan with hexcal plan --noise-position" "$dir/init2.txt" ||
+grep -q "^noise: position: 0.00[0-9]*, angle_deg: 0.0[0-9]*, leg: 0.001 (position and angle_deg from the reflectors and --point-sigma); plan with hexcal plan --session $dir/refl --out $dir/refl/plan.csv$" "$dir/init2.txt" ||
   fail "init with reflectors" "$dir/init2.txt"
 
 # session record writes images' rows: refused in a points session, legs.csv untouched.
