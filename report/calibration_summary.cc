@@ -70,7 +70,7 @@ std::string FormatCalibrationSummary(const CalibrationReport& report) {
   if (report.from_points) out << FormatPointFitSummary(*report.from_points, unit);
   if (report.camera_frame_residuals) out << FormatCameraFrameLine(*report.camera_frame_residuals, unit) << "\n";
   out << OutlierLines(report);
-  out << ImageClosureLines(report.closure_by_image, report.closure_position_rms, unit);
+  out << ImageClosureLines(report.closure_by_image, report.closure_position_rms, unit, report.instrument);
   out << "wrote " << report.calibrated_robot << ", " << CalibrationReportPath(report.session) << ", frames in "
       << SessionPaths(report.session).config << "\n";
   return out.str();

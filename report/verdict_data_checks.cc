@@ -154,10 +154,10 @@ Finding CheckOutliers(const CalibrationReport& report) {
   if (left_out.empty()) return finding;
   constexpr size_t kNamed = 3;  // in the figure; the meaning names every one
   for (size_t k = 0; k < left_out.size() && k < kNamed; ++k)
-    finding.figure += std::string(k == 0 ? ": " : "; ") + ImageLabel(left_out[k]) + ", " + ShortCause(left_out[k]);
+    finding.figure += std::string(k == 0 ? ": " : "; ") + ImageLabel(left_out[k]) + ", " + ShortCause(left_out[k], report.instrument);
   if (left_out.size() > kNamed) finding.figure += "; ...";
   finding.meaning = "left out of the registration, the fit and the closure:";
-  for (const ImageClosure& image : left_out) finding.meaning += " " + ImageLabel(image) + ", " + LeftOutCause(image) + ";";
+  for (const ImageClosure& image : left_out) finding.meaning += " " + ImageLabel(image) + ", " + LeftOutCause(image, report.instrument) + ";";
   finding.meaning.back() = '.';
   if (level != VerdictLevel::kGood)
     finding.advice = "more than " + Figure(100 * kLeftOutImageFractionGood) +

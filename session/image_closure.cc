@@ -27,25 +27,29 @@ std::string ImageLabel(const ImageClosure& closure) {
   return closure.image + (closure.legs_line ? " (legs.csv line " + std::to_string(*closure.legs_line) + ")" : "");
 }
 
-std::string ShortCause(const ImageClosure& closure) {
+std::string ShortCause(const ImageClosure& closure, Instrument instrument) {
   const int legs = static_cast<int>(closure.excluded_legs.size());
-  if (legs >= kWrongImageLegs) return "a swapped or mislabelled image?";
+  if (legs >= kWrongImageLegs) return "a swapped or mislabelled " + std::string(MeasurementNoun(instrument)) + "?";
   if (legs == 0) return "left out of the registration";
   std::string list;
   for (int leg : closure.excluded_legs) list += (list.empty() ? "" : ", ") + std::to_string(leg);
   return std::string(legs == 1 ? "a wrong reading on leg " : "wrong readings on legs ") + list;
 }
 
-std::string LeftOutCause(const ImageClosure& closure) {
+std::string LeftOutCause(const ImageClosure& closure, Instrument instrument) {
   const int legs = static_cast<int>(closure.excluded_legs.size());
+  const bool points = instrument == Instrument::kPoints;
   if (legs >= kWrongImageLegs)
-    return "its board pose disagrees with " + std::to_string(legs) +
-           " of 6 legs: a swapped or mislabelled image? (check that it was taken at legs.csv's pose)";
-  if (legs == 0) return ShortCause(closure);
-  return ShortCause(closure) + " (check the sensor and legs.csv)";
+    return std::string(points ? "its tracker pose" : "its board pose") + " disagrees with " + std::to_string(legs) +
+           " of 6 legs: " + ShortCause(closure, instrument) +
+           (points ? " (check that its points were measured at legs.csv's pose)"
+                   : " (check that it was taken at legs.csv's pose)");
+  if (legs == 0) return ShortCause(closure, instrument);
+  return ShortCause(closure, instrument) + " (check the sensor and legs.csv)";
 }
 
-std::string ImageClosureLines(const std::vector<ImageClosure>& closures, double closure_rms, const std::string& unit) {
+std::string ImageClosureLines(const std::vector<ImageClosure>& closures, double closure_rms, const std::string& unit,
+                              Instrument instrument) {
   std::ostringstream out;
   out.precision(4);
   const ImageClosure* worst = nullptr;
@@ -57,13 +61,13 @@ std::string ImageClosureLines(const std::vector<ImageClosure>& closures, double 
       } else {
         out << "unknown (FK did not converge)";
       }
-      out << ": " << LeftOutCause(c) << "\n";
+      out << ": " << LeftOutCause(c, instrument) << "\n";
     } else if (c.converged && (worst == nullptr || c.position > worst->position)) {
       worst = &c;
     }
   }
   if (worst != nullptr && closure_rms > 0)
-    out << "closure by image: worst " << ImageLabel(*worst) << " " << worst->position << " " << unit << ", "
+    out << "closure by " << MeasurementNoun(instrument) << ": worst " << ImageLabel(*worst) << " " << worst->position << " " << unit << ", "
         << worst->angle_deg << " deg (" << worst->position / closure_rms << "× the RMS)\n";
   return out.str();
 }

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/registration.h"
+#include "core/session.h"
 #include "core/status.h"
 #include "session/json_fields.h"
 
@@ -45,15 +46,18 @@ constexpr int kWrongImageLegs = 4;
 
 // Why an image was left out, for the summary and the verdict:
 // "its board pose disagrees with 6 of 6 legs: a swapped or mislabelled image?"
-std::string LeftOutCause(const ImageClosure& closure);
+// In a points session (`instrument` kPoints) the words are the tracker's:
+// "its tracker pose disagrees with 6 of 6 legs: a swapped or mislabelled pose?".
+std::string LeftOutCause(const ImageClosure& closure, Instrument instrument = Instrument::kCamera);
 // The same in a few words: "a swapped or mislabelled image?", "a wrong reading on leg 3".
-std::string ShortCause(const ImageClosure& closure);
+std::string ShortCause(const ImageClosure& closure, Instrument instrument = Instrument::kCamera);
 // "view_0005.png (legs.csv line 7)".
 std::string ImageLabel(const ImageClosure& closure);
 
 // The summary's lines: each left-out image with its cause, then the worst
 // image that counts, against the RMS.
-std::string ImageClosureLines(const std::vector<ImageClosure>& closures, double closure_rms, const std::string& unit);
+std::string ImageClosureLines(const std::vector<ImageClosure>& closures, double closure_rms, const std::string& unit,
+                              Instrument instrument = Instrument::kCamera);
 
 nlohmann::json ImageClosuresJson(const std::vector<ImageClosure>& closures);
 // Reads the array ImageClosuresJson wrote as `key` of `fields` (errors go

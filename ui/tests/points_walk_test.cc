@@ -4,7 +4,8 @@
 // (workflow::ReadSessionStatus, which the command prints). The demo session of
 // ui/make_session lacks its last two planned poses: pose_0010 is recorded with
 // the sim controller's readings and a tracker export (SpatialAnalyzer's ASCII
-// layout, group "Group1") imported; pose_0011 with the sim tracker.
+// layout, group "Group1") imported, its readings typed as the demo took
+// them; pose_0011 with the sim controller's readings and the sim tracker.
 // Part of ui_readings_edit_test (ui/CMakeLists.txt), under xvfb-run.
 #include <gtest/gtest.h>
 
@@ -87,7 +88,14 @@ class PointsWalkTest : public ::testing::Test {
     ASSERT_TRUE(CopyFolder(sessions_dir + "/points", dir_));
     // Poses 11 and 12 of the plan not recorded yet; pose 11's points as the
     // tracker's software exported them, in a group of its own naming.
-    ASSERT_EQ(TakeLines(dir_ + "/legs.csv", {"pose_0010,", "pose_0011,"}).size(), 2);
+    const QStringList rows = TakeLines(dir_ + "/legs.csv", {"pose_0010,", "pose_0011,"});
+    ASSERT_EQ(rows.size(), 2);
+    // pose_0010's readings as the demo took them, to be typed: its points
+    // below are the demo's, taken at the demo's platform pose, which the sim
+    // controller's readings would not match (it drives the nominal robot's
+    // lengths, and the true robot then stands a calibration error away).
+    const QStringList fields = rows[rows[0].startsWith("pose_0010,") ? 0 : 1].split(',');
+    for (int leg = 0; leg < 6; ++leg) demo_readings_[leg] = fields[1 + leg].toDouble();
     const QStringList exported = TakeLines(dir_ + "/points.txt", {"tracker pose_0010 ", "tracker pose_0011 "});
     ASSERT_EQ(exported.size(), 8);
     QFile sa(temp_.filePath("export.txt"));
@@ -122,6 +130,7 @@ class PointsWalkTest : public ::testing::Test {
 
   QTemporaryDir temp_;
   QString dir_;
+  LegReadings demo_readings_{};
   MainWindow window_;
 };
 
@@ -144,8 +153,8 @@ TEST_F(PointsWalkTest, AcquireMeasureCalibrateValidateReport) {
 
   ASSERT_TRUE(ClickButton(acquire, "acquire_connect"));  // the sim controller, the default
   ASSERT_TRUE(WaitFor([&] { return acquire->Connected() && !acquire->Job()->Running(); }));
-  ASSERT_TRUE(ClickButton(acquire, "acquire_capture"));  // Record readings: moves, reads the legs
   EXPECT_EQ(ButtonWithText(acquire, "Record readings"), acquire->findChild<QPushButton*>("acquire_capture"));
+  acquire->CapturePose(demo_readings_);  // typed, as Record readings' dialog takes them
   ASSERT_TRUE(WaitFor([&] { return !acquire->Job()->Running(); }));
   EXPECT_EQ(checklist->item(10, 1)->text(), "readings, no points") << acquire->LastOutcome().toStdString();
   EXPECT_TRUE(acquire->LastOutcome().contains("export them as group pose_0010")) << acquire->LastOutcome().toStdString();
@@ -156,7 +165,7 @@ TEST_F(PointsWalkTest, AcquireMeasureCalibrateValidateReport) {
       << acquire->LastOutcome().toStdString();
   EXPECT_EQ(acquire->CurrentPose(), 11);
 
-  ASSERT_TRUE(ClickButton(acquire, "acquire_capture"));
+  ASSERT_TRUE(ClickButton(acquire, "acquire_capture"));  // Record readings: moves, reads the legs
   ASSERT_TRUE(WaitFor([&] { return !acquire->Job()->Running(); }));
   ASSERT_TRUE(ClickButton(acquire, "acquire_sim_tracker"));
   EXPECT_EQ(checklist->item(11, 1)->text(), "✓ recorded") << acquire->LastOutcome().toStdString();
