@@ -9,7 +9,24 @@
 
 #include <cmath>
 
+#include "core/pose.h"
+
 namespace hexcal {
+
+// A pose as the joint fits' block [ω, t] and back.
+inline Vector6d PoseBlock(const Pose& pose) {
+  Vector6d block;
+  ceres::RotationMatrixToAngleAxis(pose.rotation.data(), block.data());
+  block.tail<3>() = pose.position;
+  return block;
+}
+
+inline Pose PoseOfBlock(const Vector6d& block) {
+  Pose pose;
+  ceres::AngleAxisToRotationMatrix(block.data(), pose.rotation.data());
+  pose.position = block.tail<3>();
+  return pose;
+}
 
 // (|A b − a| − (l + L)) / σ_L for one leg reading; blocks: leg [a, b, l] (7), pose (6).
 struct LegReadingResidual {

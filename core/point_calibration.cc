@@ -89,20 +89,6 @@ Status CheckInput(const PointCalibrationInput& input, const PointCalibrationOpti
   return Status::Ok();
 }
 
-Vector6d PoseBlock(const Pose& pose) {
-  Vector6d block;
-  ceres::RotationMatrixToAngleAxis(pose.rotation.data(), block.data());
-  block.tail<3>() = pose.position;
-  return block;
-}
-
-Pose PoseOfBlock(const Vector6d& block) {
-  Pose pose;
-  ceres::AngleAxisToRotationMatrix(block.data(), pose.rotation.data());
-  pose.position = block.tail<3>();
-  return pose;
-}
-
 void AddResiduals(const PointCalibrationInput& input, const PointCalibrationOptions& options,
                   const std::map<std::string, int>& index, PointFitProblem* fit) {
   const int count = static_cast<int>(input.reflectors.size());

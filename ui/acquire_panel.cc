@@ -10,6 +10,7 @@
 #include <QLabel>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QScrollArea>
 #include <QSpinBox>
 #include <QSplitter>
 #include <QStackedWidget>
@@ -201,13 +202,20 @@ void AcquirePanel::ArrangeWidgets() {
   right_layout->addLayout(live_row);
   auto* points_page = new QWidget;
   auto* points_layout = new QVBoxLayout(points_page);
-  points_layout->addWidget(guide_);
+  // The guide scrolls on its own: at 1024×600 its steps are taller than the
+  // panel, and the buttons below it must stay in view.
+  auto* guide_scroll = new QScrollArea;
+  guide_scroll->setObjectName("acquire_points_guide_scroll");
+  guide_scroll->setWidgetResizable(true);
+  guide_scroll->setFrameShape(QFrame::NoFrame);
+  guide_scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  guide_scroll->setWidget(guide_);
+  points_layout->addWidget(guide_scroll, 1);
   auto* points_buttons = new QHBoxLayout;
   points_buttons->addWidget(import_points_);
   points_buttons->addWidget(sim_tracker_);
   points_buttons->addStretch();
   points_layout->addLayout(points_buttons);
-  points_layout->addStretch(1);
   right_ = new QStackedWidget;
   right_->addWidget(camera_page);
   right_->addWidget(points_page);

@@ -49,20 +49,6 @@ Eigen::Matrix<double, 8, 8> Whitening(const Eigen::Matrix<double, 8, 8>& covaria
   return llt.matrixL().solve(Matrix8d::Identity());
 }
 
-Vector6d PoseBlock(const Pose& pose) {
-  Vector6d block;
-  ceres::RotationMatrixToAngleAxis(pose.rotation.data(), block.data());
-  block.tail<3>() = pose.position;
-  return block;
-}
-
-Pose PoseOfBlock(const Vector6d& block) {
-  Pose pose;
-  ceres::AngleAxisToRotationMatrix(block.data(), pose.rotation.data());
-  pose.position = block.tail<3>();
-  return pose;
-}
-
 }  // namespace
 
 bool PixelCalibrationOptions::IsValid(std::string* error) const {

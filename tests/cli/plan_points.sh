@@ -68,7 +68,7 @@ PY
 
 # Bad flags, named.
 "$expect" 2 "tracker.sigma_law: linear needs tracker.position" -- "${init[@]}" "$dir/bad1" --tracker-sigma-law linear --tracker-sigma0 0.001
-"$expect" 2 "tracker.sigma_per_distance: must be at most 0.001" -- "${init[@]}" "$dir/bad2" --tracker-position 0,0,100 --tracker-sigma-per-distance 0.01
+"$expect" 2 "--tracker-sigma-per-distance: must be at most 0.001 unit per unit, got 0.01" -- "${init[@]}" "$dir/bad2" --tracker-position 0,0,100 --tracker-sigma-per-distance 0.01
 "$expect" 2 "tracker-position" -- "${init[@]}" "$dir/bad3" --tracker-position 0,0
 "$expect" 2 "are for points sessions" -- "$hexcal" session init --robot inria-left-hand --camera sim-4.2mm-1024x768 \
   --target aprilgrid-6x6 --tracker-position 0,0,100 "$dir/camera"

@@ -194,7 +194,14 @@ TEST_F(PointsWalkTest, AcquireMeasureCalibrateValidateReport) {
   const QString summary = calibrate->findChild<QLabel*>("calibrate_summary")->text();
   EXPECT_TRUE(summary.startsWith("16 poses: 12 for calibration, 4 held out, 0 without a usable fit of their points"))
       << summary.toStdString();
-  EXPECT_NE(calibrate->VerdictWidget()->LevelText(), "poor");
+  // The poses recorded here agree with the rest: no reading flagged, the
+  // closure and the held-out error within the noise. (The verdict itself may
+  // be poor: this small session's 12 calibration poses leave a leg parameter's
+  // σ many times the noise-predicted error.)
+  QString findings;
+  for (const QWidget* part : calibrate->VerdictWidget()->findChildren<QWidget*>()) findings += part->toolTip();
+  for (const char* good : {"<b>outliers</b> (good)", "<b>closure</b> (good)", "<b>held-out error</b> (good)"})
+    EXPECT_TRUE(findings.contains(good)) << good << " in " << findings.toStdString();
   GoTo(Step::kCalibrate, "calibrate");
 
   GoTo(Step::kValidate, "validate");
