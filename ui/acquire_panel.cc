@@ -209,6 +209,8 @@ void AcquirePanel::ArrangeWidgets() {
   guide_scroll->setWidgetResizable(true);
   guide_scroll->setFrameShape(QFrame::NoFrame);
   guide_scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  // Wrapped to the scroll area's width, not widened past it by its longest word.
+  guide_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
   guide_scroll->setWidget(guide_);
   points_layout->addWidget(guide_scroll, 1);
   auto* points_buttons = new QHBoxLayout;
