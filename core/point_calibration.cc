@@ -9,7 +9,6 @@
 #include <map>
 #include <memory>
 #include <set>
-#include <thread>
 
 #include "core/ceres_cancel.h"
 #include "core/leg_reading_residual.h"
@@ -122,12 +121,7 @@ ceres::Solver::Options SolverOptions(const PointCalibrationOptions& options, Poi
   for (LegParameters& leg : fit->legs) ordering->AddElementToGroup(leg.data(), 1);
   ordering->AddElementToGroup(fit->reflectors.data(), 1);
   solver.linear_solver_ordering = ordering;
-  solver.max_num_iterations = options.max_iterations;
-  solver.function_tolerance = 1e-12;
-  solver.parameter_tolerance = 1e-12;
-  solver.gradient_tolerance = 1e-14;
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  solver.num_threads = options.num_threads > 0 ? options.num_threads : cores;
+  SetJointFitLimits(options.max_iterations, options.num_threads, &solver);
   return solver;
 }
 

@@ -7,7 +7,6 @@
 #include <atomic>
 #include <cmath>
 #include <memory>
-#include <thread>
 
 #include "core/ceres_cancel.h"
 #include "core/registration.h"
@@ -137,12 +136,7 @@ ceres::Solver::Options SolverOptions(const PixelCalibrationOptions& options, Pix
   ordering->AddElementToGroup(unknowns->principal.data(), 1);
   ordering->AddElementToGroup(&unknowns->scale, 1);
   solver.linear_solver_ordering = ordering;
-  solver.max_num_iterations = options.max_iterations;
-  solver.function_tolerance = 1e-12;
-  solver.parameter_tolerance = 1e-12;
-  solver.gradient_tolerance = 1e-14;
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  solver.num_threads = options.num_threads > 0 ? options.num_threads : cores;
+  SetJointFitLimits(options.max_iterations, options.num_threads, &solver);
   return solver;
 }
 
