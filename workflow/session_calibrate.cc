@@ -274,6 +274,24 @@ struct PixelOutcome {
   CornerResidualTable corners;  // results/corner_residuals.csv
 };
 
+// A joint fit's parameters replace the two-stage ones (with its own
+// screening's outliers); the closure, the rows of
+// calibration_measurements.csv and the held-out validation then use the
+// poses it fitted (with the fitted camera or reflectors).
+Status AdoptJointFit(const SessionInputs& in, const SplitRows& split, const CalibrationResult& calibration,
+                     const std::vector<std::optional<Pose>>& calibration_poses,
+                     const std::vector<std::optional<Pose>>& held_out_poses, CameraCalibrationResult* result,
+                     std::vector<Measurement>* held_out, std::optional<ValidationSummary>* validation) {
+  result->calibration = calibration;
+  MapFittedPoses(in.nominal, result->registration, calibration_poses, &result->measurements);
+  if (Status s = ComputeCalibratedClosure(result); !s.ok()) return s.AsFailure();
+  MapFittedPoses(in.nominal, result->registration, held_out_poses, held_out);
+  StatusOr<std::optional<ValidationSummary>> again = ValidateHeldOut(in, split.held_out, *held_out, *result);
+  if (!again.ok()) return again.status();
+  *validation = *again;
+  return Status::Ok();
+}
+
 // The two-stage result replaced by the calibration from pixels: its
 // parameters, and the closure, held-out validation and the rows of
 // calibration_measurements.csv with the board poses of the fitted camera
@@ -288,14 +306,10 @@ StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const OpenSession
                            request.outliers, hooks);
   if (!fit.ok()) return fit.status().cancelled() ? fit.status() : fit.status().AsFailure();
   const TwoStageComparison two_stage = TwoStageFigures(*result, *validation);
-  result->calibration = fit->fit.calibration;  // with its own screening's outliers
-  // calibration_measurements.csv: with the fitted camera.
-  MapFittedPoses(in.nominal, result->registration, fit->calibration_poses, &result->measurements);
-  if (Status s = ComputeCalibratedClosure(result); !s.ok()) return s.AsFailure();
-  MapFittedPoses(in.nominal, result->registration, fit->held_out_poses, held_out);
-  StatusOr<std::optional<ValidationSummary>> again = ValidateHeldOut(in, split.held_out, *held_out, *result);
-  if (!again.ok()) return again.status();
-  *validation = *again;
+  if (Status s = AdoptJointFit(in, split, fit->fit.calibration, fit->calibration_poses, fit->held_out_poses, result,
+                               held_out, validation);
+      !s.ok())
+    return s;
   const bool intrinsics = request.from_pixels.focal || request.from_pixels.principal_point;
   CornerResidualTable corners{{}, std::move(fit->fit.corner_residuals)};
   for (const LegsRow* row : split.calibration_rows) corners.images.push_back(row->image);  // the fit's image order
@@ -330,13 +344,10 @@ StatusOr<PointOutcome> ApplyFromPoints(const std::string& dir, const OpenSession
   StatusOr<SessionPointFit> fit = FitSessionFromPoints(setup, *result, request.from_points, request.outliers, hooks);
   if (!fit.ok()) return fit.status().cancelled() ? fit.status() : fit.status().AsFailure();
   const TwoStageComparison two_stage = TwoStageFigures(*result, *validation);
-  result->calibration = fit->fit.calibration;  // with its own screening's outliers
-  MapFittedPoses(in.nominal, result->registration, fit->calibration_poses, &result->measurements);
-  if (Status s = ComputeCalibratedClosure(result); !s.ok()) return s.AsFailure();
-  MapFittedPoses(in.nominal, result->registration, fit->held_out_poses, held_out);
-  StatusOr<std::optional<ValidationSummary>> again = ValidateHeldOut(in, split.held_out, *held_out, *result);
-  if (!again.ok()) return again.status();
-  *validation = *again;
+  if (Status s = AdoptJointFit(in, split, fit->fit.calibration, fit->calibration_poses, fit->held_out_poses, result,
+                               held_out, validation);
+      !s.ok())
+    return s;
   PointFitSummary summary = SummarizeSessionPointFit(*fit, two_stage);
   return PointOutcome{std::move(summary), PointsResults{std::move(*fit), std::move(setup.calibration_poses)}};
 }
