@@ -272,16 +272,20 @@ void AcquirePanel::FillChecklist() {
     free_names_.push_back(workflow::CaptureImageName(k, shown));
     if (done) marks_.erase(k);
     const QString state = done ? "✓ recorded" : PoseState(k);
-    checklist_->setItem(k, 0, Cell(QString::number(k + 1)));
     QTableWidgetItem* state_cell = Cell(state);
     if (done) state_cell->setToolTip(QString::fromStdString(captures_[k]));
     state_cell->setForeground(done ? QColor(0, 120, 0) : state.startsWith("failed") ? QColor(190, 0, 0)
                                                                                     : QColor(90, 90, 90));
-    checklist_->setItem(k, 1, state_cell);
-    checklist_->setItem(k, 2, Cell(Joined(plan[k], 0, 3)));
-    checklist_->setItem(k, 3, Cell(Joined(plan[k], 3, 3)));
+    SetChecklistRow(k, state_cell, plan[k]);
   }
   checklist_->blockSignals(false);
+}
+
+void AcquirePanel::SetChecklistRow(int row, QTableWidgetItem* state, const Vector6d& planned) {
+  checklist_->setItem(row, 0, Cell(QString::number(row + 1)));
+  checklist_->setItem(row, 1, state);
+  checklist_->setItem(row, 2, Cell(Joined(planned, 0, 3)));
+  checklist_->setItem(row, 3, Cell(Joined(planned, 3, 3)));
 }
 
 void AcquirePanel::Refresh() {

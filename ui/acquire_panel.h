@@ -52,6 +52,7 @@ class QProgressBar;
 class QStackedWidget;
 class QPushButton;
 class QTableWidget;
+class QTableWidgetItem;
 class QTimer;
 
 namespace hexcal::workflow {
@@ -111,6 +112,8 @@ class AcquirePanel : public QWidget {
   void BuildLayout();     // the widgets
   void ArrangeWidgets();  // and where they go
   void FillChecklist();
+  // Row `row` of the checklist: its number, `state` and the planned pose.
+  void SetChecklistRow(int row, QTableWidgetItem* state, const Vector6d& planned);
   QString PoseState(int index) const;
   // The camera's devices and live view, or a points session's guide (acquire_points.cc).
   void ArrangeForInstrument();

@@ -18,7 +18,6 @@
 #include "ui/acquire_panel.h"
 #include "ui/background_job.h"
 #include "ui/error_dialog.h"
-#include "ui/quantity_format.h"
 #include "workflow/acquire_step.h"
 #include "workflow/plan_captures.h"
 #include "sim/point_demo_scene.h"
@@ -37,12 +36,6 @@ QTableWidgetItem* Cell(const QString& text) {
   auto* item = new QTableWidgetItem(text);
   item->setFlags(item->flags() & ~Qt::ItemIsEditable);
   return item;
-}
-
-QString Joined(const Vector6d& v, int from, int count) {
-  QStringList parts;
-  for (int k = from; k < from + count; ++k) parts << FormatCoordinate(v[k]);
-  return parts.join("  ");
 }
 
 // "✓ done" in green, or "not yet" in grey: a step's state in the guide.
@@ -98,10 +91,7 @@ void AcquirePanel::FillPointChecklist(const std::vector<workflow::ReadingsRow>& 
                               : state.startsWith("failed") ? QColor(190, 0, 0)
                               : readings || has_points_[k] ? QColor(170, 100, 0)
                                                            : QColor(90, 90, 90));
-    checklist_->setItem(k, 0, Cell(QString::number(k + 1)));
-    checklist_->setItem(k, 1, state_cell);
-    checklist_->setItem(k, 2, Cell(Joined(plan[k], 0, 3)));
-    checklist_->setItem(k, 3, Cell(Joined(plan[k], 3, 3)));
+    SetChecklistRow(k, state_cell, plan[k]);
   }
   checklist_->blockSignals(false);
 }
