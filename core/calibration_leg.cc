@@ -2,11 +2,15 @@
 #include "core/calibration_leg.h"
 
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "core/calibration_cost.h"
+#include "core/csv.h"
+#include "core/outlier_screening.h"
 
 namespace hexcal {
 
@@ -229,6 +233,93 @@ StatusOr<LegCalibration> CalibrateLeg(int leg, const LegData& data, const LegPar
     if (Status s = FillUncertainty(leg, data, options, &problem, parameters.data(), &result); !s.ok()) return s;
   }
   return result;
+}
+
+namespace {
+
+// z_j = −r_j and (L + l) − |v| of every row at `parameters` (outlier_screening.h).
+void RowResiduals(const LegData& data, const LegParameters& parameters, std::vector<double>* z,
+                  std::vector<double>* lengths) {
+  const Leg leg = LegFromParameters(parameters.data());
+  for (size_t j = 0; j < data.size(); ++j) {
+    z->push_back(-ImplicitResidual(leg, data.poses[j], data.readings[j]) / data.weights[j]);
+    lengths->push_back(data.readings[j] + leg.offset - LegVector(leg, data.poses[j]).norm());
+  }
+}
+
+std::vector<double> ZOf(const LegData& data, const LegParameters& parameters) {
+  std::vector<double> z, lengths;
+  RowResiduals(data, parameters, &z, &lengths);
+  return z;
+}
+
+// The Cauchy fit of the screening at scale 3 σ, from two starts: the nominal
+// parameters and the least-squares estimate. A far-off row can bend the
+// least-squares fit into another basin of the robust cost (seen on INRIA
+// with poses of a small box: 1 cm moved every other row by 60 σ), and a
+// nominal robot far from the truth could start in a wrong one too: the lower
+// robust cost wins. When the scatter ŝ there exceeds the model's, once more
+// at 3 ŝ so that the screening fit keeps its efficiency. The fits need not
+// converge: they only lead to the estimate z is read at.
+StatusOr<LegParameters> RobustEstimate(int leg, const LegData& data, const LegParameters& nominal,
+                                       const LegParameters& least_squares, const CalibrationOptions& options,
+                                       const JobHooks& hooks) {
+  CalibrationOptions robust = options;
+  robust.loss = RobustLoss::kCauchy;
+  robust.loss_scale = kScreeningCauchyScale;
+  robust.compute_uncertainty = false;
+  std::optional<LegCalibration> best;
+  for (const LegParameters& start : {nominal, least_squares}) {
+    StatusOr<LegCalibration> fit = CalibrateLeg(leg, data, start, robust, hooks, /*must_converge=*/false);
+    if (!fit.ok()) return fit.status();
+    if (!best || fit->final_cost < best->final_cost) best = std::move(*fit);
+  }
+  const double scatter = RobustScatter(ZOf(data, best->estimate), kParamsPerLeg);
+  if (scatter <= 1) return best->estimate;
+  robust.loss_scale = kScreeningCauchyScale * scatter;
+  StatusOr<LegCalibration> settled = CalibrateLeg(leg, data, best->estimate, robust, hooks, /*must_converge=*/false);
+  if (!settled.ok()) return settled.status();
+  return settled->estimate;
+}
+
+}  // namespace
+
+StatusOr<LegCalibration> CalibrateLegScreened(int leg, const LegData& data, const LegParameters& nominal,
+                                              const CalibrationOptions& options, const JobHooks& hooks) {
+  // Only a start when rows are flagged and excluded: it need not converge then.
+  StatusOr<LegCalibration> fit = CalibrateLeg(leg, data, nominal, options, hooks, /*must_converge=*/false);
+  if (!fit.ok()) return fit;
+  if (static_cast<int>(data.size()) < kMinRowsToScreen) return Converged(*fit) ? fit : NotConverged(leg, *fit);
+  StatusOr<LegParameters> robust = RobustEstimate(leg, data, nominal, fit->estimate, options, hooks);
+  if (!robust.ok()) return robust.status();
+  std::vector<double> z, lengths;
+  RowResiduals(data, *robust, &z, &lengths);
+  const std::vector<int> flagged = FlagOutliers(z, kParamsPerLeg, options.outliers.threshold);
+  const bool exclude = !options.outliers.keep;
+  if ((flagged.empty() || !exclude) && !Converged(*fit)) {
+    std::string kept;
+    for (int j : flagged)
+      kept += (kept.empty() ? "" : ", ") + std::to_string(j + 1) + " (z = " + FormatNumber(z[j]) + ")";
+    const Status failed = NotConverged(leg, *fit);
+    return kept.empty() ? failed : Status::Failed(failed.message() + "; outliers kept in its fit: measurement " + kept);
+  }
+  if (flagged.empty()) return fit;
+
+  std::vector<RowOutlier> outliers;
+  for (int j : flagged) outliers.push_back({j, lengths[j], z[j], exclude});
+  if (exclude) {
+    const LegData kept = data.Without(flagged);
+    const std::string context = " left after excluding " + std::to_string(flagged.size()) + " outlier(s)";
+    if (kept.size() < static_cast<size_t>(kParamsPerLeg)) {
+      return Status::Failed(LegLabel(leg) + ": " + std::to_string(kept.size()) + " measurements" + context +
+                            ", fewer than its 7 parameters; check the readings or keep the outliers");
+    }
+    if (Status s = CheckRank(leg, kept, nominal, options, context); !s.ok()) return s;
+    fit = CalibrateLeg(leg, kept, nominal, options, hooks);
+    if (!fit.ok()) return fit;
+  }
+  fit->outliers = std::move(outliers);
+  return fit;
 }
 
 }  // namespace hexcal

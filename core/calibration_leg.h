@@ -1,5 +1,6 @@
-// The least-squares problem of one leg, for core/calibration.cc and
-// core/outlier_screening.cc. Internal: Calibrate (calibration.h) is the API.
+// The least-squares problem of one leg, for core/calibration.cc, and its fit
+// with the outlier screening of outlier_screening.h. Internal: Calibrate
+// (calibration.h) is the API.
 //
 // Leg i's problem is Σ_j ρ(r_j²), r_j = F_ij / w_j (calibration.h), over the
 // rows j of `LegData`; `Without` drops rows (screened outliers).
@@ -8,7 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "core/calibration.h"
+#include "core/calibration_types.h"
+#include "core/job_hooks.h"
+#include "core/measurements.h"
+#include "core/status.h"
 
 namespace hexcal {
 

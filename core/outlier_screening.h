@@ -28,6 +28,9 @@
 // the robust fit can explain any one row away, so it cannot tell which is off
 // (a leg with fewer rows is fitted as without screening).
 //
+// This file has the statistics and the options; the screened fit of a leg,
+// which uses them, is CalibrateLegScreened (calibration_leg.h).
+//
 //   CalibrationOptions options;   // weighted, as in a session
 //   options.outliers.enabled = true;
 //   StatusOr<CalibrationResult> r = Calibrate(nominal, measurements, options);
