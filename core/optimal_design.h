@@ -20,17 +20,11 @@
 
 #include "core/design_criteria.h"
 #include "core/job_hooks.h"
+#include "core/optimal_design_options.h"
 #include "core/planning_model.h"
 #include "core/status.h"
 
 namespace hexcal {
-
-struct OptimalDesignOptions {
-  double gap_tolerance = 1e-4;  // stop when max_x d(x, w) / 42 - 1 is below this
-  int max_iterations = 100000;
-  double max_seconds = 60;
-  int threads = 0;  // variance function threads; 0: every core
-};
 
 struct OptimalDesign {
   std::vector<double> weights;  // per candidate, summing to 1

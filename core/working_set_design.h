@@ -18,7 +18,10 @@
 #include <chrono>
 #include <vector>
 
-#include "core/optimal_design.h"
+#include "core/design_criteria.h"
+#include "core/job_hooks.h"
+#include "core/optimal_design_options.h"
+#include "core/status.h"
 
 namespace hexcal {
 
