@@ -12,6 +12,7 @@
 #include <string>
 
 #include "core/status.h"
+#include "vision/video_stream.h"
 
 namespace hexcal {
 
@@ -21,16 +22,7 @@ StatusOr<cv::Mat> DecodeImage(const std::string& bytes);
 StatusOr<cv::Mat> ReadImageFile(const std::string& path);
 StatusOr<std::string> EncodePng(const cv::Mat& image);
 
-// The part of cv::VideoCapture hexcal uses; properties are cv::CAP_PROP_*.
-class VideoStream {
- public:
-  virtual ~VideoStream() = default;
-  virtual bool Read(cv::Mat* frame) = 0;
-  virtual double Get(int property) const = 0;
-  virtual bool Set(int property, double value) = 0;
-  virtual std::string BackendName() const = 0;
-};
-
+// A video file or device as the stream of video_stream.h.
 StatusOr<std::unique_ptr<VideoStream>> OpenVideoFile(const std::string& path);
 // `api`: a cv::VideoCaptureAPIs value, e.g. cv::CAP_V4L2.
 StatusOr<std::unique_ptr<VideoStream>> OpenVideoDevice(int index, int api);

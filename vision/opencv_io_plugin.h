@@ -7,7 +7,7 @@
 #include <opencv2/core.hpp>
 #include <string>
 
-#include "vision/image_codecs.h"
+#include "vision/video_stream.h"
 
 namespace hexcal {
 
