@@ -21,7 +21,6 @@
 //   if (result.ok()) SaveCamera(result->camera, "camera.yaml", ExtrasOf(*result));
 #pragma once
 
-#include <Eigen/Core>
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
@@ -29,8 +28,8 @@
 #include "core/job_hooks.h"
 #include "core/status.h"
 #include "vision/camera.h"
-#include "vision/corner_diagnostics.h"
 #include "vision/detection.h"
+#include "vision/intrinsics_result.h"
 #include "vision/target.h"
 
 namespace hexcal {
@@ -49,43 +48,6 @@ struct IntrinsicsOptions {
   double max_rms_px = 1.0;                   // a larger final RMS is an error (vision/intrinsics_diagnosis.h)
 
   bool IsValid(std::string* error) const;
-};
-
-struct CalibrationView {
-  std::string file;
-  int tags = 0;
-  bool used = false;
-  std::string reason;                    // why not used: "2 target tags", "outlier: RMS 1.9 px > 0.6 px"
-  double rms_px = 0;                     // reprojection RMS in the final calibration (used views)
-  std::vector<Eigen::Vector2d> corners;  // detected target corners (coverage)
-};
-
-// Cross-validation as mrcal does it: the used views split into two disjoint
-// halves (alternate views), each calibrated alone, and the two cameras
-// compared (vision/intrinsics_diagnosis.h). A difference far above what the
-// halves' own σ allow means the model or the data cannot be trusted.
-struct CrossValidation {
-  bool done = false;       // needs at least 2 × 3 used views
-  int views_a = 0, views_b = 0;
-  double rms_px = 0;       // |project_a(ray) − project_b(ray)| over a 16 × 12 grid of the image, RMS
-  double max_px = 0;       // ... and its largest value
-  // |a − b| / sqrt(σa² + σb²) for fx, fy, cx, cy; empty without σ (kPinholeEqui).
-  std::vector<double> z;
-  double max_z = 0;        // largest of z; 0 when z is empty
-};
-
-struct IntrinsicsResult {
-  Camera camera;
-  // Standard deviations in the order of camera.ParameterNames(); empty when
-  // the model's calibration does not estimate them (kPinholeEqui).
-  std::vector<double> std_dev;
-  double rms_px = 0;  // over every corner of the used views
-  int used_views = 0;
-  std::vector<CalibrationView> views;  // in the order of the files
-  // Every corner of the used views at the final calibration; `image`
-  // indexes `views` (corner_diagnostics.h).
-  std::vector<CornerResidual> corner_residuals;
-  CrossValidation cross_validation;
 };
 
 // hooks.Progress(done, total) over every detection pass (images × passes);

@@ -12,9 +12,11 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/status.h"
-#include "vision/intrinsics.h"
+#include "vision/camera.h"
+#include "vision/intrinsics_result.h"
 #include "vision/target.h"
 
 namespace hexcal {
