@@ -48,23 +48,6 @@ Eigen::Matrix<double, 8, 8> Whitening(const Eigen::Matrix<double, 8, 8>& covaria
   return llt.matrixL().solve(Matrix8d::Identity());
 }
 
-}  // namespace
-
-bool PixelCalibrationOptions::IsValid(std::string* error) const {
-  auto fail = [&](const char* message) {
-    if (error) *error = message;
-    return false;
-  };
-  if (!(leg_sigma > 0) || !std::isfinite(leg_sigma)) return fail("leg_sigma must be positive");
-  if (!(corner_sigma_px > 0) || !std::isfinite(corner_sigma_px)) return fail("corner_sigma_px must be positive");
-  if (max_iterations < 1) return fail("max_iterations must be at least 1");
-  if (!(leg_cauchy_scale >= 0) || !std::isfinite(leg_cauchy_scale)) return fail("leg_cauchy_scale must be 0 or more");
-  if (num_threads < 0) return fail("num_threads must be 0 (every core) or more");
-  return true;
-}
-
-namespace {
-
 // The unknowns of the problem, in the blocks Ceres changes in place.
 struct PixelUnknowns {
   std::array<LegParameters, kNumLegs> legs;

@@ -9,7 +9,7 @@
 #include <array>
 #include <vector>
 
-#include "vision/pixel_calibration.h"
+#include "vision/pixel_calibration_types.h"
 #include "vision/pixel_calibration_cost.h"
 
 namespace hexcal {
