@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "vision/board_pose.h"
 #include "vision/measure.h"
+#include "workflow/screened_joint_fit.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -70,22 +73,13 @@ PixelCalibrationInput FitInput(const SessionPixelSetup& setup, const CameraCalib
   return input;
 }
 
-// The fit with the readings screened: robust first, then least squares
-// without the outliers (or with them, `keep`), which are named in its legs.
+// The fit with the readings screened (workflow/screened_joint_fit.h).
 StatusOr<PixelCalibrationResult> ScreenedFit(PixelCalibrationInput input, PixelCalibrationOptions options,
                                              const OutlierScreening& screening, const JobHooks& hooks) {
-  if (!screening.enabled) return CalibrateFromPixels(input, options, hooks);
-  options.leg_cauchy_scale = kScreeningCauchyScale;
-  StatusOr<PixelCalibrationResult> robust = CalibrateFromPixels(input, options, hooks);
-  if (!robust.ok()) return robust.status();
-  const auto outliers = ScreenJointFitReadings(robust->leg_z, screening, options.leg_sigma);
-  for (int i = 0; i < kNumLegs; ++i)
-    for (const RowOutlier& o : outliers[i]) input.images[o.measurement].leg_excluded[i] = o.excluded;
-  options.leg_cauchy_scale = 0;
-  StatusOr<PixelCalibrationResult> fit = CalibrateFromPixels(input, options, hooks);
-  if (!fit.ok()) return fit.status();
-  for (int i = 0; i < kNumLegs; ++i) fit->calibration.legs[i].outliers = outliers[i];
-  return fit;
+  return ScreenedJointFit(
+      std::move(input), std::move(options), screening,
+      [&hooks](const PixelCalibrationInput& in, const PixelCalibrationOptions& o) { return CalibrateFromPixels(in, o, hooks); },
+      [](PixelCalibrationInput& in) -> std::vector<PixelImage>& { return in.images; });
 }
 
 }  // namespace

@@ -2,9 +2,12 @@
 
 #include <cmath>
 #include <map>
+#include <utility>
+#include <vector>
 
 #include "core/csv.h"
 #include "core/point_fit.h"
+#include "workflow/screened_joint_fit.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -43,22 +46,13 @@ PointCalibrationInput FitInput(const SessionPointSetup& setup, const CameraCalib
   return input;
 }
 
-// The fit with the readings screened: robust first, then least squares
-// without the outliers (or with them, `keep`), which are named in its legs.
+// The fit with the readings screened (workflow/screened_joint_fit.h).
 StatusOr<PointCalibrationResult> ScreenedFit(PointCalibrationInput input, PointCalibrationOptions options,
                                              const OutlierScreening& screening, const JobHooks& hooks) {
-  if (!screening.enabled) return CalibrateFromPoints(input, options, hooks);
-  options.leg_cauchy_scale = kScreeningCauchyScale;
-  StatusOr<PointCalibrationResult> robust = CalibrateFromPoints(input, options, hooks);
-  if (!robust.ok()) return robust.status();
-  const auto outliers = ScreenJointFitReadings(robust->leg_z, screening, options.leg_sigma);
-  for (int i = 0; i < kNumLegs; ++i)
-    for (const RowOutlier& o : outliers[i]) input.poses[o.measurement].leg_excluded[i] = o.excluded;
-  options.leg_cauchy_scale = 0;
-  StatusOr<PointCalibrationResult> fit = CalibrateFromPoints(input, options, hooks);
-  if (!fit.ok()) return fit.status();
-  for (int i = 0; i < kNumLegs; ++i) fit->calibration.legs[i].outliers = outliers[i];
-  return fit;
+  return ScreenedJointFit(
+      std::move(input), std::move(options), screening,
+      [&hooks](const PointCalibrationInput& in, const PointCalibrationOptions& o) { return CalibrateFromPoints(in, o, hooks); },
+      [](PointCalibrationInput& in) -> std::vector<PointCalibrationPose>& { return in.poses; });
 }
 
 // The shape's scale: s = √(Σ|r̂_k − ĉ|² / Σ|r_k − c|²), and its σ from the
