@@ -25,8 +25,8 @@
 #include "workflow/board_pose_shortfall.h"
 #include "workflow/measure_step.h"
 #include "workflow/point_session.h"
+#include "workflow/session_joint_fit.h"
 #include "workflow/session_measure.h"
-#include "workflow/session_pixels.h"
 #include "workflow/session_rows.h"
 
 namespace hexcal::workflow {
@@ -147,13 +147,6 @@ SplitRows SplitSessionRows(const SessionInputs& in, const CameraPoses& poses, do
   return split;
 }
 
-// What the calibration from points writes to results/: the fitted
-// reflectors and every point's residual, named by legs.csv's poses.
-struct PointsResults {
-  SessionPointFit fit;
-  std::vector<std::string> poses;  // the fit's pose order
-};
-
 // results/ as one unit (session_results.h): the calibrated robot, the rows it
 // was fitted to, report.json and manifest.json go into a fresh folder that is
 // swapped in whole; then the registered frames into session.yaml.
@@ -218,139 +211,6 @@ Status CheckInputsUnchanged(const std::string& dir, const ContentHashes& before)
 
 // The session's noise model weighs the closure residuals of the registration.
 RegistrationOptions SessionRegistrationOptions(const NoiseModel& noise) { return RegistrationOptionsFromNoise(noise); }
-
-// A session opened under its lock with every image measured: what calibrating
-// and the section 8 study both start from.
-struct OpenSession {
-  SessionLock lock;
-  ContentHashes hashes;
-  SessionInputs in;
-  CameraPoses poses;
-  double scale = 1;  // target unit per robot unit
-  // The corners of the images measured by this run (`keep_observations`), by file name.
-  std::map<std::string, BoardObservation> observations;
-};
-
-// --from-pixels: the images, readings and models the fit needs.
-SessionPixelSetup PixelSetup(const std::string& dir, const SessionInputs& in, const SplitRows& split, double scale,
-                             const std::map<std::string, BoardObservation>& observations) {
-  SessionPixelSetup setup{in.nominal, in.camera, in.target, scale, in.config.noise, {}, {}, split.input.legs, {}};
-  const std::string images = SessionPaths(dir).images;
-  for (const auto& [image, seen] : observations) setup.known_observations[(fs::path(images) / image).string()] = seen;
-  for (const LegsRow* row : split.calibration_rows) setup.calibration_images.push_back((fs::path(images) / row->image).string());
-  for (const LegsRow* row : split.held_out) setup.held_out_images.push_back((fs::path(images) / row->image).string());
-  return setup;
-}
-
-// The two-stage figures the report compares the calibration from pixels with.
-TwoStageComparison TwoStageFigures(const CameraCalibrationResult& result,
-                                   const std::optional<ValidationSummary>& validation) {
-  TwoStageComparison two;
-  if (validation) {
-    two.held_out_position_rms = validation->after.position_rms;
-    two.held_out_orientation_rms_deg = validation->after.orientation_rms;
-  }
-  two.mean_parameter_sigma = result.calibration.StdDevs().mean();
-  return two;
-}
-
-// The camera poses X·B'·Y⁻¹ of the images, B' from the fitted camera; where
-// a board pose failed, the two-stage row is kept.
-void MapFittedPoses(const Robot& nominal, const Registration& frames, const std::vector<std::optional<Pose>>& poses,
-                    std::vector<Measurement>* rows) {
-  for (size_t j = 0; j < rows->size(); ++j) {
-    if (poses[j]) (*rows)[j].pose = nominal.VectorFromPose(BaseFromPlatform(frames, *poses[j]));
-  }
-}
-
-// What the calibration from pixels adds to the report and to results/.
-struct PixelOutcome {
-  PixelFitSummary summary;
-  std::optional<Camera> camera;  // with the estimated intrinsics; none when they were kept
-  Camera fitted_camera;          // the camera the fit ended with (the file's when kept)
-  double target_scale = 1;       // the target's fitted scale
-  // camera_from_target of each calibration image (robot unit) with them.
-  std::vector<std::optional<Pose>> camera_poses;
-  CornerResidualTable corners;  // results/corner_residuals.csv
-};
-
-// A joint fit's parameters replace the two-stage ones (with its own
-// screening's outliers); the closure, the rows of
-// calibration_measurements.csv and the held-out validation then use the
-// poses it fitted (with the fitted camera or reflectors).
-Status AdoptJointFit(const SessionInputs& in, const SplitRows& split, const CalibrationResult& calibration,
-                     const std::vector<std::optional<Pose>>& calibration_poses,
-                     const std::vector<std::optional<Pose>>& held_out_poses, CameraCalibrationResult* result,
-                     std::vector<Measurement>* held_out, std::optional<ValidationSummary>* validation) {
-  result->calibration = calibration;
-  MapFittedPoses(in.nominal, result->registration, calibration_poses, &result->measurements);
-  if (Status s = ComputeCalibratedClosure(result); !s.ok()) return s.AsFailure();
-  MapFittedPoses(in.nominal, result->registration, held_out_poses, held_out);
-  StatusOr<std::optional<ValidationSummary>> again = ValidateHeldOut(in, split.held_out, *held_out, *result);
-  if (!again.ok()) return again.status();
-  *validation = *again;
-  return Status::Ok();
-}
-
-// The two-stage result replaced by the calibration from pixels: its
-// parameters, and the closure, held-out validation and the rows of
-// calibration_measurements.csv with the board poses of the fitted camera
-// (X·B'·Y⁻¹), which the residual charts compare the calibrated robot with.
-StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const OpenSession& open, const SplitRows& split,
-                                       const CalibrateSessionRequest& request, const JobHooks& hooks,
-                                       CameraCalibrationResult* result, std::vector<Measurement>* held_out,
-                                       std::optional<ValidationSummary>* validation) {
-  const SessionInputs& in = open.in;
-  StatusOr<SessionPixelFit> fit =
-      FitSessionFromPixels(PixelSetup(dir, in, split, open.scale, open.observations), *result, request.from_pixels,
-                           request.outliers, hooks);
-  if (!fit.ok()) return fit.status().cancelled() ? fit.status() : fit.status().AsFailure();
-  const TwoStageComparison two_stage = TwoStageFigures(*result, *validation);
-  if (Status s = AdoptJointFit(in, split, fit->fit.calibration, fit->calibration_poses, fit->held_out_poses, result,
-                               held_out, validation);
-      !s.ok())
-    return s;
-  const bool intrinsics = request.from_pixels.focal || request.from_pixels.principal_point;
-  CornerResidualTable corners{{}, std::move(fit->fit.corner_residuals)};
-  for (const LegsRow* row : split.calibration_rows) corners.images.push_back(row->image);  // the fit's image order
-  return PixelOutcome{SummarizeSessionPixelFit(*fit, two_stage),
-                      intrinsics ? std::optional<Camera>(fit->fit.camera) : std::nullopt,
-                      fit->fit.camera,
-                      fit->fit.target_scale,
-                      fit->calibration_poses,
-                      std::move(corners)};
-}
-
-// What the calibration from points adds to the report and to results/.
-struct PointOutcome {
-  PointFitSummary summary;
-  PointsResults results;
-};
-
-// The two-stage result replaced by the calibration from points: its
-// parameters, and the closure, held-out validation and the rows of
-// calibration_measurements.csv with every pose fitted again to the fitted
-// reflectors (X·B'·Y⁻¹).
-StatusOr<PointOutcome> ApplyFromPoints(const std::string& dir, const OpenSession& open, const SplitRows& split,
-                                       const CalibrateSessionRequest& request, const JobHooks& hooks,
-                                       CameraCalibrationResult* result, std::vector<Measurement>* held_out,
-                                       std::optional<ValidationSummary>* validation) {
-  const SessionInputs& in = open.in;
-  StatusOr<PointFiles> files = SessionPointFiles(dir, in.config);
-  if (!files.ok()) return files.status();
-  SessionPointSetup setup{in.nominal, *files, in.config.noise, {}, {}, split.input.legs};
-  for (const LegsRow* row : split.calibration_rows) setup.calibration_poses.push_back(row->image);
-  for (const LegsRow* row : split.held_out) setup.held_out_poses.push_back(row->image);
-  StatusOr<SessionPointFit> fit = FitSessionFromPoints(setup, *result, request.from_points, request.outliers, hooks);
-  if (!fit.ok()) return fit.status().cancelled() ? fit.status() : fit.status().AsFailure();
-  const TwoStageComparison two_stage = TwoStageFigures(*result, *validation);
-  if (Status s = AdoptJointFit(in, split, fit->fit.calibration, fit->calibration_poses, fit->held_out_poses, result,
-                               held_out, validation);
-      !s.ok())
-    return s;
-  PointFitSummary summary = SummarizeSessionPointFit(*fit, two_stage);
-  return PointOutcome{std::move(summary), PointsResults{std::move(*fit), std::move(setup.calibration_poses)}};
-}
 
 // Asking for the other instrument's joint fit by name is bad input.
 Status CheckJointFitRequest(const std::string& dir, const CalibrateSessionRequest& request, Instrument instrument) {
@@ -451,8 +311,8 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
     CameraCalibrationResult pixels = *result;
     std::vector<Measurement> pixels_held_out = held_out;
     std::optional<ValidationSummary> pixels_validation = *validation;
-    StatusOr<PixelOutcome> fit = ApplyFromPixels(dir, *open, split, request, hooks, &pixels,
-                                                 &pixels_held_out, &pixels_validation);
+    StatusOr<PixelOutcome> fit = ApplyFromPixels(dir, *open, split, request.from_pixels, request.outliers, hooks,
+                                                 &pixels, &pixels_held_out, &pixels_validation);
     if (fit.ok()) {
       *result = std::move(pixels);
       held_out = std::move(pixels_held_out);
@@ -470,8 +330,8 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
     CameraCalibrationResult points = *result;
     std::vector<Measurement> points_held_out = held_out;
     std::optional<ValidationSummary> points_validation = *validation;
-    StatusOr<PointOutcome> fit =
-        ApplyFromPoints(dir, *open, split, request, hooks, &points, &points_held_out, &points_validation);
+    StatusOr<PointOutcome> fit = ApplyFromPoints(dir, *open, split, request.from_points, request.outliers, hooks,
+                                                 &points, &points_held_out, &points_validation);
     if (fit.ok()) {
       *result = std::move(points);
       held_out = std::move(points_held_out);

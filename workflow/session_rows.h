@@ -1,7 +1,8 @@
-// What calibrating a session works on, shared by workflow/session_calibrate.cc
-// and workflow/session_rows.cc (internal to workflow/): the inputs
-// session.yaml names, each image's board pose, the rows split into
-// calibration and held-out, and the report made from a calibration.
+// What calibrating a session works on, shared by workflow/session_calibrate.cc,
+// workflow/session_rows.cc and workflow/session_joint_fit.cc (internal to
+// workflow/): the inputs session.yaml names, the session opened and measured,
+// each image's board pose, the rows split into calibration and held-out, and
+// the report made from a calibration.
 //
 //   SplitRows split = SplitSessionRows(in, poses, scale);  // session_calibrate.cc
 //   CalibrationReport report = MakeReport(dir, in, split, result);
@@ -15,9 +16,12 @@
 #include "core/measurements.h"
 #include "core/registration.h"
 #include "core/session.h"
+#include "core/session_lock.h"
 #include "core/validation.h"
 #include "session/calibration_report.h"
+#include "session/session_results.h"
 #include "vision/camera.h"
+#include "vision/detection.h"
 #include "vision/target.h"
 #include "workflow/session_measure.h"
 
@@ -37,6 +41,18 @@ struct SessionInputs {
   Camera camera;
   Target target;
   Pose fk_start;  // the centre of the robot's pose box
+};
+
+// A session opened under its lock with every image measured: what calibrating
+// and the section 8 study both start from.
+struct OpenSession {
+  SessionLock lock;
+  ContentHashes hashes;
+  SessionInputs in;
+  CameraPoses poses;
+  double scale = 1;  // target unit per robot unit
+  // The corners of the images measured by this run (`keep_observations`), by file name.
+  std::map<std::string, BoardObservation> observations;
 };
 
 // The calibration rows (usable, not held out) and the held-out rows.
