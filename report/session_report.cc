@@ -261,7 +261,7 @@ StatusOr<std::string> SessionReportHtml(const std::string& dir) {
           (points ? " whose points do not fit.</p>\n" : " without a usable target pose.</p>\n");
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   if (!config.ok()) return config.status();
-  StatusOr<Robot> nominal = LoadRobot(ResolveSessionFile(dir, config->robot));
+  StatusOr<Robot> nominal = LoadSessionRobot(dir, *config);
   if (!nominal.ok()) return nominal.status();
   html += PlanSection(paths, *nominal);
   const RegistrationSummary& reg = report.registration;

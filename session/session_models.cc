@@ -14,10 +14,14 @@ std::string ResolveSessionFile(const std::string& dir, const std::string& name) 
   return fs::exists(in_session, error) ? in_session.string() : name;
 }
 
+StatusOr<Robot> LoadSessionRobot(const std::string& dir, const SessionConfig& config) {
+  return LoadRobot(ResolveSessionFile(dir, config.robot));
+}
+
 StatusOr<SessionModels> LoadSessionModels(const std::string& dir) {
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   if (!config.ok()) return config.status();
-  StatusOr<Robot> robot = LoadRobot(ResolveSessionFile(dir, config->robot));
+  StatusOr<Robot> robot = LoadSessionRobot(dir, *config);
   if (!robot.ok()) return robot.status();
   StatusOr<Camera> camera = LoadCamera(ResolveSessionFile(dir, config->camera));
   if (!camera.ok()) return camera.status();

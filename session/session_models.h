@@ -7,6 +7,7 @@
 //   StatusOr<SessionModels> models = LoadSessionModels("run1");
 //   if (!models.ok()) return models.status();
 //   const Robot& nominal = models->robot;
+//   StatusOr<Robot> robot = LoadSessionRobot("run1", config);  // the robot alone
 #pragma once
 
 #include <string>
@@ -22,6 +23,10 @@ namespace hexcal::workflow {
 // A name in session.yaml: a file relative to the session folder when one
 // exists there, otherwise as given (a preset name or a path).
 std::string ResolveSessionFile(const std::string& dir, const std::string& name);
+
+// The robot session.yaml names (`config`, loaded from DIR), loaded: what a
+// step that needs only the robot reads.
+StatusOr<Robot> LoadSessionRobot(const std::string& dir, const SessionConfig& config);
 
 // The session's configuration and the robot, camera and target it names, loaded.
 struct SessionModels {

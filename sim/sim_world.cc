@@ -8,7 +8,6 @@
 #include "core/csv.h"
 #include "core/forward_kinematics.h"
 #include "core/registration.h"
-#include "core/robot_io.h"
 #include "core/session.h"
 #include "devices/controller.h"
 #include "session/session_models.h"
@@ -73,7 +72,7 @@ StatusOr<SessionModels> SimWorldModels(const std::string& dir) {
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   if (!config.ok()) return config.status();
   if (config->instrument != Instrument::kPoints) return LoadSessionModels(dir);
-  StatusOr<Robot> robot = LoadRobot(ResolveSessionFile(dir, config->robot));
+  StatusOr<Robot> robot = LoadSessionRobot(dir, *config);
   if (!robot.ok()) return robot.status();
   StatusOr<Camera> camera = LoadCamera(kSimulatedCameraName);
   if (!camera.ok()) return camera.status();

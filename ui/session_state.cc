@@ -9,7 +9,7 @@
 #include <QStringList>
 
 #include "core/csv.h"
-#include "core/robot_io.h"
+#include "session/session_models.h"
 #include "session/session_results.h"
 #include "session/session_study.h"
 #include "vision/measure.h"
@@ -227,7 +227,7 @@ void SessionState::LoadAll(const QString& dir) {
   }
   config_ = *config;
   // The robot as it now is, or the last that loaded (the status says why not).
-  StatusOr<Robot> robot = LoadRobot(Resolve(config_.robot));
+  StatusOr<Robot> robot = workflow::LoadSessionRobot(dir.toStdString(), config_);
   if (robot.ok()) robot_ = *robot;
   // Camera and target are needed from the Measure step on: a session may be
   // opened to plan before they exist, so their errors show there, not here.
@@ -264,7 +264,7 @@ Status SessionState::Open(const QString& dir) {
   const QString absolute = QDir(dir).absolutePath();
   StatusOr<SessionConfig> config = LoadSessionConfig(absolute.toStdString());
   if (!config.ok()) return config.status();
-  StatusOr<Robot> robot = LoadRobot(workflow::ResolveSessionFile(absolute.toStdString(), config->robot));
+  StatusOr<Robot> robot = workflow::LoadSessionRobot(absolute.toStdString(), *config);
   if (!robot.ok()) return robot.status();
   const QString previous = dir_;
   LoadAll(absolute);

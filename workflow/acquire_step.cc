@@ -168,7 +168,7 @@ std::string PoseNote(const PoseRecord& record, int total) {
 StatusOr<Robot> LoadSessionRobot(const std::string& dir) {
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   if (!config.ok()) return config.status();
-  return LoadRobot(ResolveSessionFile(dir, config->robot));
+  return workflow::LoadSessionRobot(dir, *config);
 }
 
 // The sim truth is written once; a resumed run must draw the same truth.

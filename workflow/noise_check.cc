@@ -7,7 +7,6 @@
 
 #include "core/atomic_file.h"
 #include "core/csv.h"
-#include "core/robot_io.h"
 #include "session/session_models.h"
 #include "vision/measure.h"
 #include "workflow/point_session.h"
@@ -101,7 +100,7 @@ StatusOr<NoiseCheck> CheckSessionNoise(const NoiseCheckRequest& request, const J
   check.instrument = config->instrument;
   StatusOr<Repeatability> figures = Status::BadInput("");
   if (config->instrument == Instrument::kPoints) {
-    StatusOr<Robot> robot = LoadRobot(ResolveSessionFile(dir, config->robot));
+    StatusOr<Robot> robot = LoadSessionRobot(dir, *config);
     if (!robot.ok()) return robot.status();
     check.unit = LengthUnitName(robot->length_unit);
     figures = PointRepeatability(*config, request.input);

@@ -4,10 +4,9 @@
 #include <cmath>
 
 #include "core/csv.h"
-#include "core/robot_io.h"
 #include "core/session.h"
 #include "devices/controller.h"
-#include "workflow/session_calibrate.h"
+#include "session/session_models.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -35,7 +34,7 @@ ReadingCheck MakeReadingCheck(Robot robot, const NoiseModel& noise) {
 StatusOr<ReadingCheck> SessionReadingCheck(const std::string& dir) {
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   if (!config.ok()) return config.status();
-  StatusOr<Robot> robot = LoadRobot(ResolveSessionFile(dir, config->robot));
+  StatusOr<Robot> robot = LoadSessionRobot(dir, *config);
   if (!robot.ok()) return robot.status();
   return MakeReadingCheck(std::move(*robot), config->noise);
 }

@@ -8,10 +8,9 @@
 
 #include "core/atomic_file.h"
 #include "core/csv.h"
-#include "core/robot_io.h"
+#include "session/session_models.h"
 #include "workflow/plan_step.h"
 #include "workflow/reading_check.h"
-#include "workflow/session_calibrate.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -340,7 +339,7 @@ EditOutcome ApplyPlanEdit(const std::string& dir, const std::vector<Vector6d>& s
   }
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   if (!config.ok()) return Failed(config.status());
-  StatusOr<Robot> robot = LoadRobot(ResolveSessionFile(dir, config->robot));
+  StatusOr<Robot> robot = LoadSessionRobot(dir, *config);
   if (!robot.ok()) return Failed(robot.status());
   return Failed(WritePlanCsv(path, PlanningModel{*robot, std::nullopt, std::nullopt}, wanted));
 }

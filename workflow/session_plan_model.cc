@@ -1,7 +1,6 @@
 #include "workflow/session_plan_model.h"
 
 #include "core/point_file.h"
-#include "core/robot_io.h"
 #include "session/session_models.h"
 
 namespace hexcal::workflow {
@@ -31,7 +30,7 @@ StatusOr<PlanningModel> SessionPlanningModel(const std::string& dir, const Sessi
 StatusOr<PlanningModel> SessionPlanningModel(const std::string& dir) {
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
   if (!config.ok()) return config.status();
-  StatusOr<Robot> robot = LoadRobot(ResolveSessionFile(dir, config->robot));
+  StatusOr<Robot> robot = LoadSessionRobot(dir, *config);
   if (!robot.ok()) return robot.status();
   return SessionPlanningModel(dir, *config, *robot);
 }

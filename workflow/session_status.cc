@@ -7,9 +7,9 @@
 
 #include "core/constraints.h"
 #include "core/csv.h"
-#include "core/robot_io.h"
 #include "core/session.h"
 #include "session/readings_table.h"
+#include "session/session_models.h"
 #include "session/session_results.h"
 #include "workflow/acquire_step.h"
 #include "workflow/plan_captures.h"
@@ -187,7 +187,7 @@ StatusOr<SessionStatus> ReadSessionStatus(const std::string& dir, StatusOr<Sessi
   if (!config.ok()) return config.status();
   SessionStatus status;
   status.session = dir;
-  StatusOr<Robot> robot = LoadRobot(ResolveSessionFile(dir, config->robot));
+  StatusOr<Robot> robot = LoadSessionRobot(dir, *config);
   status.steps.push_back(robot.ok() ? StepReport{"robot", StepStatus::kDone, robot->name}
                                     : StepReport{"robot", StepStatus::kBroken, robot.status().message()});
   status.steps.push_back(PlanStep(dir, robot));
