@@ -6,6 +6,7 @@
 #include "charts/chart_render.h"
 #include "report/corner_charts.h"
 #include "report/html_text.h"
+#include "session/results_files.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -93,7 +94,7 @@ std::string CornerDiagnosticsSection(const CornerResidualTable& table, double wi
   std::string html =
       "<h2>Per-corner diagnostics</h2><p>Every tag corner of the calibration from pixels (" +
       std::to_string(table.corners.size()) + " corners of " + std::to_string(table.images.size()) +
-      " images, results/corner_residuals.csv): residual = projected &minus; detected. RMS " + G3(Rms(table.corners)) +
+      " images, " + ResultsName(kCornerResiduals) + "): residual = projected &minus; detected. RMS " + G3(Rms(table.corners)) +
       " px; the fit's own noise, from the median |residual|, &sigma; = " + G3(sigma) +
       " px per axis. A pattern in the field (arrows that turn with the radius, or all one way) is a camera-model "
       "error, not noise; long single arrows are bad detections, named below.</p>\n";

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "session/results_files.h"
+
 namespace hexcal::workflow {
 namespace {
 
@@ -51,7 +53,7 @@ std::string ReflectorTable(const PointFitSummary& fit, const std::string& unit) 
     html += "<tr><td>" + r.name + "</td>" + cells + "</tr>\n";
   }
   return html + "</table><p>Changes from the " + (fit.reflectors_from_file ? "reflector file" : "estimate from the poses") +
-         " in its frame (results/reflectors.csv); the shape's size is " + G4(fit.reflector_scale) + " &plusmn; " +
+         " in its frame (" + ResultsName(kFittedReflectors) + "); the shape's size is " + G4(fit.reflector_scale) + " &plusmn; " +
          G4(fit.reflector_scale_sigma) + " of the given one.</p>\n";
 }
 

@@ -23,6 +23,7 @@
 #include "report/study_report_section.h"
 #include "session/calibration_report.h"
 #include "session/camera_frame_diagnosis.h"
+#include "session/results_files.h"
 #include "session/session_models.h"
 #include "session/session_results.h"
 #include "vision/camera.h"
@@ -151,8 +152,8 @@ std::string PlanSection(const SessionPaths& paths, const Robot& nominal) {
 // The implicit residual IK(pose) - reading of every leg at each calibration
 // pose, with the nominal and the calibrated robot.
 std::string ResidualSection(const SessionPaths& paths, const Robot& nominal) {
-  const std::string used = (fs::path(paths.results) / "calibration_measurements.csv").string();
-  const std::string calibrated_path = (fs::path(paths.results) / "calibrated.yaml").string();
+  const std::string used = ResultsFile(paths.dir, kUsedMeasurements);
+  const std::string calibrated_path = ResultsFile(paths.dir, kCalibratedRobot);
   std::error_code error;
   if (!fs::exists(used, error) || !fs::exists(calibrated_path, error)) return "";
   StatusOr<std::vector<Measurement>> rows = LoadMeasurements(used);
@@ -169,7 +170,7 @@ std::string ResidualSection(const SessionPaths& paths, const Robot& nominal) {
 // results/corner_residuals.csv (corner_report_section.h); the image frame is
 // the session camera's.
 std::string CornerSection(const std::string& dir, const SessionPaths& paths, const SessionConfig& config) {
-  const std::string path = (fs::path(paths.results) / "corner_residuals.csv").string();
+  const std::string path = ResultsFile(paths.dir, kCornerResiduals);
   std::error_code error;
   if (!fs::exists(path, error)) return "";
   StatusOr<CornerResidualTable> table = LoadCornerResiduals(path);
@@ -296,7 +297,7 @@ StatusOr<std::string> SessionReportHtml(const std::string& dir) {
 
 StatusOr<std::string> WriteSessionReport(const ReportRequest& request) {
   const std::string out =
-      request.out.empty() ? (fs::path(SessionPaths(request.session).results) / "report.html").string() : request.out;
+      request.out.empty() ? ResultsFile(request.session, kHtmlReport) : request.out;
   std::error_code exists_error;
   if (!request.out.empty() && !request.force && fs::exists(out, exists_error))
     return Status::BadInput(out + ": exists; use --force to overwrite it");

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "report/verdict_checks.h"
+#include "session/results_files.h"
 
 namespace hexcal::workflow {
 
@@ -46,8 +47,8 @@ std::optional<Finding> CheckCameraScale(const CalibrationReport& report) {
                     ": the fit corrected it, but the registered frames and the parameters' changes carry it.";
   finding.advice = largest->name == "target_scale"
                        ? "check the target file's tag size against the printed board, then calibrate again"
-                       : "recalibrate the camera (hexcal intrinsics) or make results/camera.yaml the session's "
-                         "camera, then calibrate again";
+                       : "recalibrate the camera (hexcal intrinsics) or make " + ResultsName(kFittedCamera) +
+                             " the session's camera, then calibrate again";
   return finding;
 }
 
@@ -69,8 +70,8 @@ std::optional<Finding> CheckReflectorScale(const CalibrationReport& report) {
   finding.meaning = "the reflector file's distances are " + Figure(100 * (1 / fit.reflector_scale - 1)) +
                     " % off what the tracker measured: the fit corrected them, but the registered frames and the "
                     "two-stage start carry it.";
-  finding.advice = "check the reflector file's unit and the tracker's scale (temperature compensation), or make "
-                   "results/reflectors.csv the session's reflector file, then calibrate again";
+  finding.advice = "check the reflector file's unit and the tracker's scale (temperature compensation), or make " +
+                   ResultsName(kFittedReflectors) + " the session's reflector file, then calibrate again";
   return finding;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "report/verdict_checks.h"
+#include "session/results_files.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -101,8 +102,9 @@ Finding CheckParameterChanges(const CalibrationReport& report) {
     finding.meaning += " " + ScaleChangeText(*scale) + ": the frames were registered with it.";
     finding.advice = scale->name == "target_scale"
                          ? "check the target file's tag size, then calibrate again"
-                         : "recalibrate the camera (hexcal intrinsics) or make results/camera.yaml the session's "
-                           "camera, then calibrate again; if the changes stay, check the nominal robot file";
+                         : "recalibrate the camera (hexcal intrinsics) or make " + ResultsName(kFittedCamera) +
+                               " the session's camera, then calibrate again; if the changes stay, check the nominal "
+                               "robot file";
   }
   return finding;
 }

@@ -1,11 +1,10 @@
 #include "session/calibration_report.h"
 
-#include <filesystem>
-
 #include "core/atomic_file.h"
 #include "session/camera_frame_diagnosis.h"
 #include "session/json_fields.h"
 #include "session/json_forms.h"
+#include "session/results_files.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -303,7 +302,7 @@ StatusOr<CalibrationReport> CalibrationReportFromJson(const nlohmann::json& json
 }
 
 std::string CalibrationReportPath(const std::string& session_dir) {
-  return (std::filesystem::path(session_dir) / "results" / "report.json").string();
+  return ResultsFile(session_dir, kReportJson);
 }
 
 StatusOr<CalibrationReport> LoadCalibrationReport(const std::string& path) {

@@ -9,6 +9,7 @@
 #include "core/session.h"
 #include "core/sha256.h"
 #include "session/json_fields.h"
+#include "session/results_files.h"
 #include "session/session_models.h"
 
 namespace hexcal::workflow {
@@ -61,13 +62,13 @@ StatusOr<std::string> HashConfigInputs(const std::string& dir, const SessionConf
 // Every output of the manifest has the hash it had when the run published it.
 Status CheckOutputs(const std::string& dir, const ResultsManifest& manifest) {
   const std::string results = SessionPaths(dir).results;
-  for (const char* name : {"report.json", "calibrated.yaml", "calibration_measurements.csv"})
+  for (const char* name : {kReportJson, kCalibratedRobot, kUsedMeasurements})
     if (manifest.outputs.count(name) == 0) return Status::BadInput(ResultsManifestPath(dir) + ": lists no " + name);
   // camera.yaml and corner_residuals.csv: the intrinsics a calibration from
   // pixels estimated and its corners' residuals; reflectors.csv and
   // point_residuals.csv: the calibration from points' (docs/session.md).
   size_t optional = 0;
-  for (const char* name : {"camera.yaml", "corner_residuals.csv", "reflectors.csv", "point_residuals.csv"})
+  for (const char* name : {kFittedCamera, kCornerResiduals, kFittedReflectors, kPointResiduals})
     optional += manifest.outputs.count(name);
   if (manifest.outputs.size() != 3 + optional)
     return Status::BadInput(ResultsManifestPath(dir) + ": lists other outputs");
@@ -107,7 +108,7 @@ StatusOr<std::string> HashSessionFile(const std::string& dir, const std::string&
 }
 
 std::string ResultsManifestPath(const std::string& session_dir) {
-  return (fs::path(SessionPaths(session_dir).results) / "manifest.json").string();
+  return ResultsFile(session_dir, kResultsManifest);
 }
 
 std::string ManifestToJsonText(const ResultsManifest& manifest) {

@@ -9,7 +9,6 @@
 #include <QTabWidget>
 #include <QTableWidget>
 #include <QVBoxLayout>
-#include <filesystem>
 #include <utility>
 
 #include "charts/figures.h"
@@ -17,6 +16,7 @@
 #include "core/measurements.h"
 #include "core/robot_io.h"
 #include "report/calibration_verdict.h"
+#include "session/results_files.h"
 #include "session/session_results.h"
 #include "ui/background_job.h"
 #include "ui/charts.h"
@@ -30,12 +30,6 @@
 
 namespace hexcal::ui {
 namespace {
-
-namespace fs = std::filesystem;
-
-std::string ResultsFile(const SessionState& session, const char* name) {
-  return (fs::path(session.Paths().results) / name).string();
-}
 
 // Sorts by the number it holds, whatever its text.
 class NumberItem : public QTableWidgetItem {
@@ -287,8 +281,8 @@ void CalibratePanel::FillParameterTable(const std::vector<workflow::ParameterEst
 void CalibratePanel::PlotResiduals() {
   if (!session_->Results().ok())
     return ShowChart(residuals_, charts::CalibrationResidualsChart(session_->NominalRobot(), session_->NominalRobot(), {}));
-  StatusOr<std::vector<Measurement>> rows = LoadMeasurements(ResultsFile(*session_, "calibration_measurements.csv"));
-  StatusOr<Robot> calibrated = LoadRobot(ResultsFile(*session_, "calibrated.yaml"));
+  StatusOr<std::vector<Measurement>> rows = LoadMeasurements(workflow::ResultsFile(session_->Paths().dir, workflow::kUsedMeasurements));
+  StatusOr<Robot> calibrated = LoadRobot(workflow::ResultsFile(session_->Paths().dir, workflow::kCalibratedRobot));
   const Robot& robot = session_->NominalRobot();
   if (!rows.ok() || !calibrated.ok()) return ShowChart(residuals_, charts::CalibrationResidualsChart(robot, robot, {}));
   ShowChart(residuals_, charts::CalibrationResidualsChart(robot, *calibrated, *rows));

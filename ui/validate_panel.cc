@@ -13,12 +13,12 @@
 #include <QVBoxLayout>
 #include <array>
 #include <cmath>
-#include <filesystem>
 
 #include "charts/figures.h"
 #include "core/atomic_file.h"
 #include "report/calibration_verdict.h"
 #include "report/session_report.h"
+#include "session/results_files.h"
 #include "session/session_results.h"
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
@@ -29,8 +29,6 @@
 
 namespace hexcal::ui {
 namespace {
-
-namespace fs = std::filesystem;
 
 // A missing figure (FK did not converge) draws no bar.
 double ValueOrNan(const std::optional<double>& value) { return value.value_or(std::nan("")); }
@@ -178,12 +176,12 @@ bool ValidatePanel::ResultsUsable(const QString& what) {
 
 void ValidatePanel::ExportCalibratedRobot(const QString& chosen) {
   if (!session_->IsOpen()) return ShowError(this, "Export robot", "Open a session first (File menu).");
-  const QString source = QString::fromStdString((fs::path(session_->Paths().results) / "calibrated.yaml").string());
+  const QString source = QString::fromStdString(workflow::ResultsFile(session_->Paths().dir, workflow::kCalibratedRobot));
   if (!ResultsUsable("Export robot")) return;
   if (!QFile::exists(source))
     return ShowError(this, "Export robot", "No calibrated robot yet: run the Calibrate step.");
   const QString path = chosen.isEmpty() ? QFileDialog::getSaveFileName(this, "Export calibrated robot",
-                                                                       "calibrated.yaml", "YAML (*.yaml)")
+                                                                       workflow::kCalibratedRobot, "YAML (*.yaml)")
                                         : chosen;
   if (path.isEmpty()) return;
   // Written whole or not at all: a copy cut short would leave a robot file that loads wrong.
@@ -196,7 +194,7 @@ void ValidatePanel::ExportHtmlReport(const QString& chosen) {
   if (!session_->IsOpen()) return ShowError(this, "Export report", "Open a session first (File menu).");
   if (!ResultsUsable("Export report")) return;
   const QString path = chosen.isEmpty()
-                           ? QFileDialog::getSaveFileName(this, "Export HTML report", "report.html", "HTML (*.html)")
+                           ? QFileDialog::getSaveFileName(this, "Export HTML report", workflow::kHtmlReport, "HTML (*.html)")
                            : chosen;
   if (path.isEmpty()) return;
   // The same step as `hexcal report`, so the page is the CLI's.

@@ -20,6 +20,7 @@
 #include "report/expected_error.h"
 #include "session/camera_frame_diagnosis.h"
 #include "session/corner_residuals_file.h"
+#include "session/results_files.h"
 #include "session/session_results.h"
 #include "vision/measure.h"
 #include "workflow/board_pose_shortfall.h"
@@ -33,13 +34,6 @@ namespace hexcal::workflow {
 namespace {
 
 namespace fs = std::filesystem;
-
-constexpr const char* kUsedMeasurements = "calibration_measurements.csv";
-constexpr const char* kReportJson = "report.json";
-constexpr const char* kFittedCamera = "camera.yaml";
-constexpr const char* kCornerResiduals = "corner_residuals.csv";
-constexpr const char* kFittedReflectors = "reflectors.csv";
-constexpr const char* kPointResiduals = "point_residuals.csv";
 
 StatusOr<SessionInputs> LoadSessionInputs(const std::string& dir) {
   StatusOr<SessionConfig> config = LoadSessionConfig(dir);
@@ -157,7 +151,7 @@ Status WriteCalibrationResults(const std::string& dir, const SessionInputs* in, 
   const SessionPaths paths(dir);
   StatusOr<StagedFolder> staged = StagedFolder::Begin(paths.results);
   if (!staged.ok()) return staged.status();
-  const std::string used_measurements = (fs::path(paths.results) / kUsedMeasurements).string();
+  const std::string used_measurements = ResultsFile(dir, kUsedMeasurements);
   if (Status s = SaveMeasurements(staged->File(kUsedMeasurements), result.measurements); !s.ok()) return s;
   const CalibrationInputs calibration_inputs{in->robot_name, used_measurements, calibration, CurrentUtcTimestamp()};
   if (Status s = SaveCalibratedRobot(staged->File(kCalibratedRobot), result.calibration, calibration_inputs); !s.ok())
@@ -185,8 +179,7 @@ Status WriteCalibrationResults(const std::string& dir, const SessionInputs* in, 
     if (!hash.ok()) return hash.status();
     manifest.outputs[name] = *hash;
   }
-  const std::string manifest_file = staged->File(fs::path(ResultsManifestPath(dir)).filename().string());
-  if (Status s = WriteFileAtomically(manifest_file, ManifestToJsonText(manifest)); !s.ok()) return s;
+  if (Status s = WriteFileAtomically(staged->File(kResultsManifest), ManifestToJsonText(manifest)); !s.ok()) return s;
   if (Status s = staged->Publish(); !s.ok()) return s;
   // A copy of report.json's frames, for display; results/ is the record. The
   // file as it is (a points session's noise was replaced by the fits' in `in`).

@@ -7,6 +7,7 @@
 #include "core/csv.h"
 #include "core/forward_kinematics.h"
 #include "report/expected_error.h"
+#include "session/results_files.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -152,7 +153,7 @@ CalibrationReport MakeReport(const std::string& dir, const SessionInputs& in, co
   for (const LegsRow* row : split.calibration_rows)
     names.push_back({row->image, row->line > 0 ? std::optional<int>(row->line) : std::nullopt});
   report.closure_by_image = ClosureByImage(result, names);
-  report.calibrated_robot = (std::filesystem::path(SessionPaths(dir).results) / kCalibratedRobot).string();
+  report.calibrated_robot = ResultsFile(dir, kCalibratedRobot);
   report.robot = result.calibration.robot;
   FillParameters(result.calibration, &report);
   report.outliers = OutlierReadings(result.calibration, split);

@@ -27,8 +27,6 @@
 
 namespace hexcal::workflow {
 
-constexpr const char* kCalibratedRobot = "calibrated.yaml";  // in results/
-
 using CameraPose = SessionImagePose;
 using CameraPoses = std::map<std::string, SessionImagePose>;
 
