@@ -27,6 +27,7 @@
 #include "ui/gui_terms.h"
 #include "ui/image_view.h"
 #include "ui/quantity_format.h"
+#include "ui/table_cell.h"
 #include "ui/text_wrap.h"
 #include "workflow/acquire_step.h"
 #include "workflow/plan_captures.h"
@@ -42,12 +43,6 @@ constexpr int kDefaultController = 1;  // "sim"
 constexpr int kDefaultCamera = 0;      // "sim"
 const QString kPlanBroken = "The plan does not load: ";
 const QString kPlanAgain = " Fix plan.csv, or plan again (Plan step).";
-
-QTableWidgetItem* Cell(const QString& text) {
-  auto* item = new QTableWidgetItem(text);
-  item->setFlags(item->flags() & ~Qt::ItemIsEditable);
-  return item;
-}
 
 QString Joined(const Vector6d& v, int from, int count) {
   QStringList parts;
@@ -272,7 +267,7 @@ void AcquirePanel::FillChecklist() {
     free_names_.push_back(workflow::CaptureImageName(k, shown));
     if (done) marks_.erase(k);
     const QString state = done ? "✓ recorded" : PoseState(k);
-    QTableWidgetItem* state_cell = Cell(state);
+    QTableWidgetItem* state_cell = TableCell(state);
     if (done) state_cell->setToolTip(QString::fromStdString(captures_[k]));
     state_cell->setForeground(done ? QColor(0, 120, 0) : state.startsWith("failed") ? QColor(190, 0, 0)
                                                                                     : QColor(90, 90, 90));
@@ -282,10 +277,10 @@ void AcquirePanel::FillChecklist() {
 }
 
 void AcquirePanel::SetChecklistRow(int row, QTableWidgetItem* state, const Vector6d& planned) {
-  checklist_->setItem(row, 0, Cell(QString::number(row + 1)));
+  checklist_->setItem(row, 0, TableCell(QString::number(row + 1)));
   checklist_->setItem(row, 1, state);
-  checklist_->setItem(row, 2, Cell(Joined(planned, 0, 3)));
-  checklist_->setItem(row, 3, Cell(Joined(planned, 3, 3)));
+  checklist_->setItem(row, 2, TableCell(Joined(planned, 0, 3)));
+  checklist_->setItem(row, 3, TableCell(Joined(planned, 3, 3)));
 }
 
 void AcquirePanel::Refresh() {

@@ -18,6 +18,7 @@
 #include "ui/acquire_panel.h"
 #include "ui/background_job.h"
 #include "ui/error_dialog.h"
+#include "ui/table_cell.h"
 #include "workflow/acquire_step.h"
 #include "workflow/plan_captures.h"
 #include "sim/point_demo_scene.h"
@@ -31,12 +32,6 @@ namespace hexcal::ui {
 namespace {
 
 QString Message(const Status& status) { return QString::fromStdString(status.message()); }
-
-QTableWidgetItem* Cell(const QString& text) {
-  auto* item = new QTableWidgetItem(text);
-  item->setFlags(item->flags() & ~Qt::ItemIsEditable);
-  return item;
-}
 
 // "✓ done" in green, or "not yet" in grey: a step's state in the guide.
 QString Mark(bool done, const QString& done_text) {
@@ -85,7 +80,7 @@ void AcquirePanel::FillPointChecklist(const std::vector<workflow::ReadingsRow>& 
                           : readings          ? "readings, no points"
                           : has_points_[k]    ? "points, no readings"
                                               : PoseState(k);
-    QTableWidgetItem* state_cell = Cell(state);
+    QTableWidgetItem* state_cell = TableCell(state);
     state_cell->setToolTip(QString::fromStdString(name));
     state_cell->setForeground(done ? QColor(0, 120, 0)
                               : state.startsWith("failed") ? QColor(190, 0, 0)

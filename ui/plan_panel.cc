@@ -31,6 +31,7 @@
 #include "ui/plan_options.h"
 #include "ui/plan_visibility.h"
 #include "ui/quantity_format.h"
+#include "ui/table_cell.h"
 #include "ui/text_wrap.h"
 #include "workflow/plan_captures.h"
 #include "workflow/plan_step.h"
@@ -61,9 +62,7 @@ class CoordinateItem : public QTableWidgetItem {
 };
 
 QTableWidgetItem* NumberItem(double value, bool editable) {
-  auto* item = new CoordinateItem(FormatCoordinate(value));
-  if (!editable) item->setFlags(item->flags() & ~Qt::ItemIsEditable);
-  return item;
+  return SetEditable(new CoordinateItem(FormatCoordinate(value)), editable);
 }
 
 }  // namespace
@@ -367,16 +366,13 @@ void PlanPanel::FillTable() {
   const PlanningModel model = chosen.ok() ? *chosen : PlanningModel{session_->NominalRobot(), {}, {}};
   table_->setRowCount(static_cast<int>(plan.size()));
   for (int j = 0; j < static_cast<int>(plan.size()); ++j) {
-    QTableWidgetItem* index = new CoordinateItem(QString::number(j + 1));
-    index->setFlags(index->flags() & ~Qt::ItemIsEditable);
+    QTableWidgetItem* index = SetEditable(new CoordinateItem(QString::number(j + 1)), false);
     index->setData(Qt::UserRole, j);
     table_->setItem(j, 0, index);
     for (int k = 0; k < 6; ++k) table_->setItem(j, 1 + k, NumberItem(plan[j][k], true));
     const LegReadings legs = InverseKinematics(model.robot, model.robot.PoseFromVector(plan[j]));
     for (int i = 0; i < kNumLegs; ++i) table_->setItem(j, 7 + i, NumberItem(legs[i], false));
-    auto* feasible = new QTableWidgetItem(model.IsFeasible(plan[j]) ? "yes" : "NO");
-    feasible->setFlags(feasible->flags() & ~Qt::ItemIsEditable);
-    table_->setItem(j, 13, feasible);
+    table_->setItem(j, 13, TableCell(model.IsFeasible(plan[j]) ? "yes" : "NO"));
   }
   table_->setSortingEnabled(true);
   filling_ = false;

@@ -9,17 +9,12 @@
 
 #include "ui/error_dialog.h"
 #include "ui/quantity_format.h"
+#include "ui/table_cell.h"
 
 namespace hexcal::ui {
 namespace {
 
 constexpr int kHoldoutColumn = 1 + kNumLegs;
-
-QTableWidgetItem* Cell(const QString& text, bool editable) {
-  auto* item = new QTableWidgetItem(text);
-  if (!editable) item->setFlags(item->flags() & ~Qt::ItemIsEditable);
-  return item;
-}
 
 QString ReadingText(const std::optional<double>& value) { return value ? FormatCoordinate(*value) : QString(); }
 
@@ -59,7 +54,7 @@ void ReadingsEditor::Refill() {
   setRowCount(static_cast<int>(rows_.size()));
   for (int r = 0; r < rowCount(); ++r) {
     const workflow::ReadingsRow& row = rows_[r];
-    QTableWidgetItem* image = Cell(QString::fromStdString(row.image), false);
+    QTableWidgetItem* image = TableCell(QString::fromStdString(row.image), false);
     if (!row.recorded) image->setToolTip("no readings yet: type L1..L6");
     if (!row.image_present)
       image->setToolTip(session_->IsPointsSession()
@@ -68,9 +63,11 @@ void ReadingsEditor::Refill() {
     image->setForeground(!row.recorded ? QColor(200, 110, 0) : row.image_present ? QColor(0, 0, 0) : QColor(190, 0, 0));
     setItem(r, 0, image);
     const auto typed = typed_.find(row.image);
-    for (int i = 0; i < kNumLegs; ++i)
-      setItem(r, 1 + i, Cell(ReadingText(row.recorded || typed == typed_.end() ? row.legs[i] : typed->second[i]), true));
-    setItem(r, kHoldoutColumn, Cell(row.holdout ? "1" : "0", true));
+    for (int i = 0; i < kNumLegs; ++i) {
+      const std::optional<double> shown = row.recorded || typed == typed_.end() ? row.legs[i] : typed->second[i];
+      setItem(r, 1 + i, TableCell(ReadingText(shown), true));
+    }
+    setItem(r, kHoldoutColumn, TableCell(row.holdout ? "1" : "0", true));
   }
   filling_ = false;
   emit Refilled();
