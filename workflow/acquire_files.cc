@@ -4,7 +4,6 @@
 
 #include <cerrno>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 
 #include "core/atomic_file.h"
@@ -82,7 +81,9 @@ Status RecordWithPendingName(const std::string& dir, const std::string& png, con
 // What a run needs of the session, checked before a machine is powered on
 // and homed (issue 33): legs.csv parses and images/ takes a new file (a file
 // made and removed there: permission bits say nothing to root, a read-only
-// mount or a full disk does).
+// mount or a full disk does). Sorted by FileSystemError: a file standing
+// where images/ should be is the session's fault (bad input), a disk that
+// refuses an I/O error.
 Status CheckSessionTakesCaptures(const std::string& dir) {
   StatusOr<std::set<std::string>> recorded = ImagesWithRows(dir);
   if (!recorded.ok()) return recorded.status();
@@ -92,8 +93,7 @@ Status CheckSessionTakesCaptures(const std::string& dir) {
   std::string probe = (fs::path(images) / ".hexcal-acquire-XXXXXX").string();
   const int fd = error ? -1 : mkstemp(probe.data());
   if (fd < 0)
-    return Status::IoError(images + ": cannot write a new file there (" +
-                           (error ? error.message() : std::string(std::strerror(errno))) + "); nothing was moved");
+    return FileSystemError(images, "cannot write a new file there (nothing was moved)", error ? error.value() : errno);
   close(fd);
   fs::remove(probe, error);
   return Status::Ok();

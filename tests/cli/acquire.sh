@@ -43,6 +43,12 @@ expect_refused "camera 'gige:1': unknown kind 'gige'; accepted forms: sim, v4l2:
   --controller sim --camera gige:1
 expect_refused "camera 'sim' renders the sim world's platform: it needs --controller sim" \
   --controller linuxcnc://h:1 --camera sim
+# A file where images/ should be is the session's fault (bad input), found before anything moves.
+rmdir "$s/images" && echo "not a folder" >"$s/images"
+expect_refused "images: cannot write a new file there (nothing was moved): Not a directory" --controller sim --camera sim
+[ "$(cat "$s/images")" = "not a folder" ]
+[ ! -e "$s/truth" ]
+rm "$s/images" && mkdir "$s/images"
 [ ! -e "$s/legs.csv" ]
 # verify needs the frames a calibration registers.
 code=0
