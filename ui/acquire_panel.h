@@ -30,8 +30,9 @@
 // it has both.
 //
 //   auto* acquire = new AcquirePanel(session);
-//   acquire->Connect("sim", "sim");  // or linuxcnc://HOST:PORT and aravis:NAME
-//   acquire->CapturePose();          // records pose CurrentPose(), then moves on
+//   acquire->Connect("sim", "sim");  // or linuxcnc://HOST:PORT and aravis:NAME; a worker opens them
+//   // ... once Connected() (before, Capture says to connect first):
+//   acquire->CapturePose();  // a worker: moves to CurrentPose(), grabs, records it, then selects the next
 #pragma once
 
 #include <QWidget>
