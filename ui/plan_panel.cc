@@ -404,11 +404,8 @@ void PlanPanel::DeleteSelectedPoses() {
 }
 
 void PlanPanel::AddPose() {
-  Vector6d home = Vector6d::Zero();
-  if (auto box = session_->NominalRobot().limits.SamplingBox(); box && box->IsComplete())
-    for (int k = 0; k < 6; ++k) home[k] = box->bounds[k]->Centre();
   std::vector<Vector6d> plan = session_->Plan();
-  plan.push_back(home);
+  plan.push_back(WorkspaceCentre(session_->NominalRobot()));
   ApplyPlan(plan);
 }
 

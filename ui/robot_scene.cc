@@ -115,10 +115,7 @@ void RobotScene::SetRobot(const Robot& robot) {
   std::vector<Eigen::Vector3d> base;
   for (const Leg& leg : robot.legs) base.push_back(leg.a_in_base);
   SetGeometry(base_, Polygons({base}, true));
-  Vector6d centre = Vector6d::Zero();
-  if (auto box = robot.limits.SamplingBox(); box && box->IsComplete())
-    for (int k = 0; k < 6; ++k) centre[k] = box->bounds[k]->Centre();
-  SetPose(centre);
+  SetPose(WorkspaceCentre(robot));
 }
 
 void RobotScene::SetPose(const Vector6d& pose_vector) {

@@ -52,9 +52,7 @@ StatusOr<SessionInputs> LoadSessionInputs(const std::string& dir) {
   const std::optional<PoseBox> box = nominal->limits.SamplingBox();
   if (!box || !box->IsComplete())
     return Status::BadInput(robot_name + ": needs a complete pose_box to start the FK from");
-  Vector6d centre;
-  for (int k = 0; k < 6; ++k) centre[k] = box->bounds[k]->Centre();
-  const Pose fk_start = nominal->PoseFromVector(centre);
+  const Pose fk_start = nominal->PoseFromVector(WorkspaceCentre(*nominal));
   if (config->instrument == Instrument::kPoints)  // no camera, no target: the points play their part
     return SessionInputs{*config, *legs, robot_name, *nominal, Camera{}, Target{}, fk_start};
   StatusOr<Camera> camera = LoadCamera(ResolveSessionFile(dir, config->camera));
