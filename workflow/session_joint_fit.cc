@@ -45,22 +45,26 @@ void MapFittedPoses(const Robot& nominal, const Registration& frames, const std:
   }
 }
 
-// A joint fit's parameters replace the two-stage ones (with its own
-// screening's outliers); the closure, the rows of
-// calibration_measurements.csv and the held-out validation then use the
-// poses it fitted (with the fitted camera or reflectors).
-Status AdoptJointFit(const SessionInputs& in, const SplitRows& split, const CalibrationResult& calibration,
-                     const std::vector<std::optional<Pose>>& calibration_poses,
-                     const std::vector<std::optional<Pose>>& held_out_poses, CameraCalibrationResult* result,
-                     std::vector<Measurement>* held_out, std::optional<ValidationSummary>* validation) {
-  result->calibration = calibration;
-  MapFittedPoses(in.nominal, result->registration, calibration_poses, &result->measurements);
+// A joint fit (SessionPixelFit or SessionPointFit) in the two-stage
+// result's place: its parameters (with its own screening's outliers); the
+// closure, the rows of calibration_measurements.csv and the held-out
+// validation then use the poses it fitted (with the fitted camera or
+// reflectors). Returns the two-stage figures it replaced, for the report.
+template <typename JointFit>
+StatusOr<TwoStageComparison> AdoptJointFit(const SessionInputs& in, const SplitRows& split,
+                                           const StatusOr<JointFit>& fit, CameraCalibrationResult* result,
+                                           std::vector<Measurement>* held_out,
+                                           std::optional<ValidationSummary>* validation) {
+  if (!fit.ok()) return fit.status().cancelled() ? fit.status() : fit.status().AsFailure();
+  const TwoStageComparison two_stage = TwoStageFigures(*result, *validation);
+  result->calibration = fit->fit.calibration;
+  MapFittedPoses(in.nominal, result->registration, fit->calibration_poses, &result->measurements);
   if (Status s = ComputeCalibratedClosure(result); !s.ok()) return s.AsFailure();
-  MapFittedPoses(in.nominal, result->registration, held_out_poses, held_out);
+  MapFittedPoses(in.nominal, result->registration, fit->held_out_poses, held_out);
   StatusOr<std::optional<ValidationSummary>> again = ValidateHeldOut(in, split.held_out, *held_out, *result);
   if (!again.ok()) return again.status();
   *validation = *again;
-  return Status::Ok();
+  return two_stage;
 }
 
 }  // namespace
@@ -73,16 +77,12 @@ StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const OpenSession
   const SessionInputs& in = open.in;
   StatusOr<SessionPixelFit> fit = FitSessionFromPixels(PixelSetup(dir, in, split, open.scale, open.observations),
                                                        *result, request, outliers, hooks);
-  if (!fit.ok()) return fit.status().cancelled() ? fit.status() : fit.status().AsFailure();
-  const TwoStageComparison two_stage = TwoStageFigures(*result, *validation);
-  if (Status s = AdoptJointFit(in, split, fit->fit.calibration, fit->calibration_poses, fit->held_out_poses, result,
-                               held_out, validation);
-      !s.ok())
-    return s;
+  StatusOr<TwoStageComparison> two_stage = AdoptJointFit(in, split, fit, result, held_out, validation);
+  if (!two_stage.ok()) return two_stage.status();
   const bool intrinsics = request.focal || request.principal_point;
   CornerResidualTable corners{{}, std::move(fit->fit.corner_residuals)};
   for (const LegsRow* row : split.calibration_rows) corners.images.push_back(row->image);  // the fit's image order
-  return PixelOutcome{SummarizeSessionPixelFit(*fit, two_stage),
+  return PixelOutcome{SummarizeSessionPixelFit(*fit, *two_stage),
                       intrinsics ? std::optional<Camera>(fit->fit.camera) : std::nullopt,
                       fit->fit.camera,
                       fit->fit.target_scale,
@@ -102,13 +102,9 @@ StatusOr<PointOutcome> ApplyFromPoints(const std::string& dir, const OpenSession
   for (const LegsRow* row : split.calibration_rows) setup.calibration_poses.push_back(row->image);
   for (const LegsRow* row : split.held_out) setup.held_out_poses.push_back(row->image);
   StatusOr<SessionPointFit> fit = FitSessionFromPoints(setup, *result, request, outliers, hooks);
-  if (!fit.ok()) return fit.status().cancelled() ? fit.status() : fit.status().AsFailure();
-  const TwoStageComparison two_stage = TwoStageFigures(*result, *validation);
-  if (Status s = AdoptJointFit(in, split, fit->fit.calibration, fit->calibration_poses, fit->held_out_poses, result,
-                               held_out, validation);
-      !s.ok())
-    return s;
-  PointFitSummary summary = SummarizeSessionPointFit(*fit, two_stage);
+  StatusOr<TwoStageComparison> two_stage = AdoptJointFit(in, split, fit, result, held_out, validation);
+  if (!two_stage.ok()) return two_stage.status();
+  PointFitSummary summary = SummarizeSessionPointFit(*fit, *two_stage);
   return PointOutcome{std::move(summary), PointsResults{std::move(*fit), std::move(setup.calibration_poses)}};
 }
 
