@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/calibration.h"
+#include "core/joint_fit_settings.h"
 #include "core/pose.h"
 #include "core/robot.h"
 #include "vision/camera.h"
@@ -26,31 +27,18 @@
 
 namespace hexcal {
 
-struct PixelCalibrationOptions {
+struct PixelCalibrationOptions : JointFitSettings {
   bool estimate_focal = true;             // a common scale of fx and fy
   bool estimate_principal_point = false;  // cx, cy
   bool estimate_target_scale = false;     // the printed board's scale
-  double leg_sigma = 0.001;               // standard deviation of a leg reading, robot unit (> 0)
   double corner_sigma_px = 0.1;           // of a corner without an edge-fit covariance, pixels (> 0)
-  // > 0: a Cauchy loss of this many σ_L on the leg residuals, so that one
-  // wrong reading cannot pull the fit (the screening pass; 0: least squares).
-  double leg_cauchy_scale = 0;
-  int max_iterations = 100;  // Levenberg–Marquardt iterations
-  // 1: Ceres sums the cost and gradient of a multi-threaded evaluation in the
-  // order its threads finish, so the result would differ in the 8th digit from
-  // run to run; one thread keeps every calibration and report reproducible.
-  int num_threads = 1;  // 0: every core
 
   bool IsValid(std::string* error) const {
-    auto fail = [&](const char* message) {
-      if (error) *error = message;
+    if (!JointFitSettings::IsValid(error)) return false;
+    if (!(corner_sigma_px > 0) || !std::isfinite(corner_sigma_px)) {
+      if (error) *error = "corner_sigma_px must be positive";
       return false;
-    };
-    if (!(leg_sigma > 0) || !std::isfinite(leg_sigma)) return fail("leg_sigma must be positive");
-    if (!(corner_sigma_px > 0) || !std::isfinite(corner_sigma_px)) return fail("corner_sigma_px must be positive");
-    if (max_iterations < 1) return fail("max_iterations must be at least 1");
-    if (!(leg_cauchy_scale >= 0) || !std::isfinite(leg_cauchy_scale)) return fail("leg_cauchy_scale must be 0 or more");
-    if (num_threads < 0) return fail("num_threads must be 0 (every core) or more");
+    }
     return true;
   }
 };
