@@ -278,7 +278,7 @@ TEST(Calibration, NonFiniteInputAndBadOptionsAreErrors) {
   CalibrationOptions options;
   options.loss = RobustLoss::kHuber;
   options.loss_scale = 0;
-  EXPECT_THAT(CalibrateError(nominal, measurements, options), HasSubstr("loss scale must be positive"));
+  EXPECT_THAT(CalibrateError(nominal, measurements, options), HasSubstr("loss_scale: must be at least 1e-09, got 0"));
   options = {};
   options.weighted = true;
   options.noise = {0, 0, 0};

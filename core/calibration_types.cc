@@ -23,12 +23,37 @@ const char* RobustLossName(RobustLoss loss) {
   return "?";
 }
 
+const OptionTable<CalibrationOptions>& CalibrationOptionSpecs() {
+  static const OptionTable<CalibrationOptions> table = [] {
+    using Options = CalibrationOptions;
+    OptionSpec<Options> loss;
+    loss.key = "loss";
+    loss.label = "Robust loss";
+    loss.type = OptionType::kChoice;
+    for (RobustLoss kind : {RobustLoss::kNone, RobustLoss::kHuber, RobustLoss::kCauchy})
+      loss.choices.push_back(RobustLossName(kind));
+    loss.help = "robust loss of the residuals, from loss_scale on";
+    loss.get_choice = [](const Options& o) { return std::string(RobustLossName(o.loss)); };
+    loss.set_choice = [](Options& o, const std::string& v) { o.loss = *ParseRobustLoss(v); };
+    return OptionTable<Options>{
+        loss,
+        NumberOption<Options>("loss_scale", "Loss scale", OptionType::kNumber, "", 1e-9, 1e9,
+                              "where the loss starts: a leg-length error (robot unit), or, weighted, a number of "
+                              "standard deviations",
+                              [](Options& o) -> double& { return o.loss_scale; }),
+        NumberOption<Options>("weighted", "Weighted", OptionType::kFlag, "", 0, 1,
+                              "weight each residual by its standard deviation under the noise model",
+                              [](Options& o) -> bool& { return o.weighted; })};
+  }();
+  return table;
+}
+
 bool CalibrationOptions::IsValid(std::string* error) const {
   auto fail = [error](const std::string& message) {
     *error = message;
     return false;
   };
-  if (!std::isfinite(loss_scale) || loss_scale <= 0) return fail("loss scale must be positive");
+  if (Status s = CheckOptionRanges(CalibrationOptionSpecs(), *this); !s.ok()) return fail(s.message());
   if (max_iterations < 1) return fail("max_iterations must be at least 1");
   if (!(function_tolerance > 0) || !(parameter_tolerance > 0)) return fail("solver tolerances must be positive");
   if (!(rank_tolerance > 0 && rank_tolerance < 1)) return fail("rank_tolerance must be in (0, 1)");

@@ -17,6 +17,7 @@
 
 #include "core/identification.h"
 #include "core/noise_model.h"
+#include "core/option_spec.h"
 #include "core/outlier_screening.h"
 
 namespace hexcal {
@@ -55,8 +56,14 @@ struct CalibrationOptions {
   int num_threads = 0;        // legs solved at once; 0 = every core
   OutlierScreening outliers;  // off by default; needs weighted and loss none
 
+  // The ranges of CalibrationOptionSpecs(), then the rules between options.
   bool IsValid(std::string* error) const;
 };
+
+// The descriptors of the options `hexcal calibrate --measurements` takes
+// (loss, loss_scale, weighted): IsValid checks their ranges, and the CLI
+// flags and the table in docs/cli.md are made from them.
+const OptionTable<CalibrationOptions>& CalibrationOptionSpecs();
 
 // A direction in a leg's parameter space (a_x a_y a_z b_x b_y b_z l) that the
 // poses barely constrain: a unit vector and its singular value ratio.

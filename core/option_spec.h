@@ -24,7 +24,13 @@
 namespace hexcal {
 
 // kChoiceList: one or more of the choices, as "a,b" in text (a repeated CLI flag).
-enum class OptionType { kInteger, kNumber, kFlag, kChoice, kChoiceList };
+// kText: free text whose form the step that takes it checks ("8:41", a list
+// of names and files), naming the option by its key (Status::BadOption).
+enum class OptionType { kInteger, kNumber, kFlag, kChoice, kChoiceList, kText };
+
+// The most threads a --threads option takes (0 = every core): a typo such as
+// 100000 must stop at once (issue 13).
+constexpr int kMaxThreads = 256;
 
 template <typename T>
 struct OptionSpec {
@@ -35,10 +41,13 @@ struct OptionSpec {
   double min = 0, max = 0;  // inclusive range of a number or integer
   std::string help;         // one sentence a user can act on
   std::vector<std::string> choices;  // kChoice, kChoiceList: the accepted names
+  // A number that may be left unset (get_number gives NaN then): what
+  // applies instead ("the controller's"). Empty: the value is always set.
+  std::string unset;
   // Numbers, integers and flags (1/0) read and write through these ...
   std::function<double(const T&)> get_number;
   std::function<void(T&, double)> set_number;
-  // ... choices (and comma-joined choice lists) through these.
+  // ... choices, comma-joined choice lists and text through these.
   std::function<std::string(const T&)> get_choice;
   std::function<void(T&, const std::string&)> set_choice;
   std::string flag;  // CLI flag when it is not derived from the key
@@ -79,6 +88,47 @@ OptionSpec<T> NumberOption(std::string key, std::string label, OptionType type, 
   return spec;
 }
 
+// A number option that may be left unset, bound to a std::optional field of
+// T; `unset` says what applies then ("the controller's").
+//
+//   OptionalNumberOption<AcquireOptions>("settle", "Settle time", "s", 0, 600, "...", "the controller's",
+//                                        [](AcquireOptions& o) -> std::optional<double>& { return o.settle_seconds; });
+template <typename T, typename Field>
+OptionSpec<T> OptionalNumberOption(std::string key, std::string label, std::string unit, double min, double max,
+                                   std::string help, std::string unset, Field field) {
+  OptionSpec<T> spec;
+  spec.key = std::move(key);
+  spec.label = std::move(label);
+  spec.type = OptionType::kNumber;
+  spec.unit = std::move(unit);
+  spec.min = min;
+  spec.max = max;
+  spec.help = std::move(help);
+  spec.unset = std::move(unset);
+  spec.get_number = [field](const T& s) { return field(const_cast<T&>(s)).value_or(std::nan("")); };
+  spec.set_number = [field](T& s, double v) { field(s) = v; };
+  return spec;
+}
+
+// A text option bound to a std::string field of T.
+template <typename T, typename Field>
+OptionSpec<T> TextOption(std::string key, std::string label, std::string help, Field field) {
+  OptionSpec<T> spec;
+  spec.key = std::move(key);
+  spec.label = std::move(label);
+  spec.type = OptionType::kText;
+  spec.help = std::move(help);
+  spec.get_choice = [field](const T& s) { return field(const_cast<T&>(s)); };
+  spec.set_choice = [field](T& s, const std::string& v) { field(s) = v; };
+  return spec;
+}
+
+// Whether the option has a value in `values` (an optional number may not).
+template <typename T>
+bool OptionIsSet(const OptionSpec<T>& spec, const T& values) {
+  return spec.unset.empty() || !std::isnan(spec.get_number(values));
+}
+
 // The flag a user types: a flag option that is on by default is turned off
 // with --no-KEY.
 template <typename T>
@@ -95,10 +145,13 @@ const OptionSpec<T>* FindOption(const OptionTable<T>& table, const std::string& 
   return nullptr;
 }
 
-// The value of one option as text: numbers in their shortest exact form.
+// The value of one option as text: numbers in their shortest exact form, ""
+// for an optional number that is not set.
 template <typename T>
 std::string OptionText(const OptionSpec<T>& spec, const T& values) {
-  if (spec.type == OptionType::kChoice || spec.type == OptionType::kChoiceList) return spec.get_choice(values);
+  if (spec.type == OptionType::kChoice || spec.type == OptionType::kChoiceList || spec.type == OptionType::kText)
+    return spec.get_choice(values);
+  if (!OptionIsSet(spec, values)) return "";
   const double value = spec.get_number(values);
   if (spec.type == OptionType::kFlag) return value != 0 ? "true" : "false";
   return FormatNumber(value);
@@ -153,21 +206,35 @@ inline Status CheckIntegerText(const std::string& text, double value, double min
   return Status::BadInput(where + ": must be at most " + FormatNumber(max) + unit + ", got " + text);
 }
 
+// What is wrong with a number against the option's inclusive range
+// ("must be at most 600 s, got 900"), or "" when it is within.
+template <typename T>
+std::string OptionRangeProblem(const OptionSpec<T>& spec, double value) {
+  const std::string unit = spec.unit.empty() ? "" : " " + spec.unit;
+  if (!(value >= spec.min)) return "must be at least " + FormatNumber(spec.min) + unit + ", got " + FormatNumber(value);
+  if (!(value <= spec.max)) return "must be at most " + FormatNumber(spec.max) + unit + ", got " + FormatNumber(value);
+  return "";
+}
+
 // A number against the option's inclusive range; the error starts with `where`.
 template <typename T>
 Status CheckOptionRange(const OptionSpec<T>& spec, double value, const std::string& where) {
-  const std::string unit = spec.unit.empty() ? "" : " " + spec.unit;
-  if (!(value >= spec.min))
-    return Status::BadInput(where + ": must be at least " + FormatNumber(spec.min) + unit + ", got " +
-                            FormatNumber(value));
-  if (!(value <= spec.max))
-    return Status::BadInput(where + ": must be at most " + FormatNumber(spec.max) + unit + ", got " +
-                            FormatNumber(value));
-  return Status::Ok();
+  const std::string problem = OptionRangeProblem(spec, value);
+  return problem.empty() ? Status::Ok() : Status::BadInput(where + ": " + problem);
+}
+
+// The range as the docs show it: "7 – 100000", "≥ 0".
+template <typename T>
+std::string OptionRangeText(const OptionSpec<T>& spec) {
+  return std::isinf(spec.max) ? "≥ " + FormatNumber(spec.min) : FormatNumber(spec.min) + " – " + FormatNumber(spec.max);
 }
 
 template <typename T>
 Status ApplyOptionText(const OptionSpec<T>& spec, const std::string& text, T* values, const std::string& where) {
+  if (spec.type == OptionType::kText) {
+    spec.set_choice(*values, text);
+    return Status::Ok();
+  }
   if (spec.type == OptionType::kChoice || spec.type == OptionType::kChoiceList) {
     const std::vector<std::string> items =
         spec.type == OptionType::kChoice ? std::vector<std::string>{text} : SplitOptionList(text);
@@ -183,7 +250,7 @@ Status ApplyOptionText(const OptionSpec<T>& spec, const std::string& text, T* va
     return Status::Ok();
   }
   StatusOr<double> value = ParseNumber(text);
-  if (!value.ok()) return Status::BadInput(where + ": expected a finite number");
+  if (!value.ok()) return Status::BadInput(where + ": expected a finite number, got " + Excerpt(text));
   if (spec.type == OptionType::kInteger && *value != std::floor(*value))
     return Status::BadInput(where + ": expected a whole number, got " + FormatNumber(*value));
   if (spec.type == OptionType::kInteger) {
@@ -198,12 +265,16 @@ Status ApplyOptionText(const OptionSpec<T>& spec, const std::string& text, T* va
 // The range check of a numeric option's value that code set rather than text
 // gave: a core IsValid checks its struct against the descriptor the CLI, the
 // settings files and the GUI read the option with, so the range is written
-// once (issue 37). NaN is out of every range.
+// once (issue 37). The error names the option by its key
+// (Status::BadOption), for each front end to show in its own words. NaN is
+// out of every range; an optional number that is not set is in it.
 template <typename T>
-Status CheckOptionRanges(const OptionTable<T>& table, const T& values, const std::string& prefix = "") {
+Status CheckOptionRanges(const OptionTable<T>& table, const T& values) {
   for (const OptionSpec<T>& spec : table) {
     if (spec.type != OptionType::kInteger && spec.type != OptionType::kNumber) continue;
-    if (Status s = CheckOptionRange(spec, spec.get_number(values), prefix + spec.key); !s.ok()) return s;
+    if (!OptionIsSet(spec, values)) continue;
+    const std::string problem = OptionRangeProblem(spec, spec.get_number(values));
+    if (!problem.empty()) return Status::BadOption(spec.key, problem);
   }
   return Status::Ok();
 }
@@ -223,6 +294,7 @@ OptionSpec<Outer> NestedOption(const OptionSpec<Inner>& spec, Access inner) {
   nested.max = spec.max;
   nested.help = spec.help;
   nested.choices = spec.choices;
+  nested.unset = spec.unset;
   nested.flag = spec.flag;
   nested.file_allowed = spec.file_allowed;
   if (spec.get_number) {
@@ -257,18 +329,20 @@ Status ApplyOptionEntries(const OptionTable<T>& table, const std::vector<std::pa
 // The docs table: | key | flag | type | unit | range | default | meaning |.
 template <typename T>
 std::string OptionsMarkdownTable(const OptionTable<T>& table, const std::string& flag_prefix = "") {
-  static const char* kTypeNames[] = {"integer", "number", "flag", "choice", "list of choices"};
+  static const char* kTypeNames[] = {"integer", "number", "flag", "choice", "list of choices", "text"};
   const T defaults{};
   std::string text = "| key | flag | type | unit | range | default | meaning |\n|---|---|---|---|---|---|---|\n";
   for (const OptionSpec<T>& spec : table) {
     std::string range;
     if (spec.type == OptionType::kChoice || spec.type == OptionType::kChoiceList) {
       for (const std::string& choice : spec.choices) range += (range.empty() ? "" : ", ") + choice;
-    } else if (spec.type != OptionType::kFlag) {
-      range = std::isinf(spec.max) ? "≥ " + FormatNumber(spec.min) : FormatNumber(spec.min) + " – " + FormatNumber(spec.max);
+    } else if (spec.type == OptionType::kInteger || spec.type == OptionType::kNumber) {
+      range = OptionRangeText(spec);
     }
-    text += "| `" + spec.key + "` | `" + OptionCliFlag(spec, flag_prefix) + "` | " + kTypeNames[static_cast<int>(spec.type)] +
-            " | " + spec.unit + " | " + range + " | " + OptionText(spec, defaults) + " | " + spec.help + " |\n";
+    const std::string value = OptionIsSet(spec, defaults) ? OptionText(spec, defaults) : spec.unset;
+    text += "| `" + spec.key + "` | `" + OptionCliFlag(spec, flag_prefix) + "` | " +
+            kTypeNames[static_cast<int>(spec.type)] + " | " + spec.unit + " | " + range + " | " + value + " | " +
+            spec.help + " |\n";
   }
   return text;
 }

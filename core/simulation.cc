@@ -195,27 +195,38 @@ SimulationPoseSet FixedPoseSet(const std::string& name, std::vector<Vector6d> po
 
 const OptionTable<SimulationOptions>& SimulationOptionSpecs() {
   static const OptionTable<SimulationOptions> table = [] {
-    return OptionTable<SimulationOptions>{NumberOption<SimulationOptions>(
-        "runs", "Runs", OptionType::kInteger, "", 1, 1000000, "repetitions",
-        [](SimulationOptions& o) -> int& { return o.runs; })};
+    using Options = SimulationOptions;
+    return OptionTable<Options>{
+        NumberOption<Options>("runs", "Runs", OptionType::kInteger, "", 1, 1000000,
+                              "repetitions: a true robot's measurements drawn anew and calibrated, per set",
+                              [](Options& o) -> int& { return o.runs; }),
+        NumberOption<Options>("seed", "Seed", OptionType::kInteger, "", 0, 9007199254740992.0,
+                              "seed of the true robot, the random poses and the noise; the numbers do not depend on "
+                              "the threads",
+                              [](Options& o) -> uint64_t& { return o.seed; }),
+        NumberOption<Options>("perturb", "Perturbation", OptionType::kNumber, "robot unit", 0, 1000000,
+                              "half-width of the uniform perturbation of each of the 42 parameters (the true robot)",
+                              [](Options& o) -> double& { return o.perturb; }),
+        NumberOption<Options>("threads", "Threads", OptionType::kInteger, "threads", 0, kMaxThreads,
+                              "runs at once; 0 = every core", [](Options& o) -> int& { return o.num_threads; })};
   }();
   return table;
 }
 
-bool SimulationOptions::IsValid(std::string* error) const {
-  if (Status s = CheckOptionRanges(SimulationOptionSpecs(), *this); !s.ok()) {
-    *error = s.message();
-    return false;
-  }
-  if (!std::isfinite(perturb) || perturb < 0) {
-    *error = "perturbation must be finite and non-negative";
-    return false;
-  }
-  if (num_threads < 0) {
-    *error = "num_threads must be >= 0 (0 = every core)";
-    return false;
-  }
-  return noise.IsValid(error) && calibration.IsValid(error);
+Status SimulationOptions::Check() const {
+  if (Status s = CheckOptionRanges(SimulationOptionSpecs(), *this); !s.ok()) return s;
+  std::string error;
+  if (!noise.IsValid(&error) || !calibration.IsValid(&error)) return Status::BadInput(error);
+  return Status::Ok();
+}
+
+bool IsSweepRange(double min_poses, double max_poses) {
+  return min_poses >= kParamsPerLeg && max_poses >= min_poses && max_poses <= kMaxSweepPoses &&
+         min_poses == std::floor(min_poses) && max_poses == std::floor(max_poses);
+}
+
+std::string SweepRangeRule() {
+  return std::to_string(kParamsPerLeg) + " <= MIN <= MAX <= " + std::to_string(kMaxSweepPoses);
 }
 
 Robot PerturbedRobot(const Robot& nominal, double perturb, uint64_t seed) {
@@ -245,8 +256,7 @@ std::vector<Measurement> SimulateMeasurements(const Robot& true_robot, const std
 
 StatusOr<SimulationResult> Simulate(const Robot& nominal, const std::vector<SimulationPoseSet>& sets,
                                     const SimulationOptions& options, const JobHooks& hooks) {
-  std::string message;
-  if (!options.IsValid(&message)) return Status::BadInput("simulation options: " + message);
+  if (Status s = options.Check(); !s.ok()) return s;
   if (Status s = CheckSets(sets); !s.ok()) return s;
   StudySizes sizes(1);
   for (const SimulationPoseSet& set : sets) sizes[0].push_back(set.Size());
@@ -262,12 +272,11 @@ StatusOr<SimulationResult> Simulate(const Robot& nominal, const std::vector<Simu
 
 StatusOr<SweepResult> SimulateSweep(const Robot& nominal, const std::vector<SimulationPoseSet>& sets, int min_poses,
                                     int max_poses, const SimulationOptions& options, const JobHooks& hooks) {
-  std::string message;
-  if (!options.IsValid(&message)) return Status::BadInput("simulation options: " + message);
+  if (Status s = options.Check(); !s.ok()) return s;
   if (Status s = CheckSets(sets); !s.ok()) return s;
-  if (min_poses < kParamsPerLeg || max_poses < min_poses || max_poses > 10000) {
-    return Status::BadInput("sweep " + std::to_string(min_poses) + ":" + std::to_string(max_poses) +
-                            ": the numbers of poses must satisfy 7 <= min <= max <= 10000");
+  if (!IsSweepRange(min_poses, max_poses)) {
+    return Status::BadOption("sweep", std::to_string(min_poses) + ":" + std::to_string(max_poses) +
+                                          " is not MIN:MAX with " + SweepRangeRule());
   }
   StudySizes sizes;
   for (int n = min_poses; n <= max_poses; ++n) {

@@ -61,12 +61,22 @@ struct SimulationOptions {
   CalibrationOptions calibration;
   int num_threads = 0;  // runs at once; 0 = every core
 
-  bool IsValid(std::string* error) const;
+  // The ranges of SimulationOptionSpecs(), then the noise and the
+  // calibration; a range error names the option by its key (Status::option()).
+  Status Check() const;
 };
 
-// The descriptor of `runs` (1..1000000): IsValid checks it, and `hexcal
-// simulate --runs` takes its range and help from it.
+// The descriptors of runs, seed, perturb and threads: Check() checks them,
+// and `hexcal simulate`'s option table (workflow/simulate_options.h) takes
+// them whole.
 const OptionTable<SimulationOptions>& SimulationOptionSpecs();
+
+// Fig. 15's numbers of poses MIN..MAX: whole numbers with
+// 7 <= MIN <= MAX <= kMaxSweepPoses (each n is one more calibration per run).
+constexpr int kMaxSweepPoses = 10000;
+bool IsSweepRange(double min_poses, double max_poses);
+// "7 <= MIN <= MAX <= 10000", for the messages about a sweep.
+std::string SweepRangeRule();
 
 struct SetError {
   std::string name;

@@ -139,7 +139,9 @@ TEST(Simulation, SweepNestsTheSetsAndSkipsShortOnes) {
   EXPECT_EQ(sweep->points[2].sets[0].poses, 10);
   EXPECT_TRUE(sweep->points[1].sets[1].ratio_to_random.has_value());
 
-  EXPECT_THAT(SimulateSweep(nominal, sets, 6, 10, SmallStudy(1)).status().message(), HasSubstr("7 <= min"));
+  const Status too_few = SimulateSweep(nominal, sets, 6, 10, SmallStudy(1)).status();
+  EXPECT_EQ(too_few.message(), "sweep: 6:10 is not MIN:MAX with 7 <= MIN <= MAX <= 10000");
+  EXPECT_EQ(too_few.option(), "sweep");
 }
 
 TEST(Simulation, BadRequestsAreErrors) {

@@ -57,15 +57,50 @@ class Status {
     return Status(std::move(message), StatusKind::kCancelled);
   }
 
+  // A bad value of one option (out of its range, not one of its choices, in
+  // the wrong form), named by its descriptor key (core/option_spec.h):
+  // "settle: must be at most 600 s, got 900". The lower layers know the key,
+  // not how a front end spells the option: the CLI shows it as its flag, the
+  // GUI as its label (WithOptionName).
+  static Status BadOption(const std::string& key, std::string detail) {
+    return BadInput(std::move(detail)).AboutOption(key);
+  }
+
   bool ok() const { return kind_ == StatusKind::kOk; }
   bool cancelled() const { return kind_ == StatusKind::kCancelled; }
   StatusKind kind() const { return kind_; }
   const std::string& message() const { return message_; }
+  // The key of the option the error is about ("" for none); the message then
+  // starts with "key: ".
+  const std::string& option() const { return option_; }
+
+  // The same error, about the option `key`: "key: " before its message (a
+  // file the option named could not be read, a count the option asked for
+  // could not be met).
+  Status AboutOption(const std::string& key) const {
+    Status about = *this;
+    if (ok()) return about;
+    about.message_ = key + ": " + message_;
+    about.option_ = key;
+    return about;
+  }
+
+  // The same error with its option called `name` (a flag, a label) instead
+  // of its key; any other error is returned as it is.
+  Status WithOptionName(const std::string& name) const {
+    Status named = *this;
+    if (option_.empty()) return named;
+    named.message_ = name + message_.substr(option_.size());
+    named.option_.clear();
+    return named;
+  }
 
   // The same error, its message after `prefix` (e.g. the file it is about).
   Status Prefixed(const std::string& prefix) const {
     Status prefixed = *this;
-    if (!ok()) prefixed.message_ = prefix + message_;
+    if (ok()) return prefixed;
+    prefixed.message_ = prefix + message_;
+    prefixed.option_.clear();  // the message no longer starts with the key
     return prefixed;
   }
 
@@ -81,14 +116,16 @@ class Status {
   // The same error as a failed computation: for a step whose input was
   // accepted but whose work did not succeed (a cancel stays a cancel).
   Status AsFailure() const {
-    if (ok() || cancelled() || kind_ == StatusKind::kIo || kind_ == StatusKind::kBusy) return *this;
-    return Failed(message_);
+    Status failure = *this;
+    if (kind_ == StatusKind::kBadInput) failure.kind_ = StatusKind::kFailed;
+    return failure;
   }
 
  private:
   Status(std::string message, StatusKind kind) : message_(std::move(message)), kind_(kind) {}
   std::string message_;
   StatusKind kind_ = StatusKind::kOk;
+  std::string option_;  // AboutOption's key; message_ starts with it and ": "
 };
 
 template <typename T>

@@ -106,32 +106,49 @@ StatusOr<Selection> SelectByIoops(const PlanningModel& model, const std::vector<
 }
 
 Status CheckStudyInput(const std::vector<Measurement>& measurements, const SubsetStudyOptions& options) {
-  std::string error;
-  if (!options.IsValid(&error)) return Status::BadInput(error);
+  if (Status s = options.Check(); !s.ok()) return s;
   const int total = static_cast<int>(measurements.size());
   if (options.select >= total) {
-    return Status::BadInput("--select " + std::to_string(options.select) +
-                            " needs more than that many measured poses " +
-                            "(some must be left out to validate); the session has " + std::to_string(total));
+    return Status::BadOption("select", std::to_string(options.select) + " needs more than that many measured poses " +
+                                           "(some must be left out to validate); the session has " +
+                                           std::to_string(total));
   }
   return Status::Ok();
 }
 
 }  // namespace
 
-bool SubsetStudyOptions::IsValid(std::string* error) const {
-  if (select < kParamsPerLeg) {
-    *error = "--select must be at least 7 (the parameters of a leg), got " + std::to_string(select);
-  } else if (subsets < 1) {
-    *error = "--subsets must be at least 1, got " + std::to_string(subsets);
-  } else if (selection_starts < 1) {
-    *error = "--starts must be at least 1, got " + std::to_string(selection_starts);
-  } else if (num_threads < 0) {
-    *error = "--threads must be >= 0 (0 = every core)";
-  } else {
-    return calibration.IsValid(error);
-  }
-  return false;
+const OptionTable<SubsetStudyOptions>& SubsetStudyOptionSpecs() {
+  static const OptionTable<SubsetStudyOptions> table = [] {
+    using Options = SubsetStudyOptions;
+    // Each leg's 7 parameters need 7 poses.
+    return OptionTable<Options>{
+        NumberOption<Options>("select", "Poses per subset (N)", OptionType::kInteger, "poses", kParamsPerLeg, 100000,
+                              "poses in the selected and in each random subset (the paper's 13); fewer than the "
+                              "session's measured poses",
+                              [](Options& o) -> int& { return o.select; }),
+        NumberOption<Options>("subsets", "Random subsets (K)", OptionType::kInteger, "", 1, 1000000,
+                              "random subsets of N poses the selected one is ranked against (the paper's 6000)",
+                              [](Options& o) -> int& { return o.subsets; }),
+        NumberOption<Options>("starts", "IOOPS starts", OptionType::kInteger, "", 1, 1000,
+                              "IOOPS runs from this many random initial subsets; the best on the criterion is kept",
+                              [](Options& o) -> int& { return o.selection_starts; }),
+        NumberOption<Options>(
+            "seed", "Seed", OptionType::kInteger, "", 0, 9007199254740992.0,
+            "seed of the IOOPS starts and the random subsets; the numbers do not depend on the threads",
+            [](Options& o) -> uint64_t& { return o.seed; }),
+        NumberOption<Options>("threads", "Threads", OptionType::kInteger, "threads", 0, kMaxThreads,
+                              "subsets calibrated at once; 0 = every core",
+                              [](Options& o) -> int& { return o.num_threads; })};
+  }();
+  return table;
+}
+
+Status SubsetStudyOptions::Check() const {
+  if (Status s = CheckOptionRanges(SubsetStudyOptionSpecs(), *this); !s.ok()) return s;
+  std::string error;
+  if (!calibration.IsValid(&error)) return Status::BadInput(error);
+  return Status::Ok();
 }
 
 SubsetOutcome EvaluateSubset(const Robot& nominal, const std::vector<Measurement>& measurements,

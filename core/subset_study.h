@@ -33,6 +33,7 @@
 #include "core/job_hooks.h"
 #include "core/measurements.h"
 #include "core/observability.h"
+#include "core/option_spec.h"
 
 namespace hexcal {
 
@@ -54,8 +55,15 @@ struct SubsetStudyOptions {
   CalibrationOptions calibration;
   int num_threads = 0;  // subsets at once; 0 = every core
 
-  bool IsValid(std::string* error) const;
+  // The ranges of SubsetStudyOptionSpecs(), then the calibration's options;
+  // a range error names the option by its key (Status::option()).
+  Status Check() const;
 };
+
+// The descriptors of select, subsets, starts, seed and threads: Check()
+// checks them, and the study's option table (workflow/study_options.h) takes
+// them whole for the CLI flags and the GUI form.
+const OptionTable<SubsetStudyOptions>& SubsetStudyOptionSpecs();
 
 // One subset, calibrated and validated on the measurements it leaves out.
 struct SubsetOutcome {

@@ -42,7 +42,6 @@ const std::vector<std::pair<QRegularExpression, QString>>& Phrases() {
         {R"(--noise-\* match)", "the session's noise model (session.yaml) matches"},
         {R"(run hexcal study again)", "run the study again (Validate step, study tab)"},
         {R"( \(hexcal report shows it\))", ""},
-        {R"(fewer than --poses (\d+))", "fewer than the \\1 poses asked (Poses)"},
     };
     std::vector<std::pair<QRegularExpression, QString>> made;
     for (const auto& [pattern, replacement] : table) made.emplace_back(QRegularExpression(pattern), replacement);

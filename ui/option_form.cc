@@ -4,8 +4,9 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
-#include <QVBoxLayout>
 #include <QLabel>
+#include <QLineEdit>
+#include <QVBoxLayout>
 #include <algorithm>
 #include <cmath>
 
@@ -97,6 +98,10 @@ OptionRow MakeOptionRow(OptionType type, const std::string& key, const std::stri
            [box](const std::string& text) { box->setChecked(text == "true" || text == "1"); }};
   } else if (type == OptionType::kChoice) {
     row = ChoiceRow(choices, editable, value);
+  } else if (type == OptionType::kText) {
+    auto* line = new QLineEdit(QString::fromStdString(value));
+    row = {line, [line] { return line->text().toStdString(); },
+           [line](const std::string& text) { line->setText(QString::fromStdString(text)); }};
   } else {
     row = ChoiceListRow(choices, value);
   }

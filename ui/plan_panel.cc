@@ -28,6 +28,7 @@
 #include "ui/charts.h"
 #include "ui/error_dialog.h"
 #include "ui/gui_terms.h"
+#include "ui/option_form.h"
 #include "ui/plan_options.h"
 #include "ui/plan_visibility.h"
 #include "ui/quantity_format.h"
@@ -35,7 +36,6 @@
 #include "ui/text_wrap.h"
 #include "workflow/plan_captures.h"
 #include "workflow/plan_step.h"
-#include "session/readings_table.h"
 #include "workflow/session_plan_model.h"
 
 namespace hexcal::ui {
@@ -253,10 +253,9 @@ void PlanPanel::Finish(const Status& status, const workflow::PlanOutcome& outcom
   const PlanResult& result = outcome.plan;
   if (status.cancelled()) return SetOutcome("cancelled: the plan is unchanged.");
   if (!status.ok()) {
-    SetOutcome("failed: " + QString::fromStdString(status.message()));
-    return ShowError(
-        this, "Plan",
-        QString::fromStdString(status.message()) + "\nTry more candidates, another candidate kind, or fewer poses.");
+    const QString message = QString::fromStdString(WithOptionLabel(status, workflow::PlanSetupOptions()).message());
+    SetOutcome("failed: " + message);
+    return ShowError(this, "Plan", message + "\nTry more candidates, another candidate kind, or fewer poses.");
   }
   if (!ApplyPlan(result.poses, &plan_at_start_)) return;
   StatusOr<SessionLock> lock = SessionLock::Acquire(session_->Dir().toStdString(), LockWait::kBriefly);

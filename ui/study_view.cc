@@ -184,7 +184,8 @@ void StudyView::Finish(const std::shared_ptr<StatusOr<workflow::StudyOutcome>>& 
   if (!outcome->ok()) {
     if (outcome->status().cancelled()) return SetOutcome("cancelled: study/ is unchanged.");
     SetOutcome("failed.");
-    return ShowError(this, "Section 8 study", QString::fromStdString(outcome->status().message()));
+    const Status said = WithOptionLabel(outcome->status(), workflow::StudyOptions());
+    return ShowError(this, "Section 8 study", QString::fromStdString(said.message()));
   }
   workflow::StudyOutcome& done = **outcome;
   if (Status saved = workflow::SaveSessionStudy(&done, LockWait::kBriefly); !saved.ok()) {

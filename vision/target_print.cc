@@ -294,15 +294,20 @@ std::string TargetPdf(const Target& target) {
   return AssemblePdf(sheet.width_mm, sheet.height_mm, canvas.content());
 }
 
+const OptionTable<TargetPrintOptions>& TargetPrintOptionSpecs() {
+  static const OptionTable<TargetPrintOptions> table = {NumberOption<TargetPrintOptions>(
+      "dpi", "PNG resolution", OptionType::kNumber, "dpi", 50, 1200, "resolution of a PNG print (a PDF is vector)",
+      [](TargetPrintOptions& o) -> double& { return o.dpi; })};
+  return table;
+}
+
 StatusOr<std::string> TargetPng(const Target& target, double dpi) {
-  if (!(dpi >= kMinPrintDpi && dpi <= kMaxPrintDpi))
-    return Status::BadInput("--dpi: " + Fixed(dpi, 1) + " is outside [" + Fixed(kMinPrintDpi, 0) + ", " +
-                            Fixed(kMaxPrintDpi, 0) + "]");
+  if (Status s = CheckOptionRanges(TargetPrintOptionSpecs(), TargetPrintOptions{dpi}); !s.ok()) return s;
   const auto [content_w, content_h] = ContentSize(target);
   const double page_w = content_w + 2 * kPageMarginMm, page_h = content_h + 2 * kPageMarginMm;
   if (std::max(page_w, page_h) * dpi / 25.4 > 30000) {
-    return Status::BadInput("the PNG would be over 30000 pixels on a side at " + Fixed(dpi, 0) +
-                            " dpi; use a lower --dpi");
+    return Status::BadOption(
+        "dpi", "the PNG would be over 30000 pixels on a side at " + Fixed(dpi, 0) + " dpi; choose a lower one");
   }
   PngCanvas canvas(page_w, page_h, dpi);
   DrawTarget(target, kPageMarginMm, kPageMarginMm, canvas);

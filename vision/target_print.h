@@ -13,6 +13,7 @@
 
 #include <string>
 
+#include "core/option_spec.h"
 #include "core/status.h"
 #include "vision/target.h"
 
@@ -30,16 +31,19 @@ std::string DescribeSheet(const PrintSheet& sheet);
 
 // PDF file bytes, on TargetPdfSheet(target).
 std::string TargetPdf(const Target& target);
-// PNG file bytes; error if dpi is outside [50, 1200] or the image would
-// exceed 30000 px on a side.
+// PNG file bytes; error (naming the option `dpi`) if dpi is outside its range
+// (TargetPrintOptionSpecs) or the image would exceed 30000 px on a side.
 StatusOr<std::string> TargetPng(const Target& target, double dpi);
 // By the extension of `path` (.pdf or .png, any case), written atomically.
 Status WriteTargetPrint(const Target& target, const std::string& path, double dpi);
 
-// The PNG resolutions WriteTargetPrint takes, the one range `target print
-// --dpi` and its help show (the help said [30 - 2400], issue 36).
-constexpr double kMinPrintDpi = 50;
-constexpr double kMaxPrintDpi = 1200;
+// How a target is printed: the PNG's resolution. Its descriptor holds the
+// one range WriteTargetPrint takes and `target print --dpi` and its help
+// show (the help said [30 - 2400], issue 36).
+struct TargetPrintOptions {
+  double dpi = 300;  // PNG resolution, dots per inch (a PDF is vector)
+};
+const OptionTable<TargetPrintOptions>& TargetPrintOptionSpecs();
 
 // Lines printed under the target (also in the PDF).
 std::vector<std::string> TargetPrintCaption(const Target& target);

@@ -105,7 +105,8 @@ TEST(TargetPrintTest, WritesByExtensionAndRejectsOthers) {
   EXPECT_TRUE(ReadFileToString(dir.File("t.PDF"))->rfind("%PDF", 0) == 0);
   EXPECT_THAT(WriteTargetPrint(DefaultTarget(), dir.File("t.svg"), 300).message(),
               HasSubstr("must end in .pdf or .png"));
-  EXPECT_THAT(TargetPng(DefaultTarget(), 5000).status().message(), HasSubstr("outside [50, 1200]"));
+  EXPECT_THAT(TargetPng(DefaultTarget(), 5000).status().message(),
+              HasSubstr("dpi: must be at most 1200 dpi, got 5000"));
 }
 
 }  // namespace

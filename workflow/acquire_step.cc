@@ -186,22 +186,6 @@ Status WriteOrCheckTruth(const SimWorld& world, const std::string& dir, uint64_t
 
 }  // namespace
 
-bool AcquireOptions::IsValid(std::string* error) const {
-  if (settle_seconds && !(*settle_seconds >= 0 && *settle_seconds <= 600)) {
-    *error = "--settle must be between 0 and 600 seconds, got " + FormatNumber(*settle_seconds);
-    return false;
-  }
-  if (grab_timeout_ms < 1 || grab_timeout_ms > 600000) {
-    *error = "the grab time-out must be between 1 and 600000 ms, got " + std::to_string(grab_timeout_ms);
-    return false;
-  }
-  if (holdout_every < 0 || holdout_every == 1) {
-    *error = "--holdout-every must be 0 (none) or at least 2, got " + std::to_string(holdout_every);
-    return false;
-  }
-  return true;
-}
-
 const char* PoseStateName(PoseState state) {
   switch (state) {
     case PoseState::kRecorded:
@@ -261,7 +245,7 @@ StatusOr<AcquisitionRig> OpenAcquisitionRig(const std::string& dir, const std::s
 }
 
 StatusOr<AcquireResult> AcquirePlan(const AcquireRequest& request, const JobHooks& hooks) {
-  if (std::string error; !request.options.IsValid(&error)) return Status::BadInput(error);
+  if (Status s = request.options.Check(); !s.ok()) return s;
   // The plan and the session are checked before a sim world writes its truth
   // into the session, or a machine is powered on and homed.
   if (StatusOr<std::vector<Vector6d>> poses = LoadRequestedPoses(request); !poses.ok()) return poses.status();
@@ -275,7 +259,7 @@ StatusOr<AcquireResult> AcquirePlan(const AcquireRequest& request, const JobHook
 StatusOr<AcquireResult> AcquirePlan(const AcquireRequest& request, Controller& controller, FrameSource& camera,
                                     const JobHooks& hooks) {
   const auto start = std::chrono::steady_clock::now();
-  if (std::string error; !request.options.IsValid(&error)) return Status::BadInput(error);
+  if (Status s = request.options.Check(); !s.ok()) return s;
   StatusOr<std::vector<Vector6d>> poses = LoadRequestedPoses(request);
   if (!poses.ok()) return poses.status();
   StatusOr<Robot> robot = LoadSessionRobot(request.session);

@@ -34,25 +34,12 @@
 #include "devices/controller.h"
 #include "devices/device_urls.h"
 #include "devices/frame_source.h"
+#include "workflow/acquire_options.h"
 #include "workflow/plan_captures.h"
 
 namespace hexcal::workflow {
 
 class SimWorld;
-
-struct AcquireOptions {
-  // Waited after each move ends, before the frame, seconds; unset: the
-  // controller's own (Controller::DefaultSettleSeconds: 0 for sim, 0.5 for
-  // LinuxCNC, whose camera needs it or shows the previous pose).
-  std::optional<double> settle_seconds;
-  int grab_timeout_ms = 5000;  // a frame later than this is a failed pose, milliseconds
-  // Every Nth pose of the plan (rows N-1, 2N-1, ...) is recorded with
-  // holdout = 1, kept out of the calibration to validate it; 0 = none.
-  int holdout_every = 0;
-  LockWait wait = LockWait::kNo;  // another writer holds the session: stop, or wait
-
-  bool IsValid(std::string* error) const;
-};
 
 enum class PoseState { kRecorded, kAlreadyRecorded, kFailed };
 const char* PoseStateName(PoseState state);  // "recorded", "already recorded", "failed"

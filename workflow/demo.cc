@@ -149,8 +149,9 @@ Status RecordDemo(const DemoRequest& request, const DemoScene& scene, const Plan
   }
   const Status recorded =
       request.instrument == Instrument::kPoints
-          ? RecordPointDemoSession(scene, PointDemoOptions{request.point_sigma_m / MetresPerUnit(scene.nominal.length_unit)},
-                                   robot_name, plan.poses, held_out, request.out)
+          ? RecordPointDemoSession(
+                scene, PointDemoOptions{request.point_sigma_mm * 1e-3 / MetresPerUnit(scene.nominal.length_unit)},
+                robot_name, plan.poses, held_out, request.out)
           : RecordDemoSession(scene, robot_name, kSimulatedCameraName, plan.poses, held_out, request.out,
                               hooks.progress);
   if (!recorded.ok()) return recorded.AsFailure();
@@ -175,7 +176,7 @@ std::string PlanStepText(const DemoRequest& request) {
 std::string RecordedText(const DemoRequest& request, LengthUnit unit) {
   const std::string count = std::to_string(request.poses + request.holdout);
   if (request.instrument == Instrument::kCamera) return count + " rendered images";
-  const double sigma = request.point_sigma_m / MetresPerUnit(unit);
+  const double sigma = request.point_sigma_mm * 1e-3 / MetresPerUnit(unit);
   return count + " point sets of 4 reflectors (σ " + FormatSignificant(sigma) + " " + LengthUnitName(unit) +
          " per coordinate)";
 }
@@ -224,21 +225,6 @@ Status CalibrateAndCompare(const DemoRequest& request, const DemoScene& scene, S
 }
 
 }  // namespace
-
-Status DemoRequest::Check() const {
-  if (poses < kMinDemoPoses || poses > kMaxDemoPoses) {
-    return Status::BadInput("--poses must be between " + std::to_string(kMinDemoPoses) + " and " +
-                            std::to_string(kMaxDemoPoses) + " (each pose is a rendered image)");
-  }
-  if (holdout < 0 || holdout > kMaxDemoHoldout) {
-    return Status::BadInput("--holdout must be between 0 and " + std::to_string(kMaxDemoHoldout));
-  }
-  if (!(std::abs(focal_error_percent) <= 20))
-    return Status::BadInput("--focal-error must be between -20 and 20 (percent)");
-  if (!(point_sigma_m >= 1e-7 && point_sigma_m <= 1e-3))
-    return Status::BadInput("--point-sigma must be between 0.0001 and 1 (mm)");
-  return Status::Ok();
-}
 
 StatusOr<DemoResult> RunDemo(const DemoRequest& request, const JobHooks& hooks) {
   if (Status s = request.Check(); !s.ok()) return s;

@@ -33,12 +33,6 @@
 
 namespace hexcal::workflow {
 
-// Each demo pose is a rendered image (~0.4 MB) and a row of every table: the
-// bounds keep a typo (--poses 100000: 38 GB) from filling the disk.
-constexpr int kMinDemoPoses = 8;
-constexpr int kMaxDemoPoses = 500;
-constexpr int kMaxDemoHoldout = 500;
-
 struct DemoRequest {
   std::string robot = "inria-left-hand";  // robot file or preset name
   std::string out = "hexcal-demo";        // the session folder to write
@@ -61,14 +55,16 @@ struct DemoRequest {
   bool from_pixels = true;
   // The camera file given to the calibration has fx and fy off by this many
   // percent (the renderer keeps the true ones): a focal error for the
-  // calibration to live with, or, from pixels, to estimate. Within ±20.
+  // calibration to live with, or, from pixels, to estimate.
   double focal_error_percent = 0;
   // kPoints: a laser tracker measures 4 reflectors on the platform instead of
   // the camera seeing the board (point_demo_scene.h), with this σ on each
-  // coordinate, metres.
+  // coordinate, millimetres.
   Instrument instrument = Instrument::kCamera;
-  double point_sigma_m = 0.00002;
+  double point_sigma_mm = 0.02;
 
+  // The ranges of DemoOptions() (workflow/demo_options.h); an error names
+  // the option by its key (Status::option()).
   Status Check() const;
 };
 

@@ -48,7 +48,7 @@ StatusOr<CandidatePool> BuildCandidatePool(const PlanningModel& model, const std
     const int per_set = count > 0 ? count : (continuous ? 2000 : 10000);
     for (size_t k = 0; k < names.size(); ++k) {
       const std::optional<CandidateKind> kind = ParseCandidateKind(names[k]);
-      if (!kind) return Status::BadInput("--candidate-kind: '" + names[k] + "' is not random, uniform or boundary");
+      if (!kind) return Status::BadOption("candidate_kind", "'" + names[k] + "' is not random, uniform or boundary");
       StatusOr<CandidateSet> set = Generate(model.robot, *kind, per_set, seed + 7919 * k, hooks);
       if (!set.ok()) return set.status();
       raw.insert(raw.end(), set->poses.begin(), set->poses.end());
@@ -73,11 +73,11 @@ StatusOr<std::vector<Vector6d>> InitialPoses(const PlanningModel& model, const s
   std::vector<Vector6d> poses;
   if (!kind) {
     StatusOr<std::vector<Vector6d>> file = LoadPoses(init);
-    if (!file.ok()) return file.status().Prefixed("--init: ");
+    if (!file.ok()) return file.status().AboutOption("init");
     poses = *file;
     if (static_cast<int>(poses.size()) != count) {
-      return Status::BadInput("--init: '" + init + "' has " + std::to_string(poses.size()) + " poses, --poses is " +
-                              std::to_string(count));
+      return Status::BadOption("init", "'" + init + "' has " + std::to_string(poses.size()) + " poses; the plan has " +
+                                           std::to_string(count));
     }
     return poses;
   }
@@ -99,9 +99,10 @@ StatusOr<std::vector<Vector6d>> InitialPoses(const PlanningModel& model, const s
     poses.insert(poses.end(), feasible.begin(), feasible.end());
   }
   if (static_cast<int>(poses.size()) < count) {
-    return Status::Failed("--init " + init + ": only " + std::to_string(poses.size()) +
-                          " poses satisfy the robot and measurement constraints, fewer than --poses " +
-                          std::to_string(count));
+    return Status::Failed(init + ": only " + std::to_string(poses.size()) +
+                          " poses satisfy the robot and measurement constraints, fewer than the " +
+                          std::to_string(count) + " asked")
+        .AboutOption("init");
   }
   poses.resize(count);
   return poses;

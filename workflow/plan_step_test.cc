@@ -63,7 +63,7 @@ TEST(PlanSetupOptions, EntriesSetTheFieldsAndRefuseBadValues) {
   };
   EXPECT_EQ(error("poses", "6"), "plan.yaml: planner.poses: must be at least 7 poses, got 6");
   EXPECT_EQ(error("tabu", "2.5"), "plan.yaml: planner.tabu: expected a whole number, got 2.5");
-  EXPECT_EQ(error("keep", "abc"), "plan.yaml: planner.keep: expected a finite number");
+  EXPECT_EQ(error("keep", "abc"), "plan.yaml: planner.keep: expected a finite number, got 'abc'");
   EXPECT_THAT(error("criterion", "O9"), HasSubstr("expected one of O1, O2, O3, O4, D, A, E"));
   EXPECT_THAT(error("candidate_kind", "random,sphere"), HasSubstr("expected one or more of random, uniform"));
   EXPECT_THAT(error("colour", "red"), HasSubstr("planner.colour: unknown key (poses, tabu,"));

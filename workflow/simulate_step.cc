@@ -51,10 +51,10 @@ StatusOr<PoseBox> ParseBox(const std::string& text) {
       if (item.substr(0, a) == kNames[k]) index = k;
     }
     if (index < 0 || a == b)
-      return Status::BadInput("--random-box: '" + item + "' is not NAME:MIN:MAX (x, y, z, q1, q2, q3)");
+      return Status::BadOption("random_box", "'" + item + "' is not NAME:MIN:MAX (x, y, z, q1, q2, q3)");
     StatusOr<double> lo = ParseNumber(item.substr(a + 1, b - a - 1)), hi = ParseNumber(item.substr(b + 1));
     if (!lo.ok() || !hi.ok() || !(*lo < *hi))
-      return Status::BadInput("--random-box: '" + item + "' needs finite MIN < MAX");
+      return Status::BadOption("random_box", "'" + item + "' needs finite MIN < MAX");
     box.bounds[index] = Range{*lo, *hi};
   }
   return box;
@@ -65,13 +65,10 @@ StatusOr<std::pair<int, int>> ParseSweep(const std::string& text) {
   if (colon != std::string::npos) {
     StatusOr<double> lo = ParseNumber(text.substr(0, colon)), hi = ParseNumber(text.substr(colon + 1));
     // Bounds checked before the casts: a double beyond int's range cannot be cast.
-    constexpr double kMaxSweepPoses = 10000;
-    if (lo.ok() && hi.ok() && *lo >= kParamsPerLeg && *hi >= *lo && *hi <= kMaxSweepPoses && *lo == std::floor(*lo) &&
-        *hi == std::floor(*hi)) {
+    if (lo.ok() && hi.ok() && IsSweepRange(*lo, *hi))
       return std::make_pair(static_cast<int>(*lo), static_cast<int>(*hi));
-    }
   }
-  return Status::BadInput("--sweep: '" + text + "' is not MIN:MAX with 7 <= MIN <= MAX <= 10000, e.g. 8:41");
+  return Status::BadOption("sweep", "'" + text + "' is not MIN:MAX with " + SweepRangeRule() + ", e.g. 8:41");
 }
 
 // "random" draws poses in every run, "boundary" is the boundary candidate set
@@ -99,7 +96,7 @@ StatusOr<std::vector<SimulationPoseSet>> ResolveSets(const Robot& robot, const S
       if (cli.poses_given && static_cast<int>(poses.size()) > cli.poses) poses.resize(cli.poses);
       sets.push_back(FixedPoseSet("boundary", std::move(poses)));
     } else if (name.empty()) {
-      return Status::BadInput("--sets: empty entry in '" + cli.sets + "'");
+      return Status::BadOption("sets", "empty entry in '" + cli.sets + "'");
     } else {
       StatusOr<std::vector<Vector6d>> poses = LoadPoses(name);
       if (!poses.ok()) return poses.status();
@@ -265,10 +262,7 @@ Status CheckOutputsFree(const SimulateRequest& request) {
 }
 
 Status CheckRequest(const SimulateRequest& request) {
-  std::string error;
-  if (!request.study.IsValid(&error)) return Status::BadInput(error);
-  if (request.poses < kParamsPerLeg)
-    return Status::BadInput("--poses must be at least 7, got " + std::to_string(request.poses));
+  if (Status s = request.Check(); !s.ok()) return s;
   return CheckOutputsFree(request);
 }
 

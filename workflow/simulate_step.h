@@ -17,23 +17,9 @@
 #include "core/job_hooks.h"
 #include "core/robot.h"
 #include "core/simulation.h"
+#include "workflow/simulate_options.h"
 
 namespace hexcal::workflow {
-
-struct SimulateRequest {
-  std::string robot;                    // robot file or preset name
-  std::string sets = "random,boundary";  // comma-separated: random, boundary or pose CSV files
-  int poses = 18;                       // poses of the random set
-  bool poses_given = false;             // `poses` also trims the boundary set
-  bool weighted = false;                // calibrate with residuals weighted by the study's noise model
-  std::string random_box;               // "x:-5:5,y:-5:5,..." for the random sets
-  std::string sweep;                    // "MIN:MAX" poses for Fig. 15; empty: none
-  std::string csv;                      // table to write; may be empty
-  std::string plots;                    // folder for fig14/fig15 SVG and PNG; may be empty
-  bool force = false;                   // replace an existing `csv` table or `plots` figures
-  SimulationOptions study;              // runs, seed, perturbation, noise, threads
-  std::vector<std::pair<std::string, std::string>> noise_entries;  // over study.noise (NoiseModelOptions)
-};
 
 struct SimulateOutcome {
   SimulateRequest request;  // as resolved (noise applied)

@@ -1,7 +1,5 @@
 #include "workflow/study_options.h"
 
-#include <limits>
-
 #include "core/robot.h"
 
 namespace hexcal::workflow {
@@ -9,12 +7,10 @@ namespace {
 
 using Spec = OptionSpec<StudyRequest>;
 
-// An integer (or, with kFlag, 0/1) option bound to one field of the request.
-template <typename Field>
-Spec Number(std::string key, std::string label, OptionType type, std::string unit, double min, double max,
-            std::string help, Field field) {
-  return NumberOption<StudyRequest>(std::move(key), std::move(label), type, std::move(unit), min, max,
-                                    std::move(help), field);
+// An option whose range is the study's own rule (core/subset_study.h), taken whole.
+Spec Study(const std::string& key) {
+  return NestedOption<StudyRequest>(*FindOption(SubsetStudyOptionSpecs(), key),
+                                    [](StudyRequest& r) -> SubsetStudyOptions& { return r.study; });
 }
 
 std::vector<std::string> CriterionChoices(bool with_none) {
@@ -69,25 +65,14 @@ Spec UnweightedOption() {
 const OptionTable<StudyRequest>& StudyOptions() {
   static const OptionTable<StudyRequest> table = [] {
     OptionTable<StudyRequest> t;
-    t.push_back(Number("select", "Poses per subset (N)", OptionType::kInteger, "poses", kParamsPerLeg, 100000,
-                       "poses in the selected and in each random subset (the paper's 13); fewer than the "
-                       "session's measured poses",
-                       [](StudyRequest& r) -> int& { return r.study.select; }));
-    t.push_back(Number("subsets", "Random subsets (K)", OptionType::kInteger, "", 1, 1000000,
-                       "random subsets of N poses the selected one is ranked against (the paper's 6000)",
-                       [](StudyRequest& r) -> int& { return r.study.subsets; }));
+    t.push_back(Study("select"));
+    t.push_back(Study("subsets"));
     t.push_back(CriterionOption());
     t.push_back(SecondaryOption());
-    t.push_back(Number("starts", "IOOPS starts", OptionType::kInteger, "", 1, 1000,
-                       "IOOPS runs from this many random initial subsets; the best on the criterion is kept",
-                       [](StudyRequest& r) -> int& { return r.study.selection_starts; }));
+    t.push_back(Study("starts"));
     t.push_back(UnweightedOption());
-    t.push_back(Number("seed", "Seed", OptionType::kInteger, "", 0, 9007199254740992.0,
-                       "seed of the IOOPS starts and the random subsets; the numbers do not depend on the threads",
-                       [](StudyRequest& r) -> uint64_t& { return r.study.seed; }));
-    t.push_back(Number("threads", "Threads", OptionType::kInteger, "threads", 0, 256,
-                       "subsets calibrated at once; 0 = every core",
-                       [](StudyRequest& r) -> int& { return r.study.num_threads; }));
+    t.push_back(Study("seed"));
+    t.push_back(Study("threads"));
     return t;
   }();
   return table;

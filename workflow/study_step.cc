@@ -29,8 +29,7 @@ Status WritePlots(StudyOutcome* outcome) {
 
 StatusOr<StudyOutcome> RunStudy(StudyRequest request, const JobHooks& hooks) {
   const auto start = std::chrono::steady_clock::now();
-  std::string error;
-  if (!request.study.IsValid(&error)) return Status::BadInput(error);
+  if (Status s = request.study.Check(); !s.ok()) return s;
   if (Status s = CheckFiguresFree(request); !s.ok()) return s;
   StatusOr<MeasuredSession> session = LoadMeasuredSession(request.session, request.wait, hooks);
   if (!session.ok()) return session.status();

@@ -158,8 +158,10 @@ int VerifyResult::Seen() const {
 
 StatusOr<VerifyResult> VerifyPoses(const VerifyRequest& request, const JobHooks& hooks) {
   const auto start = std::chrono::steady_clock::now();
-  if (!(request.settle_seconds >= 0) || request.grab_timeout_ms < 1)
-    return Status::BadInput("settle must be ≥ 0 s and the grab time-out ≥ 1 ms");
+  AcquireOptions device;  // the Acquire step's rules for the same two numbers
+  device.settle_seconds = request.settle_seconds;
+  device.grab_timeout_ms = request.grab_timeout_ms;
+  if (Status s = device.Check(); !s.ok()) return s;
   StatusOr<CheckInputs> in = LoadCheckInputs(request.session);
   if (!in.ok()) return in.status();
   StatusOr<std::vector<Vector6d>> poses =

@@ -1,8 +1,10 @@
 // hexcal acquire --session DIR --controller URL --camera URL [--poses FILE] [--settle SECONDS]
-//                [--holdout-every N] [--seed N] [--wait] [--json]
+//                [--grab-timeout MS] [--holdout-every N] [--seed N] [--wait] [--json]
 //
 // Moves the robot to each planned pose and records an image and the leg
-// readings there (workflow/acquire_step.h, docs/acquisition.md). Ctrl-C stops
+// readings there (workflow/acquire_step.h, docs/acquisition.md). The options
+// --settle, --grab-timeout and --holdout-every are the table of
+// workflow/acquire_options.h (docs/cli.md lists it). Ctrl-C stops
 // before the current pose's frame (a machine's move at once) or after its
 // record (exit 1, cancelled); running the command again goes on from there.
 #include <atomic>
@@ -12,6 +14,7 @@
 
 #include "app/commands/cli_common.h"
 #include "app/commands/command_table.h"
+#include "app/commands/option_flags.h"
 #include "workflow/acquire_step.h"
 
 namespace hexcal::cli {
@@ -19,8 +22,9 @@ namespace {
 
 struct AcquireCliOptions {
   workflow::AcquireRequest request;
+  std::shared_ptr<OptionEntries> options = std::make_shared<OptionEntries>();  // over request.options
+  OptionFlagNames flags;
   bool wait = false, json = false;
-  double settle = 0;  // --settle, when given, seconds
 };
 
 std::atomic<bool> interrupted{false};
@@ -33,6 +37,9 @@ void StopAfterThisPose(int) {
 }
 
 int RunAcquireCommand(AcquireCliOptions cli, std::ostream& out, std::ostream& err) {
+  if (Status s = ApplyOptionEntries(workflow::AcquireOptionSpecs(), *cli.options, &cli.request.options, "acquire");
+      !s.ok())
+    return ReportError(err, "acquire", s);
   cli.request.options.wait = cli.wait ? LockWait::kForever : LockWait::kNo;
   TerminalJob job("", &err);  // a line per pose on stderr; stdout stays one JSON object with --json
   JobHooks hooks = job.hooks();
@@ -40,7 +47,7 @@ int RunAcquireCommand(AcquireCliOptions cli, std::ostream& out, std::ostream& er
   std::signal(SIGINT, StopAfterThisPose);
   StatusOr<workflow::AcquireResult> result = workflow::AcquirePlan(cli.request, hooks);
   std::signal(SIGINT, SIG_DFL);
-  if (!result.ok()) return ReportError(err, "acquire", result.status());
+  if (!result.ok()) return ReportError(err, "acquire", result.status(), cli.flags);
   if (cli.json) {
     out << JsonText(workflow::ToJson(*result));
   } else {
@@ -61,23 +68,13 @@ void AddAcquireCommand(CLI::App& app, int* exit_code) {
       ->required();
   sub->add_option("--camera", request.camera, std::string("camera: ") + workflow::kFrameSourceForms)->required();
   sub->add_option("--poses", request.poses, "pose CSV (x,y,z,q1,q2,q3); default: the session's plan.csv");
-  // Given or not: without it the controller's own default applies (0 s sim, 0.5 s LinuxCNC).
-  sub->add_option("--settle", cli->settle,
-                  "seconds to wait after each move, before the frame; default: the controller's (sim 0, LinuxCNC 0.5)")
-      ->check(CLI::Range(0.0, 600.0));
-  sub->add_option("--holdout-every", request.options.holdout_every,
-                  "hold out every Nth pose (rows N-1, 2N-1, ...) to validate the calibration; 0 = none")
-      ->check(CountRange(0, 1000000))
-      ->capture_default_str();
+  AddOptionFlags(sub, workflow::AcquireOptionSpecs(), cli->options, &cli->flags);
   sub->add_option("--seed", request.seed, "seed of the sim world's hidden truth and noise (sim only)")
       ->capture_default_str();
   sub->add_flag("--wait", cli->wait,
                 "when another program writes the session, wait for it instead of stopping (exit 3)");
   sub->add_flag("--json", cli->json, "print one JSON object on stdout (progress on stderr)");
-  sub->callback([=] {
-    if (sub->count("--settle") > 0) cli->request.options.settle_seconds = cli->settle;
-    *exit_code = RunAcquireCommand(*cli, std::cout, std::cerr);
-  });
+  sub->callback([=] { *exit_code = RunAcquireCommand(*cli, std::cout, std::cerr); });
 }
 
 }  // namespace hexcal::cli

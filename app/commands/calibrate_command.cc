@@ -23,13 +23,14 @@ namespace hexcal::cli {
 namespace {
 
 struct CalibrateCliOptions {
-  std::string robot, measurements, out, session, loss = "none";
+  std::string robot, measurements, out, session;
   std::string estimate = OptionText(workflow::PixelEstimatesOption(), workflow::FromPixelsRequest{});
   bool from_pixels = false, from_points = false, two_stage = false, keep_reflectors = false;
-  double loss_scale = 1.0;
-  bool weighted = false, force = false, json = false, wait = false;
+  bool force = false, json = false, wait = false;
+  std::shared_ptr<OptionEntries> calibration = std::make_shared<OptionEntries>();  // --loss, --loss-scale, --weighted
   std::shared_ptr<OptionEntries> noise = std::make_shared<OptionEntries>();  // --noise-* over the defaults
   std::shared_ptr<OptionEntries> outliers = std::make_shared<OptionEntries>();  // --keep-outliers, --outlier-threshold
+  OptionFlagNames flags;
 };
 
 int RunCalibrateSession(const CalibrateCliOptions& cli, std::ostream& out, std::ostream& err) {
@@ -48,7 +49,7 @@ int RunCalibrateSession(const CalibrateCliOptions& cli, std::ostream& out, std::
   request.from_points.estimate_reflectors = !cli.keep_reflectors;
   TerminalJob job("", &err);  // notes ("measuring 32 images: the camera changed ...") on stderr
   StatusOr<workflow::CalibrationReport> report = workflow::CalibrateSession(request, job.hooks());
-  if (!report.ok()) return ReportError(err, "calibrate", report.status());
+  if (!report.ok()) return ReportError(err, "calibrate", report.status(), cli.flags);
   const workflow::Verdict verdict = workflow::MakeVerdict(*report);
   if (cli.json) {
     nlohmann::json json = workflow::ToJson(*report);
@@ -153,14 +154,9 @@ int RunCalibrate(const CalibrateCliOptions& cli, std::ostream& out, std::ostream
   if (!robot.ok()) return ReportError(err, "calibrate", robot.status());
   StatusOr<std::vector<Measurement>> measurements = LoadMeasurements(cli.measurements);
   if (!measurements.ok()) return ReportError(err, "calibrate", measurements.status());
-  const std::optional<RobustLoss> loss = ParseRobustLoss(cli.loss);
-  if (!loss) {
-    return ReportError(err, "calibrate", Status::BadInput("--loss: '" + cli.loss + "' is not none, huber or cauchy"));
-  }
   CalibrationOptions options;
-  options.loss = *loss;
-  options.loss_scale = cli.loss_scale;
-  options.weighted = cli.weighted;
+  if (Status s = ApplyOptionEntries(CalibrationOptionSpecs(), *cli.calibration, &options, "calibrate"); !s.ok())
+    return ReportError(err, "calibrate", s);
   if (Status s = ApplyOptionEntries(NoiseModelOptions(), *cli.noise, &options.noise, "noise"); !s.ok())
     return ReportError(err, "calibrate", s);
   // Past valid options, what CheckCalibrationInput and Calibrate reject is the
@@ -211,21 +207,14 @@ void AddCalibrateCommand(CLI::App& app, int* exit_code) {
   sub->add_flag("--force", options->force, "overwrite --out if it exists");
   // A session calibrates weighted by the session's noise model (docs/session.md):
   // these options belong to the --measurements mode only.
-  sub->add_option("--loss", options->loss, "robust loss: none | huber | cauchy")
-      ->capture_default_str()
-      ->excludes(session);
-  sub->add_option("--loss-scale", options->loss_scale,
-                  "where the loss starts: leg-length error (robot unit), or standard deviations with --weighted")
-      ->capture_default_str()
-      ->excludes(session);
-  CLI::Option* weighted = sub->add_flag("--weighted", options->weighted,
-                                        "weight each residual by its standard deviation under the noise model")
-                              ->excludes(session);
+  for (const OptionSpec<CalibrationOptions>& spec : CalibrationOptionSpecs())
+    AddOneOptionFlag(sub, spec, options->calibration, &options->flags)->excludes(session);
+  CLI::Option* weighted = sub->get_option("--weighted");
   for (const OptionSpec<NoiseModel>& spec : NoiseModelOptions())
-    AddOneOptionFlag(sub, spec, options->noise, "noise-")->needs(weighted);
+    AddOneOptionFlag(sub, spec, options->noise, &options->flags, "noise-")->needs(weighted);
   // Outlier screening of the session's readings (docs/calibration.md, "Outliers").
   for (const OptionSpec<OutlierScreening>& spec : OutlierScreeningOptions())
-    AddOneOptionFlag(sub, spec, options->outliers, "")->needs(session);
+    AddOneOptionFlag(sub, spec, options->outliers, &options->flags)->needs(session);
   // The calibration from pixels is the default (docs/calibration.md).
   CLI::Option* from_pixels =
       sub->add_flag("--from-pixels", options->from_pixels,

@@ -36,6 +36,15 @@ int ReportError(std::ostream& err, const std::string& command, const Status& sta
   return ExitCodeFor(status);
 }
 
+Status InFlagWords(const Status& status, const OptionFlagNames& flags) {
+  const auto flag = flags.find(status.option());
+  return flag == flags.end() ? status : status.WithOptionName(flag->second);
+}
+
+int ReportError(std::ostream& err, const std::string& command, const Status& status, const OptionFlagNames& flags) {
+  return ReportError(err, command, InFlagWords(status, flags));
+}
+
 std::string JsonText(const nlohmann::json& json) {
   return json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }

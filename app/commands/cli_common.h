@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <iosfwd>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -12,6 +13,7 @@
 #include "core/constraints.h"
 #include "core/job_hooks.h"
 #include "core/observability.h"
+#include "core/option_spec.h"
 #include "core/robot.h"
 #include "core/status.h"
 #include "session/json_forms.h"
@@ -32,6 +34,18 @@ int ExitCodeFor(const Status& status);
 // Prints "hexcal <command>: <message>" on err and returns ExitCodeFor(status).
 int ReportError(std::ostream& err, const std::string& command, const Status& status);
 
+// The flag of each option key a command takes from an option table
+// (AddOptionFlags in option_flags.h records them).
+using OptionFlagNames = std::map<std::string, std::string>;
+
+// `status` in the CLI's words: an error about an option of `flags`
+// (Status::option(), its key) names the option by its flag, "--settle: must
+// be at most 600 s, got 900", as CLI11 refuses the flag itself.
+Status InFlagWords(const Status& status, const OptionFlagNames& flags);
+
+// ReportError of InFlagWords(status, flags).
+int ReportError(std::ostream& err, const std::string& command, const Status& status, const OptionFlagNames& flags);
+
 // The text of every --json object: indented, one line feed after it. Invalid
 // UTF-8 (a Latin-1 file name, a controller's greeting) becomes U+FFFD, as in
 // the session's manifest, instead of nlohmann's type_error.316 and an abort
@@ -44,7 +58,7 @@ using workflow::RobotJson;
 
 // Bounds of the count options (issue 13, bounded input): a typo such as
 // --poses 100000 must stop at once, not start writing 38 GB of images.
-constexpr int kMaxThreads = 256;  // --threads of every command; 0 = every core
+// --threads of every command: 0 to kMaxThreads (core/option_spec.h).
 
 // A CLI11 check for an integer option in [min, max]; `why` says what the bound
 // protects, e.g. "each pose is a rendered image".

@@ -20,6 +20,7 @@ struct PlanCliOptions {
   workflow::PlanRequest request;
   std::shared_ptr<OptionEntries> planner = std::make_shared<OptionEntries>();
   std::shared_ptr<OptionEntries> noise = std::make_shared<OptionEntries>();
+  OptionFlagNames flags;
   bool force = false, json = false;
 };
 
@@ -31,7 +32,7 @@ int RunPlanCommand(PlanCliOptions cli, std::ostream& out, std::ostream& err) {
   }
   TerminalJob job;
   StatusOr<workflow::PlanOutcome> outcome = workflow::PlanFromRequest(cli.request, job.hooks());
-  if (!outcome.ok()) return ReportError(err, "plan", outcome.status());
+  if (!outcome.ok()) return ReportError(err, "plan", outcome.status(), cli.flags);
   if (cli.json) {
     out << JsonText(workflow::ToJson(*outcome));
   } else {
@@ -52,8 +53,8 @@ void AddPlanCommand(CLI::App& app, int* exit_code) {
   robot->excludes(session);
   session->excludes(robot);
   sub->add_option("--candidates", o->request.candidates_file, "candidate pose CSV (x,y,z,q1,q2,q3)");
-  AddOptionFlags(sub, workflow::PlanSetupOptions(), o->planner);
-  AddOptionFlags(sub, NoiseModelOptions(), o->noise, "noise-");
+  AddOptionFlags(sub, workflow::PlanSetupOptions(), o->planner, &o->flags);
+  AddOptionFlags(sub, NoiseModelOptions(), o->noise, &o->flags, "noise-");
   sub->add_option("--settings", o->request.settings,
                   "plan settings YAML (noise, planner, camera visibility); flags override it; docs/planner.md");
   sub->add_option("--out", o->request.out, "plan CSV: x,y,z,q1,q2,q3,L1..L6")->required();

@@ -43,6 +43,7 @@ struct SessionInitOptions {
   std::shared_ptr<OptionEntries> noise = std::make_shared<OptionEntries>();  // --noise-*
   std::string tracker_position;                                              // "x,y,z"
   std::shared_ptr<OptionEntries> tracker = std::make_shared<OptionEntries>();  // --tracker-*
+  OptionFlagNames flags;
 };
 
 // Points sessions: session.yaml's `tracker:` section from --tracker-position
@@ -125,7 +126,7 @@ int RunSessionInit(SessionInitOptions cli, std::ostream& out, std::ostream& err)
   const Status prepared =
       cli.instrument == "points" ? PreparePointSession(*robot, &cli) : PrepareCameraSession(&cli);
   if (!prepared.ok()) return ReportError(err, "session init", prepared);
-  if (Status s = InitSession(cli.dir, cli.config); !s.ok()) return ReportError(err, "session init", s);
+  if (Status s = InitSession(cli.dir, cli.config); !s.ok()) return ReportError(err, "session init", s, cli.flags);
   const SessionPaths paths(cli.dir);
   if (cli.json) {
     out << JsonText({{"session", cli.dir}, {"config", paths.config}, {"images", paths.images}});
@@ -326,11 +327,11 @@ void AddSessionCommand(CLI::App& app, int* exit_code) {
                    "(default: 0.02 mm in the robot's unit)")
       ->check(CLI::PositiveNumber)
       ->each([options](const std::string&) { options->point_sigma_given = true; });
-  AddOptionFlags(init, NoiseModelOptions(), options->noise, "noise-");
+  AddOptionFlags(init, NoiseModelOptions(), options->noise, &options->flags, "noise-");
   init->add_option("--tracker-position", options->tracker_position,
                    "points sessions: the tracker's head in the base frame, x,y,z in the robot's unit: the planner "
                    "keeps every reflector in its line of sight (docs/planner.md)");
-  AddOptionFlags(init, TrackerSettingsOptions(), options->tracker, "tracker-");
+  AddOptionFlags(init, TrackerSettingsOptions(), options->tracker, &options->flags, "tracker-");
   init->add_flag("--json", options->json, "print one JSON object on stdout");
   init->callback([=] { *exit_code = RunSessionInit(*options, std::cout, std::cerr); });
   AddSessionRecord(session, exit_code);

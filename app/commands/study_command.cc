@@ -19,6 +19,7 @@ namespace {
 struct StudyCliOptions {
   workflow::StudyRequest request;
   std::shared_ptr<OptionEntries> study = std::make_shared<OptionEntries>();
+  OptionFlagNames flags;
   bool json = false, wait = false, no_save = false;
 };
 
@@ -30,7 +31,7 @@ int RunStudy(const StudyCliOptions& cli, std::ostream& out, std::ostream& err) {
   request.save = !cli.no_save;
   TerminalJob job;
   StatusOr<workflow::StudyOutcome> outcome = workflow::RunStudy(request, job.hooks());
-  if (!outcome.ok()) return ReportError(err, "study", outcome.status());
+  if (!outcome.ok()) return ReportError(err, "study", outcome.status(), cli.flags);
   out << (cli.json ? JsonText(workflow::ToJson(*outcome)) : workflow::FormatStudySummary(*outcome));
   return kExitOk;
 }
@@ -43,7 +44,7 @@ void AddStudyCommand(CLI::App& app, int* exit_code) {
       "study", "the section 8 study: IOOPS's subset of a session's poses against random subsets (Figs. 18, 19)");
   sub->add_option("--session", options->request.session, "session folder with measured images and readings")
       ->required();
-  AddOptionFlags(sub, workflow::StudyOptions(), options->study);
+  AddOptionFlags(sub, workflow::StudyOptions(), options->study, &options->flags);
   sub->add_option("--plots", options->request.plots, "also write Figs. 18 and 19 as SVG and PNG into this folder");
   sub->add_flag("--force", options->request.force, "overwrite the --plots figures if they exist");
   sub->add_flag("--wait", options->wait,

@@ -7,6 +7,7 @@
 
 #include "app/commands/cli_common.h"
 #include "app/commands/command_table.h"
+#include "app/commands/option_flags.h"
 #include "core/csv.h"
 #include "vision/target.h"
 #include "vision/target_print.h"
@@ -16,7 +17,8 @@ namespace {
 
 struct TargetOptions {
   std::string target = kDefaultTargetName, out;
-  double dpi = 300;
+  std::shared_ptr<OptionEntries> print = std::make_shared<OptionEntries>();  // --dpi over TargetPrintOptions
+  OptionFlagNames flags;
   bool force = false, json = false;
 };
 
@@ -83,15 +85,18 @@ bool IsPdfPath(const std::string& path) {
 }
 
 int RunTargetPrint(const TargetOptions& options, std::ostream& out, std::ostream& err) {
+  TargetPrintOptions print;
+  if (Status s = ApplyOptionEntries(TargetPrintOptionSpecs(), *options.print, &print, "target print"); !s.ok())
+    return ReportError(err, "target print", s);
   if (Status s = CheckOutputFree(options.out, options.force); !s.ok()) return ReportError(err, "target print", s);
   StatusOr<Target> target = LoadTarget(options.target);
   if (!target.ok()) return ReportError(err, "target print", target.status());
-  if (Status s = WriteTargetPrint(*target, options.out, options.dpi); !s.ok()) {
-    return ReportError(err, "target print", s);
+  if (Status s = WriteTargetPrint(*target, options.out, print.dpi); !s.ok()) {
+    return ReportError(err, "target print", s, options.flags);
   }
   const std::vector<std::string> caption = TargetPrintCaption(*target);
   if (options.json) {
-    nlohmann::json json = {{"out", options.out}, {"dpi", options.dpi}, {"target", TargetJson(*target)}};
+    nlohmann::json json = {{"out", options.out}, {"dpi", print.dpi}, {"target", TargetJson(*target)}};
     if (IsPdfPath(options.out)) json["sheet"] = DescribeSheet(TargetPdfSheet(*target));
     out << JsonText(json);
   } else {
@@ -120,9 +125,7 @@ void AddTargetCommand(CLI::App& app, int* exit_code) {
   print_sub->add_option("--target", print->target, "target YAML file or the built-in name aprilgrid-6x6")
       ->capture_default_str();
   print_sub->add_option("--out", print->out, "output file, .pdf or .png")->required();
-  print_sub->add_option("--dpi", print->dpi, "PNG resolution, dots per inch")
-      ->check(CLI::Range(kMinPrintDpi, kMaxPrintDpi))
-      ->capture_default_str();
+  AddOptionFlags(print_sub, TargetPrintOptionSpecs(), print->print, &print->flags);
   print_sub->add_flag("--force", print->force, "overwrite --out if it exists");
   print_sub->add_flag("--json", print->json, "print one JSON object on stdout");
   print_sub->callback([=] { *exit_code = RunTargetPrint(*print, std::cout, std::cerr); });

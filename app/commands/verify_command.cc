@@ -15,6 +15,7 @@
 #include "app/commands/command_table.h"
 #include "devices/controller.h"
 #include "devices/frame_source.h"
+#include "workflow/acquire_options.h"
 #include "workflow/verify_step.h"
 
 namespace hexcal::cli {
@@ -60,8 +61,10 @@ void AddVerifyCommand(CLI::App& app, int* exit_code) {
       ->required();
   sub->add_option("--camera", request.camera, std::string("camera: ") + workflow::kFrameSourceForms)->required();
   sub->add_option("--poses", request.poses, "pose CSV (x,y,z,q1,q2,q3); default: the session's plan.csv");
+  // The range of the Acquire step's settle time (workflow/acquire_options.h).
+  const OptionSpec<workflow::AcquireOptions>& settle = *FindOption(workflow::AcquireOptionSpecs(), "settle");
   sub->add_option("--settle", request.settle_seconds, "seconds to wait after each move, before the frame")
-      ->check(CLI::Range(0.0, 600.0))
+      ->check(CLI::Range(settle.min, settle.max))
       ->capture_default_str();
   sub->add_option("--keep-images", request.images_out,
                   "a folder to keep each frame in (check_000k.png; not the session's images/)");

@@ -85,25 +85,30 @@ no_overwrite)
   expect 0 "written to cand.csv" candidates $R --count 10 --out cand.csv --force
   ;;
 count_bounds)
-  expect 2 "--poses: 100000 is outside \[8, 500\]" demo --poses 100000 --out demo
-  expect 2 "--holdout: 100000 is outside \[0, 500\]" demo --holdout 100000 --out demo
-  expect 2 "--poses: -3 is outside" demo --poses -3 --out demo
+  expect 2 "--poses: must be at most 500 poses, got 100000" demo --poses 100000 --out demo
+  expect 2 "--holdout: must be at most 500 poses, got 100000" demo --holdout 100000 --out demo
+  expect 2 "--poses: must be at least 8 poses, got -3" demo --poses -3 --out demo
+  expect 2 "--focal-error: must be at most 20 percent, got 30" demo --focal-error 30 --out demo
+  # Issue 37: a range the step checks too, and the rule no range says, in the flag's name.
+  expect 2 "--settle: must be at most 600 s, got 900" acquire --session s --controller sim --camera sim --settle 900
+  expect 2 "--holdout-every: must be 0 \(none\) or at least 2, got 1" acquire --session s --controller sim \
+    --camera sim --holdout-every 1
   expect 2 "--count: 0 is outside" candidates $R --count 0 --out c.csv
   expect 2 "--count: 'many' is not a whole number" candidates $R --count many --out c.csv
   expect 2 "--candidate-count: must be at least 0" plan $R --candidate-count -5 --out p.csv
-  expect 2 "--runs: 0 is outside" simulate $R --runs 0
-  expect 2 "--runs: 100000000 is outside" simulate $R --runs 100000000
-  expect 2 "--poses: 1000000 is outside" simulate $R --poses 1000000
+  expect 2 "--runs: must be at least 1, got 0" simulate $R --runs 0
+  expect 2 "--runs: must be at most 1000000, got 100000000" simulate $R --runs 100000000
+  expect 2 "--poses: must be at most 100000 poses, got 1000000" simulate $R --poses 1000000
   expect 2 "--sweep: '8:1e300' is not MIN:MAX" simulate $R --sweep 8:1e300
-  expect 2 "--threads: 100000 is outside \[0, 256\]" simulate $R --threads 100000
+  expect 2 "--threads: must be at most 256 threads, got 100000" simulate $R --threads 100000
   expect 2 "--threads: -1 is outside \[0, 256\]" render --poses "$POSES" --out r --threads -1
   expect 2 "--threads: 9999 is outside \[0, 256\]" detect --images . --threads 9999
   expect 2 "--threads: 9999 is outside" intrinsics --images . --out cam.yaml --threads 9999
   expect 2 "--threads: 9999 is outside" measure --camera c.yaml --images . --out m.csv --threads 9999
   expect 2 "--min-views: 0 is outside" intrinsics --images . --out cam.yaml --min-views 0
-  expect 2 "--dpi: Value 1e6 not in range" target print --out t.png --dpi 1e6
-  expect 0 "--dpi FLOAT:FLOAT in \[50 - 1200\]" target print --help  # the range it enforces (issue 36)
-  expect 2 "--dpi: Value 40 not in range" target print --out t.png --dpi 40
+  expect 2 "--dpi: must be at most 1200 dpi, got 1000000" target print --out t.png --dpi 1e6
+  expect 0 "--dpi NUMBER:NUMBER in \[50, 1200\]" target print --help  # the range it enforces (issue 36)
+  expect 2 "--dpi: must be at least 50 dpi, got 40" target print --out t.png --dpi 40
   mkdir in
   awk 'BEGIN { print "x,y,z,q1,q2,q3"; for (i = 0; i < 5001; ++i) print "0,0,50,0,0,0" }' >in/many_poses.csv
   expect 2 "many_poses.csv: 5001 poses, more than the 5000 images render writes at once" render \
@@ -159,7 +164,7 @@ exit_codes)
   # Options out of range are bad input everywhere, also when CLI11 checks them.
   expect 2 "--count: 0 is outside" candidates $R --count 0 --out c.csv
   expect 2 "at least 7 poses" plan $R --poses 6 --out p.csv
-  expect 2 "--poses must be at least 7" simulate $R --poses 5
+  expect 2 "--poses: must be at least 7 poses, got 5" simulate $R --poses 5
   # A folder that cannot be made is bad input everywhere (issue 36: verify
   # gave 1, session init and render 2); a full or read-only disk would be 1.
   : >afile
@@ -338,7 +343,7 @@ text_and_numbers)
   expect 2 "--seed: -1 is negative" acquire --session s --controller sim --camera sim --seed -1
   expect 2 "--seed: 18446744073709551616 is outside \[0, 18446744073709551615\]" acquire --session s \
     --controller sim --camera sim --seed 18446744073709551616
-  expect 2 "--settle: '0x1p3' is not a finite decimal number" acquire --session s --controller sim --camera sim \
+  expect 2 "--settle: expected a finite number, got '0x1p3'" acquire --session s --controller sim --camera sim \
     --settle 0x1p3
   [ -e s/legs.csv ] && { echo "FAIL: legs.csv written"; failures=$((failures + 1)); }
   [ -e c.csv ] && { echo "FAIL: c.csv written"; failures=$((failures + 1)); }

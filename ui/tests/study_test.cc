@@ -70,8 +70,20 @@ TEST(UiStudy, RunKeepCancelStaleAndSwitch) {
   EXPECT_TRUE(study->Table()->item(0, 4)->text().endsWith(" %"));
   EXPECT_TRUE(SaveWindowScreenshot(&window, temp.filePath("study.png")));
 
-  // A cancelled run keeps the study as it was.
+  // N as large as the session's measured poses: the study's error names the
+  // option by the form's label, not by the command line's --select (issue 37).
   const QByteArray before = ReadBytes(json);
+  study->SetOption("select", "16");
+  study->Run();
+  ASSERT_TRUE(WaitFor([&] { return !study->Job()->Running(); }));
+  EXPECT_EQ(study->LastOutcome(), "failed.");
+  EXPECT_TRUE(LastShownError().contains("Poses per subset (N): 16 needs more than that many measured poses"))
+      << LastShownError().toStdString();
+  EXPECT_FALSE(LastShownError().contains("select")) << LastShownError().toStdString();
+  EXPECT_EQ(ReadBytes(json), before);
+  study->SetOption("select", "8");
+
+  // A cancelled run keeps the study as it was.
   study->SetOption("subsets", "1000000");
   study->Run();
   ASSERT_TRUE(study->Job()->Running());
