@@ -26,17 +26,14 @@ const char* RobustLossName(RobustLoss loss) {
 const OptionTable<CalibrationOptions>& CalibrationOptionSpecs() {
   static const OptionTable<CalibrationOptions> table = [] {
     using Options = CalibrationOptions;
-    OptionSpec<Options> loss;
-    loss.key = "loss";
-    loss.label = "Robust loss";
-    loss.type = OptionType::kChoice;
+    std::vector<std::string> losses;
     for (RobustLoss kind : {RobustLoss::kNone, RobustLoss::kHuber, RobustLoss::kCauchy})
-      loss.choices.push_back(RobustLossName(kind));
-    loss.help = "robust loss of the residuals, from loss_scale on";
-    loss.get_choice = [](const Options& o) { return std::string(RobustLossName(o.loss)); };
-    loss.set_choice = [](Options& o, const std::string& v) { o.loss = *ParseRobustLoss(v); };
+      losses.push_back(RobustLossName(kind));
     return OptionTable<Options>{
-        loss,
+        ChoiceOption<Options>(
+            "loss", "Robust loss", OptionType::kChoice, losses, "robust loss of the residuals, from loss_scale on",
+            [](const Options& o) { return std::string(RobustLossName(o.loss)); },
+            [](Options& o, const std::string& v) { o.loss = *ParseRobustLoss(v); }),
         NumberOption<Options>("loss_scale", "Loss scale", OptionType::kNumber, "", 1e-9, 1e9,
                               "where the loss starts: a leg-length error (robot unit), or, weighted, a number of "
                               "standard deviations",

@@ -88,6 +88,23 @@ OptionSpec<T> NumberOption(std::string key, std::string label, OptionType type, 
   return spec;
 }
 
+// A choice (kChoice) or a list of choices (kChoiceList, "a,b") read and
+// written as text through `get` and `set`.
+template <typename T>
+OptionSpec<T> ChoiceOption(std::string key, std::string label, OptionType type, std::vector<std::string> choices,
+                           std::string help, std::function<std::string(const T&)> get,
+                           std::function<void(T&, const std::string&)> set) {
+  OptionSpec<T> spec;
+  spec.key = std::move(key);
+  spec.label = std::move(label);
+  spec.type = type;
+  spec.choices = std::move(choices);
+  spec.help = std::move(help);
+  spec.get_choice = std::move(get);
+  spec.set_choice = std::move(set);
+  return spec;
+}
+
 // A number option that may be left unset, bound to a std::optional field of
 // T; `unset` says what applies then ("the controller's").
 //

@@ -24,19 +24,14 @@ const OptionTable<DemoRequest>& DemoOptions() {
                                       "give the calibration a camera file whose focal length is off by this much; "
                                       "the images keep the true one",
                                       [](Request& r) -> double& { return r.focal_error_percent; }));
-    OptionSpec<Request> instrument;
-    instrument.key = "instrument";
-    instrument.label = "Instrument";
-    instrument.type = OptionType::kChoice;
-    instrument.choices = {InstrumentName(Instrument::kCamera), InstrumentName(Instrument::kPoints)};
-    instrument.help =
-        "what measures the poses: camera (rendered images of the board) or points (a laser tracker's "
-        "4 reflectors)";
-    instrument.get_choice = [](const Request& r) { return std::string(InstrumentName(r.instrument)); };
-    instrument.set_choice = [](Request& r, const std::string& v) {
-      r.instrument = v == InstrumentName(Instrument::kPoints) ? Instrument::kPoints : Instrument::kCamera;
-    };
-    t.push_back(instrument);
+    t.push_back(ChoiceOption<Request>(
+        "instrument", "Instrument", OptionType::kChoice,
+        {InstrumentName(Instrument::kCamera), InstrumentName(Instrument::kPoints)},
+        "what measures the poses: camera (rendered images of the board) or points (a laser tracker's 4 reflectors)",
+        [](const Request& r) { return std::string(InstrumentName(r.instrument)); },
+        [](Request& r, const std::string& v) {
+          r.instrument = v == InstrumentName(Instrument::kPoints) ? Instrument::kPoints : Instrument::kCamera;
+        }));
     t.push_back(NumberOption<Request>("point_sigma", "Point sigma", OptionType::kNumber, "mm", 0.0001, 1,
                                       "with the points instrument: the tracker's sigma on each coordinate",
                                       [](Request& r) -> double& { return r.point_sigma_mm; }));

@@ -34,19 +34,6 @@ Spec Number(std::string key, std::string label, OptionType type, std::string uni
                                  field);
 }
 
-Spec Choice(std::string key, std::string label, OptionType type, std::vector<std::string> choices, std::string help,
-            std::function<std::string(const PlanSetup&)> get, std::function<void(PlanSetup&, const std::string&)> set) {
-  Spec spec;
-  spec.key = std::move(key);
-  spec.label = std::move(label);
-  spec.type = type;
-  spec.choices = std::move(choices);
-  spec.help = std::move(help);
-  spec.get_choice = std::move(get);
-  spec.set_choice = std::move(set);
-  return spec;
-}
-
 // An option whose range is the planner's own rule (core/ioops.h), taken whole.
 Spec Planner(const std::string& key) {
   return NestedOption<PlanSetup>(*FindOption(PlannerOptionSpecs(), key),
@@ -54,17 +41,19 @@ Spec Planner(const std::string& key) {
 }
 
 void AddCriteria(OptionTable<PlanSetup>* t) {
-  t->push_back(Choice(
+  t->push_back(ChoiceOption<PlanSetup>(
       "criterion", "Criterion", OptionType::kChoice, CriterionChoices(false),
       "primary criterion of AddFind and RemoveFind: S minimises the predicted mean parameter standard deviation "
       "(the default); section 2's O1 maximises the product of singular values (D-optimal), O2 the conditioning, "
       "O3 the smallest singular value, O4 the noise amplification",
       [](const PlanSetup& s) { return std::string(CriterionName(s.planner.criterion)); },
       [](PlanSetup& s, const std::string& v) { s.planner.criterion = *ParseCriterion(v); }));
-  t->push_back(Choice(
+  t->push_back(ChoiceOption<PlanSetup>(
       "secondary", "Secondary", OptionType::kChoice, CriterionChoices(true),
       "section 6.2: the criterion that picks among the best `keep` fraction of AddFind's results",
-      [](const PlanSetup& s) { return s.planner.secondary ? CriterionName(*s.planner.secondary) : std::string("none"); },
+      [](const PlanSetup& s) {
+        return s.planner.secondary ? CriterionName(*s.planner.secondary) : std::string("none");
+      },
       [](PlanSetup& s, const std::string& v) {
         s.planner.secondary = v == "none" ? std::nullopt : ParseCriterion(v);
       }));
@@ -98,7 +87,7 @@ void AddSearch(OptionTable<PlanSetup>* t) {
 }
 
 void AddSources(OptionTable<PlanSetup>* t) {
-  t->push_back(Choice(
+  t->push_back(ChoiceOption<PlanSetup>(
       "candidate_kind", "Candidate kinds", OptionType::kChoiceList, CandidateKindChoices(),
       "generated candidate sets, pooled: random or uniform (Halton) in the sampling box, boundary (section 6.1)",
       [](const PlanSetup& s) { return JoinNames(s.candidate_kinds); },
@@ -106,10 +95,10 @@ void AddSources(OptionTable<PlanSetup>* t) {
   t->push_back(Number("candidate_count", "Candidates", OptionType::kInteger, "poses", 0, 10000000,
                       "poses per random or uniform set (0: 10000, continuous 2000)",
                       [](PlanSetup& s) -> int& { return s.candidate_count; }));
-  Spec init = Choice(
+  Spec init = ChoiceOption<PlanSetup>(
       "init", "Initial set", OptionType::kChoice, CandidateKindChoices(),
-      "how the N starting poses are drawn, or a pose CSV file of N poses",
-      [](const PlanSetup& s) { return s.init; }, [](PlanSetup& s, const std::string& v) { s.init = v; });
+      "how the N starting poses are drawn, or a pose CSV file of N poses", [](const PlanSetup& s) { return s.init; },
+      [](PlanSetup& s, const std::string& v) { s.init = v; });
   init.file_allowed = true;
   t->push_back(init);
   t->push_back(Number("seed", "Seed", OptionType::kInteger, "", 0, 9007199254740992.0,

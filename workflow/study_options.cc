@@ -21,31 +21,23 @@ std::vector<std::string> CriterionChoices(bool with_none) {
 }
 
 Spec CriterionOption() {
-  Spec spec;
-  spec.key = "criterion";
-  spec.label = "Criterion";
-  spec.type = OptionType::kChoice;
-  spec.choices = CriterionChoices(false);
-  spec.help = "IOOPS's criterion for the selected subset (section 8 used O4; O1 with weighted rows validates better)";
-  spec.get_choice = [](const StudyRequest& r) { return std::string(CriterionName(r.study.criterion)); };
-  spec.set_choice = [](StudyRequest& r, const std::string& v) { r.study.criterion = *ParseCriterion(v); };
-  return spec;
+  return ChoiceOption<StudyRequest>(
+      "criterion", "Criterion", OptionType::kChoice, CriterionChoices(false),
+      "IOOPS's criterion for the selected subset (section 8 used O4; O1 with weighted rows validates better)",
+      [](const StudyRequest& r) { return std::string(CriterionName(r.study.criterion)); },
+      [](StudyRequest& r, const std::string& v) { r.study.criterion = *ParseCriterion(v); });
 }
 
 Spec SecondaryOption() {
-  Spec spec;
-  spec.key = "secondary";
-  spec.label = "Secondary";
-  spec.type = OptionType::kChoice;
-  spec.choices = CriterionChoices(true);
-  spec.help = "section 6.2's secondary criterion of IOOPS; none in section 8";
-  spec.get_choice = [](const StudyRequest& r) {
-    return r.study.secondary ? std::string(CriterionName(*r.study.secondary)) : std::string("none");
-  };
-  spec.set_choice = [](StudyRequest& r, const std::string& v) {
-    r.study.secondary = v == "none" ? std::nullopt : ParseCriterion(v);
-  };
-  return spec;
+  return ChoiceOption<StudyRequest>(
+      "secondary", "Secondary", OptionType::kChoice, CriterionChoices(true),
+      "section 6.2's secondary criterion of IOOPS; none in section 8",
+      [](const StudyRequest& r) {
+        return r.study.secondary ? std::string(CriterionName(*r.study.secondary)) : std::string("none");
+      },
+      [](StudyRequest& r, const std::string& v) {
+        r.study.secondary = v == "none" ? std::nullopt : ParseCriterion(v);
+      });
 }
 
 // The flag is the exception, so the default (weighted rows) needs no flag.
