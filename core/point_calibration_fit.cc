@@ -1,66 +1,31 @@
 #include "core/point_calibration_fit.h"
 
-#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
-#include <Eigen/LU>
-#include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
+#include "core/joint_fit_information.h"
 #include "core/point_calibration_cost.h"
 
 namespace hexcal {
 namespace {
 
 using Eigen::MatrixXd;
-using SparseRows = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
-// The global blocks (legs, then the reflectors when estimated) and the pose
-// blocks, in the column order of the Jacobian (the reflectors' tangent space).
-struct ColumnLayout {
-  std::vector<double*> blocks;
-  int global_columns = kNumParams;
-  int reflector_columns = 0;
-  int poses = 0;
-};
-
-ColumnLayout Columns(PointFitProblem& fit) {
-  ColumnLayout layout;
-  for (LegParameters& leg : fit.legs) layout.blocks.push_back(leg.data());
+// The global blocks (legs, then the reflectors when estimated, in their
+// tangent space) and the pose blocks, in the column order of the Jacobian.
+JointFitColumns Columns(PointFitProblem& fit) {
+  JointFitColumns columns;
+  for (LegParameters& leg : fit.legs) columns.blocks.push_back(leg.data());
+  columns.global_columns = kNumParams;
   if (fit.estimate_reflectors) {
-    layout.blocks.push_back(fit.reflectors.data());
-    layout.reflector_columns = fit.problem.ParameterBlockTangentSize(fit.reflectors.data());
-    layout.global_columns += layout.reflector_columns;
+    columns.blocks.push_back(fit.reflectors.data());
+    columns.global_columns += fit.problem.ParameterBlockTangentSize(fit.reflectors.data());
   }
-  for (Vector6d& pose : fit.poses) layout.blocks.push_back(pose.data());
-  layout.poses = static_cast<int>(fit.poses.size());
-  return layout;
-}
-
-SparseRows JacobianAt(PointFitProblem& fit, const ColumnLayout& layout, double* cost) {
-  ceres::Problem::EvaluateOptions evaluate;
-  evaluate.parameter_blocks = layout.blocks;
-  evaluate.num_threads = 1;
-  ceres::CRSMatrix crs;
-  fit.problem.Evaluate(evaluate, cost, nullptr, nullptr, &crs);
-  return Eigen::Map<const SparseRows>(crs.num_rows, crs.num_cols, static_cast<int>(crs.values.size()), crs.rows.data(),
-                                      crs.cols.data(), crs.values.data());
-}
-
-// H_gg − Σ_j H_gj H_jj⁻¹ H_jg, H = JᵀJ: the global unknowns' information
-// with every pose eliminated (each pose a 6 × 6 diagonal block).
-MatrixXd ReducedInformation(const SparseRows& jacobian, const ColumnLayout& layout) {
-  const int g = layout.global_columns;
-  const Eigen::SparseMatrix<double> h = (jacobian.transpose() * jacobian).pruned();
-  MatrixXd reduced = MatrixXd(h.topLeftCorner(g, g));
-  for (int j = 0; j < layout.poses; ++j) {
-    const int c = g + 6 * j;
-    const Eigen::Matrix<double, 6, 6> d = MatrixXd(h.block(c, c, 6, 6));
-    const MatrixXd b = MatrixXd(h.block(0, c, g, 6));
-    reduced -= b * d.ldlt().solve(b.transpose());
-  }
-  return reduced;
+  for (Vector6d& pose : fit.poses) columns.blocks.push_back(pose.data());
+  columns.poses = static_cast<int>(fit.poses.size());
+  return columns;
 }
 
 const Eigen::MatrixXd* ReflectorBasis(PointFitProblem& fit) {
@@ -116,18 +81,6 @@ PointIdentifiability IdentifiabilityOf(const MatrixXd& information, const Eigen:
   return out;
 }
 
-// One leg's reading residuals r (in σ_L), in the order of fit.leg_rows[leg].
-std::vector<double> LegResiduals(PointFitProblem& fit, int leg) {
-  if (fit.leg_rows[leg].empty()) return {};
-  ceres::Problem::EvaluateOptions evaluate;
-  evaluate.residual_blocks = fit.leg_rows[leg];
-  evaluate.apply_loss_function = false;
-  evaluate.num_threads = 1;
-  std::vector<double> residuals;
-  fit.problem.Evaluate(evaluate, nullptr, &residuals, nullptr, nullptr);
-  return residuals;
-}
-
 void FillLegs(const PointCalibrationInput& input, PointFitProblem& fit, const MatrixXd& covariance,
               const PointCalibrationOptions& options, double variance_factor, PointCalibrationResult* result) {
   CalibrationResult& calibration = result->calibration;
@@ -137,13 +90,9 @@ void FillLegs(const PointCalibrationInput& input, PointFitProblem& fit, const Ma
   for (int i = 0; i < kNumLegs; ++i) {
     LegCalibration& leg = calibration.legs[i];
     leg.initial = LegParametersOf(input.nominal.legs[i]);
-    leg.estimate = fit.legs[i];
+    FillLegUncertainty(i, fit.legs[i], covariance, variance_factor, &leg);
     estimates.segment<kParamsPerLeg>(kParamsPerLeg * i) = leg.estimate;
-    leg.has_uncertainty = true;
-    leg.covariance = covariance.block<kParamsPerLeg, kParamsPerLeg>(kParamsPerLeg * i, kParamsPerLeg * i);
-    leg.std_dev = leg.covariance.diagonal().cwiseSqrt();
-    leg.variance_factor = variance_factor;
-    const std::vector<double> r = LegResiduals(fit, i);
+    const std::vector<double> r = ResidualsOf(&fit.problem, fit.leg_rows[i]);
     double sum = 0;
     for (size_t k = 0; k < r.size(); ++k) {
       sum += r[k] * r[k];
@@ -153,10 +102,6 @@ void FillLegs(const PointCalibrationInput& input, PointFitProblem& fit, const Ma
     leg.rows_used = static_cast<int>(r.size());
     leg_sum += sum * options.leg_sigma * options.leg_sigma;
     result->leg_rows += leg.rows_used;
-    // The marginal information's square roots stand for J's singular values.
-    Eigen::VectorXd values = Eigen::SelfAdjointEigenSolver<InfoBlock>(leg.covariance.inverse()).eigenvalues();
-    for (int k = 0; k < kParamsPerLeg; ++k)
-      leg.singular_values[k] = std::sqrt(std::max(0.0, values[kParamsPerLeg - 1 - k]));
   }
   calibration.robot = WithParameters(input.start, estimates);
   calibration.num_measurements = static_cast<int>(input.poses.size());
@@ -204,26 +149,18 @@ void FillPointResiduals(const PointCalibrationInput& input, PointFitProblem& fit
 }  // namespace
 
 PointIdentifiability Identifiability(PointFitProblem& fit) {
-  const ColumnLayout layout = Columns(fit);
-  double cost = 0;
-  const MatrixXd information = ReducedInformation(JacobianAt(fit, layout, &cost), layout);
-  return IdentifiabilityOf(information, fit.estimate_reflectors ? ReflectorBasis(fit) : nullptr, fit);
+  const JointFitInformation information = ReducedInformationAt(&fit.problem, Columns(fit));
+  return IdentifiabilityOf(information.reduced, fit.estimate_reflectors ? ReflectorBasis(fit) : nullptr, fit);
 }
 
 PointCalibrationResult SummarizePointFit(const PointCalibrationInput& input, PointFitProblem& fit,
                                          const PointCalibrationOptions& options,
                                          const PointIdentifiability& identifiability) {
-  const ColumnLayout layout = Columns(fit);
-  double cost = 0;
-  const SparseRows jacobian = JacobianAt(fit, layout, &cost);
-  const MatrixXd information = ReducedInformation(jacobian, layout);
-  const int rows = static_cast<int>(jacobian.rows());
-  const int unknowns = layout.global_columns + 6 * layout.poses;
+  const JointFitInformation information = ReducedInformationAt(&fit.problem, Columns(fit));
   PointCalibrationResult result;
   result.identifiability = identifiability;
-  result.variance_factor = rows > unknowns ? 2 * cost / (rows - unknowns) : 0;
-  const MatrixXd covariance = information.ldlt().solve(MatrixXd::Identity(information.rows(), information.cols())) *
-                              std::max(1.0, result.variance_factor);
+  result.variance_factor = information.VarianceFactor();
+  const MatrixXd covariance = information.Covariance();
   FillLegs(input, fit, covariance, options, result.variance_factor, &result);
   FillReflectors(input, fit, covariance, fit.estimate_reflectors ? ReflectorBasis(fit) : nullptr, &result);
   FillPointResiduals(input, fit, &result);

@@ -1,64 +1,29 @@
 #include "vision/pixel_calibration_covariance.h"
 
-#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
-#include <Eigen/LU>
-#include <Eigen/SparseCore>
 #include <cmath>
+
+#include "core/joint_fit_information.h"
 
 namespace hexcal {
 namespace {
 
 using Eigen::MatrixXd;
-using SparseRows = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
 // The global blocks (legs, then the estimated camera and target blocks) and
 // the pose blocks, in the column order of the Jacobian.
-struct ColumnLayout {
-  std::vector<double*> blocks;
-  int global_columns = 0;
-  int poses = 0;
-};
-
-ColumnLayout Columns(const PixelFit& fit) {
-  ColumnLayout layout;
-  for (LegParameters& leg : *fit.legs) layout.blocks.push_back(leg.data());
-  layout.global_columns = kNumParams;
+JointFitColumns Columns(const PixelFit& fit) {
+  JointFitColumns columns;
+  for (LegParameters& leg : *fit.legs) columns.blocks.push_back(leg.data());
+  columns.global_columns = kNumParams;
   for (const EstimatedBlock& block : fit.estimated) {
     if (!block.estimated) continue;
-    layout.blocks.push_back(block.data);
-    layout.global_columns += block.size;
+    columns.blocks.push_back(block.data);
+    columns.global_columns += block.size;
   }
-  for (Vector6d& pose : *fit.poses) layout.blocks.push_back(pose.data());
-  layout.poses = static_cast<int>(fit.poses->size());
-  return layout;
-}
-
-SparseRows JacobianAt(const PixelFit& fit, const ColumnLayout& layout, double* cost, int* rows) {
-  ceres::Problem::EvaluateOptions evaluate;
-  evaluate.parameter_blocks = layout.blocks;
-  ceres::CRSMatrix crs;
-  std::vector<double> residuals;
-  fit.problem->Evaluate(evaluate, cost, &residuals, nullptr, &crs);
-  *rows = crs.num_rows;
-  return Eigen::Map<const SparseRows>(crs.num_rows, crs.num_cols, static_cast<int>(crs.values.size()),
-                                      crs.rows.data(), crs.cols.data(), crs.values.data());
-}
-
-// (H_gg − Σ_j H_gj H_jj⁻¹ H_jg): the information of the global unknowns with
-// every pose eliminated; H = JᵀJ, each pose a 6×6 diagonal block.
-MatrixXd ReducedInformation(const SparseRows& jacobian, const ColumnLayout& layout) {
-  const Eigen::SparseMatrix<double> h = (jacobian.transpose() * jacobian).pruned();
-  const MatrixXd dense = MatrixXd(h);
-  const int g = layout.global_columns;
-  MatrixXd reduced = dense.topLeftCorner(g, g);
-  for (int j = 0; j < layout.poses; ++j) {
-    const int c = g + 6 * j;
-    const Eigen::Matrix<double, 6, 6> d = dense.block<6, 6>(c, c);
-    const MatrixXd b = dense.block(0, c, g, 6);
-    reduced -= b * d.ldlt().solve(b.transpose());
-  }
-  return reduced;
+  for (Vector6d& pose : *fit.poses) columns.blocks.push_back(pose.data());
+  columns.poses = static_cast<int>(fit.poses->size());
+  return columns;
 }
 
 // The unwhitened reprojection error of every corner (corner_diagnostics.h).
@@ -83,20 +48,9 @@ double ReprojectionRms(const std::vector<CornerResidual>& corners) {
   return corners.empty() ? 0 : std::sqrt(sum / static_cast<double>(corners.size()));
 }
 
-// One leg's reading residuals r (in σ_L), in the order of fit.leg_rows[leg].
-std::vector<double> LegResiduals(const PixelFit& fit, int leg) {
-  if (fit.leg_rows[leg].empty()) return {};
-  ceres::Problem::EvaluateOptions evaluate;
-  evaluate.residual_blocks = fit.leg_rows[leg];
-  evaluate.apply_loss_function = false;
-  std::vector<double> residuals;
-  fit.problem->Evaluate(evaluate, nullptr, &residuals, nullptr, nullptr);
-  return residuals;
-}
-
 // RMS of one leg's reading residuals, robot unit.
 double LegRms(const PixelFit& fit, int leg, double sigma) {
-  const std::vector<double> residuals = LegResiduals(fit, leg);
+  const std::vector<double> residuals = ResidualsOf(fit.problem, fit.leg_rows[leg]);
   double sum = 0;
   for (double r : residuals) sum += r * r;
   return residuals.empty() ? 0 : sigma * std::sqrt(sum / residuals.size());
@@ -106,7 +60,7 @@ double LegRms(const PixelFit& fit, int leg, double sigma) {
 std::vector<LegReadings> LegZ(const PixelFit& fit, int images) {
   std::vector<LegReadings> z(images, LegReadings::Constant(std::nan("")));
   for (int i = 0; i < kNumLegs; ++i) {
-    const std::vector<double> r = LegResiduals(fit, i);
+    const std::vector<double> r = ResidualsOf(fit.problem, fit.leg_rows[i]);
     for (size_t k = 0; k < r.size(); ++k) z[fit.leg_images[i][k]][i] = -r[k];
   }
   return z;
@@ -131,17 +85,10 @@ void FillLegs(const PixelCalibrationInput& input, const PixelFit& fit, const Mat
   for (int i = 0; i < kNumLegs; ++i) {
     LegCalibration& leg = calibration->legs[i];
     leg.initial = LegParametersOf(input.nominal.legs[i]);
-    leg.estimate = (*fit.legs)[i];
+    FillLegUncertainty(i, (*fit.legs)[i], covariance, variance_factor, &leg);
     estimates.segment<kParamsPerLeg>(kParamsPerLeg * i) = leg.estimate;
-    leg.has_uncertainty = true;
-    leg.covariance = covariance.block<kParamsPerLeg, kParamsPerLeg>(kParamsPerLeg * i, kParamsPerLeg * i);
-    leg.std_dev = leg.covariance.diagonal().cwiseSqrt();
-    leg.variance_factor = variance_factor;
     leg.residual_rms = LegRms(fit, i, options.leg_sigma);
     leg.rows_used = static_cast<int>(fit.leg_rows[i].size());
-    // The marginal information's square roots stand for J's singular values.
-    Eigen::VectorXd values = Eigen::SelfAdjointEigenSolver<InfoBlock>(leg.covariance.inverse()).eigenvalues();
-    for (int k = 0; k < kParamsPerLeg; ++k) leg.singular_values[k] = std::sqrt(std::max(0.0, values[kParamsPerLeg - 1 - k]));
   }
   calibration->robot = WithParameters(input.start, estimates);
   calibration->num_measurements = static_cast<int>(input.images.size());
@@ -207,22 +154,15 @@ std::vector<PixelCorrelation> StrongCorrelations(const PixelFit& fit, const Matr
 
 StatusOr<PixelCalibrationResult> SummarizePixelFit(const PixelCalibrationInput& input, const PixelFit& fit,
                                                    const PixelCalibrationOptions& options) {
-  const ColumnLayout layout = Columns(fit);
-  double cost = 0;
-  int rows = 0;
-  const SparseRows jacobian = JacobianAt(fit, layout, &cost, &rows);
-  const MatrixXd information = ReducedInformation(jacobian, layout);
-  if (ScaledConditionInverse(information) < 1e-12) {
+  const JointFitInformation information = ReducedInformationAt(fit.problem, Columns(fit));
+  if (ScaledConditionInverse(information.reduced) < 1e-12) {
     return Status::Failed(
         "calibration from pixels: the data do not determine every estimated quantity (a singular information "
         "matrix); estimate fewer camera quantities or add poses");
   }
-  const int unknowns = layout.global_columns + 6 * layout.poses;
   PixelCalibrationResult result;
-  result.variance_factor = rows > unknowns ? 2 * cost / (rows - unknowns) : 0;
-  const MatrixXd covariance =
-      information.ldlt().solve(MatrixXd::Identity(information.rows(), information.cols())) *
-      std::max(1.0, result.variance_factor);
+  result.variance_factor = information.VarianceFactor();
+  const MatrixXd covariance = information.Covariance();
   FillLegs(input, fit, covariance, options, result.variance_factor, &result.calibration);
   FillExtras(input, fit, covariance, &result);
   result.strong_correlations = StrongCorrelations(fit, covariance);

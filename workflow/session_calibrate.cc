@@ -271,6 +271,29 @@ std::optional<CameraFrameResiduals> CameraFrameDiagnosis(const SessionInputs& in
                                      SessionBiasModels(camera, in.target, robot_per_target_unit), hooks);
 }
 
+// A joint fit (session_joint_fit.h) run on a copy of the two-stage result,
+// which it replaces only when it succeeds (and sets `outcome`). When it
+// fails, the two-stage calibration stands with a warning, unless the request
+// does not fall back or the run was cancelled.
+template <typename Outcome, typename Apply>
+Status ReplaceTwoStage(bool fall_back, const JobHooks& hooks, const TwoStageResult& two_stage, Apply apply,
+                       std::optional<Outcome>* outcome) {
+  CameraCalibrationResult result = *two_stage.result;
+  std::vector<Measurement> held_out = *two_stage.held_out;
+  std::optional<ValidationSummary> validation = *two_stage.validation;
+  StatusOr<Outcome> fit = apply(TwoStageResult{&result, &held_out, &validation});
+  if (fit.ok()) {
+    *two_stage.result = std::move(result);
+    *two_stage.held_out = std::move(held_out);
+    *two_stage.validation = std::move(validation);
+    *outcome = std::move(*fit);
+    return Status::Ok();
+  }
+  if (fit.status().cancelled() || !fall_back) return fit.status();
+  hooks.Note("warning: " + fit.status().message() + "; kept the two-stage calibration (--two-stage skips it)");
+  return Status::Ok();
+}
+
 }  // namespace
 
 StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& request, const JobHooks& hooks) {
@@ -297,42 +320,22 @@ StatusOr<CalibrationReport> CalibrateSession(const CalibrateSessionRequest& requ
   StatusOr<std::optional<ValidationSummary>> validation = ValidateHeldOut(*in, split.held_out, held_out, *result);
   if (!validation.ok()) return validation.status();
   std::optional<PixelOutcome> from_pixels;
+  std::optional<PointOutcome> from_points;
+  const TwoStageResult two_stage{&*result, &held_out, &*validation};
   // A points session has no pixels: the points' fits are its measurements.
   if (request.from_pixels.enabled && in->config.instrument == Instrument::kCamera) {
-    CameraCalibrationResult pixels = *result;
-    std::vector<Measurement> pixels_held_out = held_out;
-    std::optional<ValidationSummary> pixels_validation = *validation;
-    StatusOr<PixelOutcome> fit = ApplyFromPixels(dir, *open, split, request.from_pixels, request.outliers, hooks,
-                                                 &pixels, &pixels_held_out, &pixels_validation);
-    if (fit.ok()) {
-      *result = std::move(pixels);
-      held_out = std::move(pixels_held_out);
-      *validation = std::move(pixels_validation);
-      from_pixels = *fit;
-    } else if (fit.status().cancelled() || !request.from_pixels.fall_back) {
-      return fit.status();
-    } else {
-      hooks.Note("warning: " + fit.status().message() + "; kept the two-stage calibration (--two-stage skips it)");
-    }
+    auto fit = [&](const TwoStageResult& copy) {
+      return ApplyFromPixels(dir, *open, split, request.from_pixels, request.outliers, hooks, copy);
+    };
+    if (Status s = ReplaceTwoStage(request.from_pixels.fall_back, hooks, two_stage, fit, &from_pixels); !s.ok())
+      return s;
   }
-
-  std::optional<PointOutcome> from_points;
   if (request.from_points.enabled && in->config.instrument == Instrument::kPoints) {
-    CameraCalibrationResult points = *result;
-    std::vector<Measurement> points_held_out = held_out;
-    std::optional<ValidationSummary> points_validation = *validation;
-    StatusOr<PointOutcome> fit = ApplyFromPoints(dir, *open, split, request.from_points, request.outliers, hooks,
-                                                 &points, &points_held_out, &points_validation);
-    if (fit.ok()) {
-      *result = std::move(points);
-      held_out = std::move(points_held_out);
-      *validation = std::move(points_validation);
-      from_points = std::move(*fit);
-    } else if (fit.status().cancelled() || !request.from_points.fall_back) {
-      return fit.status();
-    } else {
-      hooks.Note("warning: " + fit.status().message() + "; kept the two-stage calibration (--two-stage skips it)");
-    }
+    auto fit = [&](const TwoStageResult& copy) {
+      return ApplyFromPoints(dir, *open, split, request.from_points, request.outliers, hooks, copy);
+    };
+    if (Status s = ReplaceTwoStage(request.from_points.fall_back, hooks, two_stage, fit, &from_points); !s.ok())
+      return s;
   }
 
   CalibrationReport report = MakeReport(dir, *in, split, *result);

@@ -52,11 +52,12 @@ void MapFittedPoses(const Robot& nominal, const Registration& frames, const std:
 // reflectors). Returns the two-stage figures it replaced, for the report.
 template <typename JointFit>
 StatusOr<TwoStageComparison> AdoptJointFit(const SessionInputs& in, const SplitRows& split,
-                                           const StatusOr<JointFit>& fit, CameraCalibrationResult* result,
-                                           std::vector<Measurement>* held_out,
-                                           std::optional<ValidationSummary>* validation) {
+                                           const StatusOr<JointFit>& fit, const TwoStageResult& two_stage) {
   if (!fit.ok()) return fit.status().cancelled() ? fit.status() : fit.status().AsFailure();
-  const TwoStageComparison two_stage = TwoStageFigures(*result, *validation);
+  CameraCalibrationResult* result = two_stage.result;
+  std::vector<Measurement>* held_out = two_stage.held_out;
+  std::optional<ValidationSummary>* validation = two_stage.validation;
+  const TwoStageComparison replaced = TwoStageFigures(*result, *validation);
   result->calibration = fit->fit.calibration;
   MapFittedPoses(in.nominal, result->registration, fit->calibration_poses, &result->measurements);
   if (Status s = ComputeCalibratedClosure(result); !s.ok()) return s.AsFailure();
@@ -64,25 +65,23 @@ StatusOr<TwoStageComparison> AdoptJointFit(const SessionInputs& in, const SplitR
   StatusOr<std::optional<ValidationSummary>> again = ValidateHeldOut(in, split.held_out, *held_out, *result);
   if (!again.ok()) return again.status();
   *validation = *again;
-  return two_stage;
+  return replaced;
 }
 
 }  // namespace
 
 StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const OpenSession& open, const SplitRows& split,
                                        const FromPixelsRequest& request, const OutlierScreening& outliers,
-                                       const JobHooks& hooks, CameraCalibrationResult* result,
-                                       std::vector<Measurement>* held_out,
-                                       std::optional<ValidationSummary>* validation) {
+                                       const JobHooks& hooks, const TwoStageResult& two_stage) {
   const SessionInputs& in = open.in;
   StatusOr<SessionPixelFit> fit = FitSessionFromPixels(PixelSetup(dir, in, split, open.scale, open.observations),
-                                                       *result, request, outliers, hooks);
-  StatusOr<TwoStageComparison> two_stage = AdoptJointFit(in, split, fit, result, held_out, validation);
-  if (!two_stage.ok()) return two_stage.status();
+                                                       *two_stage.result, request, outliers, hooks);
+  StatusOr<TwoStageComparison> replaced = AdoptJointFit(in, split, fit, two_stage);
+  if (!replaced.ok()) return replaced.status();
   const bool intrinsics = request.focal || request.principal_point;
   CornerResidualTable corners{{}, std::move(fit->fit.corner_residuals)};
   for (const LegsRow* row : split.calibration_rows) corners.images.push_back(row->image);  // the fit's image order
-  return PixelOutcome{SummarizeSessionPixelFit(*fit, *two_stage),
+  return PixelOutcome{SummarizeSessionPixelFit(*fit, *replaced),
                       intrinsics ? std::optional<Camera>(fit->fit.camera) : std::nullopt,
                       fit->fit.camera,
                       fit->fit.target_scale,
@@ -92,19 +91,17 @@ StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const OpenSession
 
 StatusOr<PointOutcome> ApplyFromPoints(const std::string& dir, const OpenSession& open, const SplitRows& split,
                                        const FromPointsRequest& request, const OutlierScreening& outliers,
-                                       const JobHooks& hooks, CameraCalibrationResult* result,
-                                       std::vector<Measurement>* held_out,
-                                       std::optional<ValidationSummary>* validation) {
+                                       const JobHooks& hooks, const TwoStageResult& two_stage) {
   const SessionInputs& in = open.in;
   StatusOr<PointFiles> files = SessionPointFiles(dir, in.config);
   if (!files.ok()) return files.status();
   SessionPointSetup setup{in.nominal, *files, in.config.noise, {}, {}, split.input.legs};
   for (const LegsRow* row : split.calibration_rows) setup.calibration_poses.push_back(row->image);
   for (const LegsRow* row : split.held_out) setup.held_out_poses.push_back(row->image);
-  StatusOr<SessionPointFit> fit = FitSessionFromPoints(setup, *result, request, outliers, hooks);
-  StatusOr<TwoStageComparison> two_stage = AdoptJointFit(in, split, fit, result, held_out, validation);
-  if (!two_stage.ok()) return two_stage.status();
-  PointFitSummary summary = SummarizeSessionPointFit(*fit, *two_stage);
+  StatusOr<SessionPointFit> fit = FitSessionFromPoints(setup, *two_stage.result, request, outliers, hooks);
+  StatusOr<TwoStageComparison> replaced = AdoptJointFit(in, split, fit, two_stage);
+  if (!replaced.ok()) return replaced.status();
+  PointFitSummary summary = SummarizeSessionPointFit(*fit, *replaced);
   return PointOutcome{std::move(summary), PointsResults{std::move(*fit), std::move(setup.calibration_poses)}};
 }
 

@@ -7,7 +7,7 @@
 // keeps only when it succeeds, so a failed fit can fall back to two-stage.
 //
 //   StatusOr<PixelOutcome> fit = ApplyFromPixels(dir, open, split, request.from_pixels, request.outliers, hooks,
-//                                                &result, &held_out, &validation);
+//                                                TwoStageResult{&result, &held_out, &validation});
 //   if (fit.ok()) report.from_pixels = fit->summary;
 #pragma once
 
@@ -38,6 +38,14 @@ struct PointsResults {
   std::vector<std::string> poses;  // the fit's pose order
 };
 
+// The two-stage calibration a joint fit replaces, in place: its
+// parameters and closure, the held-out rows and their validation.
+struct TwoStageResult {
+  CameraCalibrationResult* result;
+  std::vector<Measurement>* held_out;
+  std::optional<ValidationSummary>* validation;
+};
+
 // What the calibration from pixels adds to the report and to results/.
 struct PixelOutcome {
   PixelFitSummary summary;
@@ -61,9 +69,7 @@ struct PointOutcome {
 // (X·B'·Y⁻¹), which the residual charts compare the calibrated robot with.
 StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const OpenSession& open, const SplitRows& split,
                                        const FromPixelsRequest& request, const OutlierScreening& outliers,
-                                       const JobHooks& hooks, CameraCalibrationResult* result,
-                                       std::vector<Measurement>* held_out,
-                                       std::optional<ValidationSummary>* validation);
+                                       const JobHooks& hooks, const TwoStageResult& two_stage);
 
 // The two-stage result replaced by the calibration from points: its
 // parameters, and the closure, held-out validation and the rows of
@@ -71,8 +77,6 @@ StatusOr<PixelOutcome> ApplyFromPixels(const std::string& dir, const OpenSession
 // reflectors (X·B'·Y⁻¹).
 StatusOr<PointOutcome> ApplyFromPoints(const std::string& dir, const OpenSession& open, const SplitRows& split,
                                        const FromPointsRequest& request, const OutlierScreening& outliers,
-                                       const JobHooks& hooks, CameraCalibrationResult* result,
-                                       std::vector<Measurement>* held_out,
-                                       std::optional<ValidationSummary>* validation);
+                                       const JobHooks& hooks, const TwoStageResult& two_stage);
 
 }  // namespace hexcal::workflow

@@ -73,15 +73,6 @@ PixelCalibrationInput FitInput(const SessionPixelSetup& setup, const CameraCalib
   return input;
 }
 
-// The fit with the readings screened (workflow/screened_joint_fit.h).
-StatusOr<PixelCalibrationResult> ScreenedFit(PixelCalibrationInput input, PixelCalibrationOptions options,
-                                             const OutlierScreening& screening, const JobHooks& hooks) {
-  return ScreenedJointFit(
-      std::move(input), std::move(options), screening,
-      [&hooks](const PixelCalibrationInput& in, const PixelCalibrationOptions& o) { return CalibrateFromPixels(in, o, hooks); },
-      [](PixelCalibrationInput& in) -> std::vector<PixelImage>& { return in.images; });
-}
-
 }  // namespace
 
 const OptionSpec<FromPixelsRequest>& PixelEstimatesOption() {
@@ -149,7 +140,8 @@ StatusOr<SessionPixelFit> FitSessionFromPixels(const SessionPixelSetup& setup,
   options.estimate_target_scale = request.target_scale;
   options.leg_sigma = setup.noise.LegStdDev();
   hooks.Stage("calibrate from pixels");
-  StatusOr<PixelCalibrationResult> fit = ScreenedFit(FitInput(setup, two_stage, *seen), options, screening, hooks);
+  StatusOr<PixelCalibrationResult> fit = ScreenedJointFit(FitInput(setup, two_stage, *seen), options, screening,
+                                                          &CalibrateFromPixels, &PixelCalibrationInput::images, hooks);
   if (!fit.ok()) return fit.status();
   SessionPixelFit result{std::move(*fit), {}, {}};
   auto pose_of = [&](const std::optional<BoardObservation>& observation) {

@@ -46,15 +46,6 @@ PointCalibrationInput FitInput(const SessionPointSetup& setup, const CameraCalib
   return input;
 }
 
-// The fit with the readings screened (workflow/screened_joint_fit.h).
-StatusOr<PointCalibrationResult> ScreenedFit(PointCalibrationInput input, PointCalibrationOptions options,
-                                             const OutlierScreening& screening, const JobHooks& hooks) {
-  return ScreenedJointFit(
-      std::move(input), std::move(options), screening,
-      [&hooks](const PointCalibrationInput& in, const PointCalibrationOptions& o) { return CalibrateFromPoints(in, o, hooks); },
-      [](PointCalibrationInput& in) -> std::vector<PointCalibrationPose>& { return in.poses; });
-}
-
 // The shape's scale: s = √(Σ|r̂_k − ĉ|² / Σ|r_k − c|²), and its σ from the
 // reflectors' covariance, ds = Σ (r̂_k − ĉ)ᵀ dr̂_k / (s Σ|r_k − c|²).
 void ShapeScale(const std::vector<NamedPoint>& given, const PointCalibrationResult& fit, SessionPointFit* out) {
@@ -120,7 +111,8 @@ StatusOr<SessionPointFit> FitSessionFromPoints(const SessionPointSetup& setup, c
   options.estimate_reflectors = request.estimate_reflectors;
   options.leg_sigma = setup.noise.LegStdDev();
   StatusOr<PointCalibrationResult> fit =
-      ScreenedFit(FitInput(setup, two_stage, *loaded, *points), options, screening, hooks);
+      ScreenedJointFit(FitInput(setup, two_stage, *loaded, *points), options, screening,
+                       &CalibrateFromPoints, &PointCalibrationInput::poses, hooks);
   if (!fit.ok()) return fit.status();
   SessionPointFit result;
   result.from_file = !loaded->estimated;
