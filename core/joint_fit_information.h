@@ -1,7 +1,8 @@
 // The uncertainty of a joint fit's global unknowns — the 42 parameters and
 // the camera, target or reflector quantities it estimates — with every
 // platform pose eliminated: the Schur complement of JᵀJ over the 6 × 6 pose
-// blocks (docs/calibration.md, "Calibration from pixels"). The calibrations
+// blocks (docs/calibration.md, "Calibration from pixels", "Uncertainty and
+// identifiability"). The calibrations
 // from pixels (vision/pixel_calibration_covariance.h) and from points
 // (core/point_calibration_fit.h) both summarise their solved problem with it.
 //
