@@ -2,8 +2,8 @@
 // the camera, target or reflector quantities it estimates — with every
 // platform pose eliminated: the Schur complement of JᵀJ over the 6 × 6 pose
 // blocks (docs/calibration.md, "Calibration from pixels", "Uncertainty and
-// identifiability"). The calibrations
-// from pixels (vision/pixel_calibration_covariance.h) and from points
+// identifiability"). The calibrations from pixels
+// (vision/pixel_calibration_covariance.h) and from points
 // (core/point_calibration_fit.h) both summarise their solved problem with it.
 //
 //   JointFitColumns columns;  // the global blocks, then one block per pose
