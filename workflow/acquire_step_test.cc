@@ -19,8 +19,7 @@
 #include "core/session.h"
 #include "sim/sim_world.h"
 #include "tests/test_support.h"
-#include "vision/camera.h"
-#include "vision/target.h"
+#include "workflow/tests/test_sessions.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -35,8 +34,7 @@ namespace fs = std::filesystem;
 // camera (70 cm above) sees the whole board. Row 2 of `with_unreachable` is
 // far above the workspace.
 std::string MakeSession(const TempDir& dir, bool with_unreachable = false) {
-  const std::string session = dir.File("s");
-  EXPECT_TRUE(InitSession(session, {"inria-left-hand", kSimulatedCameraName, kDefaultTargetName}).ok());
+  const std::string session = NewCameraSession(dir);
   WriteTextFile(session + "/plan.csv", std::string("x,y,z,q1,q2,q3\n") + "0,0,53.5,0,0,0\n" + "1,-0.5,53,2,-1,4\n" +
                                            (with_unreachable ? "0,0,500,0,0,0\n" : "-1,0.8,54,-2,2,-3\n") +
                                            "0.5,1,53.8,1,1.5,-2\n");
@@ -143,6 +141,21 @@ TEST(AcquireStep, AnUnreachablePoseFailsAndTheRunGoesOn) {
   EXPECT_EQ(Rows(s)->size(), 3u);
 }
 
+// MakeSession's session with its sim machine and camera open (seed 1), for
+// the tests that put a faulty device of their own in front of one of them.
+class AcquireOnSimRig : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    StatusOr<AcquisitionRig> rig = OpenAcquisitionRig(s_, "sim", "sim", 1);
+    ASSERT_TRUE(rig.ok()) << rig.status().message();
+    rig_ = std::move(*rig);
+  }
+
+  TempDir dir_;
+  const std::string s_ = MakeSession(dir_);
+  AcquisitionRig rig_;
+};
+
 // A camera that drops its first frame, as a real one sometimes does.
 class DropsFirstFrame final : public FrameSource {
  public:
@@ -158,23 +171,19 @@ class DropsFirstFrame final : public FrameSource {
   int grabs_ = 0;
 };
 
-TEST(AcquireStep, AFrameThatFailsOnceFailsOnePoseAndTheNextRunRetriesIt) {
-  TempDir dir;
-  const std::string s = MakeSession(dir);
-  StatusOr<AcquisitionRig> rig = OpenAcquisitionRig(s, "sim", "sim", 1);
-  ASSERT_TRUE(rig.ok()) << rig.status().message();
-  DropsFirstFrame camera(std::move(rig->camera));
-  StatusOr<AcquireResult> run = AcquirePlan(AcquireRequest{s}, *rig->controller, camera);
+TEST_F(AcquireOnSimRig, AFrameThatFailsOnceFailsOnePoseAndTheNextRunRetriesIt) {
+  DropsFirstFrame camera(std::move(rig_.camera));
+  StatusOr<AcquireResult> run = AcquirePlan(AcquireRequest{s_}, *rig_.controller, camera);
   ASSERT_TRUE(run.ok()) << run.status().message();
   const int first = run->visit_order.at(0);
   EXPECT_EQ(run->poses[first].state, PoseState::kFailed);
   EXPECT_EQ(run->poses[first].error, "test camera: dropped frame");
   EXPECT_EQ(run->Count(PoseState::kRecorded), 3);
-  StatusOr<AcquireResult> retry = AcquirePlan(AcquireRequest{s}, *rig->controller, camera);
+  StatusOr<AcquireResult> retry = AcquirePlan(AcquireRequest{s_}, *rig_.controller, camera);
   ASSERT_TRUE(retry.ok()) << retry.status().message();
   EXPECT_EQ(retry->visit_order, std::vector<int>{first});
   EXPECT_EQ(retry->poses[first].state, PoseState::kRecorded);
-  EXPECT_EQ(Rows(s)->size(), 4u);
+  EXPECT_EQ(Rows(s_)->size(), 4u);
 }
 
 TEST(AcquireStep, ResumingWithAnotherSeedIsRefused) {
@@ -186,16 +195,12 @@ TEST(AcquireStep, ResumingWithAnotherSeedIsRefused) {
   EXPECT_NE(other.status().message().find("another --seed than 2"), std::string::npos) << other.status().message();
 }
 
-TEST(AcquireStep, OnePoseAtATimeRefusesARecordedPose) {
-  TempDir dir;
-  const std::string s = MakeSession(dir);
-  StatusOr<AcquisitionRig> rig = OpenAcquisitionRig(s, "sim", "sim", 1);
-  ASSERT_TRUE(rig.ok()) << rig.status().message();
+TEST_F(AcquireOnSimRig, OnePoseAtATimeRefusesARecordedPose) {
   const Vector6d pose = (Vector6d() << 0, 0, 53.5, 0, 0, 0).finished();
-  StatusOr<PoseRecord> first = AcquirePose(s, 7, pose, *rig->controller, *rig->camera, {});
+  StatusOr<PoseRecord> first = AcquirePose(s_, 7, pose, *rig_.controller, *rig_.camera, {});
   ASSERT_TRUE(first.ok()) << first.status().message();
   EXPECT_EQ(first->image, "pose_0007.png");
-  StatusOr<PoseRecord> again = AcquirePose(s, 7, pose, *rig->controller, *rig->camera, {});
+  StatusOr<PoseRecord> again = AcquirePose(s_, 7, pose, *rig_.controller, *rig_.camera, {});
   ASSERT_FALSE(again.ok());
   EXPECT_NE(again.status().message().find("pose_0007.png is recorded already"), std::string::npos);
 }
@@ -272,40 +277,32 @@ TEST(AcquireStep, ImplausibleReadingsStopTheRunAndNothingIsRecorded) {
   }
 }
 
-TEST(AcquireStep, AnotherPosesReadingsNameBothValuesAndTheTolerance) {
-  TempDir dir;
-  const std::string s = MakeSession(dir);
-  StatusOr<AcquisitionRig> rig = OpenAcquisitionRig(s, "sim", "sim", 1);
-  ASSERT_TRUE(rig.ok()) << rig.status().message();
+TEST_F(AcquireOnSimRig, AnotherPosesReadingsNameBothValuesAndTheTolerance) {
   // 0.01 cm too long: beyond 5 x the session's leg noise (0.001 cm).
-  LyingController controller(*rig->controller, [](LegReadings legs) {
+  LyingController controller(*rig_.controller, [](LegReadings legs) {
     legs[4] += 0.01;
     return legs;
   });
-  StatusOr<AcquireResult> run = AcquirePlan(AcquireRequest{s}, controller, *rig->camera);
+  StatusOr<AcquireResult> run = AcquirePlan(AcquireRequest{s_}, controller, *rig_.camera);
   ASSERT_FALSE(run.ok());
   EXPECT_NE(run.status().message().find("more than 0.005 cm (5 x the session's leg noise 0.001 cm)"), std::string::npos)
       << run.status().message();
   EXPECT_NE(run.status().message().find("leg 5 read "), std::string::npos) << run.status().message();
 }
 
-TEST(AcquireStep, TheSettleTimeIsTheControllersUnlessGiven) {
-  TempDir dir;
-  const std::string s = MakeSession(dir);
-  StatusOr<AcquisitionRig> rig = OpenAcquisitionRig(s, "sim", "sim", 1);
-  ASSERT_TRUE(rig.ok()) << rig.status().message();
-  LyingController controller(*rig->controller, [](const LegReadings& legs) { return legs; });
-  AcquireRequest request{s};
-  request.poses = s + "/plan.csv";
-  StatusOr<AcquireResult> run = AcquirePlan(request, controller, *rig->camera);
+TEST_F(AcquireOnSimRig, TheSettleTimeIsTheControllersUnlessGiven) {
+  LyingController controller(*rig_.controller, [](const LegReadings& legs) { return legs; });
+  AcquireRequest request{s_};
+  request.poses = s_ + "/plan.csv";
+  StatusOr<AcquireResult> run = AcquirePlan(request, controller, *rig_.camera);
   ASSERT_TRUE(run.ok()) << run.status().message();
   EXPECT_EQ(controller.settles, std::vector<double>(4, 0.01));
   EXPECT_EQ(run->settle_seconds, 0.01);
-  fs::remove(s + "/legs.csv");
-  for (const fs::directory_entry& image : fs::directory_iterator(s + "/images")) fs::remove(image.path());
+  fs::remove(s_ + "/legs.csv");
+  for (const fs::directory_entry& image : fs::directory_iterator(s_ + "/images")) fs::remove(image.path());
   controller.settles.clear();
   request.options.settle_seconds = 0;
-  ASSERT_TRUE(AcquirePlan(request, controller, *rig->camera).ok());
+  ASSERT_TRUE(AcquirePlan(request, controller, *rig_.camera).ok());
   EXPECT_EQ(controller.settles, std::vector<double>(4, 0.0));
 }
 
@@ -325,19 +322,15 @@ class StuckController final : public Controller {
   int moves = 0;
 };
 
-TEST(AcquireStep, AMachineStuckInAMoveStopsTheRun) {
-  TempDir dir;
-  const std::string s = MakeSession(dir);
-  StatusOr<AcquisitionRig> rig = OpenAcquisitionRig(s, "sim", "sim", 1);
-  ASSERT_TRUE(rig.ok()) << rig.status().message();
+TEST_F(AcquireOnSimRig, AMachineStuckInAMoveStopsTheRun) {
   StuckController controller;
-  StatusOr<AcquireResult> run = AcquirePlan(AcquireRequest{s}, controller, *rig->camera);
+  StatusOr<AcquireResult> run = AcquirePlan(AcquireRequest{s_}, controller, *rig_.camera);
   ASSERT_FALSE(run.ok());
   EXPECT_EQ(run.status().kind(), StatusKind::kFailed);
   EXPECT_NE(run.status().message().find("test machine: the move did not end; the run stops here"), std::string::npos)
       << run.status().message();
   EXPECT_EQ(controller.moves, 1);
-  EXPECT_FALSE(fs::exists(s + "/legs.csv"));
+  EXPECT_FALSE(fs::exists(s_ + "/legs.csv"));
 }
 
 // A session that cannot take the captures is refused before the controller

@@ -14,14 +14,13 @@
 #include "core/robot_io.h"
 #include "core/session.h"
 #include "report/expected_error.h"
-#include "tests/test_support.h"
 #include "workflow/demo.h"
 #include "workflow/session_calibrate.h"
+#include "workflow/tests/test_sessions.h"
 
 namespace hexcal::workflow {
 namespace {
 
-using hexcal::testing::TempDir;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
@@ -320,36 +319,19 @@ TEST(ExpectedError, PoseNoiseAloneAndWithReadings) {
 }
 
 // The demo session of `hexcal demo` (24 planned, 8 held out), then edited.
-class DemoVerdict : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    dir_ = new TempDir;
-    DemoRequest request;
-    request.out = dir_->File("demo");
-    StatusOr<DemoResult> demo = RunDemo(request);
-    ASSERT_TRUE(demo.ok()) << demo.status().message();
-    demo_ = new DemoResult(*demo);
-  }
-  static void TearDownTestSuite() {
-    delete demo_;
-    delete dir_;
-  }
-  static std::string Session() { return dir_->File("demo"); }
-
-  static TempDir* dir_;
-  static DemoResult* demo_;
+class DemoVerdict : public DemoSessionSuite<DemoVerdict> {
+ public:
+  static DemoRequest Request() { return DemoRequest{}; }
 };
-TempDir* DemoVerdict::dir_ = nullptr;
-DemoResult* DemoVerdict::demo_ = nullptr;
 
 TEST_F(DemoVerdict, CleanDemoIsGood) {
-  EXPECT_EQ(demo_->verdict.level, VerdictLevel::kGood) << demo_->verdict.ToText();
-  EXPECT_EQ(FindingOf(demo_->verdict, "parameters (truth)").level, VerdictLevel::kGood);
+  EXPECT_EQ(Demo().verdict.level, VerdictLevel::kGood) << Demo().verdict.ToText();
+  EXPECT_EQ(FindingOf(Demo().verdict, "parameters (truth)").level, VerdictLevel::kGood);
   // The report on disk carries what the verdict needs.
   StatusOr<CalibrationReport> saved = LoadCalibrationReport(CalibrationReportPath(Session()));
   ASSERT_TRUE(saved.ok()) << saved.status().message();
   ASSERT_TRUE(saved->noise.has_value());
-  EXPECT_EQ(MakeVerdict(*saved).ToText(), MakeVerdict(demo_->calibration).ToText());
+  EXPECT_EQ(MakeVerdict(*saved).ToText(), MakeVerdict(Demo().calibration).ToText());
 }
 
 // Adds `delta` (robot unit) to leg 3's reading of the first calibration row.

@@ -12,6 +12,7 @@
 #include "session/corner_residuals_file.h"
 #include "tests/test_support.h"
 #include "workflow/session_calibrate.h"
+#include "workflow/tests/test_sessions.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -23,53 +24,30 @@ using hexcal::testing::SourceDir;
 using hexcal::testing::TempDir;
 using hexcal::testing::WriteTextFile;
 
-class DemoSession : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    dir_ = new TempDir;
-    DemoRequest request;
-    request.out = dir_->File("demo");
-    request.poses = 10;
-    request.holdout = 3;
-    request.seed = 3;
-    JobHooks hooks;
-    hooks.note = [](const std::string& line) { notes_.push_back(line); };
-    StatusOr<DemoResult> demo = RunDemo(request, hooks);
-    ASSERT_TRUE(demo.ok()) << demo.status().message();
-    result_ = new DemoResult(*demo);
-  }
-  static void TearDownTestSuite() {
-    delete result_;
-    delete dir_;
-  }
-  static std::string Session() { return dir_->File("demo"); }
-
-  static TempDir* dir_;
-  static DemoResult* result_;
-  static std::vector<std::string> notes_;
+// One demo for the tests below: 10 planned poses, 3 held out, seed 3.
+class DemoSession : public DemoSessionSuite<DemoSession> {
+ public:
+  static DemoRequest Request() { return SmallDemo(/*poses=*/10, /*holdout=*/3, /*seed=*/3); }
 };
-TempDir* DemoSession::dir_ = nullptr;
-DemoResult* DemoSession::result_ = nullptr;
-std::vector<std::string> DemoSession::notes_;
 
 TEST_F(DemoSession, CalibratesCloserToTheTruth) {
-  EXPECT_EQ(result_->usable_images, 13);
-  EXPECT_LT(result_->error_mean, result_->nominal_error_mean / 3);
-  EXPECT_GE(result_->within_3sigma, 0.9);
-  ASSERT_TRUE(result_->calibration.validation.has_value());
-  EXPECT_LT(result_->calibration.validation->after.position_rms, result_->calibration.validation->before.position_rms);
+  EXPECT_EQ(Demo().usable_images, 13);
+  EXPECT_LT(Demo().error_mean, Demo().nominal_error_mean / 3);
+  EXPECT_GE(Demo().within_3sigma, 0.9);
+  ASSERT_TRUE(Demo().calibration.validation.has_value());
+  EXPECT_LT(Demo().calibration.validation->after.position_rms, Demo().calibration.validation->before.position_rms);
   // 5 steps, the plan line, 12 calibration lines (5 of them from pixels: fit, fx, fy, σ, two-stage
   // validation; one of camera-frame residuals; the worst image's closure)
-  EXPECT_EQ(notes_.size(), 18u);
-  EXPECT_THAT(notes_.front(), HasSubstr("[1/5 "));
-  EXPECT_TRUE(std::filesystem::exists(result_->report));
+  EXPECT_EQ(Notes().size(), 18u);
+  EXPECT_THAT(Notes().front(), HasSubstr("[1/5 "));
+  EXPECT_TRUE(std::filesystem::exists(Demo().report));
 }
 
 // The report on disk is the typed result the demo returned.
 TEST_F(DemoSession, ReportJsonIsTheReturnedReport) {
   StatusOr<CalibrationReport> stored = LoadCalibrationReport(CalibrationReportPath(Session()));
   ASSERT_TRUE(stored.ok()) << stored.status().message();
-  EXPECT_EQ(ToJson(*stored), ToJson(result_->calibration));
+  EXPECT_EQ(ToJson(*stored), ToJson(Demo().calibration));
 }
 
 // A second run keeps the measurements and gives the same parameters.
@@ -83,15 +61,15 @@ TEST_F(DemoSession, RecalibrationIsRepeatable) {
                                              "calibrate from pixels"};
   EXPECT_EQ(stages, expected);  // nothing left to measure
   for (size_t k = 0; k < again->parameters.size(); ++k)
-    EXPECT_NEAR(again->parameters[k].estimate, result_->calibration.parameters[k].estimate, 1e-7);  // solver tolerance
+    EXPECT_NEAR(again->parameters[k].estimate, Demo().calibration.parameters[k].estimate, 1e-7);  // solver tolerance
 }
 
 // The default calibration is from pixels; --two-stage gives the other one,
 // and both are honest about the truth's 3σ on the demo.
 TEST_F(DemoSession, CalibratesFromPixelsByDefaultAndTwoStageOnRequest) {
-  ASSERT_TRUE(result_->calibration.from_pixels.has_value());
-  const PixelFitSummary& pixels = *result_->calibration.from_pixels;
-  EXPECT_EQ(ToJson(result_->calibration)["method"], "from-pixels");
+  ASSERT_TRUE(Demo().calibration.from_pixels.has_value());
+  const PixelFitSummary& pixels = *Demo().calibration.from_pixels;
+  EXPECT_EQ(ToJson(Demo().calibration)["method"], "from-pixels");
   ASSERT_EQ(pixels.estimated.size(), 2u);  // fx, fy
   EXPECT_NEAR(pixels.estimated[0].estimate, pixels.estimated[0].file_value, 5 * pixels.estimated[0].sigma);
   EXPECT_LT(pixels.reprojection_rms_px, 0.2);
@@ -111,8 +89,8 @@ TEST_F(DemoSession, CalibratesFromPixelsByDefaultAndTwoStageOnRequest) {
   EXPECT_EQ(ToJson(*poses_only)["method"], "two-stage");
   EXPECT_FALSE(std::filesystem::exists(std::filesystem::path(Session()) / "results" / "camera.yaml"));
   EXPECT_FALSE(std::filesystem::exists(corners_file));  // no fit to the corners, no residuals
-  EXPECT_NEAR(poses_only->closure_position_rms, result_->calibration.closure_position_rms,
-              result_->calibration.closure_position_rms);
+  EXPECT_NEAR(poses_only->closure_position_rms, Demo().calibration.closure_position_rms,
+              Demo().calibration.closure_position_rms);
   ASSERT_TRUE(CalibrateSession({Session()}).ok());  // back to the default for the other tests
 }
 
@@ -129,11 +107,11 @@ TEST_F(DemoSession, CancelReturnsCancelledAndKeepsResults) {
 // page show it (its finding on clean demos: tests/cli/demo.sh; with 10
 // images this seed's depth slope is 4.2 standard errors, the bound 4.28).
 TEST_F(DemoSession, CameraFrameResidualsAreReported) {
-  ASSERT_TRUE(result_->calibration.camera_frame_residuals.has_value());
-  const CameraFrameResiduals& r = *result_->calibration.camera_frame_residuals;
+  ASSERT_TRUE(Demo().calibration.camera_frame_residuals.has_value());
+  const CameraFrameResiduals& r = *Demo().calibration.camera_frame_residuals;
   EXPECT_EQ(r.images, 10);
   EXPECT_EQ(r.fk_failed, 0);
-  EXPECT_THAT(notes_, Contains(HasSubstr("camera-frame residuals (cm, 10 images")));
+  EXPECT_THAT(Notes(), Contains(HasSubstr("camera-frame residuals (cm, 10 images")));
   StatusOr<std::string> page = SessionReportHtml(Session());
   ASSERT_TRUE(page.ok()) << page.status().message();
   EXPECT_THAT(*page, HasSubstr("<h2>Camera-frame residuals</h2>"));
@@ -141,7 +119,8 @@ TEST_F(DemoSession, CameraFrameResidualsAreReported) {
 }
 
 TEST_F(DemoSession, ReportPageRefusesToOverwriteWithoutForce) {
-  const std::string out = dir_->File("page.html");
+  TempDir dir;
+  const std::string out = dir.File("page.html");
   ASSERT_TRUE(WriteSessionReport({Session(), out, false}).ok());
   StatusOr<std::string> again = WriteSessionReport({Session(), out, false});
   EXPECT_THAT(again.status().message(), HasSubstr("exists; use --force"));

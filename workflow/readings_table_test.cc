@@ -6,9 +6,8 @@
 
 #include "core/session.h"
 #include "tests/test_support.h"
-#include "vision/camera.h"
-#include "vision/target.h"
 #include "workflow/session_edits.h"
+#include "workflow/tests/test_sessions.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -16,19 +15,9 @@ namespace {
 using ::hexcal::testing::TempDir;
 using ::hexcal::testing::WriteTextFile;
 
-std::string MakeSession(const TempDir& dir) {
-  const std::string session = dir.File("s");
-  SessionConfig config;
-  config.robot = "inria-left-hand";
-  config.camera = kSimulatedCameraName;
-  config.target = kDefaultTargetName;
-  EXPECT_TRUE(InitSession(session, config).ok());
-  return session;
-}
-
 TEST(ReadingsTable, ImagesWithoutLegsCsvGiveBlankRowsToTypeInto) {
   TempDir dir;
-  const std::string s = MakeSession(dir);
+  const std::string s = NewCameraSession(dir);
   WriteTextFile(s + "/images/b.png", "b");
   WriteTextFile(s + "/images/a.png", "a");
   EXPECT_FALSE(LoadSessionLegs(s).ok());  // the session's rows do not load yet...
@@ -55,7 +44,7 @@ TEST(ReadingsTable, ImagesWithoutLegsCsvGiveBlankRowsToTypeInto) {
 
 TEST(ReadingsTable, RowsWhoseImageIsMissingOrCellIsNotANumberAreShown) {
   TempDir dir;
-  const std::string s = MakeSession(dir);
+  const std::string s = NewCameraSession(dir);
   WriteTextFile(s + "/legs.csv", "image,L1,L2,L3,L4,L5,L6,holdout\ngone.png,50,x,52,53,54,55,1\n");
   StatusOr<std::vector<ReadingsRow>> rows = ReadReadingsTable(s);
   ASSERT_TRUE(rows.ok()) << rows.status().message();

@@ -18,6 +18,7 @@
 #include "vision/target.h"
 #include "workflow/demo.h"
 #include "workflow/session_calibrate.h"
+#include "workflow/tests/test_sessions.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -30,40 +31,39 @@ namespace fs = std::filesystem;
 
 // A session with one image (any bytes: edits and hashes never decode them).
 std::string MakeSession(const TempDir& dir) {
-  const std::string session = dir.File("s");
-  SessionConfig config;
-  config.robot = "inria-left-hand";
-  config.camera = kSimulatedCameraName;
-  config.target = kDefaultTargetName;
-  EXPECT_TRUE(InitSession(session, config).ok());
+  const std::string session = NewCameraSession(dir);
   WriteTextFile(session + "/images/a.png", "image a");
   WriteTextFile(session + "/legs.csv", "image,L1,L2,L3,L4,L5,L6,holdout\na.png,50,51,52,53,54,55,0\n");
   return session;
 }
 
-TEST(SessionEdits, ACaptureTakenBackLeavesNeitherRowNorImage) {
-  TempDir dir;
-  const std::string s = MakeSession(dir);
-  WriteTextFile(s + "/images/b.png", "image b");
-  WriteTextFile(s + "/legs.csv", ReadTextFile(s + "/legs.csv") + "b.png,60,61,62,63,64,65,1\n");
-  ASSERT_TRUE(RemoveCapture(s, "a.png").ok());
-  EXPECT_FALSE(fs::exists(s + "/images/a.png"));
-  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s);
+// Each test starts from MakeSession's session, in a folder of its own.
+class SessionEdits : public ::testing::Test {
+ protected:
+  TempDir dir_;
+  const std::string s_ = MakeSession(dir_);
+};
+
+TEST_F(SessionEdits, ACaptureTakenBackLeavesNeitherRowNorImage) {
+  WriteTextFile(s_ + "/images/b.png", "image b");
+  WriteTextFile(s_ + "/legs.csv", ReadTextFile(s_ + "/legs.csv") + "b.png,60,61,62,63,64,65,1\n");
+  ASSERT_TRUE(RemoveCapture(s_, "a.png").ok());
+  EXPECT_FALSE(fs::exists(s_ + "/images/a.png"));
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s_);
   ASSERT_TRUE(rows.ok()) << rows.status().message();
   ASSERT_EQ(rows->size(), 1u);
   EXPECT_EQ((*rows)[0].image, "b.png");
-  EXPECT_FALSE(RemoveCapture(s, "a.png").ok());         // gone already
-  EXPECT_FALSE(RemoveCapture(s, "../session.yaml").ok());  // never outside images/
-  EXPECT_TRUE(fs::exists(s + "/session.yaml"));
+  EXPECT_FALSE(RemoveCapture(s_, "a.png").ok());            // gone already
+  EXPECT_FALSE(RemoveCapture(s_, "../session.yaml").ok());  // never outside images/
+  EXPECT_TRUE(fs::exists(s_ + "/session.yaml"));
 }
 
 // A points session's legs.csv is keyed by `pose` (issue 38): the edits find
 // and write that column, a new file gets it, captures (images) are refused,
 // and the readings table has a blank row for each pose of the points file
 // without readings.
-TEST(SessionEdits, APointsSessionsRowsAreKeyedByPose) {
-  TempDir dir;
-  const std::string s = dir.File("p");
+TEST_F(SessionEdits, APointsSessionsRowsAreKeyedByPose) {
+  const std::string s = dir_.File("p");  // beside the fixture's camera session
   SessionConfig config;
   config.robot = "inria-left-hand";
   config.instrument = Instrument::kPoints;
@@ -95,16 +95,14 @@ TEST(SessionEdits, APointsSessionsRowsAreKeyedByPose) {
   EXPECT_FALSE((*table)[1].recorded);
 }
 
-TEST(SessionEdits, AnEditKeepsTheRowsAnotherProgramAppended) {
-  TempDir dir;
-  const std::string s = MakeSession(dir);
+TEST_F(SessionEdits, AnEditKeepsTheRowsAnotherProgramAppended) {
   // Another program appends b.png while the GUI shows only a.png.
-  WriteTextFile(s + "/images/b.png", "image b");
-  WriteTextFile(s + "/legs.csv", ReadTextFile(s + "/legs.csv") + "b.png,60,61,62,63,64,65,1\n");
-  const EditOutcome done = ApplyLegsEdit(s, LegsEdit::SetReading("a.png", 2, 52, 52.5));
+  WriteTextFile(s_ + "/images/b.png", "image b");
+  WriteTextFile(s_ + "/legs.csv", ReadTextFile(s_ + "/legs.csv") + "b.png,60,61,62,63,64,65,1\n");
+  const EditOutcome done = ApplyLegsEdit(s_, LegsEdit::SetReading("a.png", 2, 52, 52.5));
   ASSERT_TRUE(done.status.ok()) << done.status.message();
   ASSERT_FALSE(done.conflict);
-  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s);
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s_);
   ASSERT_TRUE(rows.ok()) << rows.status().message();
   ASSERT_EQ(rows->size(), 2u);
   EXPECT_EQ((*rows)[0].legs[2], 52.5);
@@ -113,114 +111,103 @@ TEST(SessionEdits, AnEditKeepsTheRowsAnotherProgramAppended) {
   EXPECT_TRUE((*rows)[1].holdout);
 }
 
-TEST(SessionEdits, TheSameCellChangedOnDiskIsAConflictAndNothingIsWritten) {
-  TempDir dir;
-  const std::string s = MakeSession(dir);
-  WriteTextFile(s + "/legs.csv", "image,L1,L2,L3,L4,L5,L6,holdout\na.png,50,51,52.2,53,54,55,0\n");
-  const std::string on_disk = ReadTextFile(s + "/legs.csv");
-  const EditOutcome clash = ApplyLegsEdit(s, LegsEdit::SetReading("a.png", 2, 52, 52.5));
+TEST_F(SessionEdits, TheSameCellChangedOnDiskIsAConflictAndNothingIsWritten) {
+  WriteTextFile(s_ + "/legs.csv", "image,L1,L2,L3,L4,L5,L6,holdout\na.png,50,51,52.2,53,54,55,0\n");
+  const std::string on_disk = ReadTextFile(s_ + "/legs.csv");
+  const EditOutcome clash = ApplyLegsEdit(s_, LegsEdit::SetReading("a.png", 2, 52, 52.5));
   ASSERT_TRUE(clash.status.ok());
   ASSERT_TRUE(clash.conflict);
   EXPECT_NE(clash.conflict_text.find("L3 of a.png is '52.2' on disk"), std::string::npos) << clash.conflict_text;
-  EXPECT_EQ(ReadTextFile(s + "/legs.csv"), on_disk);
+  EXPECT_EQ(ReadTextFile(s_ + "/legs.csv"), on_disk);
   EditOptions overwrite;
   overwrite.overwrite = true;
-  EXPECT_FALSE(ApplyLegsEdit(s, LegsEdit::SetReading("a.png", 2, 52, 52.5), overwrite).conflict);
-  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s);
+  EXPECT_FALSE(ApplyLegsEdit(s_, LegsEdit::SetReading("a.png", 2, 52, 52.5), overwrite).conflict);
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s_);
   ASSERT_TRUE(rows.ok()) << rows.status().message();
   EXPECT_EQ((*rows)[0].legs[2], 52.5);
 }
 
-TEST(SessionEdits, ACaptureNeverReplacesRowsNorWritesOverAFileThatDoesNotParse) {
-  TempDir dir;
-  const std::string s = MakeSession(dir);
+TEST_F(SessionEdits, ACaptureNeverReplacesRowsNorWritesOverAFileThatDoesNotParse) {
   LegsRow row;
   row.image = "a.png";
-  EXPECT_TRUE(ApplyLegsEdit(s, LegsEdit::SetRow(row)).conflict);  // a.png has readings already
+  EXPECT_TRUE(ApplyLegsEdit(s_, LegsEdit::SetRow(row)).conflict);  // a.png has readings already
   row.image = "b.png";
   row.legs << 1, 2, 3, 4, 5, 6;
-  WriteTextFile(s + "/images/b.png", "image b");
-  ASSERT_TRUE(ApplyLegsEdit(s, LegsEdit::SetRow(row)).status.ok());
-  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s);
+  WriteTextFile(s_ + "/images/b.png", "image b");
+  ASSERT_TRUE(ApplyLegsEdit(s_, LegsEdit::SetRow(row)).status.ok());
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s_);
   ASSERT_TRUE(rows.ok()) << rows.status().message();
   EXPECT_EQ(rows->size(), 2u);
   // A legs.csv that does not load is refused, never replaced by one holding only the new row.
-  WriteTextFile(s + "/legs.csv", "image,L1,L2\nbroken");
+  WriteTextFile(s_ + "/legs.csv", "image,L1,L2\nbroken");
   row.image = "c.png";
-  const EditOutcome refused = ApplyLegsEdit(s, LegsEdit::SetRow(row));
+  const EditOutcome refused = ApplyLegsEdit(s_, LegsEdit::SetRow(row));
   EXPECT_FALSE(refused.status.ok());
-  EXPECT_EQ(ReadTextFile(s + "/legs.csv"), "image,L1,L2\nbroken");
+  EXPECT_EQ(ReadTextFile(s_ + "/legs.csv"), "image,L1,L2\nbroken");
 }
 
-TEST(SessionEdits, ACaptureBringsItsImageAndRowTogetherAndStaysInsideImages) {
-  TempDir dir;
-  const std::string s = MakeSession(dir);
-  WriteTextFile(dir.File("frame.png"), "a captured frame");
+TEST_F(SessionEdits, ACaptureBringsItsImageAndRowTogetherAndStaysInsideImages) {
+  WriteTextFile(dir_.File("frame.png"), "a captured frame");
   LegsRow row;
   row.image = "b.png";
   row.legs << 1, 2, 3, 4, 5, 6;
-  ASSERT_TRUE(RecordCapture(s, dir.File("frame.png"), row).status.ok());
-  EXPECT_EQ(ReadTextFile(s + "/images/b.png"), "a captured frame");
-  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s);
+  ASSERT_TRUE(RecordCapture(s_, dir_.File("frame.png"), row).status.ok());
+  EXPECT_EQ(ReadTextFile(s_ + "/images/b.png"), "a captured frame");
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s_);
   ASSERT_TRUE(rows.ok()) << rows.status().message();
   EXPECT_EQ(rows->size(), 2u);
-  EXPECT_TRUE(RecordCapture(s, dir.File("frame.png"), row).conflict);  // b.png is there already
+  EXPECT_TRUE(RecordCapture(s_, dir_.File("frame.png"), row).conflict);  // b.png is there already
   row.image = "../escape.png";
-  EXPECT_FALSE(RecordCapture(s, dir.File("frame.png"), row).status.ok());
-  EXPECT_FALSE(fs::exists(dir.File("escape.png")));
+  EXPECT_FALSE(RecordCapture(s_, dir_.File("frame.png"), row).status.ok());
+  EXPECT_FALSE(fs::exists(dir_.File("escape.png")));
 }
 
-TEST(SessionEdits, ACaptureIsNeverWrittenThroughALinkOutOfTheSession) {
-  TempDir dir, elsewhere;
-  const std::string s = MakeSession(dir);
-  fs::rename(s + "/images", dir.File("moved"));
-  fs::create_directory_symlink(elsewhere.path(), s + "/images");
-  WriteTextFile(dir.File("frame.png"), "frame");
+TEST_F(SessionEdits, ACaptureIsNeverWrittenThroughALinkOutOfTheSession) {
+  TempDir elsewhere;
+  fs::rename(s_ + "/images", dir_.File("moved"));
+  fs::create_directory_symlink(elsewhere.path(), s_ + "/images");
+  WriteTextFile(dir_.File("frame.png"), "frame");
   LegsRow row;
   row.image = "b.png";
-  const EditOutcome refused = RecordCapture(s, dir.File("frame.png"), row);
+  const EditOutcome refused = RecordCapture(s_, dir_.File("frame.png"), row);
   EXPECT_NE(refused.status.message().find("leads out of the session folder"), std::string::npos)
       << refused.status.message();
   EXPECT_FALSE(fs::exists(elsewhere.File("b.png")));
 }
 
-TEST(SessionEdits, ARowAddedToAFileWithoutHoldoutGetsTheColumnAndNaNIsRefused) {
-  TempDir dir;
-  const std::string s = MakeSession(dir);
-  WriteTextFile(s + "/legs.csv", "image,L1,L2,L3,L4,L5,L6\na.png,50,51,52,53,54,55\n");
-  WriteTextFile(s + "/images/b.png", "image b");
+TEST_F(SessionEdits, ARowAddedToAFileWithoutHoldoutGetsTheColumnAndNaNIsRefused) {
+  WriteTextFile(s_ + "/legs.csv", "image,L1,L2,L3,L4,L5,L6\na.png,50,51,52,53,54,55\n");
+  WriteTextFile(s_ + "/images/b.png", "image b");
   LegsRow row;
   row.image = "b.png";
   row.legs << 1, 2, 3, 4, 5, 6;
   row.holdout = true;
-  ASSERT_TRUE(ApplyLegsEdit(s, LegsEdit::SetRow(row)).status.ok());
-  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s);
+  ASSERT_TRUE(ApplyLegsEdit(s_, LegsEdit::SetRow(row)).status.ok());
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s_);
   ASSERT_TRUE(rows.ok()) << rows.status().message();
   ASSERT_EQ(rows->size(), 2u);
   EXPECT_FALSE((*rows)[0].holdout);
   EXPECT_TRUE((*rows)[1].holdout);
-  const std::string before = ReadTextFile(s + "/legs.csv");
-  EXPECT_FALSE(ApplyLegsEdit(s, LegsEdit::SetReading("a.png", 0, 50, std::nan(""))).status.ok());
-  EXPECT_EQ(ReadTextFile(s + "/legs.csv"), before);
+  const std::string before = ReadTextFile(s_ + "/legs.csv");
+  EXPECT_FALSE(ApplyLegsEdit(s_, LegsEdit::SetReading("a.png", 0, 50, std::nan(""))).status.ok());
+  EXPECT_EQ(ReadTextFile(s_ + "/legs.csv"), before);
 }
 
-TEST(SessionEdits, AnImportThatDoesNotLoadKeepsTheOldReadings) {
-  TempDir dir;
-  const std::string s = MakeSession(dir);
-  const std::string before = ReadTextFile(s + "/legs.csv");
-  WriteTextFile(dir.File("bad.csv"), "image,L1,L2,L3,L4,L5,L6\nmissing.png,1,2,3,4,5,6\n");
-  const Status refused = ImportLegsFile(s, dir.File("bad.csv"));
+TEST_F(SessionEdits, AnImportThatDoesNotLoadKeepsTheOldReadings) {
+  const std::string before = ReadTextFile(s_ + "/legs.csv");
+  WriteTextFile(dir_.File("bad.csv"), "image,L1,L2,L3,L4,L5,L6\nmissing.png,1,2,3,4,5,6\n");
+  const Status refused = ImportLegsFile(s_, dir_.File("bad.csv"));
   EXPECT_NE(refused.message().find("missing.png"), std::string::npos) << refused.message();
-  EXPECT_EQ(ReadTextFile(s + "/legs.csv"), before);
+  EXPECT_EQ(ReadTextFile(s_ + "/legs.csv"), before);
   // Readings beyond the stroke (0..3.5 cm) are refused by line, image, leg and value.
-  WriteTextFile(dir.File("typo.csv"), "image,L1,L2,L3,L4,L5,L6\na.png,1,2,3,0.5,1.5,999999\n");
-  const Status typo = ImportLegsFile(s, dir.File("typo.csv"));
+  WriteTextFile(dir_.File("typo.csv"), "image,L1,L2,L3,L4,L5,L6\na.png,1,2,3,0.5,1.5,999999\n");
+  const Status typo = ImportLegsFile(s_, dir_.File("typo.csv"));
   EXPECT_NE(typo.message().find("typo.csv:2: a.png: L6 = 999999 cm is outside leg 6's stroke"), std::string::npos)
       << typo.message();
-  EXPECT_EQ(ReadTextFile(s + "/legs.csv"), before);
-  WriteTextFile(dir.File("good.csv"), "image,L1,L2,L3,L4,L5,L6\na.png,1,2,3,0.5,1.5,2.5\n");
-  EXPECT_TRUE(ImportLegsFile(s, dir.File("good.csv")).ok());
-  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s);
+  EXPECT_EQ(ReadTextFile(s_ + "/legs.csv"), before);
+  WriteTextFile(dir_.File("good.csv"), "image,L1,L2,L3,L4,L5,L6\na.png,1,2,3,0.5,1.5,2.5\n");
+  EXPECT_TRUE(ImportLegsFile(s_, dir_.File("good.csv")).ok());
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s_);
   ASSERT_TRUE(rows.ok()) << rows.status().message();
   EXPECT_EQ((*rows)[0].legs[0], 1);
 }
@@ -228,10 +215,8 @@ TEST(SessionEdits, AnImportThatDoesNotLoadKeepsTheOldReadings) {
 // A capture's commanded pose goes into legs.csv's commanded columns, empty for
 // the other rows, and comes back from LoadSessionLegs. An import is checked
 // against it: readings far from the pose's IK lengths are refused (issue 35).
-TEST(SessionEdits, ACapturesCommandedPoseIsKeptAndImportsAreCheckedAgainstIt) {
-  TempDir dir;
-  const std::string s = MakeSession(dir);
-  WriteTextFile(s + "/legs.csv", "image,L1,L2,L3,L4,L5,L6,holdout\na.png,1,2,3,0.5,1.5,2.5,0\n");
+TEST_F(SessionEdits, ACapturesCommandedPoseIsKeptAndImportsAreCheckedAgainstIt) {
+  WriteTextFile(s_ + "/legs.csv", "image,L1,L2,L3,L4,L5,L6,holdout\na.png,1,2,3,0.5,1.5,2.5,0\n");
   StatusOr<Robot> robot = LoadRobot("inria-left-hand");
   ASSERT_TRUE(robot.ok());
   const Vector6d pose = (Vector6d() << 1, -0.5, 53, 2, -1, 4).finished();
@@ -239,63 +224,64 @@ TEST(SessionEdits, ACapturesCommandedPoseIsKeptAndImportsAreCheckedAgainstIt) {
   row.image = "pose_0000.png";
   row.legs = InverseKinematics(*robot, robot->PoseFromVector(pose));
   row.commanded = pose;
-  ASSERT_TRUE(RecordCaptureBytes(s, "png bytes", row).status.ok());
-  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s);
+  ASSERT_TRUE(RecordCaptureBytes(s_, "png bytes", row).status.ok());
+  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(s_);
   ASSERT_TRUE(rows.ok()) << rows.status().message();
   ASSERT_EQ(rows->size(), 2u);
   EXPECT_FALSE((*rows)[0].commanded.has_value());
   ASSERT_TRUE((*rows)[1].commanded.has_value());
   EXPECT_EQ(*(*rows)[1].commanded, pose);  // exact: the shortest text that reads back the same
-  EXPECT_NE(ReadTextFile(s + "/legs.csv").find("commanded_q3"), std::string::npos);
+  EXPECT_NE(ReadTextFile(s_ + "/legs.csv").find("commanded_q3"), std::string::npos);
 
   // Half a commanded pose is named.
-  const std::string before = ReadTextFile(s + "/legs.csv");
+  const std::string before = ReadTextFile(s_ + "/legs.csv");
   std::string half = before;
   half.replace(half.rfind(",4\n"), 3, ",\n");
-  WriteTextFile(dir.File("half.csv"), half);
-  EXPECT_NE(ImportLegsFile(s, dir.File("half.csv")).message().find("of its six cells"), std::string::npos);
+  WriteTextFile(dir_.File("half.csv"), half);
+  EXPECT_NE(ImportLegsFile(s_, dir_.File("half.csv")).message().find("of its six cells"), std::string::npos);
 
   // An import without the commanded columns is checked against the session's.
   std::string moved = "image,L1,L2,L3,L4,L5,L6\na.png,1,2,3,0.5,1.5,2.5\npose_0000.png";
   for (int i = 0; i < kNumLegs; ++i) moved += "," + FormatNumber(row.legs[i] + (i == 2 ? 1.0 : 0.0));
-  WriteTextFile(dir.File("moved.csv"), moved + "\n");
-  const Status far = ImportLegsFile(s, dir.File("moved.csv"));
+  WriteTextFile(dir_.File("moved.csv"), moved + "\n");
+  const Status far = ImportLegsFile(s_, dir_.File("moved.csv"));
   EXPECT_NE(far.message().find("moved.csv:3: pose_0000.png: L3 = "), std::string::npos) << far.message();
   EXPECT_NE(far.message().find("the commanded pose needs"), std::string::npos) << far.message();
-  EXPECT_EQ(ReadTextFile(s + "/legs.csv"), before);
+  EXPECT_EQ(ReadTextFile(s_ + "/legs.csv"), before);
 }
 
-TEST(SessionEdits, APlanOrCameraChangedOnDiskIsAConflict) {
-  TempDir dir;
-  const std::string s = MakeSession(dir);
+TEST_F(SessionEdits, APlanOrCameraChangedOnDiskIsAConflict) {
   const std::vector<Vector6d> theirs{Vector6d::Constant(1.0)};
-  ASSERT_TRUE(ApplyPlanEdit(s, {}, theirs).status.ok());  // another program's plan
-  const EditOutcome clash = ApplyPlanEdit(s, {}, {Vector6d::Zero(), Vector6d::Zero()});
+  ASSERT_TRUE(ApplyPlanEdit(s_, {}, theirs).status.ok());  // another program's plan
+  const EditOutcome clash = ApplyPlanEdit(s_, {}, {Vector6d::Zero(), Vector6d::Zero()});
   EXPECT_TRUE(clash.conflict) << clash.conflict_text;
-  StatusOr<std::vector<Vector6d>> plan = LoadPoses(s + "/plan.csv");
+  StatusOr<std::vector<Vector6d>> plan = LoadPoses(s_ + "/plan.csv");
   ASSERT_TRUE(plan.ok()) << plan.status().message();
   EXPECT_EQ(plan->size(), 1u);
-  EXPECT_FALSE(ApplyPlanEdit(s, theirs, {}).conflict);  // the operator deletes the plan they saw
-  EXPECT_FALSE(fs::exists(s + "/plan.csv"));
+  EXPECT_FALSE(ApplyPlanEdit(s_, theirs, {}).conflict);  // the operator deletes the plan they saw
+  EXPECT_FALSE(fs::exists(s_ + "/plan.csv"));
 
-  EXPECT_TRUE(ApplyCameraEdit(s, "other.yaml", "mine.yaml").conflict);
-  EXPECT_FALSE(ApplyCameraEdit(s, kSimulatedCameraName, "mine.yaml").conflict);
-  StatusOr<SessionConfig> config = LoadSessionConfig(s);
+  EXPECT_TRUE(ApplyCameraEdit(s_, "other.yaml", "mine.yaml").conflict);
+  EXPECT_FALSE(ApplyCameraEdit(s_, kSimulatedCameraName, "mine.yaml").conflict);
+  StatusOr<SessionConfig> config = LoadSessionConfig(s_);
   ASSERT_TRUE(config.ok()) << config.status().message();
   EXPECT_EQ(config->camera, "mine.yaml");
+}
+
+// Records a quick demo's calibrated session in `out`, for the tests below
+// that change its files.
+Status RecordCalibratedSession(const std::string& out) {
+  DemoRequest demo = QuickDemo(/*poses=*/8, /*holdout=*/2);
+  demo.out = out;
+  return RunDemo(demo).status();
 }
 
 // A reading far outside the stroke, or readings that fit no pose of the
 // nominal robot, are named by image and legs.csv line, not "pose 1" (issue 35).
 TEST(SessionCalibrate, ReadingsThatFitNoPoseAreNamedByImageAndLine) {
   TempDir dir;
-  DemoRequest demo;
-  demo.out = dir.File("demo");
-  demo.poses = 8;
-  demo.holdout = 2;
-  demo.quick_plan = true;
-  ASSERT_TRUE(RunDemo(demo).ok());
-  const std::string s = demo.out;
+  const std::string s = dir.File("demo");
+  ASSERT_TRUE(RecordCalibratedSession(s).ok());
   StatusOr<CsvTable> table = ReadCsv(s + "/legs.csv");
   ASSERT_TRUE(table.ok());
   const std::string image = table->rows[1][0];  // line 3
@@ -322,13 +308,8 @@ TEST(SessionCalibrate, ReadingsThatFitNoPoseAreNamedByImageAndLine) {
 
 TEST(SessionResults, ACalibrationWhoseInputsChangeUnderneathPublishesNothing) {
   TempDir dir;
-  DemoRequest demo;
-  demo.out = dir.File("demo");
-  demo.poses = 8;
-  demo.holdout = 2;
-  demo.quick_plan = true;  // the session is what is tested, not the plan
-  ASSERT_TRUE(RunDemo(demo).ok());
-  const std::string s = demo.out;
+  const std::string s = dir.File("demo");
+  ASSERT_TRUE(RecordCalibratedSession(s).ok());
   StatusOr<SessionResults> before = LoadSessionResults(s);
   ASSERT_TRUE(before.ok()) << before.status().message();
   EXPECT_TRUE(before->changed_inputs.empty());

@@ -9,6 +9,7 @@
 
 #include "tests/test_support.h"
 #include "workflow/demo.h"
+#include "workflow/tests/test_sessions.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -16,27 +17,24 @@ namespace {
 using ::testing::HasSubstr;
 using hexcal::testing::TempDir;
 
-DemoResult Demo(const TempDir& dir, const std::string& robot, bool from_pixels, double focal_error) {
-  DemoRequest request;
-  request.robot = robot;
-  request.out = dir.File(robot + (from_pixels ? "-pixels" : "-poses"));
-  request.poses = 16;
-  request.holdout = 4;
-  request.seed = 2;
-  request.quick_plan = true;
-  request.from_pixels = from_pixels;
-  request.focal_error_percent = focal_error;
-  StatusOr<DemoResult> demo = RunDemo(request);
-  EXPECT_TRUE(demo.ok()) << demo.status().message();
-  return demo.ok() ? *demo : DemoResult{};
-}
+// Each test records the demo session of the robot GetParam() names twice, and
+// calibrates one copy two-stage and the other from pixels.
+class FromPixels : public ::testing::TestWithParam<std::string> {
+ protected:
+  DemoResult Demo(bool from_pixels, double focal_error) {
+    const std::string robot = GetParam();
+    DemoRequest request = FitComparisonDemo(robot, dir_.File(robot + (from_pixels ? "-pixels" : "-poses")));
+    request.from_pixels = from_pixels;
+    request.focal_error_percent = focal_error;
+    return RunDemoInTest(request);
+  }
 
-class FromPixels : public ::testing::TestWithParam<std::string> {};
+  TempDir dir_;
+};
 
 TEST_P(FromPixels, RemovesAFocalErrorTheTwoStageCalibrationKeeps) {
-  TempDir dir;
-  const DemoResult poses = Demo(dir, GetParam(), false, 0.5);
-  const DemoResult pixels = Demo(dir, GetParam(), true, 0.5);
+  const DemoResult poses = Demo(false, 0.5);
+  const DemoResult pixels = Demo(true, 0.5);
   ASSERT_TRUE(pixels.calibration.from_pixels.has_value());
   const PixelEstimateSummary& fx = pixels.calibration.from_pixels->estimated.at(0);
   EXPECT_EQ(fx.name, "fx");
@@ -49,9 +47,8 @@ TEST_P(FromPixels, RemovesAFocalErrorTheTwoStageCalibrationKeeps) {
 }
 
 TEST_P(FromPixels, IsAsAccurateAsTwoStageWithTheTrueCamera) {
-  TempDir dir;
-  const DemoResult poses = Demo(dir, GetParam(), false, 0);
-  const DemoResult pixels = Demo(dir, GetParam(), true, 0);
+  const DemoResult poses = Demo(false, 0);
+  const DemoResult pixels = Demo(true, 0);
   EXPECT_GE(pixels.within_3sigma, 0.95);
   // One seed: within 25 % (docs/calibration.md has the mean over seeds).
   EXPECT_LE(pixels.error_mean, 1.25 * poses.error_mean);

@@ -14,6 +14,7 @@
 #include "report/calibration_verdict.h"
 #include "workflow/demo.h"
 #include "workflow/session_calibrate.h"
+#include "workflow/tests/test_sessions.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -22,18 +23,10 @@ using hexcal::testing::TempDir;
 using ::testing::HasSubstr;
 
 DemoResult Demo(const TempDir& dir, const std::string& robot, bool joint, Instrument instrument = Instrument::kPoints) {
-  DemoRequest request;
-  request.robot = robot;
-  request.out = dir.File(robot + (joint ? "-joint" : "-two-stage"));
-  request.poses = 16;
-  request.holdout = 4;
-  request.seed = 2;
-  request.quick_plan = true;
+  DemoRequest request = FitComparisonDemo(robot, dir.File(robot + (joint ? "-joint" : "-two-stage")));
   request.from_pixels = joint;
   request.instrument = instrument;
-  StatusOr<DemoResult> demo = RunDemo(request);
-  EXPECT_TRUE(demo.ok()) << demo.status().message();
-  return demo.ok() ? *demo : DemoResult{};
+  return RunDemoInTest(request);
 }
 
 class FromPoints : public ::testing::TestWithParam<std::string> {};

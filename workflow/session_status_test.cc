@@ -18,6 +18,7 @@
 #include "workflow/session_edits.h"
 #include "workflow/plan_step.h"
 #include "workflow/session_measure.h"
+#include "workflow/tests/test_sessions.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -66,23 +67,13 @@ TEST(SessionStatus, AMissingSessionIsAnErrorAndAnEmptyOneIsTodo) {
 
 // One demo session, copied for each kind of change below: each test changes
 // one input and checks every step's state and its reason.
-class StatusAfterChange : public ::testing::Test {
+class StatusAfterChange : public DemoSessionSuite<StatusAfterChange> {
+ public:
+  static DemoRequest Request() { return QuickDemo(/*poses=*/8, /*holdout=*/2); }
+
  protected:
-  static void SetUpTestSuite() {
-    made_ = new TempDir;
-    DemoRequest demo;
-    demo.out = made_->File("demo");
-    demo.poses = 8;
-    demo.holdout = 2;
-    demo.quick_plan = true;  // the session is what is tested, not the plan
-    ASSERT_TRUE(RunDemo(demo).ok());
-  }
-  static void TearDownTestSuite() {
-    delete made_;
-    made_ = nullptr;
-  }
   void SetUp() override {
-    fs::copy(made_->File("demo"), s_, fs::copy_options::recursive);
+    fs::copy(Session(), s_, fs::copy_options::recursive);
     for (const auto& [step, status] : Steps(s_)) ASSERT_EQ(status, StepStatus::kDone) << step;
   }
   SessionConfig Config() const {
@@ -105,11 +96,9 @@ class StatusAfterChange : public ::testing::Test {
     }
   }
 
-  static TempDir* made_;
   TempDir dir_;
   const std::string s_ = dir_.File("s");
 };
-TempDir* StatusAfterChange::made_ = nullptr;
 
 // The suite's demo session (one RunDemo for every test: it is most of the
 // suite's time under the sanitizers).

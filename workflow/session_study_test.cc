@@ -20,6 +20,7 @@
 #include "workflow/demo.h"
 #include "workflow/session_edits.h"
 #include "workflow/study_step.h"
+#include "workflow/tests/test_sessions.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -32,25 +33,15 @@ using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-class KeptStudy : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    dir_ = new TempDir;
-    DemoRequest demo;
-    demo.out = dir_->File("demo");
-    demo.poses = 14;
-    demo.holdout = 0;
-    demo.random_poses = true;
-    demo.seed = 3;
-    StatusOr<DemoResult> recorded = RunDemo(demo);
-    ASSERT_TRUE(recorded.ok()) << recorded.status().message();
-  }
-  static void TearDownTestSuite() { delete dir_; }
+class KeptStudy : public DemoSessionSuite<KeptStudy> {
+ public:
+  static DemoRequest Request() { return RandomPosesDemo(/*poses=*/14, /*seed=*/3); }
 
+ protected:
   // A fresh copy of the demo session, so that a test may change it.
   std::string CopyOfSession() {
     const std::string copy = temp_.File("session");
-    fs::copy(dir_->File("demo"), copy, fs::copy_options::recursive);
+    fs::copy(Session(), copy, fs::copy_options::recursive);
     return copy;
   }
   static StudyRequest SmallStudy(const std::string& session) {
@@ -61,11 +52,15 @@ class KeptStudy : public ::testing::Test {
     request.study.seed = 5;
     return request;
   }
+  // SmallStudy with --no-save.
+  static StudyRequest UnsavedStudy(const std::string& session) {
+    StudyRequest request = SmallStudy(session);
+    request.save = false;
+    return request;
+  }
 
-  static TempDir* dir_;
   TempDir temp_;
 };
-TempDir* KeptStudy::dir_ = nullptr;
 
 TEST_F(KeptStudy, IsPublishedWholeAndReadBackAsTheRunMadeIt) {
   const std::string session = CopyOfSession();
@@ -120,9 +115,7 @@ TEST_F(KeptStudy, RecordRoundTripsThroughItsJson) {
 
 TEST_F(KeptStudy, NoSaveLeavesTheSessionAlone) {
   const std::string session = CopyOfSession();
-  StudyRequest request = SmallStudy(session);
-  request.save = false;
-  StatusOr<StudyOutcome> run = RunStudy(request);
+  StatusOr<StudyOutcome> run = RunStudy(UnsavedStudy(session));
   ASSERT_TRUE(run.ok()) << run.status().message();
   EXPECT_TRUE(run->saved.empty());
   EXPECT_FALSE(fs::exists(StudyFolderPath(session)));
@@ -132,9 +125,7 @@ TEST_F(KeptStudy, NoSaveLeavesTheSessionAlone) {
 // Another writer holds the session: nothing is written, and the caller hears "busy".
 TEST_F(KeptStudy, IsNotWrittenWhileAnotherWriterHoldsTheSession) {
   const std::string session = CopyOfSession();
-  StudyRequest request = SmallStudy(session);
-  request.save = false;
-  StatusOr<StudyOutcome> run = RunStudy(request);
+  StatusOr<StudyOutcome> run = RunStudy(UnsavedStudy(session));
   ASSERT_TRUE(run.ok()) << run.status().message();
   std::promise<bool> locked;
   std::promise<void> release;

@@ -19,6 +19,7 @@
 #include "workflow/demo.h"
 #include "workflow/session_calibrate.h"
 #include "workflow/study_options.h"
+#include "workflow/tests/test_sessions.h"
 
 namespace hexcal::workflow {
 namespace {
@@ -28,22 +29,17 @@ using ::testing::HasSubstr;
 
 constexpr int kPoses = 16;
 
-class StudySession : public ::testing::Test {
+class StudySession : public DemoSessionSuite<StudySession> {
+ public:
+  static DemoRequest Request() { return RandomPosesDemo(kPoses, /*seed=*/2); }
+
  protected:
   static void SetUpTestSuite() {
-    dir_ = new TempDir;
-    DemoRequest demo;
-    demo.out = dir_->File("demo");
-    demo.poses = kPoses;
-    demo.holdout = 0;
-    demo.random_poses = true;
-    demo.seed = 2;
-    StatusOr<DemoResult> recorded = RunDemo(demo);
-    ASSERT_TRUE(recorded.ok()) << recorded.status().message();
-    ASSERT_FALSE(recorded->calibration.validation.has_value());  // nothing held out
+    DemoSessionSuite::SetUpTestSuite();
+    // A failed demo has said why; Demo() would only throw.
+    if (HasFatalFailure()) return;
+    ASSERT_FALSE(Demo().calibration.validation.has_value());  // nothing held out
   }
-  static void TearDownTestSuite() { delete dir_; }
-  static std::string Session() { return dir_->File("demo"); }
   static StudyRequest SmallStudy() {
     StudyRequest request;
     request.session = Session();
@@ -52,10 +48,7 @@ class StudySession : public ::testing::Test {
     request.study.seed = 3;
     return request;
   }
-
-  static TempDir* dir_;
 };
-TempDir* StudySession::dir_ = nullptr;
 
 // With nothing held out, calibrate --session --two-stage registered and
 // mapped every image as the study does: results/calibration_measurements.csv
@@ -114,11 +107,12 @@ TEST_F(StudySession, SelectedCalibrationBeatsTheNominalRobotOnThePosesItLeavesOu
 }
 
 TEST_F(StudySession, SameNumbersWhateverTheThreadsAndFiguresWritten) {
+  TempDir dir;
   StudyRequest request = SmallStudy();
   request.study.num_threads = 1;
   StatusOr<StudyOutcome> one = RunStudy(request);
   request.study.num_threads = 2;
-  request.plots = dir_->File("plots");
+  request.plots = dir.File("plots");
   StatusOr<StudyOutcome> two = RunStudy(request);
   ASSERT_TRUE(one.ok() && two.ok());
   nlohmann::json a = ToJson(*one), b = ToJson(*two);
@@ -128,7 +122,7 @@ TEST_F(StudySession, SameNumbersWhateverTheThreadsAndFiguresWritten) {
   EXPECT_EQ(a.dump(), b.dump());
   EXPECT_EQ(two->figures.size(), 12u);  // six histograms, SVG and PNG
   for (const char* stem : {"fig18_o1", "fig18_o4", "fig19_position", "fig19_orientation"}) {
-    EXPECT_TRUE(std::filesystem::exists(dir_->File(std::string("plots/") + stem + ".svg"))) << stem;
+    EXPECT_TRUE(std::filesystem::exists(dir.File(std::string("plots/") + stem + ".svg"))) << stem;
   }
   StatusOr<StudyOutcome> again = RunStudy(request);  // without force
   ASSERT_FALSE(again.ok());
@@ -142,8 +136,9 @@ TEST_F(StudySession, BadRequestsAreBadInput) {
   ASSERT_FALSE(study.ok());
   EXPECT_EQ(study.status().kind(), StatusKind::kBadInput);
   EXPECT_THAT(study.status().message(), HasSubstr("the session has 16"));
+  TempDir dir;
   request = SmallStudy();
-  request.session = dir_->File("nothing");
+  request.session = dir.File("nothing");
   study = RunStudy(request);
   ASSERT_FALSE(study.ok());
   EXPECT_THAT(study.status().message(), HasSubstr("session.yaml"));
