@@ -338,8 +338,8 @@ bool IsPlainName(const std::string& key) {
 }
 
 std::string FormatSignificant(double v, int digits) {
-  assert(std::isfinite(v) && digits >= 1 && digits <= 17);
-  char buffer[32];
+  assert(digits >= 1 && digits <= 17);
+  char buffer[32];  // to_chars writes "inf" and "nan" as printf does
   const auto result = std::to_chars(buffer, buffer + sizeof(buffer), v, std::chars_format::general, digits);
   return std::string(buffer, result.ptr);
 }

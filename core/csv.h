@@ -68,7 +68,8 @@ std::string FormatCsv(const std::vector<std::string>& header, const std::vector<
 // "1e-20"). `v` must be finite.
 std::string FormatNumber(double v);
 // `v` with at most `digits` significant digits, for messages ("4.65", "0.0152",
-// "1.2e+03"); locale-independent. `v` must be finite.
+// "1.2e+03"); locale-independent. A value that is not finite is "inf", "-inf"
+// or "nan", as printf's %g writes it: a message or report shows it as it is.
 std::string FormatSignificant(double v, int digits = 3);
 
 // A short, quoted, escaped excerpt of text from a file, for an error message:

@@ -272,6 +272,15 @@ TEST(CsvTest, FormatNumberIsShortAndExact) {
   EXPECT_EQ(FormatNumber(0.1 + 0.2), "0.30000000000000004");
 }
 
+TEST(CsvTest, FormatSignificantIsPrintfsG) {
+  EXPECT_EQ(FormatSignificant(0.0041321), "0.00413");
+  EXPECT_EQ(FormatSignificant(1234.5), "1.23e+03");
+  EXPECT_EQ(FormatSignificant(52.2496, 6), "52.2496");
+  EXPECT_EQ(FormatSignificant(std::numeric_limits<double>::infinity()), "inf");
+  EXPECT_EQ(FormatSignificant(-std::numeric_limits<double>::infinity()), "-inf");
+  EXPECT_EQ(FormatSignificant(std::numeric_limits<double>::quiet_NaN()), "nan");
+}
+
 TEST(CsvTest, FormatNumberRoundTripsEveryFiniteDouble) {
   std::vector<double> values = {
       1.0 / 3.0,   M_PI, -2.0 / 3.0 * 1e-300, DBL_MAX, -DBL_MAX, DBL_MIN, std::numeric_limits<double>::denorm_min(),

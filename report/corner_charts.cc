@@ -4,16 +4,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/csv.h"
+
 namespace hexcal::workflow {
 namespace {
 
 using charts::ChartPoint;
-
-std::string G3(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", value);
-  return text;
-}
 
 // An arrow scale: "1000", not "1e+03".
 std::string ScaleText(double scale) {
@@ -77,16 +73,18 @@ charts::ChartSpec ResidualFieldChart(const std::vector<CornerResidual>& corners,
 
 charts::ChartSpec ResidualHistogramChart(const ResidualHistogram& h) {
   charts::ChartSpec spec;
-  spec.title = "|residual| against noise of σ = " + G3(h.sigma) + " px per axis (Rayleigh)";
+  spec.title = "|residual| against noise of σ = " + FormatSignificant(h.sigma) + " px per axis (Rayleigh)";
   // Bins labelled by their start in σ, halves as "½": Qt elides longer labels under a dozen bars.
   std::vector<std::string> bins;
   for (size_t b = 0; b <= h.counts.size(); ++b) {
     const double start = std::round(1e6 * static_cast<double>(b) * h.bin_width / h.sigma) / 1e6;
     const double whole = std::floor(start), rest = start - whole;
-    std::string label = rest == 0 ? G3(whole) : rest == 0.5 ? (whole > 0 ? G3(whole) : "") + "½" : G3(start);
+    std::string label = rest == 0     ? FormatSignificant(whole)
+                        : rest == 0.5 ? (whole > 0 ? FormatSignificant(whole) : "") + "½"
+                                      : FormatSignificant(start);
     bins.push_back(b == h.counts.size() ? "≥" + label : label);
   }
-  spec.x = charts::CategoryAxis("|residual| from, in σ = " + G3(h.sigma) + " px", bins);
+  spec.x = charts::CategoryAxis("|residual| from, in σ = " + FormatSignificant(h.sigma) + " px", bins);
   spec.y = charts::LinearAxis("corners");
   std::vector<double> observed(h.counts.begin(), h.counts.end()), expected = h.expected;
   observed.push_back(h.beyond);

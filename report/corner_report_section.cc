@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "charts/chart_render.h"
+#include "core/csv.h"
 #include "report/corner_charts.h"
 #include "report/html_text.h"
 #include "session/results_files.h"
@@ -12,12 +13,6 @@ namespace hexcal::workflow {
 namespace {
 
 constexpr int kHistogramBins = 12;  // of σ/2 each, to 6σ: labels that fit the chart
-
-std::string G3(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", value);
-  return text;
-}
 
 std::string Pixel(double value) {
   char text[32];
@@ -43,9 +38,9 @@ std::string WorstTable(const CornerResidualTable& table, double sigma) {
   for (const CornerResidual& c : WorstCorners(table.corners, kWorstCornersShown)) {
     html += "<tr><td>" + HtmlEscape(table.images[static_cast<size_t>(c.image)]) + "</td><td>" +
             std::to_string(c.tag_id) + "</td><td>" + std::to_string(c.corner) + "</td><td>" + Pixel(c.observed.x()) +
-            "</td><td>" + Pixel(c.observed.y()) + "</td><td>" + G3(c.residual.x()) + "</td><td>" + G3(c.residual.y()) +
-            "</td><td>" + G3(c.residual.norm()) + "</td><td>" + (sigma > 0 ? G3(c.residual.norm() / sigma) : "–") +
-            "</td></tr>\n";
+            "</td><td>" + Pixel(c.observed.y()) + "</td><td>" + FormatSignificant(c.residual.x()) + "</td><td>" +
+            FormatSignificant(c.residual.y()) + "</td><td>" + FormatSignificant(c.residual.norm()) + "</td><td>" +
+            (sigma > 0 ? FormatSignificant(c.residual.norm() / sigma) : "–") + "</td></tr>\n";
   }
   return html + "</table>\n";
 }
@@ -82,7 +77,7 @@ Tail TailOf(const std::vector<CornerResidual>& corners, double sigma) {
 std::string TailText(const std::vector<CornerResidual>& corners, double sigma) {
   const Tail tail = TailOf(corners, sigma);
   return "Corners at 3&sigma; or more: " + std::to_string(tail.observed) +
-         " (noise of &sigma; alone: " + G3(tail.expected) + ").";
+         " (noise of &sigma; alone: " + FormatSignificant(tail.expected) + ").";
 }
 
 }  // namespace
@@ -93,9 +88,10 @@ std::string CornerDiagnosticsSection(const CornerResidualTable& table, double wi
   const CoverageGrid grid = CountCorners(table.corners, width, height);
   std::string html =
       "<h2>Per-corner diagnostics</h2><p>Every tag corner of the calibration from pixels (" +
-      std::to_string(table.corners.size()) + " corners of " + std::to_string(table.images.size()) +
-      " images, " + ResultsName(kCornerResiduals) + "): residual = projected &minus; detected. RMS " + G3(Rms(table.corners)) +
-      " px; the fit's own noise, from the median |residual|, &sigma; = " + G3(sigma) +
+      std::to_string(table.corners.size()) + " corners of " + std::to_string(table.images.size()) + " images, " +
+      ResultsName(kCornerResiduals) + "): residual = projected &minus; detected. RMS " +
+      FormatSignificant(Rms(table.corners)) + " px; the fit's own noise, from the median |residual|, &sigma; = " +
+      FormatSignificant(sigma) +
       " px per axis. A pattern in the field (arrows that turn with the radius, or all one way) is a camera-model "
       "error, not noise; long single arrows are bad detections, named below.</p>\n";
   html += Svg(ResidualFieldChart(table.corners, width, height));
@@ -148,10 +144,11 @@ std::string FormatCornerFigures(const CornerResidualTable& table, double width, 
   const double sigma = RobustAxisSigma(table.corners);
   const Tail tail = TailOf(table.corners, sigma);
   const CoverageGrid grid = CountCorners(table.corners, width, height);
-  return std::to_string(table.corners.size()) + " corners, RMS " + G3(Rms(table.corners)) + " px, sigma " + G3(sigma) +
-         " px (from the median); " + std::to_string(tail.observed) +
-         " at 3 sigma or more (noise alone: " + G3(tail.expected) + "); " + std::to_string(grid.EmptyCells()) + " of " +
-         std::to_string(grid.cols * grid.rows) + " image cells without a corner";
+  return std::to_string(table.corners.size()) + " corners, RMS " + FormatSignificant(Rms(table.corners)) +
+         " px, sigma " + FormatSignificant(sigma) + " px (from the median); " + std::to_string(tail.observed) +
+         " at 3 sigma or more (noise alone: " + FormatSignificant(tail.expected) + "); " +
+         std::to_string(grid.EmptyCells()) + " of " + std::to_string(grid.cols * grid.rows) +
+         " image cells without a corner";
 }
 
 std::string FormatWorstCorners(const CornerResidualTable& table, int k) {
@@ -162,7 +159,7 @@ std::string FormatWorstCorners(const CornerResidualTable& table, int k) {
     std::snprintf(line, sizeof line, " tag %d corner %d at (%.1f, %.1f): %.3g px", c.tag_id, c.corner, c.observed.x(),
                   c.observed.y(), c.residual.norm());
     text += "  " + table.images[static_cast<size_t>(c.image)] + line;
-    if (sigma > 0) text += " (" + G3(c.residual.norm() / sigma) + " sigma)";
+    if (sigma > 0) text += " (" + FormatSignificant(c.residual.norm() / sigma) + " sigma)";
     text += "\n";
   }
   return text;

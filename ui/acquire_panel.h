@@ -44,17 +44,8 @@
 #include <vector>
 
 #include "ui/image_overlay.h"
+#include "ui/qt_fwd.h"
 #include "ui/session_state.h"
-
-class QCheckBox;
-class QComboBox;
-class QLabel;
-class QProgressBar;
-class QStackedWidget;
-class QPushButton;
-class QTableWidget;
-class QTableWidgetItem;
-class QTimer;
 
 namespace hexcal::workflow {
 struct AcquisitionRig;
@@ -63,7 +54,6 @@ struct ReadingsRow;
 
 namespace hexcal::ui {
 
-class BackgroundJob;
 class ImageView;
 
 class AcquirePanel : public QWidget {

@@ -17,19 +17,11 @@
 #include <vector>
 
 #include "session/calibration_report.h"
+#include "ui/qt_fwd.h"
 #include "ui/session_state.h"
-
-class QLabel;
-class QProgressBar;
-class QPushButton;
-class QTableWidget;
-namespace QtCharts {
-class QChartView;
-}
 
 namespace hexcal::ui {
 
-class BackgroundJob;
 class RunLog;
 class VerdictView;
 

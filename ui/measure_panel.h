@@ -19,24 +19,13 @@
 #include <vector>
 
 #include "ui/background_job.h"
+#include "ui/qt_fwd.h"
 #include "ui/readings_editor.h"
 #include "ui/session_state.h"
 #include "workflow/point_session.h"
 
-class QLabel;
-class QLayout;
-class QListWidget;
-class QPlainTextEdit;
-class QProgressBar;
-class QGridLayout;
-class QPushButton;
-class QSpinBox;
-class QSplitter;
-class QTableWidget;
-
 namespace hexcal::ui {
 
-class BackgroundJob;
 class ImageView;
 
 class MeasurePanel : public QWidget {

@@ -19,20 +19,12 @@
 #include "charts/chart_spec.h"
 #include "core/ioops.h"
 #include "core/planning_model.h"
-#include "workflow/plan_step.h"
+#include "ui/qt_fwd.h"
 #include "ui/session_state.h"
-
-class QLabel;
-class QProgressBar;
-class QPushButton;
-class QTableWidget;
-namespace QtCharts {
-class QChartView;
-}
+#include "workflow/plan_step.h"
 
 namespace hexcal::ui {
 
-class BackgroundJob;
 class PlanOptionsForm;
 class VisibilityForm;
 

@@ -8,12 +8,8 @@
 
 #include <QWidget>
 
+#include "ui/qt_fwd.h"
 #include "ui/session_state.h"
-
-class QCheckBox;
-class QLabel;
-class QSlider;
-class QTableWidget;
 
 namespace hexcal::ui {
 

@@ -23,20 +23,11 @@
 #include <string>
 
 #include "ui/option_form.h"
+#include "ui/qt_fwd.h"
 #include "ui/session_state.h"
 #include "workflow/study_step.h"
 
-class QLabel;
-class QProgressBar;
-class QPushButton;
-class QTableWidget;
-namespace QtCharts {
-class QChartView;
-}
-
 namespace hexcal::ui {
-
-class BackgroundJob;
 
 class StudyView : public QWidget {
   Q_OBJECT

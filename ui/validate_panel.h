@@ -12,14 +12,8 @@
 #include <QWidget>
 
 #include "session/calibration_report.h"
+#include "ui/qt_fwd.h"
 #include "ui/session_state.h"
-
-class QLabel;
-class QTabWidget;
-class QTableWidget;
-namespace QtCharts {
-class QChartView;
-}
 
 namespace hexcal::ui {
 

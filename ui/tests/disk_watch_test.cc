@@ -61,6 +61,9 @@ void Write(const QString& path, const QByteArray& bytes) {
   ASSERT_EQ(file.write(bytes), bytes.size());
 }
 
+// `bytes` added at the end of the file, written in place (the same inode).
+void Append(const QString& path, const QByteArray& bytes) { Write(path, ReadBytes(path) + bytes); }
+
 // What `hexcal session status --json DIR` prints (app/commands/session_command.cc),
 // or {"error": message} when it fails.
 nlohmann::json StatusJson(const QString& dir) {
@@ -86,6 +89,15 @@ class Prepared {
     return prepared;
   }
   QString Root() const { return temp_.path(); }
+  // The prepared folders (session, robots, spare) copied into `root`: each
+  // test changes a copy of its own.
+  Status CopyTo(const QString& root) const {
+    if (!status.ok()) return status;
+    for (const char* folder : {"session", "robots", "spare"})
+      if (!CopyFolder(Root() + "/" + folder, root + "/" + folder))
+        return Status::BadInput("copy " + std::string(folder));
+    return Status::Ok();
+  }
   Status status = Status::Ok();
 
  private:
@@ -239,11 +251,10 @@ struct Change {
 // Each change in turn on one open window: the status must change with it
 // (else the check says nothing), and the window must follow within 2 s.
 void WalkChanges(const std::vector<Change>& changes) {
-  ASSERT_TRUE(Prepared::Get().status.ok()) << Prepared::Get().status.message();
   QTemporaryDir temp;
   const QString root = temp.path();
-  for (const char* folder : {"session", "robots", "spare"})
-    ASSERT_TRUE(CopyFolder(Prepared::Get().Root() + "/" + folder, root + "/" + folder));
+  const Status copied = Prepared::Get().CopyTo(root);
+  ASSERT_TRUE(copied.ok()) << copied.message();
   const QString dir = root + "/session";
   const nlohmann::json initial = StatusJson(dir);
   for (const char* step : kGuiSteps) ASSERT_EQ(initial["steps"][step], "done") << initial.dump(1);
@@ -378,18 +389,14 @@ TEST(UiDiskWatch, SessionFiles) {
       {"session.yaml: made again (the first one)",
        [](const QString& root, const QString& dir) { CopyOver(Spare(root, "session.yaml"), dir + "/session.yaml"); }},
       {"legs.csv: a line of 2 columns appended in place",
-       [](const QString&, const QString& dir) {
-         Write(dir + "/legs.csv", ReadBytes(dir + "/legs.csv") + "view_0099.png,1.5\n");
-       }},
+       [](const QString&, const QString& dir) { Append(dir + "/legs.csv", "view_0099.png,1.5\n"); }},
       {"legs.csv: fixed in place",
        [](const QString& root, const QString& dir) { CopyOver(Spare(root, "legs.csv"), dir + "/legs.csv"); }},
       {"plan.csv: deleted", [](const QString&, const QString& dir) { ASSERT_TRUE(QFile::remove(dir + "/plan.csv")); }},
       {"plan.csv: made again",
        [](const QString& root, const QString& dir) { CopyOver(Spare(root, "plan.csv"), dir + "/plan.csv"); }},
       {"plan.csv: a bad number written in place",
-       [](const QString&, const QString& dir) {
-         Write(dir + "/plan.csv", ReadBytes(dir + "/plan.csv") + "1,2,3,4,five,6\n");
-       }},
+       [](const QString&, const QString& dir) { Append(dir + "/plan.csv", "1,2,3,4,five,6\n"); }},
       {"plan.csv: fixed by an editor through a temporary",
        [](const QString& root, const QString& dir) { GeditSave(Spare(root, "plan.csv"), dir + "/plan.csv"); }},
       {"images/view_0000.png: cp of another image over it",
@@ -412,9 +419,7 @@ TEST(UiDiskWatch, SessionFiles) {
          CopyOver(Spare(root, "camera_poses.csv"), dir + "/camera_poses.csv");
        }},
       {"results/report.json: written in place",
-       [](const QString&, const QString& dir) {
-         Write(dir + "/results/report.json", ReadBytes(dir + "/results/report.json") + " ");
-       }},
+       [](const QString&, const QString& dir) { Append(dir + "/results/report.json", " "); }},
       {"results/report.json: the first one back, in place",
        [](const QString& root, const QString& dir) {
          CopyOver(Spare(root, "report.json"), dir + "/results/report.json");
@@ -437,11 +442,10 @@ TEST(UiDiskWatch, SessionFiles) {
 // before calibrating or exporting; export and report of results stale since
 // an in-place camera change ask first, with the reason, and act only on yes.
 TEST(UiDiskWatch, FocusAndActionsReadAgainStaleExportAsks) {
-  ASSERT_TRUE(Prepared::Get().status.ok()) << Prepared::Get().status.message();
   QTemporaryDir temp;
   const QString root = temp.path();
-  for (const char* folder : {"session", "robots", "spare"})
-    ASSERT_TRUE(CopyFolder(Prepared::Get().Root() + "/" + folder, root + "/" + folder));
+  const Status copied = Prepared::Get().CopyTo(root);
+  ASSERT_TRUE(copied.ok()) << copied.message();
   const QString dir = root + "/session";
   MainWindow window;
   window.show();
@@ -505,7 +509,7 @@ TEST(UiDiskWatch, FocusAndActionsReadAgainStaleExportAsks) {
 
   // Calibrate reads the session again before its checks: a legs.csv broken
   // unseen is refused by name, and nothing runs.
-  Write(dir + "/legs.csv", ReadBytes(dir + "/legs.csv") + "view_0099.png,1.5\n");
+  Append(dir + "/legs.csv", "view_0099.png,1.5\n");
   window.Calibrate()->Run();
   EXPECT_FALSE(window.Calibrate()->Job()->Running());
   status = StatusJson(dir);

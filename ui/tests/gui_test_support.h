@@ -1,16 +1,22 @@
 // What the GUI tests share: waiting on the event loop for a worker's result,
-// copying a test session, and the check that a window fits its screen with
-// no control clipped (issue 35). Run under xvfb-run (ui/CMakeLists.txt).
+// copying a test session (and a fixture with a window on a copy of its own),
+// and the check that a window fits its screen with no control clipped
+// (issue 35). Run under xvfb-run (ui/CMakeLists.txt).
 //
 //   ASSERT_TRUE(WaitFor([&] { return !panel->Job()->Running(); }));
 //   EXPECT_EQ(FitProblems(&window), std::vector<std::string>{}) << "after calibrating";
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <QByteArray>
 #include <QString>
+#include <QTemporaryDir>
 #include <functional>
 #include <string>
 #include <vector>
+
+#include "ui/main_window.h"
 
 class QWidget;
 
@@ -42,5 +48,30 @@ void Settle(int ms = 150);
 // has the height its text needs.
 std::vector<std::string> FitProblems(QWidget* window);
 constexpr int kUsableRows = 4;
+
+// A test whose window works on a copy of one of make_session's sessions, in
+// a temporary folder of its own, so that what it writes reaches no other test.
+//
+//   void SetUp() override {
+//     ASSERT_TRUE(CopySession(sessions_dir + "/points", "points"));
+//     ASSERT_TRUE(OpenCopy());
+//   }
+class SessionCopyTest : public ::testing::Test {
+ protected:
+  // `from` copied to the folder `name` in temp_; dir_ is the copy.
+  bool CopySession(const QString& from, const QString& name) {
+    dir_ = temp_.filePath(name);
+    return CopyFolder(from, dir_);
+  }
+  // The window shown, with the copy open.
+  bool OpenCopy() {
+    window_.show();
+    return window_.OpenSession(dir_);
+  }
+
+  QTemporaryDir temp_;
+  QString dir_;
+  MainWindow window_;  // after temp_: it closes, and stops watching the copy, before the copy goes
+};
 
 }  // namespace hexcal::ui

@@ -46,19 +46,13 @@ void KeepTwoPointsOf(const QString& file, const QString& pose) {
   points.write(kept.join('\n').toUtf8());
 }
 
-class PointsSessionTest : public ::testing::Test {
+class PointsSessionTest : public SessionCopyTest {
  protected:
   void SetUp() override {
-    dir_ = temp_.filePath("points");
-    ASSERT_TRUE(CopyFolder(sessions_dir + "/points", dir_));
-    window_.show();
-    ASSERT_TRUE(window_.OpenSession(dir_));
+    ASSERT_TRUE(CopySession(sessions_dir + "/points", "points"));
+    ASSERT_TRUE(OpenCopy());
     ASSERT_TRUE(window_.Session()->IsPointsSession());
   }
-
-  QTemporaryDir temp_;
-  QString dir_;
-  MainWindow window_;
 };
 
 TEST_F(PointsSessionTest, MeasureListsEveryPoseAndItsFitAndTheTableIsKeyedByPose) {

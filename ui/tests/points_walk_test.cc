@@ -81,11 +81,10 @@ QStringList TakeLines(const QString& file, const QStringList& prefixes) {
   return taken;
 }
 
-class PointsWalkTest : public ::testing::Test {
+class PointsWalkTest : public SessionCopyTest {
  protected:
   void SetUp() override {
-    dir_ = temp_.filePath("points");
-    ASSERT_TRUE(CopyFolder(sessions_dir + "/points", dir_));
+    ASSERT_TRUE(CopySession(sessions_dir + "/points", "points"));
     // Poses 11 and 12 of the plan not recorded yet; pose 11's points as the
     // tracker's software exported them, in a group of its own naming.
     const QStringList rows = TakeLines(dir_ + "/legs.csv", {"pose_0010,", "pose_0011,"});
@@ -105,8 +104,7 @@ class PointsWalkTest : public ::testing::Test {
       if (line.startsWith("tracker pose_0010 ")) sa.write(QString(line).replace("pose_0010", "Group1").toUtf8() + "\n");
     sa.close();
     window_.resize(1280, 720);
-    window_.show();
-    ASSERT_TRUE(window_.OpenSession(dir_));
+    ASSERT_TRUE(OpenCopy());
   }
 
   // The session's status as `hexcal session status --json` prints it.
@@ -128,10 +126,7 @@ class PointsWalkTest : public ::testing::Test {
     EXPECT_TRUE(row->toolTip().endsWith(" — " + why)) << row->toolTip().toStdString() << " | " << why.toStdString();
   }
 
-  QTemporaryDir temp_;
-  QString dir_;
   LegReadings demo_readings_{};
-  MainWindow window_;
 };
 
 TEST_F(PointsWalkTest, AcquireMeasureCalibrateValidateReport) {

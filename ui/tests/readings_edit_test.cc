@@ -47,13 +47,11 @@ void WriteTheirs(const QString& dir, int row, int leg, double value) {
   ASSERT_TRUE(WriteCsv((dir + "/legs.csv").toStdString(), table->header, table->rows).ok());
 }
 
-class ReadingsEditTest : public ::testing::Test {
+class ReadingsEditTest : public SessionCopyTest {
  protected:
   void SetUp() override {
-    dir_ = temp_.filePath("session");
-    ASSERT_TRUE(CopyFolder(sessions_dir + "/calibrated", dir_));
-    window_.show();
-    ASSERT_TRUE(window_.OpenSession(dir_));
+    ASSERT_TRUE(CopySession(sessions_dir + "/calibrated", "session"));
+    ASSERT_TRUE(OpenCopy());
     ASSERT_TRUE(window_.ShowPanelNamed("measure"));
     table_ = window_.Measure()->LegsTable();
     ASSERT_GE(table_->rowCount(), 2);
@@ -79,10 +77,17 @@ class ReadingsEditTest : public ::testing::Test {
     QApplication::sendEvent(editor, &press);
     QApplication::processEvents();
   }
+  // Types `mine` into (row, L`leg`); another program writes `theirs` into
+  // the same cell meanwhile, which the editor's text survives; then Enter.
+  void TypeWhileTheyWrite(int row, int leg, const QString& mine, double theirs) {
+    QLineEdit* editor = Type(row, leg, mine);
+    ASSERT_NE(editor, nullptr);
+    WriteTheirs(dir_, row, leg, theirs);
+    ASSERT_TRUE(Reloaded(row, leg, theirs));
+    EXPECT_EQ(editor->text().toStdString(), mine.toStdString());
+    PressEnter(editor);
+  }
 
-  QTemporaryDir temp_;
-  QString dir_;
-  MainWindow window_;
   ReadingsEditor* table_ = nullptr;
 };
 
@@ -107,12 +112,7 @@ TEST_F(ReadingsEditTest, TheSameCellWrittenMeanwhileAsksUseMine) {
     asked << text;
     return true;  // Use mine
   });
-  QLineEdit* editor = Type(0, 1, "2.75");
-  ASSERT_NE(editor, nullptr);
-  WriteTheirs(dir_, 0, 1, 3.375);
-  ASSERT_TRUE(Reloaded(0, 1, 3.375));
-  EXPECT_EQ(editor->text().toStdString(), "2.75");
-  PressEnter(editor);
+  ASSERT_NO_FATAL_FAILURE(TypeWhileTheyWrite(0, 1, "2.75", 3.375));
   ASSERT_EQ(asked.size(), 1);
   EXPECT_NEAR(OnDisk(dir_, 0, 1), 2.75, 1e-9);
   EXPECT_EQ(table_->item(0, 2)->text().toDouble(), 2.75);
@@ -124,12 +124,7 @@ TEST_F(ReadingsEditTest, TheSameCellWrittenMeanwhileKeepsTheirsWhenAsked) {
     ++asked;
     return false;  // Keep theirs
   });
-  QLineEdit* editor = Type(0, 2, "3.25");
-  ASSERT_NE(editor, nullptr);
-  WriteTheirs(dir_, 0, 2, 3.125);
-  ASSERT_TRUE(Reloaded(0, 2, 3.125));
-  EXPECT_EQ(editor->text().toStdString(), "3.25");
-  PressEnter(editor);
+  ASSERT_NO_FATAL_FAILURE(TypeWhileTheyWrite(0, 2, "3.25", 3.125));
   EXPECT_EQ(asked, 1);
   EXPECT_NEAR(OnDisk(dir_, 0, 2), 3.125, 1e-9);
   EXPECT_EQ(table_->item(0, 3)->text().toDouble(), 3.125);  // the table shows the file again
