@@ -5,19 +5,16 @@
 
 #include <random>
 
+#include "bench/bench_support.h"
 #include "core/fk_homotopy.h"
 #include "core/forward_kinematics.h"
 #include "core/identification.h"
 #include "core/observability.h"
-#include "core/robot_io.h"
 
 namespace hexcal {
 namespace {
 
-const Robot& Inria() {
-  static const Robot robot = *LoadRobot("inria-left-hand");
-  return robot;
-}
+using bench::Inria;
 
 std::vector<Pose> RandomPoses(int count, uint64_t seed) {
   std::mt19937_64 rng(seed);

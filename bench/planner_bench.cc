@@ -9,15 +9,15 @@
 #include <algorithm>
 #include <chrono>
 
+#include "bench/bench_support.h"
 #include "core/candidates.h"
 #include "core/ioops.h"
-#include "core/robot_io.h"
 
 namespace hexcal {
 namespace {
 
 const PlanningModel& Model() {
-  static const PlanningModel model{*LoadRobot("inria-left-hand"), std::nullopt, std::nullopt};
+  static const PlanningModel model{bench::Inria(), std::nullopt, std::nullopt};
   return model;
 }
 

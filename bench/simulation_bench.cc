@@ -7,18 +7,15 @@
 //   build/bench/hexcal_bench_simulation
 #include <benchmark/benchmark.h>
 
+#include "bench/bench_support.h"
 #include "core/candidates.h"
 #include "core/ioops.h"
-#include "core/robot_io.h"
 #include "core/simulation.h"
 
 namespace hexcal {
 namespace {
 
-const Robot& Inria() {
-  static const Robot robot = *LoadRobot("inria-left-hand");
-  return robot;
-}
+using bench::Inria;
 
 std::vector<Vector6d> Candidates(CandidateKind kind, int count) {
   CandidateOptions options;

@@ -28,6 +28,17 @@ function(hexcal_add_test)
   endif()
 endfunction()
 
+# hexcal_add_tests(LIBS lib ... TESTS name ...)
+# hexcal_add_test for each name, from name.cc, all with the same LIBS: a folder's
+# plain tests in one list. A test with a COST or libraries of its own keeps a
+# hexcal_add_test call.
+function(hexcal_add_tests)
+  cmake_parse_arguments(T "" "" "TESTS;LIBS" ${ARGN})
+  foreach(name IN LISTS T_TESTS)
+    hexcal_add_test(NAME ${name} SOURCES ${name}.cc LIBS ${T_LIBS})
+  endforeach()
+endfunction()
+
 # The target of every unit test executable (and of helpers added to the property
 # by hand); call once, after every add_subdirectory.
 function(hexcal_add_unit_tests_target)

@@ -27,10 +27,19 @@ std::string WriteCsvFile(const TempDir& dir, const std::string& text) {
   return path;
 }
 
-std::string ReadCsvError(const std::string& path) {
-  StatusOr<CsvTable> table = ReadCsv(path);
-  EXPECT_FALSE(table.ok()) << path << " was read without error";
-  return table.ok() ? "" : table.status().message();
+std::string ReadCsvError(const std::string& path) { return testing::ErrorMessage(ReadCsv(path), path); }
+
+// The error for a file holding `text`, after the file's path, which every
+// message must start with.
+std::string ErrorAfterPath(const std::string& text) {
+  TempDir dir;
+  const std::string path = WriteCsvFile(dir, text);
+  const std::string message = ReadCsvError(path);
+  if (message.rfind(path, 0) != 0) {
+    ADD_FAILURE() << "'" << message << "' does not start with the path " << path;
+    return message;
+  }
+  return message.substr(path.size());
 }
 
 TEST(CsvTest, ReadsHeaderRowsAndLineNumbers) {
@@ -77,59 +86,41 @@ TEST(CsvTest, MissingFileIsAnErrorNamingThePath) {
 }
 
 TEST(CsvTest, EmptyFileOrOnlyCommentsHasNoHeader) {
-  TempDir dir;
   for (const std::string text : {"", "\n\n", "# only a comment\n  \n"}) {
-    const std::string path = WriteCsvFile(dir, text);
-    EXPECT_EQ(ReadCsvError(path), path + ": no header line (the file is empty or holds only comments)");
+    EXPECT_EQ(ErrorAfterPath(text), ": no header line (the file is empty or holds only comments)");
   }
 }
 
 TEST(CsvTest, DuplicateHeaderNamesAreAnError) {
-  TempDir dir;
-  const std::string path = WriteCsvFile(dir, "# c\nx,y,x\n1,2,3\n");
-  EXPECT_EQ(ReadCsvError(path), path + ":2: duplicate column 'x' in header");
+  EXPECT_EQ(ErrorAfterPath("# c\nx,y,x\n1,2,3\n"), ":2: duplicate column 'x' in header");
 }
 
 TEST(CsvTest, FirstLineOfNumbersIsAMissingHeader) {
-  TempDir dir;
-  const std::string path = WriteCsvFile(dir, "# poses\n0,0,53.5,0,0,0\n1,-1,53,2,-1,3\n");
-  EXPECT_EQ(ReadCsvError(path),
-            path + ":2: no header: column 1 is the number '0', and the first line must name the columns");
+  EXPECT_EQ(ErrorAfterPath("# poses\n0,0,53.5,0,0,0\n1,-1,53,2,-1,3\n"),
+            ":2: no header: column 1 is the number '0', and the first line must name the columns");
 }
 
-TEST(CsvTest, UnnamedHeaderColumnIsAnError) {
-  TempDir dir;
-  const std::string path = WriteCsvFile(dir, "x,,z\n");
-  EXPECT_EQ(ReadCsvError(path), path + ":1: header column 2 has no name");
-}
+TEST(CsvTest, UnnamedHeaderColumnIsAnError) { EXPECT_EQ(ErrorAfterPath("x,,z\n"), ":1: header column 2 has no name"); }
 
 TEST(CsvTest, RowWithWrongColumnCountNamesLineAndCounts) {
-  TempDir dir;
-  const std::string path = WriteCsvFile(dir,
-                                        "x,y,z,q1,q2,q3\n"
-                                        "0,0,53,0,0,0\n"
-                                        "\n"
-                                        "# next row lost a value\n"
-                                        "0,0,53,0,0,1\n"
-                                        "\n"
-                                        "0,0,53,0,0\n");
-  EXPECT_EQ(ReadCsvError(path), path + ":7: 5 columns, header has 6");
+  EXPECT_EQ(ErrorAfterPath("x,y,z,q1,q2,q3\n"
+                           "0,0,53,0,0,0\n"
+                           "\n"
+                           "# next row lost a value\n"
+                           "0,0,53,0,0,1\n"
+                           "\n"
+                           "0,0,53,0,0\n"),
+            ":7: 5 columns, header has 6");
 }
 
 TEST(CsvTest, TrailingCommaCountsAsAnExtraColumn) {
-  TempDir dir;
-  const std::string path = WriteCsvFile(dir, "x,y\n1,2,\n");
-  EXPECT_EQ(ReadCsvError(path), path + ":2: 3 columns, header has 2");
+  EXPECT_EQ(ErrorAfterPath("x,y\n1,2,\n"), ":2: 3 columns, header has 2");
 }
 
 TEST(CsvTest, BadQuotingNamesLineAndField) {
-  TempDir dir;
-  std::string path = WriteCsvFile(dir, "x,y\n1,\"2\n");
-  EXPECT_EQ(ReadCsvError(path), path + ":2: field 2: quoted field has no closing quote");
-  path = WriteCsvFile(dir, "x,y\n\"1\"0,2\n");
-  EXPECT_EQ(ReadCsvError(path), path + ":2: field 1: text after the closing quote");
-  path = WriteCsvFile(dir, "x,y\n1,2\"\n");
-  EXPECT_THAT(ReadCsvError(path), StartsWith(path + ":2: field 2: quote inside an unquoted"));
+  EXPECT_EQ(ErrorAfterPath("x,y\n1,\"2\n"), ":2: field 2: quoted field has no closing quote");
+  EXPECT_EQ(ErrorAfterPath("x,y\n\"1\"0,2\n"), ":2: field 1: text after the closing quote");
+  EXPECT_THAT(ErrorAfterPath("x,y\n1,2\"\n"), StartsWith(":2: field 2: quote inside an unquoted"));
 }
 
 TEST(CsvTest, ParseNumberAcceptsFiniteDecimalNumbers) {

@@ -29,6 +29,29 @@ using ::hexcal::testing::Uniform;
 constexpr Criterion kAll[] = {Criterion::kO1, Criterion::kO2, Criterion::kO3, Criterion::kO4,
                               Criterion::kD,  Criterion::kA,  Criterion::kE,  Criterion::kS};
 
+// INRIA's planning model, its rows plain or weighted by the default noise model.
+PlanningModel InriaModel(bool weighted) {
+  PlanningModel model{Preset("inria-left-hand"), std::nullopt, std::nullopt};
+  if (weighted) model.noise = NoiseModel{};
+  return model;
+}
+
+// The rows of every pose, in order: a plan for DesignState::FromRows.
+std::vector<PoseRows> PlanRows(const PlanningModel& model, const std::vector<Vector6d>& poses) {
+  std::vector<PoseRows> rows;
+  for (const Vector6d& v : poses) rows.push_back(model.Rows(v));
+  return rows;
+}
+
+// The candidates' rows, each from model.Rows (not RowsOf, whose threads these
+// tests leave out of the comparison).
+CandidateRows CandidateBatch(const PlanningModel& model, const std::vector<Vector6d>& candidates) {
+  CandidateRows batch;
+  batch.Resize(static_cast<int>(candidates.size()));
+  for (size_t j = 0; j < candidates.size(); ++j) batch.Set(static_cast<int>(j), model.Rows(candidates[j]));
+  return batch;
+}
+
 // O1..O4 from DesignState agree with observability.h (the paper's definitions).
 TEST(DesignCriteria, ValuesAgreeWithObservabilityIndices) {
   const PlanningModel model{Preset("inria-left-hand"), std::nullopt, std::nullopt};
@@ -64,16 +87,11 @@ TEST(DesignCriteria, ValuesAgreeWithObservabilityIndices) {
 // from-scratch evaluation of the set plus each candidate.
 TEST(DesignCriteria, IncrementalScoresMatchRecomputation) {
   for (bool weighted : {false, true}) {
-    PlanningModel model{Preset("inria-left-hand"), std::nullopt, std::nullopt};
-    if (weighted) model.noise = NoiseModel{};
-    const std::vector<Vector6d> plan = SpreadFeasiblePoses(model.robot, 18, 5);
+    const PlanningModel model = InriaModel(weighted);
+    const std::vector<PoseRows> rows = PlanRows(model, SpreadFeasiblePoses(model.robot, 18, 5));
     const std::vector<Vector6d> candidates = SpreadFeasiblePoses(model.robot, 200, 6);
-    std::vector<PoseRows> rows;
-    for (const Vector6d& v : plan) rows.push_back(model.Rows(v));
     const DesignState state = DesignState::FromRows(rows);
-    CandidateRows batch;
-    batch.Resize(static_cast<int>(candidates.size()));
-    for (size_t j = 0; j < candidates.size(); ++j) batch.Set(static_cast<int>(j), model.Rows(candidates[j]));
+    const CandidateRows batch = CandidateBatch(model, candidates);
     for (Criterion criterion : kAll) {
       std::vector<double> scores(candidates.size());
       state.ScoreAdditions(criterion, batch, 0, batch.size(), scores.data());
@@ -93,8 +111,7 @@ TEST(DesignCriteria, IncrementalScoresMatchRecomputation) {
 TEST(DesignCriteria, ValueAfterRemovingIsTheRecomputedValue) {
   PlanningModel model{Preset("inria-left-hand"), NoiseModel{}, std::nullopt};
   for (int size : {7, 8, 18}) {
-    std::vector<PoseRows> rows;
-    for (const Vector6d& v : SpreadFeasiblePoses(model.robot, size, 7)) rows.push_back(model.Rows(v));
+    const std::vector<PoseRows> rows = PlanRows(model, SpreadFeasiblePoses(model.robot, size, 7));
     const DesignState state = DesignState::FromRows(rows);
     for (size_t k = 0; k < rows.size(); ++k) {
       std::array<InfoBlock, kNumLegs> downdated = state.blocks();
@@ -136,15 +153,9 @@ TEST(DesignCriteria, RowJacobiansAreTheCentralDifferencesOfRows) {
 // within a few per cent of the best value.
 TEST(DesignCriteria, UpperBoundsAreAboveTheExactScores) {
   for (bool weighted : {false, true}) {
-    PlanningModel model{Preset("inria-left-hand"), std::nullopt, std::nullopt};
-    if (weighted) model.noise = NoiseModel{};
-    std::vector<PoseRows> rows;
-    for (const Vector6d& v : SpreadFeasiblePoses(model.robot, 18, 21)) rows.push_back(model.Rows(v));
-    const DesignState state = DesignState::FromRows(rows);
-    const std::vector<Vector6d> candidates = SpreadFeasiblePoses(model.robot, 500, 22);
-    CandidateRows batch;
-    batch.Resize(static_cast<int>(candidates.size()));
-    for (size_t j = 0; j < candidates.size(); ++j) batch.Set(static_cast<int>(j), model.Rows(candidates[j]));
+    const PlanningModel model = InriaModel(weighted);
+    const DesignState state = DesignState::FromRows(PlanRows(model, SpreadFeasiblePoses(model.robot, 18, 21)));
+    const CandidateRows batch = CandidateBatch(model, SpreadFeasiblePoses(model.robot, 500, 22));
     for (Criterion criterion : {Criterion::kO2, Criterion::kO3, Criterion::kO4, Criterion::kE}) {
       ASSERT_TRUE(IsEigenvalueCriterion(criterion));
       std::vector<double> exact(batch.size()), bound(batch.size());
@@ -184,11 +195,8 @@ TEST(DesignCriteria, SecularExtremesMatchDenseEigenvalues) {
 // The analytic criterion gradient used by SLSQP against central differences.
 TEST(DesignCriteria, ContinuousGradientMatchesFiniteDifferences) {
   for (bool weighted : {false, true}) {
-    PlanningModel model{Preset("inria-left-hand"), std::nullopt, std::nullopt};
-    if (weighted) model.noise = NoiseModel{};
-    std::vector<PoseRows> rows;
-    for (const Vector6d& v : SpreadFeasiblePoses(model.robot, 12, 9)) rows.push_back(model.Rows(v));
-    const DesignState state = DesignState::FromRows(rows);
+    const PlanningModel model = InriaModel(weighted);
+    const DesignState state = DesignState::FromRows(PlanRows(model, SpreadFeasiblePoses(model.robot, 12, 9)));
     const Vector6d pose = SpreadFeasiblePoses(model.robot, 1, 10).front();
     for (Criterion criterion : kAll) {
       Vector6d gradient, unused;
@@ -224,9 +232,7 @@ TEST(OptimalDesign, SatisfiesTheEquivalenceTheorem) {
   std::vector<Vector6d> candidates = GenerateCandidates(model.robot, options)->poses;
   const std::vector<Vector6d> random = SpreadFeasiblePoses(model.robot, 150, 12);
   candidates.insert(candidates.end(), random.begin(), random.end());
-  CandidateRows rows;
-  rows.Resize(static_cast<int>(candidates.size()));
-  for (size_t j = 0; j < candidates.size(); ++j) rows.Set(static_cast<int>(j), model.Rows(candidates[j]));
+  const CandidateRows rows = CandidateBatch(model, candidates);
   StatusOr<OptimalDesign> design = ComputeOptimalDesign(rows);
   ASSERT_TRUE(design.ok()) << design.status().message();
   EXPECT_TRUE(design->converged) << "gap " << design->gap << " after " << design->iterations;
@@ -265,9 +271,7 @@ TEST(OptimalDesign, SatisfiesTheEquivalenceTheorem) {
 TEST(OptimalDesign, DoesNotDependOnTheThreadCount) {
   const PlanningModel model{Preset("inria-left-hand"), std::nullopt, std::nullopt};
   const std::vector<Vector6d> candidates = SpreadFeasiblePoses(model.robot, 2500, 5);
-  CandidateRows rows;
-  rows.Resize(static_cast<int>(candidates.size()));
-  for (size_t j = 0; j < candidates.size(); ++j) rows.Set(static_cast<int>(j), model.Rows(candidates[j]));
+  const CandidateRows rows = CandidateBatch(model, candidates);
   OptimalDesignOptions options;
   options.max_iterations = 20;
   options.threads = 1;
@@ -288,9 +292,7 @@ namespace {
 
 // The rows of the first `count` poses: a plan.
 std::vector<PoseRows> FirstRows(const PlanningModel& model, const std::vector<Vector6d>& poses, int count) {
-  std::vector<PoseRows> rows;
-  for (int k = 0; k < count; ++k) rows.push_back(model.Rows(poses[k]));
-  return rows;
+  return PlanRows(model, std::vector<Vector6d>(poses.begin(), poses.begin() + count));
 }
 
 // The Sherman–Morrison-maintained quadratic forms equal fresh ones after a series

@@ -16,9 +16,7 @@ using ::hexcal::testing::Uniform;
 using ::testing::HasSubstr;
 
 std::string ParseError(const std::string& text) {
-  StatusOr<std::vector<Measurement>> rows = ParseMeasurements(text, "m.csv");
-  EXPECT_FALSE(rows.ok());
-  return rows.ok() ? "" : rows.status().message();
+  return testing::ErrorMessage(ParseMeasurements(text, "m.csv"), text);
 }
 
 TEST(Measurements, ReadsColumnsInAnyOrderAndIgnoresOthers) {

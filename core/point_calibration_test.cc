@@ -15,6 +15,8 @@
 namespace hexcal {
 namespace {
 
+using testing::Accuracy;
+using testing::AccuracyInRegisteredFrames;
 using testing::MatrixNear;
 using testing::PerturbedRobot;
 using testing::Preset;
@@ -134,21 +136,10 @@ PointCalibrationOptions Options(const TrackerScene& scene) {
   return options;
 }
 
-struct Accuracy {
-  double within_3sigma = 0;
-  double mean_error = 0;
-};
-
 // Errors against the truth in the registered frames (the gauge: X fixed, the
 // reflectors' placement Y·p_k, which the truth's reflectors have exactly).
 Accuracy AccuracyOf(const CalibrationResult& fit, const TrackerScene& scene, const Registration& frames) {
-  const Robot truth = ExpressInFrames(scene.truth, Compose(frames.base_from_camera, Inverse(scene.base_from_tracker)),
-                                      Compose(frames.platform_from_target, Inverse(scene.platform_from_reflectors)));
-  const ParameterVector error = fit.Estimates() - ParametersOf(truth);
-  const ParameterVector sigma = fit.StdDevs();
-  int within = 0;
-  for (int k = 0; k < kNumParams; ++k) within += std::abs(error[k]) <= 3 * sigma[k] ? 1 : 0;
-  return {within / double(kNumParams), error.cwiseAbs().mean()};
+  return AccuracyInRegisteredFrames(fit, scene.truth, scene.base_from_tracker, scene.platform_from_reflectors, frames);
 }
 
 struct RobotCase {

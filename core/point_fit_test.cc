@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <random>
 
 namespace hexcal {
@@ -30,6 +31,18 @@ std::vector<NamedPoint> Seen(const Pose& pose, double sigma, std::mt19937& rando
     seen.push_back({r.name, at + Eigen::Vector3d(noise(random), noise(random), noise(random)), sigma});
   }
   return seen;
+}
+
+// `count` sets named prefix0, prefix1, ...: the reflectors seen with noise σ
+// at pose_of(k) (x, y, z in mm, XYZ Euler angles in degrees).
+PointSets SetsAt(int count, const std::string& prefix, double sigma, std::mt19937& random,
+                 const std::function<Vector6d(int)>& pose_of) {
+  PointSets sets;
+  for (int k = 0; k < count; ++k) {
+    const Pose pose = PoseFromVector(pose_of(k), EulerConvention::kXYZ);
+    sets.push_back({prefix + std::to_string(k), Seen(pose, sigma, random)});
+  }
+  return sets;
 }
 
 TEST(PointFit, NoiselessPointsGiveThePoseExactly) {
@@ -135,12 +148,8 @@ TEST(PointFit, CollinearReflectorsAreRefused) {
 TEST(ReflectorEstimate, RecoversTheShapeFromNoisyPoses) {
   std::mt19937 random(3);
   const double sigma = 0.02;
-  PointSets sets;
-  for (int k = 0; k < 20; ++k) {
-    const Pose pose = PoseFromVector((Vector6d() << 10 * k, -5 * k, 2000, 2 * k, -k, 3 * k).finished(),
-                                     EulerConvention::kXYZ);
-    sets.push_back({"pose" + std::to_string(k), Seen(pose, sigma, random)});
-  }
+  PointSets sets = SetsAt(20, "pose", sigma, random,
+                          [](int k) { return (Vector6d() << 10 * k, -5 * k, 2000, 2 * k, -k, 3 * k).finished(); });
   sets[0].points.pop_back();  // R4 not seen at the first pose
   StatusOr<std::vector<NamedPoint>> estimate = EstimateReflectors(sets);
   ASSERT_TRUE(estimate.ok()) << estimate.status().message();
@@ -172,12 +181,8 @@ TEST(ReflectorEstimate, NeedsAPoseWithThreePoints) {
 TEST(PointRepeatability, MeasuresTheSimulatedNoise) {
   std::mt19937 random(11);
   const double sigma = 0.03;
-  PointSets sets;
-  for (int k = 0; k < 50; ++k) {
-    const Pose pose = PoseFromVector((Vector6d() << 120 + 0.01 * k, -340, 2150, 12, -7, 33).finished(),
-                                     EulerConvention::kXYZ);
-    sets.push_back({"rep" + std::to_string(k), Seen(pose, sigma, random)});
-  }
+  PointSets sets = SetsAt(50, "rep", sigma, random,
+                          [](int k) { return (Vector6d() << 120 + 0.01 * k, -340, 2150, 12, -7, 33).finished(); });
   StatusOr<Repeatability> r = MeasurePointRepeatability(sets);
   ASSERT_TRUE(r.ok()) << r.status().message();
   EXPECT_EQ(r->degrees_of_freedom, 3 * 200 - 300 - 12 + 6);

@@ -34,9 +34,7 @@ std::string MakeSession(const TempDir& temp) {
 
 std::string LegsError(const std::string& dir, const std::string& legs) {
   WriteTextFile(dir + "/legs.csv", legs);
-  StatusOr<std::vector<LegsRow>> rows = LoadSessionLegs(dir);
-  EXPECT_FALSE(rows.ok());
-  return rows.ok() ? "" : rows.status().message();
+  return testing::ErrorMessage(LoadSessionLegs(dir), legs);
 }
 
 TEST(Session, InitCreatesTheFolderAndRefusesASecondInit) {
@@ -112,9 +110,7 @@ TEST(Session, LegsErrorsNameTheFileAndLine) {
 
 std::string ConfigError(const std::string& dir, const std::string& yaml) {
   WriteTextFile(dir + "/session.yaml", yaml);
-  StatusOr<SessionConfig> config = LoadSessionConfig(dir);
-  EXPECT_FALSE(config.ok());
-  return config.ok() ? "" : config.status().message();
+  return testing::ErrorMessage(LoadSessionConfig(dir), yaml);
 }
 
 // Shapes fuzz/session_fuzz found throwing out of LoadSessionConfig.

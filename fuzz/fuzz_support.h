@@ -1,6 +1,7 @@
-// Helpers for the fuzz targets whose parser reads a path, not bytes: the input
-// is written to a file in a folder of this process's own, and the parser reads
-// it from there exactly as it does in the product.
+// Helpers for the fuzz targets: for a parser that reads a path, not bytes, the
+// input is written to a file in a folder of this process's own, and the parser
+// reads it from there exactly as it does in the product; for a parser with a
+// writer, the round trip that every input it accepts must survive.
 #pragma once
 #include <unistd.h>
 
@@ -37,6 +38,16 @@ inline void WriteOrDie(const std::string& path, const uint8_t* data, size_t size
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   if (!out) std::abort();  // the harness, not the parser, failed
+}
+
+// Text that `parse` accepts, written back by `write`, must parse again; else
+// abort, which libFuzzer reports as a crash with the input.
+template <typename Parse, typename Write>
+void CheckRoundTrip(const uint8_t* data, size_t size, Parse parse, Write write) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  const auto parsed = parse(text, "fuzz.yaml");
+  if (!parsed.ok()) return;
+  if (!parse(write(*parsed), "round-trip.yaml").ok()) std::abort();
 }
 
 }  // namespace hexcal::fuzz

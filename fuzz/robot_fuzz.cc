@@ -2,16 +2,12 @@
 // written back and parsed again. docs/hardening.md says how to run it.
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
-#include <string>
 
 #include "core/robot_io.h"
+#include "fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  const std::string text(reinterpret_cast<const char*>(data), size);
-  const hexcal::StatusOr<hexcal::Robot> robot = hexcal::ParseRobotYaml(text, "fuzz.yaml");
-  if (!robot.ok()) return 0;
   // A robot the parser accepts must survive its own writer.
-  if (!hexcal::ParseRobotYaml(hexcal::RobotToYaml(*robot), "round-trip.yaml").ok()) std::abort();
+  hexcal::fuzz::CheckRoundTrip(data, size, hexcal::ParseRobotYaml, hexcal::RobotToYaml);
   return 0;
 }

@@ -2,15 +2,11 @@
 // parsed target written back and parsed again. docs/hardening.md says how to run it.
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
-#include <string>
 
+#include "fuzz/fuzz_support.h"
 #include "vision/target.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  const std::string text(reinterpret_cast<const char*>(data), size);
-  const hexcal::StatusOr<hexcal::Target> target = hexcal::ParseTargetYaml(text, "fuzz.yaml");
-  if (!target.ok()) return 0;
-  if (!hexcal::ParseTargetYaml(hexcal::TargetToYaml(*target), "round-trip.yaml").ok()) std::abort();
+  hexcal::fuzz::CheckRoundTrip(data, size, hexcal::ParseTargetYaml, hexcal::TargetToYaml);
   return 0;
 }

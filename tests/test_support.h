@@ -1,5 +1,6 @@
-// Helpers shared by the tests: a reseeded RNG, Eigen comparisons and
-// temporary directories that clean up after themselves.
+// Helpers shared by the tests: a reseeded RNG, Eigen comparisons, temporary
+// directories that clean up after themselves and the message of a result that
+// must be an error.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -35,6 +36,16 @@ class TempDir {
 
 void WriteTextFile(const std::string& path, const std::string& text);
 std::string ReadTextFile(const std::string& path);
+
+// The message of `result` (a StatusOr, or any type with ok() and status()),
+// which must be an error: a success fails the test, naming `input`, and gives
+// "", so that the caller's comparison of the message fails too.
+//   std::string ParseError(const std::string& yaml) { return ErrorMessage(ParseTargetYaml(yaml, "t.yaml"), yaml); }
+template <typename Result>
+std::string ErrorMessage(const Result& result, const std::string& input = "") {
+  EXPECT_FALSE(result.ok()) << "no error for: " << input;
+  return result.ok() ? "" : result.status().message();
+}
 
 template <typename A, typename B>
 ::testing::AssertionResult MatrixNear(const Eigen::MatrixBase<A>& a, const Eigen::MatrixBase<B>& b, double tolerance) {

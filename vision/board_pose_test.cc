@@ -48,6 +48,29 @@ double Median(std::vector<double> values) {
   return values[values.size() / 2];
 }
 
+// The board poses found in views of the default target, and their errors.
+struct RenderedPoses {
+  std::vector<BoardPose> found;
+  std::vector<double> translation_mm, rotation_deg;
+};
+
+// What `measure` does: each view rendered through `camera` at `poses` (the
+// renderer's default noise), detected with the edge fit in its undistorted
+// image, then posed. A view without a pose is a fatal failure.
+void PoseRenderedViews(const Camera& camera, const std::vector<Pose>& poses, RenderedPoses* out) {
+  const Target target = DefaultTarget();
+  const Renderer renderer(camera, target, RenderOptions{});
+  std::unique_ptr<TagDetector> detector =
+      TagDetector::Create(DetectorOptions{}, std::make_shared<const IdealPixelMap>(camera)).value();
+  for (size_t i = 0; i < poses.size(); ++i) {
+    const RenderedView view = renderer.Render(poses[i], i);
+    const BoardPose pose = EstimateBoardPose(camera, MatchToTarget(target, detector->Detect(view.image)), {});
+    ASSERT_EQ(pose.status, PoseStatus::kOk) << pose.message;
+    out->found.push_back(pose);
+    out->translation_mm.push_back((pose.camera_from_target.position - poses[i].position).norm());
+    out->rotation_deg.push_back(RadToDeg(RotationDistance(pose.camera_from_target.rotation, poses[i].rotation)));
+  }
+}
 
 TEST(BoardPoseTest, RotationExpAndLogAreInverse) {
   for (int i = 0; i < 100; ++i) {
@@ -125,54 +148,34 @@ TEST(BoardPoseTest, StatusesSayWhy) {
 // The acceptance figure: rendered images at 0.5 m under the
 // renderer's default noise, median errors within 0.05 mm and 0.01°.
 TEST(BoardPoseTest, RecoversRenderedPosesAtHalfAMetre) {
-  const Camera camera = SimulatedCamera();
-  const Target target = DefaultTarget();
-  const Renderer renderer(camera, target, RenderOptions{});
-  std::unique_ptr<TagDetector> detector =
-      TagDetector::Create(DetectorOptions{}, std::make_shared<const IdealPixelMap>(camera)).value();
-  const std::vector<Pose> poses = RandomViewPoses(target, 12, 500, 500, 30, 30, 0.1, 2026);
-  std::vector<double> translation_mm, rotation_deg;
+  const std::vector<Pose> poses = RandomViewPoses(DefaultTarget(), 12, 500, 500, 30, 30, 0.1, 2026);
+  RenderedPoses r;
+  ASSERT_NO_FATAL_FAILURE(PoseRenderedViews(SimulatedCamera(), poses, &r));
   double nees = 0;
   for (size_t i = 0; i < poses.size(); ++i) {
-    const RenderedView view = renderer.Render(poses[i], i);
-    const BoardPose pose = EstimateBoardPose(camera, MatchToTarget(target, detector->Detect(view.image)), {});
-    ASSERT_EQ(pose.status, PoseStatus::kOk) << pose.message;
-    EXPECT_EQ(pose.num_tags, 36);
-    translation_mm.push_back((pose.camera_from_target.position - poses[i].position).norm());
-    rotation_deg.push_back(RadToDeg(RotationDistance(pose.camera_from_target.rotation, poses[i].rotation)));
-    const Eigen::Matrix<double, 6, 1> e = LocalError(pose.camera_from_target, poses[i]);
-    nees += e.dot(pose.covariance_local.ldlt().solve(e));
+    EXPECT_EQ(r.found[i].num_tags, 36);
+    const Eigen::Matrix<double, 6, 1> e = LocalError(r.found[i].camera_from_target, poses[i]);
+    nees += e.dot(r.found[i].covariance_local.ldlt().solve(e));
   }
-  EXPECT_LE(Median(translation_mm), 0.05);
-  EXPECT_LE(Median(rotation_deg), 0.01);
+  EXPECT_LE(Median(r.translation_mm), 0.05);
+  EXPECT_LE(Median(r.rotation_deg), 0.01);
   // Normalised errors: the reported covariance is neither far too small nor far too large.
   EXPECT_GT(nees / poses.size(), 1.5);
   EXPECT_LT(nees / poses.size(), 18);
-  std::cout << "median translation error " << Median(translation_mm) << " mm, rotation " << Median(rotation_deg)
+  std::cout << "median translation error " << Median(r.translation_mm) << " mm, rotation " << Median(r.rotation_deg)
             << " deg, mean NEES " << nees / poses.size() << " (6 expected)\n";
 }
 
 // What `measure` does with a fisheye: detection with the edge fit in its
 // undistorted image, then the pose; rendered views up to ~50° off the axis.
 TEST(BoardPoseTest, RecoversRenderedPosesThroughAFisheye) {
-  const Camera camera = SimulatedFisheyeCamera();
-  const Target target = DefaultTarget();
-  const Renderer renderer(camera, target, RenderOptions{});
-  std::unique_ptr<TagDetector> detector =
-      TagDetector::Create(DetectorOptions{}, std::make_shared<const IdealPixelMap>(camera)).value();
-  const std::vector<Pose> poses = RandomViewPoses(target, 8, 300, 300, 30, 30, 0.6, 2027);
-  std::vector<double> translation_mm, rotation_deg;
-  for (size_t i = 0; i < poses.size(); ++i) {
-    const RenderedView view = renderer.Render(poses[i], i);
-    const BoardPose pose = EstimateBoardPose(camera, MatchToTarget(target, detector->Detect(view.image)), {});
-    ASSERT_EQ(pose.status, PoseStatus::kOk) << pose.message;
-    translation_mm.push_back((pose.camera_from_target.position - poses[i].position).norm());
-    rotation_deg.push_back(RadToDeg(RotationDistance(pose.camera_from_target.rotation, poses[i].rotation)));
-  }
-  std::cout << "fisheye: median translation error " << Median(translation_mm) << " mm, rotation "
-            << Median(rotation_deg) << " deg\n";
-  EXPECT_LE(Median(translation_mm), 0.05);
-  EXPECT_LE(Median(rotation_deg), 0.01);
+  RenderedPoses r;
+  ASSERT_NO_FATAL_FAILURE(PoseRenderedViews(SimulatedFisheyeCamera(),
+                                            RandomViewPoses(DefaultTarget(), 8, 300, 300, 30, 30, 0.6, 2027), &r));
+  std::cout << "fisheye: median translation error " << Median(r.translation_mm) << " mm, rotation "
+            << Median(r.rotation_deg) << " deg\n";
+  EXPECT_LE(Median(r.translation_mm), 0.05);
+  EXPECT_LE(Median(r.rotation_deg), 0.01);
 }
 
 }  // namespace

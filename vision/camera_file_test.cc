@@ -17,9 +17,14 @@ using ::testing::HasSubstr;
 using ::testing::Not;
 
 std::string ParseError(const std::string& text) {
-  StatusOr<Camera> camera = ParseCameraFile(text, "cam.yaml");
-  EXPECT_FALSE(camera.ok()) << text;
-  return camera.ok() ? "" : camera.status().message();
+  return testing::ErrorMessage(ParseCameraFile(text, "cam.yaml"), text);
+}
+
+// `text`, read back by hexcal, is `camera` exactly.
+void ExpectReadsBackAs(const std::string& text, const std::string& source, const Camera& camera) {
+  StatusOr<Camera> back = ParseCameraFile(text, source);
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  ExpectSameCamera(*back, camera);
 }
 
 Camera WithModel(CameraModel model) {
@@ -43,9 +48,7 @@ TEST(CameraFileTest, OpenCvYamlRoundTripIsExact) {
   const std::string text = CameraToOpenCvYaml(camera, extras);
   EXPECT_THAT(text, Not(HasSubstr("distortion_model")));  // the radtan file is OpenCV's sample's
   EXPECT_THAT(text, HasSubstr("# standard deviations of fx, fy, cx, cy, k1, k2, p1, p2, k3\n"));
-  StatusOr<Camera> back = ParseCameraFile(text, "round-trip");
-  ASSERT_TRUE(back.ok()) << back.status().message();
-  ExpectSameCamera(*back, camera);
+  ExpectReadsBackAs(text, "round-trip", camera);
   // OpenCV itself reads the extras.
   cv::FileStorage storage(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
   cv::Mat std_dev;
@@ -59,9 +62,7 @@ TEST(CameraFileTest, EveryModelRoundTripsThroughOpenCvYamlAndXml) {
   for (CameraModel model : {CameraModel::kRadTan, CameraModel::kRational, CameraModel::kPinholeEqui}) {
     const Camera camera = WithModel(model);
     const std::string text = CameraToOpenCvYaml(camera);
-    StatusOr<Camera> back = ParseCameraFile(text, "round-trip");
-    ASSERT_TRUE(back.ok()) << back.status().message();
-    ExpectSameCamera(*back, camera);
+    ExpectReadsBackAs(text, "round-trip", camera);
     // OpenCV reads the coefficients as the model's vector (1x5, 1x8, 1x4).
     cv::FileStorage storage(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
     cv::Mat d;
@@ -75,9 +76,7 @@ TEST(CameraFileTest, EveryModelRoundTripsThroughOpenCvYamlAndXml) {
     if (model == CameraModel::kPinholeEqui)
       xml << "distortion_model"
           << "fisheye";
-    StatusOr<Camera> from_xml = ParseCameraFile(xml.releaseAndGetString(), "camera.xml");
-    ASSERT_TRUE(from_xml.ok()) << from_xml.status().message();
-    ExpectSameCamera(*from_xml, camera);
+    ExpectReadsBackAs(xml.releaseAndGetString(), "camera.xml", camera);
   }
   EXPECT_THAT(CameraToOpenCvYaml(WithModel(CameraModel::kRational)), HasSubstr("flags: 16384\n"));
   EXPECT_THAT(CameraToOpenCvYaml(WithModel(CameraModel::kPinholeEqui)), HasSubstr("distortion_model: equidistant\n"));
@@ -161,9 +160,7 @@ TEST(CameraFileTest, ReadsKalibrCamchain) {
   EXPECT_EQ(tumvi->distortion[0], 0.0034823894022493434);
   EXPECT_EQ(tumvi->distortion[3], 0.00020293673591811182);
   // Written as OpenCV YAML, it reads back the same.
-  StatusOr<Camera> back = ParseCameraFile(CameraToOpenCvYaml(*tumvi), "tumvi.yaml");
-  ASSERT_TRUE(back.ok()) << back.status().message();
-  ExpectSameCamera(*back, *tumvi);
+  ExpectReadsBackAs(CameraToOpenCvYaml(*tumvi), "tumvi.yaml", *tumvi);
   // A camera at the top level, radtan (k3 = 0); of several cameras, cam0.
   const std::string radtan =
       "camera_model: pinhole\nintrinsics: [458.654, 457.296, 367.215, 248.375]\ndistortion_model: radtan\n"

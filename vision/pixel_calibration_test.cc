@@ -15,6 +15,8 @@
 namespace hexcal {
 namespace {
 
+using testing::Accuracy;
+using testing::AccuracyInRegisteredFrames;
 using testing::PerturbedRobot;
 using testing::Preset;
 using testing::SpreadFeasiblePoses;
@@ -153,19 +155,8 @@ PixelCalibrationOptions Options(bool focal, bool target_scale) {
 
 // The errors of the 42 parameters against the truth in the registered frames
 // (the gauge, docs/session.md).
-struct Accuracy {
-  double within_3sigma = 0;
-  double mean_error = 0;
-};
-
 Accuracy AccuracyOf(const CalibrationResult& fit, const Scene& scene, const Registration& frames) {
-  const Robot truth = ExpressInFrames(scene.truth, Compose(frames.base_from_camera, Inverse(scene.base_from_camera)),
-                                      Compose(frames.platform_from_target, Inverse(scene.platform_from_target)));
-  const ParameterVector error = fit.Estimates() - ParametersOf(truth);
-  const ParameterVector sigma = fit.StdDevs();
-  int within = 0;
-  for (int k = 0; k < kNumParams; ++k) within += std::abs(error[k]) <= 3 * sigma[k] ? 1 : 0;
-  return {within / double(kNumParams), error.cwiseAbs().mean()};
+  return AccuracyInRegisteredFrames(fit, scene.truth, scene.base_from_camera, scene.platform_from_target, frames);
 }
 
 TEST(CalibrateFromPixels, IsAtLeastAsAccurateAsTwoStageWithHonestSigmas) {

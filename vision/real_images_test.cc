@@ -24,6 +24,26 @@ Target KalibrGrid() {
   return LoadTarget((SourceDir() / "resources/targets/kalibr-aprilgrid-6x6-88mm.yaml").string()).value();
 }
 
+// The board pose through `camera` from the edge-fitted corners, and from the
+// quad corners the edge fit starts from (refine_edges off), both detected in
+// the undistorted image.
+struct EdgeFitAndQuadPoses {
+  BoardObservation fitted;
+  BoardPose with_fit, without;
+};
+
+EdgeFitAndQuadPoses PosesWithAndWithoutEdgeFit(const Camera& camera, const Target& grid, const cv::Mat& gray) {
+  auto ideal = std::make_shared<const IdealPixelMap>(camera);
+  DetectorOptions options = ForTarget(DetectorOptions{}, grid);
+  EdgeFitAndQuadPoses poses;
+  poses.fitted = MatchToTarget(grid, TagDetector::Create(options, ideal).value()->Detect(gray));
+  options.refine_edges = false;
+  const BoardObservation quads = MatchToTarget(grid, TagDetector::Create(options, ideal).value()->Detect(gray));
+  poses.with_fit = EstimateBoardPose(camera, poses.fitted, BoardPoseOptions{});
+  poses.without = EstimateBoardPose(camera, quads, BoardPoseOptions{});
+  return poses;
+}
+
 struct PeerCount {
   const char* file;
   int border_bits;
@@ -86,25 +106,18 @@ TEST(RealImagePoseTest, EuRoCCornersFitThePublishedCalibration) {
   euroc.cx = 367.215;
   euroc.cy = 248.375;
   euroc.distortion = {-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05, 0};
-  const Target grid = KalibrGrid();
-  const cv::Mat gray = LoadGrayImage(RealImage("EuRoC.png")).value();
-  auto ideal = std::make_shared<const IdealPixelMap>(euroc);
-  DetectorOptions options = ForTarget(DetectorOptions{}, grid);
-  const BoardObservation fitted = MatchToTarget(grid, TagDetector::Create(options, ideal).value()->Detect(gray));
-  options.refine_edges = false;
-  const BoardObservation quads = MatchToTarget(grid, TagDetector::Create(options, ideal).value()->Detect(gray));
-  const BoardPose with_fit = EstimateBoardPose(euroc, fitted, BoardPoseOptions{});
-  const BoardPose without = EstimateBoardPose(euroc, quads, BoardPoseOptions{});
-  std::cout << "EuRoC board pose RMS: edge fit " << with_fit.rms_px << " px (" << fitted.NumTags()
-            << " tags), quad corners " << without.rms_px << " px, distance "
-            << with_fit.camera_from_target.position.norm() << " m\n";
-  ASSERT_TRUE(with_fit.has_pose);
-  EXPECT_EQ(fitted.NumTags(), 36);
-  EXPECT_LT(with_fit.rms_px, 0.5);
+  const EdgeFitAndQuadPoses poses =
+      PosesWithAndWithoutEdgeFit(euroc, KalibrGrid(), LoadGrayImage(RealImage("EuRoC.png")).value());
+  std::cout << "EuRoC board pose RMS: edge fit " << poses.with_fit.rms_px << " px (" << poses.fitted.NumTags()
+            << " tags), quad corners " << poses.without.rms_px << " px, distance "
+            << poses.with_fit.camera_from_target.position.norm() << " m\n";
+  ASSERT_TRUE(poses.with_fit.has_pose);
+  EXPECT_EQ(poses.fitted.NumTags(), 36);
+  EXPECT_LT(poses.with_fit.rms_px, 0.5);
   // The quad corners are snapped to the edges as the library does
   // (vision/quad_snap.h): on this lens the edge fit starts from corners
   // within 0.02 px RMS of its own result.
-  EXPECT_LE(with_fit.rms_px, without.rms_px + 0.03);
+  EXPECT_LE(poses.with_fit.rms_px, poses.without.rms_px + 0.03);
 }
 
 // The TUM VI camera's published calibration (Kalibr pinhole-equi at 512 × 512,
@@ -124,22 +137,14 @@ Camera PublishedTumVi() {
 // The published fisheye explains both real frames to a fraction of a pixel:
 // the equidistant model, the 16-bit reading and the corners agree with Kalibr's.
 TEST(RealImagePoseTest, TumViCornersFitThePublishedFisheye) {
-  const Camera tum = PublishedTumVi();
-  const Target grid = KalibrGrid();
-  auto ideal = std::make_shared<const IdealPixelMap>(tum);
   for (const char* file : {"TUM_VI.png", "r45.png"}) {
-    const cv::Mat gray = LoadGrayImage(RealImage(file)).value();
-    DetectorOptions options = ForTarget(DetectorOptions{}, grid);
-    const BoardObservation fitted = MatchToTarget(grid, TagDetector::Create(options, ideal).value()->Detect(gray));
-    options.refine_edges = false;
-    const BoardObservation quads = MatchToTarget(grid, TagDetector::Create(options, ideal).value()->Detect(gray));
-    const BoardPose with_fit = EstimateBoardPose(tum, fitted, BoardPoseOptions{});
-    const BoardPose without = EstimateBoardPose(tum, quads, BoardPoseOptions{});
-    std::cout << file << " board pose RMS with the published fisheye: edge fit " << with_fit.rms_px
-              << " px, quad corners " << without.rms_px << " px\n";
-    ASSERT_TRUE(with_fit.has_pose) << file;
-    EXPECT_LT(with_fit.rms_px, 0.5) << file;
-    EXPECT_LE(with_fit.rms_px, without.rms_px) << file;
+    const EdgeFitAndQuadPoses poses =
+        PosesWithAndWithoutEdgeFit(PublishedTumVi(), KalibrGrid(), LoadGrayImage(RealImage(file)).value());
+    std::cout << file << " board pose RMS with the published fisheye: edge fit " << poses.with_fit.rms_px
+              << " px, quad corners " << poses.without.rms_px << " px\n";
+    ASSERT_TRUE(poses.with_fit.has_pose) << file;
+    EXPECT_LT(poses.with_fit.rms_px, 0.5) << file;
+    EXPECT_LE(poses.with_fit.rms_px, poses.without.rms_px) << file;
   }
 }
 

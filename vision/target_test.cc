@@ -15,11 +15,7 @@ using ::hexcal::testing::TempDir;
 using ::hexcal::testing::WriteTextFile;
 using ::testing::HasSubstr;
 
-std::string ParseError(const std::string& yaml) {
-  StatusOr<Target> target = ParseTargetYaml(yaml, "t.yaml");
-  EXPECT_FALSE(target.ok()) << yaml;
-  return target.ok() ? "" : target.status().message();
-}
+std::string ParseError(const std::string& yaml) { return testing::ErrorMessage(ParseTargetYaml(yaml, "t.yaml"), yaml); }
 
 const char* kMinimal = "rows: 2\ncols: 3\ntag_size: 40\ntag_spacing: 0.25\nlength_unit: mm\n";
 

@@ -12,11 +12,7 @@ using ::hexcal::testing::SourceDir;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 
-std::string ParseError(const std::string& yaml) {
-  StatusOr<Target> target = ParseTargetYaml(yaml, "t.yaml");
-  EXPECT_FALSE(target.ok()) << yaml;
-  return target.ok() ? "" : target.status().message();
-}
+std::string ParseError(const std::string& yaml) { return testing::ErrorMessage(ParseTargetYaml(yaml, "t.yaml"), yaml); }
 
 const char* kCommon = "tag_size: 40\ntag_spacing: 0.25\nlength_unit: mm\n";
 // Two rows of three as printed; the bottom-left cell has no tag.

@@ -20,12 +20,7 @@ cleanup() {
 trap cleanup EXIT
 s=$dir/s
 "$hexcal" session init --robot inria-left-hand --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 "$s" >/dev/null
-cat >"$dir/poses.csv" <<'CSV'
-x,y,z,q1,q2,q3
-0,0,53.5,0,0,0
-1,-0.5,53,2,-1,4
--1,0.8,54,-2,2,-3
-CSV
+cp "$(dirname "$0")/../data/poses/acquire_three.csv" "$dir/poses.csv"
 acquire() {  # acquire CAMERA: exit code in $code, stdout in $dir/out, stderr in $dir/err
   code=0
   "$hexcal" acquire --session "$s" --controller sim --camera "$1" --poses "$dir/poses.csv" \

@@ -16,12 +16,7 @@ s=$dir/s
 "$hexcal" session init --robot inria-left-hand --camera sim-4.2mm-1024x768 --target aprilgrid-6x6 \
   --noise-position 0.005 --noise-angle 0.02 --noise-leg 0.001 "$s" >/dev/null
 "$hexcal" target print --target aprilgrid-6x6 --out "$dir/still.png" >/dev/null
-cat >"$dir/poses.csv" <<'CSV'
-x,y,z,q1,q2,q3
-0,0,53.5,0,0,0
-1,-1,53,2,-2,3
--1,1.5,54,-3,2,-4
-CSV
+cp "$(dirname "$0")/../data/poses/acquire_three.csv" "$dir/poses.csv"
 "$hexcal" acquire --session "$s" --controller "linuxcnc://127.0.0.1:$port" --camera "file:$dir/still.png" \
   --poses "$dir/poses.csv" >"$dir/out" 2>"$dir/err" || { cat "$dir/out" "$dir/err"; exit 1; }
 grep -q "LinuxCNC at 127.0.0.1:$port" "$dir/out" || { cat "$dir/out"; exit 1; }
