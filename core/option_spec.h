@@ -32,6 +32,10 @@ enum class OptionType { kInteger, kNumber, kFlag, kChoice, kChoiceList, kText };
 // 100000 must stop at once (issue 13).
 constexpr int kMaxThreads = 256;
 
+// 2^53: the largest integer every smaller one of which a double holds
+// exactly, and so the bound of a seed, which is read as a double.
+constexpr double kMaxExactInteger = 9007199254740992.0;
+
 template <typename T>
 struct OptionSpec {
   std::string key;    // YAML key; the CLI flag is `flag`, or "--" + key with '_' as '-'
@@ -86,6 +90,19 @@ OptionSpec<T> NumberOption(std::string key, std::string label, OptionType type, 
     target = static_cast<std::remove_reference_t<decltype(target)>>(v);
   };
   return spec;
+}
+
+// A random seed, 0 to 2^53, bound to a uint64_t field; `help` says what it seeds.
+template <typename T, typename Field>
+OptionSpec<T> SeedOption(std::string help, Field field) {
+  return NumberOption<T>("seed", "Seed", OptionType::kInteger, "", 0, kMaxExactInteger, std::move(help), field);
+}
+
+// A thread count, 0 (every core) to kMaxThreads, bound to an int field.
+template <typename T, typename Field>
+OptionSpec<T> ThreadsOption(std::string label, std::string help, Field field) {
+  return NumberOption<T>("threads", std::move(label), OptionType::kInteger, "threads", 0, kMaxThreads,
+                         std::move(help), field);
 }
 
 // A choice (kChoice) or a list of choices (kChoiceList, "a,b") read and
@@ -217,7 +234,7 @@ inline Status CheckIntegerText(const std::string& text, double value, double min
   const auto [end, error] = std::from_chars(text.data() + (sign && text[0] == '+' ? 1 : 0), last, exact);
   if (text.size() == sign || end != last || (error != std::errc() && error != std::errc::result_out_of_range))
     return Status::BadInput(where + ": expected a whole number in decimal digits, got " + Excerpt(text));
-  if (error == std::errc() && std::abs(value) <= 9007199254740992.0 && static_cast<long long>(value) == exact)
+  if (error == std::errc() && std::abs(value) <= kMaxExactInteger && static_cast<long long>(value) == exact)
     return Status::Ok();
   if (value < 0) return Status::BadInput(where + ": must be at least " + FormatNumber(min) + unit + ", got " + text);
   return Status::BadInput(where + ": must be at most " + FormatNumber(max) + unit + ", got " + text);

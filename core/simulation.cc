@@ -200,15 +200,14 @@ const OptionTable<SimulationOptions>& SimulationOptionSpecs() {
         NumberOption<Options>("runs", "Runs", OptionType::kInteger, "", 1, 1000000,
                               "repetitions: a true robot's measurements drawn anew and calibrated, per set",
                               [](Options& o) -> int& { return o.runs; }),
-        NumberOption<Options>("seed", "Seed", OptionType::kInteger, "", 0, 9007199254740992.0,
-                              "seed of the true robot, the random poses and the noise; the numbers do not depend on "
-                              "the threads",
-                              [](Options& o) -> uint64_t& { return o.seed; }),
+        SeedOption<Options>(
+            "seed of the true robot, the random poses and the noise; the numbers do not depend on the threads",
+            [](Options& o) -> uint64_t& { return o.seed; }),
         NumberOption<Options>("perturb", "Perturbation", OptionType::kNumber, "robot unit", 0, 1000000,
                               "half-width of the uniform perturbation of each of the 42 parameters (the true robot)",
                               [](Options& o) -> double& { return o.perturb; }),
-        NumberOption<Options>("threads", "Threads", OptionType::kInteger, "threads", 0, kMaxThreads,
-                              "runs at once; 0 = every core", [](Options& o) -> int& { return o.num_threads; })};
+        ThreadsOption<Options>("Threads", "runs at once; 0 = every core",
+                               [](Options& o) -> int& { return o.num_threads; })};
   }();
   return table;
 }

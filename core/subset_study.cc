@@ -133,13 +133,10 @@ const OptionTable<SubsetStudyOptions>& SubsetStudyOptionSpecs() {
         NumberOption<Options>("starts", "IOOPS starts", OptionType::kInteger, "", 1, 1000,
                               "IOOPS runs from this many random initial subsets; the best on the criterion is kept",
                               [](Options& o) -> int& { return o.selection_starts; }),
-        NumberOption<Options>(
-            "seed", "Seed", OptionType::kInteger, "", 0, 9007199254740992.0,
-            "seed of the IOOPS starts and the random subsets; the numbers do not depend on the threads",
-            [](Options& o) -> uint64_t& { return o.seed; }),
-        NumberOption<Options>("threads", "Threads", OptionType::kInteger, "threads", 0, kMaxThreads,
-                              "subsets calibrated at once; 0 = every core",
-                              [](Options& o) -> int& { return o.num_threads; })};
+        SeedOption<Options>("seed of the IOOPS starts and the random subsets; the numbers do not depend on the threads",
+                            [](Options& o) -> uint64_t& { return o.seed; }),
+        ThreadsOption<Options>("Threads", "subsets calibrated at once; 0 = every core",
+                               [](Options& o) -> int& { return o.num_threads; })};
   }();
   return table;
 }

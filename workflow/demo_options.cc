@@ -35,9 +35,8 @@ const OptionTable<DemoRequest>& DemoOptions() {
     t.push_back(NumberOption<Request>("point_sigma", "Point sigma", OptionType::kNumber, "mm", 0.0001, 1,
                                       "with the points instrument: the tracker's sigma on each coordinate",
                                       [](Request& r) -> double& { return r.point_sigma_mm; }));
-    t.push_back(NumberOption<Request>("seed", "Seed", OptionType::kInteger, "", 0, 9007199254740992.0,
-                                      "seed of the truth, the candidates and the noise",
-                                      [](Request& r) -> uint64_t& { return r.seed; }));
+    t.push_back(SeedOption<Request>("seed of the truth, the candidates and the noise",
+                                    [](Request& r) -> uint64_t& { return r.seed; }));
     return t;
   }();
   return table;

@@ -101,12 +101,10 @@ void AddSources(OptionTable<PlanSetup>* t) {
       [](PlanSetup& s, const std::string& v) { s.init = v; });
   init.file_allowed = true;
   t->push_back(init);
-  t->push_back(Number("seed", "Seed", OptionType::kInteger, "", 0, 9007199254740992.0,
-                      "random seed of the candidates, the initial set and the randomisation",
-                      [](PlanSetup& s) -> uint64_t& { return s.planner.seed; }));
-  t->push_back(Number("threads", "Scoring threads", OptionType::kInteger, "threads", 0, 1024,
-                      "threads that score candidates; 0 = every core",
-                      [](PlanSetup& s) -> int& { return s.planner.threads; }));
+  t->push_back(SeedOption<PlanSetup>("random seed of the candidates, the initial set and the randomisation",
+                                     [](PlanSetup& s) -> uint64_t& { return s.planner.seed; }));
+  t->push_back(ThreadsOption<PlanSetup>("Scoring threads", "threads that score candidates; 0 = every core",
+                                        [](PlanSetup& s) -> int& { return s.planner.threads; }));
   t->push_back(Number("certificate", "Optimality certificates", OptionType::kFlag, "", 0, 1,
                       "compute the D- and S-optimal design bounds on the candidates and the plan's efficiencies",
                       [](PlanSetup& s) -> bool& { return s.certificate; }));
