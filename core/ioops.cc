@@ -41,8 +41,7 @@ ObservabilityIndices PaperIndices(const Robot& robot, const std::vector<PlanEntr
 
 Status CheckPlanInput(const std::vector<Vector6d>& candidates, const std::vector<Vector6d>& initial,
                       const PlannerOptions& options) {
-  std::string error;
-  if (!options.IsValid(&error)) return Status::BadInput(error);
+  if (Status s = options.Check(); !s.ok()) return s;
   if (static_cast<int>(initial.size()) != options.num_poses) {
     return Status::BadInput("the initial set has " + std::to_string(initial.size()) + " poses, the plan " +
                             std::to_string(options.num_poses));
@@ -307,34 +306,40 @@ const OptionTable<PlannerOptions>& PlannerOptionSpecs() {
         NumberOption<PlannerOptions>(
             "keep", "Keep on primary", OptionType::kNumber, "fraction", 0.01, 1,
             "section 6.2: fraction of AddFind's results kept on the primary before the secondary picks",
-            [](PlannerOptions& o) -> double& { return o.keep; })};
+            [](PlannerOptions& o) -> double& { return o.keep; }),
+        NumberOption<PlannerOptions>("tabu", "Tabu list n", OptionType::kInteger, "poses", 0, 100000,
+                                     "section 4.3: the last n added poses may not be removed; 0 turns Tabu off",
+                                     [](PlannerOptions& o) -> int& { return o.tabu; }),
+        NumberOption<PlannerOptions>(
+            "iterations", "Iteration budget", OptionType::kInteger, "iterations", 0, 1000000,
+            "0: 200 with Tabu, else 10 N; the search also stops when a pose is added and removed again",
+            [](PlannerOptions& o) -> int& { return o.iterations; }),
+        NumberOption<PlannerOptions>("addfind_starts", "AddFind starts U", OptionType::kInteger, "candidates", 0,
+                                     10000000, "candidates drawn each iteration (0: all of them; continuous: 40 SLSQP starts)",
+                                     [](PlannerOptions& o) -> int& { return o.addfind_starts; }),
+        NumberOption<PlannerOptions>("switch_probability", "Criterion switch", OptionType::kNumber, "probability", 0,
+                                     1, "section 4.2: AddFind uses the secondary criterion with this probability",
+                                     [](PlannerOptions& o) -> double& { return o.criterion_switch_probability; }),
+        NumberOption<PlannerOptions>("removal_choices", "Removal choices r", OptionType::kInteger, "poses", 1, 1000,
+                                     "section 4.2: RemoveFind drops one of the r least useful poses at random",
+                                     [](PlannerOptions& o) -> int& { return o.removal_choices; }),
+        SeedOption<PlannerOptions>("random seed of the candidates, the initial set and the randomisation",
+                                   [](PlannerOptions& o) -> uint64_t& { return o.seed; }),
+        ThreadsOption<PlannerOptions>("Scoring threads", "threads that score candidates; 0 = every core",
+                                      [](PlannerOptions& o) -> int& { return o.threads; })};
   }();
   return table;
 }
 
-bool PlannerOptions::IsValid(std::string* error) const {
-  if (Status s = CheckOptionRanges(PlannerOptionSpecs(), *this); !s.ok()) {
-    *error = s.message();
-    return false;
-  }
-  if (tabu < 0 || iterations < 0 || addfind_starts < 0 || removal_choices < 1 || threads < 0) {
-    *error = "tabu, iterations, addfind starts and threads must be >= 0, removal choices >= 1";
-    return false;
-  }
+Status PlannerOptions::Check() const {
+  if (Status s = CheckOptionRanges(PlannerOptionSpecs(), *this); !s.ok()) return s;
   if (tabu >= num_poses) {
-    *error = "the Tabu list (" + std::to_string(tabu) + ") must be shorter than the plan (" +
-             std::to_string(num_poses) + ")";
-    return false;
+    return Status::BadOption("tabu", "must be shorter than the plan (" + std::to_string(num_poses) + " poses), got " +
+                                         std::to_string(tabu));
   }
-  if (!(criterion_switch_probability >= 0 && criterion_switch_probability <= 1)) {
-    *error = "criterion switch probability must be in [0, 1]";
-    return false;
-  }
-  if (criterion_switch_probability > 0 && !secondary) {
-    *error = "criterion switching needs a secondary criterion";
-    return false;
-  }
-  return true;
+  if (criterion_switch_probability > 0 && !secondary)
+    return Status::BadOption("switch_probability", "needs a secondary criterion to switch to");
+  return Status::Ok();
 }
 
 int PlannerOptions::IterationBudget() const {

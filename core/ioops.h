@@ -47,13 +47,15 @@ struct PlannerOptions {
   // same (ioops_test checks it against the plain scoring of every candidate, false).
   bool screen = true;
 
-  // The ranges of PlannerOptionSpecs, then the rules between options.
-  bool IsValid(std::string* error) const;
+  // The ranges of PlannerOptionSpecs, then the rules between options; a
+  // failure names the option by its key (Status::BadOption).
+  Status Check() const;
   int IterationBudget() const;
 };
 
-// The descriptors of the planner options whose range is a rule of the planner
-// itself: `poses` (at least 7, a leg's parameters) and `keep`. IsValid checks
+// The descriptors of the planner's numeric options (`poses`, at least 7, a
+// leg's parameters; `keep`, `tabu`, `iterations`, `addfind_starts`,
+// `switch_probability`, `removal_choices`, `seed`, `threads`). Check applies
 // them, and the plan's option table (workflow/plan_options.h) takes them whole
 // for the CLI flags, the settings file and the GUI form.
 const OptionTable<PlannerOptions>& PlannerOptionSpecs();

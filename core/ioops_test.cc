@@ -266,5 +266,26 @@ TEST_F(IoopsTest, ErrorsAndCancellation) {
   EXPECT_TRUE(cancelled.status().cancelled());
 }
 
+// The rules between options name the option they refuse by its key, which
+// the CLI shows as its flag and the GUI as its label.
+TEST(PlannerOptionsCheck, RulesBetweenOptionsNameTheOption) {
+  PlannerOptions options;
+  options.num_poses = 12;
+  EXPECT_TRUE(options.Check().ok());
+  options.tabu = 12;
+  Status s = options.Check();
+  EXPECT_EQ(s.option(), "tabu");
+  EXPECT_EQ(s.message(), "tabu: must be shorter than the plan (12 poses), got 12");
+  options.tabu = 11;
+  EXPECT_TRUE(options.Check().ok());
+  options.criterion_switch_probability = 0.5;
+  s = options.Check();
+  EXPECT_EQ(s.option(), "switch_probability");
+  options.secondary = Criterion::kO1;
+  EXPECT_TRUE(options.Check().ok());
+  options.removal_choices = 0;  // a range of PlannerOptionSpecs
+  EXPECT_EQ(options.Check().option(), "removal_choices");
+}
+
 }  // namespace
 }  // namespace hexcal

@@ -62,15 +62,9 @@ void AddCriteria(OptionTable<PlanSetup>* t) {
 
 void AddSearch(OptionTable<PlanSetup>* t) {
   t->push_back(Planner("poses"));
-  t->push_back(Number("tabu", "Tabu list n", OptionType::kInteger, "poses", 0, 100000,
-                      "section 4.3: the last n added poses may not be removed; 0 turns Tabu off",
-                      [](PlanSetup& s) -> int& { return s.planner.tabu; }));
-  t->push_back(Number("iterations", "Iteration budget", OptionType::kInteger, "iterations", 0, 1000000,
-                      "0: 200 with Tabu, else 10 N; the search also stops when a pose is added and removed again",
-                      [](PlanSetup& s) -> int& { return s.planner.iterations; }));
-  t->push_back(Number("addfind_starts", "AddFind starts U", OptionType::kInteger, "candidates", 0, 10000000,
-                      "candidates drawn each iteration (0: all of them; continuous: 40 SLSQP starts)",
-                      [](PlanSetup& s) -> int& { return s.planner.addfind_starts; }));
+  t->push_back(Planner("tabu"));
+  t->push_back(Planner("iterations"));
+  t->push_back(Planner("addfind_starts"));
   Spec continuous = Number("continuous", "Continuous AddFind", OptionType::kFlag, "", 0, 1,
                            "AddFind by SLSQP in the workspace; the candidates are only the starts",
                            [](PlanSetup& s) -> bool& { return s.planner.continuous; });
@@ -78,12 +72,8 @@ void AddSearch(OptionTable<PlanSetup>* t) {
   t->push_back(Number("polish", "Continuous polish", OptionType::kInteger, "iterations", 0, 100000,
                       "continuous IOOPS iterations from the finite plan (SLSQP under every constraint); 0: none",
                       [](PlanSetup& s) -> int& { return s.polish; }));
-  t->push_back(Number("switch_probability", "Criterion switch", OptionType::kNumber, "probability", 0, 1,
-                      "section 4.2: AddFind uses the secondary criterion with this probability",
-                      [](PlanSetup& s) -> double& { return s.planner.criterion_switch_probability; }));
-  t->push_back(Number("removal_choices", "Removal choices r", OptionType::kInteger, "poses", 1, 1000,
-                      "section 4.2: RemoveFind drops one of the r least useful poses at random",
-                      [](PlanSetup& s) -> int& { return s.planner.removal_choices; }));
+  t->push_back(Planner("switch_probability"));
+  t->push_back(Planner("removal_choices"));
 }
 
 void AddSources(OptionTable<PlanSetup>* t) {
@@ -101,10 +91,8 @@ void AddSources(OptionTable<PlanSetup>* t) {
       [](PlanSetup& s, const std::string& v) { s.init = v; });
   init.file_allowed = true;
   t->push_back(init);
-  t->push_back(SeedOption<PlanSetup>("random seed of the candidates, the initial set and the randomisation",
-                                     [](PlanSetup& s) -> uint64_t& { return s.planner.seed; }));
-  t->push_back(ThreadsOption<PlanSetup>("Scoring threads", "threads that score candidates; 0 = every core",
-                                        [](PlanSetup& s) -> int& { return s.planner.threads; }));
+  t->push_back(Planner("seed"));
+  t->push_back(Planner("threads"));
   t->push_back(Number("certificate", "Optimality certificates", OptionType::kFlag, "", 0, 1,
                       "compute the D- and S-optimal design bounds on the candidates and the plan's efficiencies",
                       [](PlanSetup& s) -> bool& { return s.certificate; }));
@@ -123,8 +111,7 @@ PlannerOptions DefaultPlannerOptions() {
 }
 
 Status PlanSetup::Check() const {
-  std::string error;
-  if (!planner.IsValid(&error)) return Status::BadInput("planner options: " + error);
+  if (Status s = planner.Check(); !s.ok()) return s;
   if (candidate_kinds.empty()) return Status::BadInput("candidate_kind: name at least one kind");
   return Status::Ok();
 }
