@@ -19,6 +19,7 @@ trap 'rm -f "$log"' EXIT
 # many starts (3 of the binary's 4 minutes under the sanitizers); the same
 # homotopy code runs under them in the binary's other cases.
 export GTEST_FILTER='-FkFamily.SameModesAsTheGenericStart:ForwardKinematicsAll.InriaStrokeCorners'
+# The folders here are HEXCAL_SANITIZED_FOLDERS (cmake/HexcalTesting.cmake), whose tests hexcal_unit_tests builds.
 ctest --test-dir "$dir" -R '^(core|vision|charts|devices|session|sim|report|workflow)/' -LE sweep --output-on-failure -j"$jobs" 2>&1 | tee "$log"
 status=${PIPESTATUS[0]}
 if [ "$status" -eq 0 ] || ! grep -q "Tracer caught signal" "$log"; then exit "$status"; fi
