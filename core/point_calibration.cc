@@ -158,7 +158,7 @@ StatusOr<PointCalibrationResult> CalibrateFromPoints(const PointCalibrationInput
     fit->problem.SetParameterBlockConstant(fit->reflectors.data());
   }
   // Refused before the solve when the start already shows it.
-  const PointIdentifiability before = Identifiability(*fit);
+  const PointIdentifiability before = Identifiability(Information(*fit), *fit);
   if (before.eigenvalue_ratio < kMinEigenvalueRatio) return Unidentifiable(before);
 
   ceres::Solver::Options solver = SolverOptions(options, fit.get());
@@ -169,9 +169,10 @@ StatusOr<PointCalibrationResult> CalibrateFromPoints(const PointCalibrationInput
   if (hooks.Cancelled()) return Status::Cancelled("calibration from points: cancelled");
   if (summary.termination_type != ceres::CONVERGENCE)
     return Status::Failed("calibration from points: the solve did not converge (" + summary.message + ")");
-  const PointIdentifiability after = Identifiability(*fit);
+  const JointFitInformation information = Information(*fit);  // once, for the check and the result
+  const PointIdentifiability after = Identifiability(information, *fit);
   if (after.eigenvalue_ratio < kMinEigenvalueRatio) return Unidentifiable(after);
-  PointCalibrationResult result = SummarizePointFit(input, *fit, options, after);
+  PointCalibrationResult result = SummarizePointFit(input, *fit, options, information, after);
   for (const Vector6d& block : fit->poses) result.base_from_platform.push_back(PoseOfBlock(block));
   result.iterations = static_cast<int>(summary.iterations.size()) - 1;
   result.termination = ceres::TerminationTypeToString(summary.termination_type);

@@ -148,15 +148,16 @@ void FillPointResiduals(const PointCalibrationInput& input, PointFitProblem& fit
 
 }  // namespace
 
-PointIdentifiability Identifiability(PointFitProblem& fit) {
-  const JointFitInformation information = ReducedInformationAt(&fit.problem, Columns(fit));
+JointFitInformation Information(PointFitProblem& fit) { return ReducedInformationAt(&fit.problem, Columns(fit)); }
+
+PointIdentifiability Identifiability(const JointFitInformation& information, PointFitProblem& fit) {
   return IdentifiabilityOf(information.reduced, fit.estimate_reflectors ? ReflectorBasis(fit) : nullptr, fit);
 }
 
 PointCalibrationResult SummarizePointFit(const PointCalibrationInput& input, PointFitProblem& fit,
                                          const PointCalibrationOptions& options,
+                                         const JointFitInformation& information,
                                          const PointIdentifiability& identifiability) {
-  const JointFitInformation information = ReducedInformationAt(&fit.problem, Columns(fit));
   PointCalibrationResult result;
   result.identifiability = identifiability;
   result.variance_factor = information.VarianceFactor();

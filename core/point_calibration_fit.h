@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/joint_fit_information.h"
 #include "core/point_calibration_types.h"
 
 namespace hexcal {
@@ -32,13 +33,19 @@ struct PointFitProblem {
   std::array<std::vector<int>, kNumLegs> leg_poses;  // the pose of each of leg_rows
 };
 
-// The rank and eigenvalue ratio of the reduced information at the problem's
-// current values, and the unknowns of its weakest direction.
-PointIdentifiability Identifiability(PointFitProblem& fit);
+// The information of the legs and, when estimated, the reflectors with the
+// poses eliminated, at the problem's current values.
+JointFitInformation Information(PointFitProblem& fit);
 
-// The result without the poses, iterations and termination.
+// The rank and eigenvalue ratio of `information` (Information(fit)), and the
+// unknowns of its weakest direction.
+PointIdentifiability Identifiability(const JointFitInformation& information, PointFitProblem& fit);
+
+// The result without the poses, iterations and termination, from the
+// information and identifiability at the solution.
 PointCalibrationResult SummarizePointFit(const PointCalibrationInput& input, PointFitProblem& fit,
                                          const PointCalibrationOptions& options,
+                                         const JointFitInformation& information,
                                          const PointIdentifiability& identifiability);
 
 }  // namespace hexcal
