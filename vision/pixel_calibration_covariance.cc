@@ -48,28 +48,6 @@ double ReprojectionRms(const std::vector<CornerResidual>& corners) {
   return corners.empty() ? 0 : std::sqrt(sum / static_cast<double>(corners.size()));
 }
 
-// RMS of one leg's reading residuals, robot unit.
-double LegRms(const PixelFit& fit, int leg, double sigma) {
-  const std::vector<double> residuals = ResidualsOf(fit.problem, fit.leg_rows[leg]);
-  double sum = 0;
-  for (double r : residuals) sum += r * r;
-  return residuals.empty() ? 0 : sigma * std::sqrt(sum / residuals.size());
-}
-
-// z = −r of every reading used, NaN for the others.
-std::vector<LegReadings> LegZ(const PixelFit& fit, int images) {
-  std::vector<LegReadings> z(images, LegReadings::Constant(std::nan("")));
-  for (int i = 0; i < kNumLegs; ++i) {
-    const std::vector<double> r = ResidualsOf(fit.problem, fit.leg_rows[i]);
-    for (size_t k = 0; k < r.size(); ++k) z[fit.leg_images[i][k]][i] = -r[k];
-  }
-  return z;
-}
-
-}  // namespace
-
-namespace {
-
 // σ_min / σ_max of the information with every unknown scaled to unit
 // diagonal: 0 when a combination of unknowns is not seen by the data.
 double ScaledConditionInverse(const MatrixXd& information) {
@@ -79,19 +57,34 @@ double ScaledConditionInverse(const MatrixXd& information) {
   return eigen[0] > 0 ? eigen[0] / eigen[eigen.size() - 1] : 0;
 }
 
+// Each leg's estimate with its σ, and its reading residuals r (in σ_L),
+// evaluated once: their RMS (robot unit), z = −r of every reading used (NaN
+// for the others), and the RMS over every leg.
 void FillLegs(const PixelCalibrationInput& input, const PixelFit& fit, const MatrixXd& covariance,
-              const PixelCalibrationOptions& options, double variance_factor, CalibrationResult* calibration) {
+              const PixelCalibrationOptions& options, double variance_factor, PixelCalibrationResult* result) {
+  CalibrationResult& calibration = result->calibration;
   ParameterVector estimates;
+  double leg_sum = 0;
+  result->leg_z.assign(input.images.size(), LegReadings::Constant(std::nan("")));
   for (int i = 0; i < kNumLegs; ++i) {
-    LegCalibration& leg = calibration->legs[i];
+    LegCalibration& leg = calibration.legs[i];
     leg.initial = LegParametersOf(input.nominal.legs[i]);
     FillLegUncertainty(i, (*fit.legs)[i], covariance, variance_factor, &leg);
     estimates.segment<kParamsPerLeg>(kParamsPerLeg * i) = leg.estimate;
-    leg.residual_rms = LegRms(fit, i, options.leg_sigma);
-    leg.rows_used = static_cast<int>(fit.leg_rows[i].size());
+    const std::vector<double> r = ResidualsOf(fit.problem, fit.leg_rows[i]);
+    double sum = 0;
+    for (size_t k = 0; k < r.size(); ++k) {
+      sum += r[k] * r[k];
+      result->leg_z[fit.leg_images[i][k]][i] = -r[k];
+    }
+    leg.residual_rms = r.empty() ? 0 : options.leg_sigma * std::sqrt(sum / r.size());
+    leg.rows_used = static_cast<int>(r.size());
+    leg_sum += std::pow(leg.residual_rms, 2) * r.size();
+    result->leg_rows += leg.rows_used;
   }
-  calibration->robot = WithParameters(input.start, estimates);
-  calibration->num_measurements = static_cast<int>(input.images.size());
+  calibration.robot = WithParameters(input.start, estimates);
+  calibration.num_measurements = static_cast<int>(input.images.size());
+  result->leg_residual_rms = result->leg_rows > 0 ? std::sqrt(leg_sum / result->leg_rows) : 0;
 }
 
 // The camera and target estimates with σ, in the order of the columns after the 42 parameters.
@@ -163,21 +156,12 @@ StatusOr<PixelCalibrationResult> SummarizePixelFit(const PixelCalibrationInput& 
   PixelCalibrationResult result;
   result.variance_factor = information.VarianceFactor();
   const MatrixXd covariance = information.Covariance();
-  FillLegs(input, fit, covariance, options, result.variance_factor, &result.calibration);
+  FillLegs(input, fit, covariance, options, result.variance_factor, &result);
   FillExtras(input, fit, covariance, &result);
   result.strong_correlations = StrongCorrelations(fit, covariance);
   result.corner_residuals = CornerResiduals(fit);
   result.corners = static_cast<int>(result.corner_residuals.size());
   result.reprojection_rms_px = ReprojectionRms(result.corner_residuals);
-  double leg_sum = 0;
-  int leg_count = 0;
-  for (int i = 0; i < kNumLegs; ++i) {
-    leg_sum += std::pow(result.calibration.legs[i].residual_rms, 2) * fit.leg_rows[i].size();
-    leg_count += static_cast<int>(fit.leg_rows[i].size());
-  }
-  result.leg_rows = leg_count;
-  result.leg_z = LegZ(fit, static_cast<int>(input.images.size()));
-  result.leg_residual_rms = leg_count > 0 ? std::sqrt(leg_sum / leg_count) : 0;
   return result;
 }
 
