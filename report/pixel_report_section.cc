@@ -53,8 +53,8 @@ std::string ReflectorTable(const PointFitSummary& fit, const std::string& unit) 
     html += "<tr><td>" + r.name + "</td>" + cells + "</tr>\n";
   }
   return html + "</table><p>Changes from the " + (fit.reflectors_from_file ? "reflector file" : "estimate from the poses") +
-         " in its frame (" + ResultsName(kFittedReflectors) + "); the shape's size is " + G4(fit.reflector_scale) + " &plusmn; " +
-         G4(fit.reflector_scale_sigma) + " of the given one.</p>\n";
+         " in its frame (" + ResultsName(kFittedReflectors) + "); the shape's size is " + G4(fit.reflector_scale) +
+         " &plusmn; " + G4(fit.reflector_scale_sigma) + " of the given one.</p>\n";
 }
 
 std::string PointsMethodSection(const CalibrationReport& report) {

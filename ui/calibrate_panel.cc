@@ -281,7 +281,8 @@ void CalibratePanel::FillParameterTable(const std::vector<workflow::ParameterEst
 void CalibratePanel::PlotResiduals() {
   if (!session_->Results().ok())
     return ShowChart(residuals_, charts::CalibrationResidualsChart(session_->NominalRobot(), session_->NominalRobot(), {}));
-  StatusOr<std::vector<Measurement>> rows = LoadMeasurements(workflow::ResultsFile(session_->Paths().dir, workflow::kUsedMeasurements));
+  StatusOr<std::vector<Measurement>> rows =
+      LoadMeasurements(workflow::ResultsFile(session_->Paths().dir, workflow::kUsedMeasurements));
   StatusOr<Robot> calibrated = LoadRobot(workflow::ResultsFile(session_->Paths().dir, workflow::kCalibratedRobot));
   const Robot& robot = session_->NominalRobot();
   if (!rows.ok() || !calibrated.ok()) return ShowChart(residuals_, charts::CalibrationResidualsChart(robot, robot, {}));

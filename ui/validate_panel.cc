@@ -176,7 +176,8 @@ bool ValidatePanel::ResultsUsable(const QString& what) {
 
 void ValidatePanel::ExportCalibratedRobot(const QString& chosen) {
   if (!session_->IsOpen()) return ShowError(this, "Export robot", "Open a session first (File menu).");
-  const QString source = QString::fromStdString(workflow::ResultsFile(session_->Paths().dir, workflow::kCalibratedRobot));
+  const QString source =
+      QString::fromStdString(workflow::ResultsFile(session_->Paths().dir, workflow::kCalibratedRobot));
   if (!ResultsUsable("Export robot")) return;
   if (!QFile::exists(source))
     return ShowError(this, "Export robot", "No calibrated robot yet: run the Calibrate step.");
@@ -194,7 +195,8 @@ void ValidatePanel::ExportHtmlReport(const QString& chosen) {
   if (!session_->IsOpen()) return ShowError(this, "Export report", "Open a session first (File menu).");
   if (!ResultsUsable("Export report")) return;
   const QString path = chosen.isEmpty()
-                           ? QFileDialog::getSaveFileName(this, "Export HTML report", workflow::kHtmlReport, "HTML (*.html)")
+                           ? QFileDialog::getSaveFileName(this, "Export HTML report", workflow::kHtmlReport,
+                                                          "HTML (*.html)")
                            : chosen;
   if (path.isEmpty()) return;
   // The same step as `hexcal report`, so the page is the CLI's.
